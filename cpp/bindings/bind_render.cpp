@@ -1,0 +1,157 @@
+// Bindings of the renderer: offscreen frames as NumPy arrays, statistics, shadow data.
+#include <cstring>
+
+#include <pybind11/stl.h>
+
+#include <weft/Renderer.h>
+
+#include "Convert.h"
+
+namespace weft::py_bind {
+
+namespace {
+
+py::array_t<float> floatImage(const std::vector<float>& data, int h, int w, int channels,
+                              int take, int offset) {
+    py::array_t<float> out(take == 1 ? std::vector<py::ssize_t>{h, w}
+                                     : std::vector<py::ssize_t>{h, w, take});
+    float* dst = out.mutable_data();
+    const size_t n = size_t(h) * w;
+    for (size_t i = 0; i < n; ++i)
+        for (int k = 0; k < take; ++k) dst[i * take + k] = data[i * channels + offset + k];
+    return out;
+}
+
+py::array_t<uint8_t> colorImage(const ImageU8& img) {
+    py::array_t<uint8_t> out({img.height, img.width, 4});
+    std::memcpy(out.mutable_data(), img.pixels.data(), img.pixels.size());
+    return out;
+}
+
+py::object ms(double v) { return v < 0 ? py::object(py::none()) : py::object(py::float_(v)); }
+
+py::dict statsDict(const FrameStats& s) {
+    py::dict d;
+    d["frame_index"] = s.frameIndex;
+    d["cpu_ms"] = s.cpuMs;
+    d["gpu_ms"] = ms(s.gpuMs);
+    py::list passes;
+    for (const PassStats& p : s.passes) {
+        py::dict e;
+        e["name"] = p.name;
+        e["cpu_ms"] = p.cpuMs;
+        e["gpu_ms"] = ms(p.gpuMs);
+        passes.append(e);
+    }
+    d["passes"] = passes;
+    d["culled"] = s.culled;
+    return d;
+}
+
+Frame renderFrame(Renderer& r, const Scene& scene, const Camera& camera, uint32_t outputs) {
+    py::gil_scoped_release release;
+    return r.render(scene, camera, outputs);
+}
+
+#define WEFT_SETTING(pyname, field, type)                                                          \
+    def_property(                                                                                  \
+        pyname, [](const Renderer& r) { return r.settings().field; },                              \
+        [](Renderer& r, type v) {                                                                  \
+            RenderSettings s = r.settings();                                                       \
+            s.field = v;                                                                           \
+            r.setSettings(s);                                                                      \
+        })
+
+} // namespace
+
+void bindRender(py::module_& m) {
+    py::class_<Renderer>(m, "Renderer",
+        "Vulkan renderer drawing a Scene from a Camera into an offscreen image of width x height.")
+        .def(py::init([](int64_t width, int64_t height, int64_t shadowMapSize, int pcfRadius,
+                         float biasConstant, float biasSlope, float biasMax, float normalOffset) {
+            if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
+                throw InvalidArgument("render target size must be positive (got " +
+                                      std::to_string(width) + "x" + std::to_string(height) + ")");
+            if (shadowMapSize <= 0 || shadowMapSize > 65535)
+                throw InvalidArgument("shadow_map_size out of range");
+            RenderSettings s;
+            s.shadowMapSize = uint32_t(shadowMapSize);
+            s.pcfRadius = pcfRadius;
+            s.biasConstant = biasConstant;
+            s.biasSlope = biasSlope;
+            s.biasMax = biasMax;
+            s.normalOffset = normalOffset;
+            return std::make_unique<Renderer>(uint32_t(width), uint32_t(height), s);
+        }), py::arg("width"), py::arg("height"), py::arg("shadow_map_size") = 2048,
+           py::arg("pcf_radius") = 1, py::arg("bias_constant") = 0.0005f,
+           py::arg("bias_slope") = 0.0015f, py::arg("bias_max") = 0.01f,
+           py::arg("normal_offset") = 1.5f)
+        .def_property_readonly("width", &Renderer::width)
+        .def_property_readonly("height", &Renderer::height)
+        .def_property_readonly("device_name", &Renderer::deviceName)
+        .def("resize", [](Renderer& r, int64_t w, int64_t h) {
+            if (w <= 0 || h <= 0 || w > 65535 || h > 65535)
+                throw InvalidArgument("render target size must be positive (got " +
+                                      std::to_string(w) + "x" + std::to_string(h) + ")");
+            r.resize(uint32_t(w), uint32_t(h));
+        }, py::arg("width"), py::arg("height"))
+        .WEFT_SETTING("shadow_map_size", shadowMapSize, uint32_t)
+        .WEFT_SETTING("pcf_radius", pcfRadius, int)
+        .WEFT_SETTING("bias_constant", biasConstant, float)
+        .WEFT_SETTING("bias_slope", biasSlope, float)
+        .WEFT_SETTING("bias_max", biasMax, float)
+        .WEFT_SETTING("normal_offset", normalOffset, float)
+        .def("render", [](Renderer& r, const Scene& scene, const Camera& camera) {
+            return colorImage(renderFrame(r, scene, camera, OutputColor).color);
+        }, py::arg("scene"), py::arg("camera"), "sRGB-encoded RGBA uint8 image (H, W, 4).")
+        .def("render_linear", [](Renderer& r, const Scene& scene, const Camera& camera) {
+            Frame f = renderFrame(r, scene, camera, OutputLinear);
+            return floatImage(f.linear, f.height, f.width, 4, 4, 0);
+        }, py::arg("scene"), py::arg("camera"), "Linear radiance RGBA float32 (H, W, 4).")
+        .def("render_debug", [](Renderer& r, const Scene& scene, const Camera& camera) {
+            Frame f = renderFrame(r, scene, camera, OutputColor | OutputLinear | OutputDebug);
+            const int h = f.height, w = f.width;
+            py::dict d;
+            d["color"] = colorImage(f.color);
+            d["linear"] = floatImage(f.linear, h, w, 4, 4, 0);
+            d["position"] = floatImage(f.position, h, w, 4, 3, 0);
+            py::array_t<bool> mask({h, w});
+            for (size_t i = 0; i < size_t(h) * w; ++i) mask.mutable_data()[i] = f.position[i * 4 + 3] > 0.5f;
+            d["mask"] = mask;
+            d["normal"] = floatImage(f.normal, h, w, 4, 3, 0);
+            d["shadow"] = floatImage(f.normal, h, w, 4, 1, 3);
+            d["uv"] = floatImage(f.surface, h, w, 4, 2, 0);
+            d["light_depth"] = floatImage(f.surface, h, w, 4, 1, 2);
+            return d;
+        }, py::arg("scene"), py::arg("camera"),
+           "One frame's colour, linear radiance and the inputs of its shading (position, mask,\n"
+           "normal, shadow visibility of the first shadow-casting light, uv, light_depth).")
+        .def_property_readonly("stats", [](const Renderer& r) { return statsDict(r.stats()); },
+                               "The last frame: passes run with CPU/GPU ms, culled passes.")
+        .def("shadow_map", [](Renderer& r, int light) {
+            uint32_t size = 0;
+            std::vector<float> data = r.shadowMap(light, &size);
+            py::array_t<float> out({py::ssize_t(size), py::ssize_t(size)});
+            std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
+            return out;
+        }, py::arg("light_index") = 0, "Depth in [0,1] of the last frame's shadow map of a light.")
+        .def("shadow_info", [](const Renderer& r, int light) {
+            const ShadowInfo i = r.shadowInfo(light);
+            py::dict d;
+            d["active"] = i.active;
+            d["size"] = i.size;
+            d["view_proj"] = fromMat4(i.viewProj);
+            d["normal_offset_world"] = i.normalOffsetWorld;
+            d["bias_constant"] = i.settings.biasConstant;
+            d["bias_slope"] = i.settings.biasSlope;
+            d["bias_max"] = i.settings.biasMax;
+            d["pcf_radius"] = i.settings.pcfRadius;
+            return d;
+        }, py::arg("light_index") = 0, "What the shadow test of a light used in the last frame.")
+        .def("__repr__", [](const Renderer& r) {
+            return "<weft.Renderer " + std::to_string(r.width()) + "x" + std::to_string(r.height()) +
+                   " on " + r.deviceName() + ">";
+        });
+}
+
+} // namespace weft::py_bind

@@ -1,0 +1,273 @@
+// Bindings of the scene description: Mesh, Texture, Material, DirectionalLight, Camera, Scene.
+#include <cstring>
+#include <sstream>
+
+#include <pybind11/stl.h>
+
+#include <weft/Scene.h>
+
+#include "Convert.h"
+
+namespace weft::py_bind {
+
+py::array_t<uint8_t> toNumpy(const ImageU8& img);
+ImageU8 fromNumpy(py::handle obj);
+
+namespace {
+
+// (N, K) float array -> vector of glm vectors.
+template <typename Vec, int K>
+std::vector<Vec> rows(py::handle obj, const char* name, size_t expected = size_t(-1)) {
+    auto a = numericArray(obj, name);
+    if (a.ndim() != 2 || a.shape(1) != K)
+        throw InvalidArgument(std::string(name) + " must have shape (N, " + std::to_string(K) + ")");
+    if (expected != size_t(-1) && size_t(a.shape(0)) != expected)
+        throw InvalidArgument(std::string(name) + " must have " + std::to_string(expected) + " rows");
+    auto r = a.unchecked<2>();
+    std::vector<Vec> out(size_t(a.shape(0)));
+    for (py::ssize_t i = 0; i < a.shape(0); ++i)
+        for (int k = 0; k < K; ++k) out[size_t(i)][k] = float(r(i, k));
+    return out;
+}
+
+template <typename Vec, int K> py::array_t<float> toRows(const std::vector<Vec>& v) {
+    py::array_t<float> out({py::ssize_t(v.size()), py::ssize_t(K)});
+    if (!v.empty()) std::memcpy(out.mutable_data(), v.data(), v.size() * sizeof(Vec));
+    return out;
+}
+
+std::shared_ptr<Mesh> makeMesh(py::handle positions, py::handle normals, py::handle uvs,
+                               py::handle indices) {
+    auto mesh = std::make_shared<Mesh>();
+    mesh->positions = rows<glm::vec3, 3>(positions, "positions");
+    mesh->normals = rows<glm::vec3, 3>(normals, "normals", mesh->positions.size());
+    mesh->uvs = rows<glm::vec2, 2>(uvs, "uvs", mesh->positions.size());
+    py::array idx = py::array::ensure(indices);
+    if (!idx || (idx.dtype().kind() != 'i' && idx.dtype().kind() != 'u'))
+        throw py::type_error("indices must be an integer array");
+    auto i64 = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(idx);
+    if (!((i64.ndim() == 2 && i64.shape(1) == 3) || i64.ndim() == 1))
+        throw InvalidArgument("indices must have shape (M, 3)");
+    const int64_t* data = i64.data();
+    for (py::ssize_t i = 0; i < i64.size(); ++i) {
+        if (data[i] < 0 || data[i] > int64_t(UINT32_MAX))
+            throw InvalidArgument("indices must be non-negative 32-bit values");
+        mesh->indices.push_back(uint32_t(data[i]));
+    }
+    mesh->validate();
+    return mesh;
+}
+
+// Sets one field of a validated value type, restoring it if validation fails.
+template <typename T, typename F> void setChecked(T& obj, F&& assign) {
+    T before = obj;
+    assign(obj);
+    try {
+        obj.validate();
+    } catch (...) {
+        obj = before;
+        throw;
+    }
+}
+
+#define WEFT_VEC3_PROPERTY(cls, pyname, field)                                                     \
+    def_property(                                                                                  \
+        pyname, [](const cls& o) { return fromVec3(o.field); },                                    \
+        [](cls& o, py::handle v) {                                                                 \
+            glm::vec3 value = toVec3(v, pyname);                                                   \
+            setChecked(o, [&](cls& x) { x.field = value; });                                       \
+        })
+
+std::string vecRepr(const glm::vec3& v) {
+    std::ostringstream s;
+    s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+    return s.str();
+}
+
+} // namespace
+
+void bindScene(py::module_& m) {
+    py::class_<Mesh, std::shared_ptr<Mesh>>(m, "Mesh",
+        "Indexed triangle mesh (counter-clockwise front faces). Immutable once made.")
+        .def(py::init(&makeMesh), py::arg("positions"), py::arg("normals"), py::arg("uvs"),
+             py::arg("indices"),
+             "positions (N,3), normals (N,3), uvs (N,2) float arrays; indices (M,3) integers.")
+        .def_property_readonly("positions", [](const Mesh& x) { return toRows<glm::vec3, 3>(x.positions); })
+        .def_property_readonly("normals", [](const Mesh& x) { return toRows<glm::vec3, 3>(x.normals); })
+        .def_property_readonly("uvs", [](const Mesh& x) { return toRows<glm::vec2, 2>(x.uvs); })
+        .def_property_readonly("indices", [](const Mesh& x) {
+            py::array_t<uint32_t> out({py::ssize_t(x.triangleCount()), py::ssize_t(3)});
+            if (!x.indices.empty())
+                std::memcpy(out.mutable_data(), x.indices.data(), x.indices.size() * 4);
+            return out;
+        })
+        .def_property_readonly("vertex_count", &Mesh::vertexCount)
+        .def_property_readonly("triangle_count", &Mesh::triangleCount)
+        .def("bounds", [](const Mesh& x) {
+            glm::vec3 lo, hi;
+            x.bounds(lo, hi);
+            return py::make_tuple(fromVec3(lo), fromVec3(hi));
+        })
+        .def_static("plane", [](float sx, float sz, int nx, int nz) {
+            return std::make_shared<Mesh>(Mesh::plane(sx, sz, nx, nz));
+        }, py::arg("size_x") = 1.0f, py::arg("size_z") = 1.0f, py::arg("segments_x") = 1,
+           py::arg("segments_z") = 1, "Rectangle in the XZ plane, normal +Y.")
+        .def_static("uv_sphere", [](float r, int segments, int rings) {
+            return std::make_shared<Mesh>(Mesh::uvSphere(r, segments, rings));
+        }, py::arg("radius") = 0.5f, py::arg("segments") = 32, py::arg("rings") = 16)
+        .def_static("box", [](py::handle size) {
+            return std::make_shared<Mesh>(Mesh::box(toVec3(size, "size")));
+        }, py::arg("size") = py::make_tuple(1.0, 1.0, 1.0))
+        .def("__repr__", [](const Mesh& x) {
+            return "<weft.Mesh " + std::to_string(x.vertexCount()) + " vertices, " +
+                   std::to_string(x.triangleCount()) + " triangles>";
+        });
+    m.def("load_obj", [](const std::string& path) { return std::make_shared<Mesh>(loadObj(path)); },
+          py::arg("path"), "Loads a Wavefront OBJ file as a Mesh.");
+
+    py::class_<Texture, std::shared_ptr<Texture>>(m, "Texture",
+        "An RGBA8 texture (sRGB colour by default), uploaded to the GPU on first use.")
+        .def(py::init([](py::handle image, bool srgb, bool mipmaps) {
+            return std::make_shared<Texture>(fromNumpy(image), srgb, mipmaps);
+        }), py::arg("image"), py::arg("srgb") = true, py::arg("mipmaps") = true)
+        .def_static("load", [](const std::string& path, bool srgb, bool mipmaps) {
+            return std::make_shared<Texture>(loadPng(path), srgb, mipmaps);
+        }, py::arg("path"), py::arg("srgb") = true, py::arg("mipmaps") = true)
+        .def_property_readonly("width", [](const Texture& t) { return t.image().width; })
+        .def_property_readonly("height", [](const Texture& t) { return t.image().height; })
+        .def_property_readonly("srgb", &Texture::srgb)
+        .def_property_readonly("mipmaps", &Texture::mipmaps)
+        .def_property_readonly("image", [](const Texture& t) { return toNumpy(t.image()); })
+        .def("__repr__", [](const Texture& t) {
+            return "<weft.Texture " + std::to_string(t.image().width) + "x" +
+                   std::to_string(t.image().height) + (t.srgb() ? " sRGB" : " linear") + ">";
+        });
+
+    py::class_<Material>(m, "Material",
+        "Blinn-Phong material: P = (I_A K_A + I_D K_D a) T + I_S K_S a (SPEC eq. 2.10).")
+        .def(py::init([](py::handle ka, py::handle kd, py::handle ks, float shininess,
+                         py::handle baseColor, std::shared_ptr<Texture> texture) {
+            Material mat;
+            mat.ka = toVec3(ka, "ka");
+            mat.kd = toVec3(kd, "kd");
+            mat.ks = toVec3(ks, "ks");
+            mat.shininess = shininess;
+            mat.baseColor = toVec3(baseColor, "base_color");
+            mat.texture = texture;
+            mat.validate();
+            return mat;
+        }), py::arg("ka") = py::make_tuple(1, 1, 1), py::arg("kd") = py::make_tuple(1, 1, 1),
+           py::arg("ks") = py::make_tuple(0, 0, 0), py::arg("shininess") = 32.0f,
+           py::arg("base_color") = py::make_tuple(1, 1, 1), py::arg("texture") = nullptr)
+        .WEFT_VEC3_PROPERTY(Material, "ka", ka)
+        .WEFT_VEC3_PROPERTY(Material, "kd", kd)
+        .WEFT_VEC3_PROPERTY(Material, "ks", ks)
+        .WEFT_VEC3_PROPERTY(Material, "base_color", baseColor)
+        .def_property("shininess", [](const Material& x) { return x.shininess; },
+                      [](Material& x, float v) { setChecked(x, [&](Material& y) { y.shininess = v; }); })
+        .def_property("texture",
+                      [](const Material& x) { return std::const_pointer_cast<Texture>(x.texture); },
+                      [](Material& x, std::shared_ptr<Texture> t) { x.texture = t; })
+        .def("__repr__", [](const Material& x) {
+            return "<weft.Material kd=" + vecRepr(x.kd) + " ks=" + vecRepr(x.ks) +
+                   " shininess=" + std::to_string(x.shininess) +
+                   (x.texture ? " textured>" : ">");
+        });
+
+    py::class_<DirectionalLight>(m, "DirectionalLight",
+        "Sun-like light. `direction` points from the light into the scene.")
+        .def(py::init([](py::handle direction, py::handle color, float intensity, bool shadows) {
+            DirectionalLight l;
+            l.direction = toVec3(direction, "direction");
+            l.color = toVec3(color, "color");
+            l.intensity = intensity;
+            l.castShadows = shadows;
+            l.validate();
+            return l;
+        }), py::arg("direction") = py::make_tuple(0, -1, 0), py::arg("color") = py::make_tuple(1, 1, 1),
+           py::arg("intensity") = 1.0f, py::arg("cast_shadows") = true)
+        .WEFT_VEC3_PROPERTY(DirectionalLight, "direction", direction)
+        .WEFT_VEC3_PROPERTY(DirectionalLight, "color", color)
+        .def_property("intensity", [](const DirectionalLight& l) { return l.intensity; },
+                      [](DirectionalLight& l, float v) {
+                          setChecked(l, [&](DirectionalLight& x) { x.intensity = v; });
+                      })
+        .def_readwrite("cast_shadows", &DirectionalLight::castShadows)
+        .def("__repr__", [](const DirectionalLight& l) {
+            return "<weft.DirectionalLight direction=" + vecRepr(l.direction) +
+                   " color=" + vecRepr(l.color) + " intensity=" + std::to_string(l.intensity) +
+                   (l.castShadows ? " shadows>" : ">");
+        });
+
+    py::class_<Camera>(m, "Camera", "Perspective camera (fov_y in radians).")
+        .def(py::init([](py::handle position, py::handle target, py::handle up, float fovY,
+                         float zNear, float zFar) {
+            Camera c;
+            c.position = toVec3(position, "position");
+            c.target = toVec3(target, "target");
+            c.up = toVec3(up, "up");
+            c.fovY = fovY;
+            c.zNear = zNear;
+            c.zFar = zFar;
+            c.validate();
+            return c;
+        }), py::arg("position") = py::make_tuple(0, 1, 4), py::arg("target") = py::make_tuple(0, 0, 0),
+           py::arg("up") = py::make_tuple(0, 1, 0), py::arg("fov_y") = 0.7853982f,
+           py::arg("near") = 0.05f, py::arg("far") = 100.0f)
+        .WEFT_VEC3_PROPERTY(Camera, "position", position)
+        .WEFT_VEC3_PROPERTY(Camera, "target", target)
+        .WEFT_VEC3_PROPERTY(Camera, "up", up)
+        .def_property("fov_y", [](const Camera& c) { return c.fovY; },
+                      [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.fovY = v; }); })
+        .def_property("near", [](const Camera& c) { return c.zNear; },
+                      [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.zNear = v; }); })
+        .def_property("far", [](const Camera& c) { return c.zFar; },
+                      [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.zFar = v; }); })
+        .def("view_matrix", [](const Camera& c) { return fromMat4(c.view()); },
+             "World -> view matrix (4x4, acts on column vectors).")
+        .def("projection_matrix", [](const Camera& c, float aspect) {
+            return fromMat4(c.projection(aspect));
+        }, py::arg("aspect"), "View -> Vulkan clip space (y down, depth 0..1).")
+        .def("__repr__", [](const Camera& c) {
+            return "<weft.Camera position=" + vecRepr(c.position) + " target=" + vecRepr(c.target) + ">";
+        });
+
+    py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "Meshes with materials, lights, ambient.")
+        .def(py::init<>())
+        .def("add_mesh", [](Scene& s, std::shared_ptr<Mesh> mesh, std::optional<Material> material,
+                            py::object transform, bool castShadows) {
+            const glm::mat4 t = transform.is_none() ? glm::mat4(1.0f) : toMat4(transform, "transform");
+            return s.addMesh(mesh, material.value_or(Material{}), t, castShadows);
+        }, py::arg("mesh"), py::arg("material") = py::none(), py::arg("transform") = py::none(),
+           py::arg("cast_shadows") = true, "Adds a mesh instance; returns its id.")
+        .def("set_transform", [](Scene& s, uint32_t id, py::handle t) {
+            s.setTransform(id, toMat4(t, "transform"));
+        })
+        .def("set_material", &Scene::setMaterial)
+        .def("add_light", &Scene::addLight, py::arg("light"))
+        .def("set_light", &Scene::setLight)
+        .def_property("ambient", [](const Scene& s) { return fromVec3(s.ambient()); },
+                      [](Scene& s, py::handle v) { s.setAmbient(toVec3(v, "ambient")); })
+        .def_property("background", [](const Scene& s) { return fromVec3(s.background()); },
+                      [](Scene& s, py::handle v) { s.setBackground(toVec3(v, "background")); })
+        .def_property_readonly("lights", &Scene::lights)
+        .def_property_readonly("instance_count", [](const Scene& s) { return s.instances().size(); })
+        .def("bounds", [](const Scene& s) {
+            glm::vec3 lo, hi;
+            s.bounds(lo, hi);
+            return py::make_tuple(fromVec3(lo), fromVec3(hi));
+        })
+        .def("__repr__", [](const Scene& s) {
+            return "<weft.Scene " + std::to_string(s.instances().size()) + " meshes, " +
+                   std::to_string(s.lights().size()) + " lights>";
+        });
+
+    m.def("default_scene", [] {
+        auto scene = std::make_shared<Scene>();
+        Camera camera;
+        makeDefaultScene(*scene, camera);
+        return py::make_tuple(scene, camera);
+    }, "The demo's scene and camera: textured ground, sphere, box, a shadow-casting sun.");
+}
+
+} // namespace weft::py_bind

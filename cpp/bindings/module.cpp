@@ -1,0 +1,134 @@
+// weft._core: the compiled half of the weft Python package.
+#include <cstring>
+
+#include <pybind11/stl.h>
+
+#include <weft/Demo.h>
+#include <weft/Device.h>
+#include <weft/Image.h>
+
+#include "Convert.h"
+
+namespace weft::py_bind {
+void bindScene(py::module_& m);
+void bindRender(py::module_& m);
+} // namespace weft::py_bind
+
+using namespace weft::py_bind;
+
+namespace {
+
+PyObject* gError = nullptr;
+PyObject* gInvalidArgument = nullptr;
+PyObject* gIoError = nullptr;
+
+PyObject* newException(const char* name, PyObject* bases, const char* doc) {
+    PyObject* type = PyErr_NewExceptionWithDoc(name, doc, bases, nullptr);
+    if (!type) throw py::error_already_set();
+    return type;
+}
+
+py::array_t<uint8_t> imageToArray(const weft::ImageU8& img) {
+    py::array_t<uint8_t> out({img.height, img.width, img.channels});
+    std::memcpy(out.mutable_data(), img.pixels.data(), img.pixels.size());
+    return out;
+}
+
+weft::ImageU8 arrayToImage(py::handle obj) {
+    py::array a = py::array::ensure(obj);
+    if (!a) throw py::type_error("image must be a NumPy array");
+    if (a.dtype().kind() != 'u' || a.itemsize() != 1)
+        throw weft::InvalidArgument("image must have dtype uint8, got " + std::string(py::str(a.dtype())));
+    if (a.ndim() != 2 && a.ndim() != 3) throw weft::InvalidArgument("image must be (H, W) or (H, W, C)");
+    const int c = a.ndim() == 3 ? int(a.shape(2)) : 1;
+    if (c < 1 || c > 4) throw weft::InvalidArgument("image must have 1 to 4 channels");
+    weft::ImageU8 img(int(a.shape(1)), int(a.shape(0)), c);
+    if (img.width == 0 || img.height == 0) throw weft::InvalidArgument("image must not be empty");
+    auto contiguous = py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(a);
+    std::memcpy(img.pixels.data(), contiguous.data(), img.pixels.size());
+    return img;
+}
+
+} // namespace
+
+namespace weft::py_bind {
+py::array_t<uint8_t> toNumpy(const ImageU8& img) { return imageToArray(img); }
+ImageU8 fromNumpy(py::handle obj) { return arrayToImage(obj); }
+} // namespace weft::py_bind
+
+PYBIND11_MODULE(_core, m) {
+    m.doc() = "weft's compiled core (Vulkan renderer, scene, IO). Use the `weft` package.";
+    m.attr("__version__") = WEFT_VERSION;
+
+    gError = newException("weft.Error", PyExc_RuntimeError, "Base class of weft's errors.");
+    PyObject* invalidBases = PyTuple_Pack(2, gError, PyExc_ValueError);
+    gInvalidArgument = newException("weft.InvalidArgument", invalidBases,
+                                    "An impossible argument: wrong shape, NaN/inf, out of range.");
+    Py_DECREF(invalidBases);
+    PyObject* ioBases = PyTuple_Pack(2, gError, PyExc_OSError);
+    gIoError = newException("weft.IoError", ioBases, "A missing, unreadable or corrupt file.");
+    Py_DECREF(ioBases);
+    m.attr("Error") = py::handle(gError);
+    m.attr("InvalidArgument") = py::handle(gInvalidArgument);
+    m.attr("IoError") = py::handle(gIoError);
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const weft::InvalidArgument& e) {
+            PyErr_SetString(gInvalidArgument, e.what());
+        } catch (const weft::IoError& e) {
+            PyErr_SetString(gIoError, e.what());
+        } catch (const weft::Error& e) {
+            PyErr_SetString(gError, e.what());
+        }
+    });
+
+    m.def("devices", [] {
+        py::list out;
+        for (const auto& d : weft::listDevices()) {
+            py::dict e;
+            e["index"] = d.index;
+            e["name"] = d.name;
+            e["type"] = d.type;
+            e["api_version"] = d.apiVersion;
+            e["driver"] = d.driver;
+            e["selected"] = d.selected;
+            out.append(e);
+        }
+        return out;
+    }, "Vulkan devices as dicts (index, name, type, api_version, driver, selected).\n"
+       "Selection prefers discrete > integrated > virtual > CPU; WEFT_DEVICE overrides it.");
+    m.def("validation_enabled", &weft::validationEnabled,
+          "True when WEFT_VALIDATION=1 enables the Vulkan validation layers.");
+    m.def("validation_messages", &weft::validationMessages,
+          "Validation warnings/errors collected since the last clear.");
+    m.def("clear_validation_messages", &weft::clearValidationMessages);
+
+    m.def("load_png", [](const std::string& path) { return imageToArray(weft::loadPng(path)); },
+          py::arg("path"), "Reads a PNG into a uint8 array (H, W, C).");
+    m.def("save_png", [](const std::string& path, py::handle image) {
+        weft::savePng(path, arrayToImage(image));
+    }, py::arg("path"), py::arg("image"), "Writes a uint8 array (H, W) or (H, W, 1-4) as PNG.");
+
+    m.def("run_demo", [](int width, int height, int frames, bool headless, bool vsync,
+                         const std::string& out, const std::string& screenshot,
+                         const std::string& statsJson) {
+        weft::DemoOptions o;
+        o.width = width;
+        o.height = height;
+        o.frames = frames;
+        o.headless = headless;
+        o.vsync = vsync;
+        o.out = out;
+        o.screenshot = screenshot;
+        o.statsJson = statsJson;
+        py::gil_scoped_release release;
+        return weft::runDemo(o);
+    }, py::arg("width") = 1280, py::arg("height") = 720, py::arg("frames") = 0,
+       py::arg("headless") = false, py::arg("vsync") = true, py::arg("out") = "out/demo.png",
+       py::arg("screenshot") = "", py::arg("stats_json") = "",
+       "Runs the demo: a window when a display exists, else a headless render to `out`.");
+
+    bindScene(m);
+    bindRender(m);
+}

@@ -1,0 +1,21 @@
+#pragma once
+// Blinn-Phong material of SPEC eq. 2.10: P = (I_A K_A + I_D K_D a) * T + I_S K_S a.
+#include <glm/glm.hpp>
+
+#include <weft/Texture.h>
+
+namespace weft {
+
+struct Material {
+    glm::vec3 ka{1.0f};         // ambient coefficient K_A
+    glm::vec3 kd{1.0f};         // diffuse coefficient K_D
+    glm::vec3 ks{0.0f};         // specular coefficient K_S
+    float shininess = 32.0f;    // Blinn-Phong exponent n, > 0
+    glm::vec3 baseColor{1.0f};  // multiplies the texture: T = baseColor * texture(uv)
+    TexturePtr texture;         // base-colour texture (sRGB), none = white
+
+    /// Throws InvalidArgument for negative or non-finite coefficients or shininess <= 0.
+    void validate() const;
+};
+
+} // namespace weft

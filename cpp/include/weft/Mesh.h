@@ -1,0 +1,43 @@
+#pragma once
+// Triangle meshes: the vertex layout every renderer pass uses, built-in shapes and OBJ loading.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace weft {
+
+/// Indexed triangle mesh. Triangles are counter-clockwise seen from the front (outside).
+/// UV (0,0) addresses the first texel of the first (top) image row.
+struct Mesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals; // unit length, one per position
+    std::vector<glm::vec2> uvs;     // one per position
+    std::vector<uint32_t> indices;  // 3 per triangle
+
+    size_t vertexCount() const { return positions.size(); }
+    size_t triangleCount() const { return indices.size() / 3; }
+
+    /// Throws InvalidArgument for mismatched array sizes, indices out of range, a count of
+    /// indices that is not a multiple of 3, an empty mesh, or non-finite values.
+    void validate() const;
+    /// Axis-aligned bounds of the positions (min, max).
+    void bounds(glm::vec3& lo, glm::vec3& hi) const;
+
+    /// A rectangle in the XZ plane centred at the origin, normal +Y, UVs spanning [0,1]
+    /// (u along +X, v along +Z), subdivided into segmentsX x segmentsZ quads.
+    static Mesh plane(float sizeX = 1.0f, float sizeZ = 1.0f, int segmentsX = 1, int segmentsZ = 1);
+    /// A sphere centred at the origin; `segments` around the Y axis, `rings` from pole to pole.
+    static Mesh uvSphere(float radius = 0.5f, int segments = 32, int rings = 16);
+    /// An axis-aligned box centred at the origin with flat-shaded faces (24 vertices).
+    static Mesh box(const glm::vec3& size = glm::vec3(1.0f));
+};
+
+/// Loads a Wavefront OBJ: v, vt, vn, f (triangles and convex polygons, fan-triangulated;
+/// v, v/t, v//n, v/t/n; negative indices). Missing normals are computed (area-weighted),
+/// missing UVs are zero. Groups, objects and materials are ignored. Throws IoError naming the
+/// file and line for missing files, malformed lines or out-of-range indices.
+Mesh loadObj(const std::string& path);
+
+} // namespace weft

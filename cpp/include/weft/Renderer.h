@@ -1,0 +1,92 @@
+#pragma once
+// The Vulkan renderer: draws a Scene from a Camera offscreen (read back to memory) or into a
+// Window. Every Renderer in a process shares one Vulkan device.
+#include <weft/Error.h>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include <weft/Camera.h>
+#include <weft/FrameStats.h>
+#include <weft/Image.h>
+#include <weft/Scene.h>
+
+namespace weft {
+
+class Window;
+
+struct RenderSettings {
+    uint32_t shadowMapSize = 2048;  // texels per side of each shadow map
+    int pcfRadius = 1;              // PCF kernel (2r+1)^2 taps, r in [0, 7]
+    float biasConstant = 0.0005f;   // shadow depth bias in light NDC depth units ...
+    float biasSlope = 0.0015f;      // ... plus this times tan(angle between n and l) ...
+    float biasMax = 0.01f;          // ... clamped to this
+    float normalOffset = 1.5f;      // receiver offset along n, in shadow-map texels
+    /// Throws InvalidArgument for out-of-range values.
+    void validate() const;
+};
+
+/// Which images a frame returns besides the 8-bit sRGB colour.
+enum FrameOutput : uint32_t {
+    OutputColor = 1u << 0,  // RGBA8 sRGB
+    OutputLinear = 1u << 1, // RGBA32F linear radiance before encoding
+    OutputDebug = 1u << 2,  // position, normal, uv, light depth, shadow visibility
+};
+
+/// Images of one frame, rows top to bottom. Float images are interleaved RGBA32F.
+struct Frame {
+    int width = 0;
+    int height = 0;
+    ImageU8 color;               // OutputColor
+    std::vector<float> linear;   // OutputLinear: r, g, b, a
+    std::vector<float> position; // OutputDebug: world x, y, z, coverage (1 drawn / 0 background)
+    std::vector<float> normal;   // OutputDebug: shading normal x, y, z (unit), shadow visibility
+    std::vector<float> surface;  // OutputDebug: u, v, light-space depth, 0
+};
+
+/// Everything needed to redo the shadow test of light `lightIndex` outside the renderer.
+struct ShadowInfo {
+    bool active = false;           // the light cast shadows in the last frame
+    int layer = -1;                // shadow-map layer
+    uint32_t size = 0;             // texels per side
+    glm::mat4 viewProj{1.0f};      // world -> light clip space (x, y in [-1,1], depth [0,1])
+    float normalOffsetWorld = 0.f; // receiver offset along the normal in world units
+    RenderSettings settings;
+};
+
+class Renderer {
+public:
+    Renderer(uint32_t width, uint32_t height, const RenderSettings& settings = {});
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    uint32_t width() const;
+    uint32_t height() const;
+    void resize(uint32_t width, uint32_t height);
+    const RenderSettings& settings() const;
+    void setSettings(const RenderSettings& settings);
+
+    /// Renders offscreen and returns the outputs asked for (a bitwise OR of FrameOutput).
+    Frame render(const Scene& scene, const Camera& camera, uint32_t outputs = OutputColor);
+
+    /// Renders into the window's swapchain and presents. With `capture`, the presented image is
+    /// also returned (RGBA8, sRGB) - a screenshot of exactly what the window shows.
+    ImageU8 present(Window& window, const Scene& scene, const Camera& camera, bool capture = false);
+
+    /// Statistics of the last frame.
+    const FrameStats& stats() const;
+    /// The last frame's shadow map of `lightIndex` (depth in [0,1], rows top to bottom).
+    std::vector<float> shadowMap(int lightIndex, uint32_t* size = nullptr);
+    ShadowInfo shadowInfo(int lightIndex) const;
+    std::string deviceName() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+};
+
+} // namespace weft

@@ -1,0 +1,39 @@
+#pragma once
+// A GLFW window with a Vulkan swapchain. Creating one without a display throws Error.
+#include <weft/Error.h>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace weft {
+
+class Window {
+public:
+    Window(int width, int height, const std::string& title, bool vsync = true);
+    ~Window();
+    Window(const Window&) = delete;
+    Window& operator=(const Window&) = delete;
+
+    /// True when a display is available (GLFW can initialise).
+    static bool displayAvailable();
+
+    bool shouldClose() const;
+    void requestClose();
+    void pollEvents();
+    void setTitle(const std::string& title);
+    /// Framebuffer size in pixels (0 when minimised).
+    void framebufferSize(int& width, int& height) const;
+    bool vsync() const { return mVsync; }
+    /// Key callback: (GLFW key code, action) with action 1 = press, 0 = release, 2 = repeat.
+    void onKey(std::function<void(int, int)> callback);
+
+    struct Native; // GLFW window + Vulkan surface/swapchain, owned here, used by the renderer
+    Native& native() { return *mNative; }
+
+private:
+    std::unique_ptr<Native> mNative;
+    bool mVsync;
+};
+
+} // namespace weft

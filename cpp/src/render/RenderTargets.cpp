@@ -1,0 +1,47 @@
+#include "render/RenderTargets.h"
+
+namespace weft::render {
+
+namespace {
+vk::Image makeTarget(vk::Context& ctx, uint32_t w, uint32_t h, VkFormat format,
+                     VkImageUsageFlags usage) {
+    vk::ImageDesc d;
+    d.width = w;
+    d.height = h;
+    d.format = format;
+    d.usage = usage;
+    return vk::Image(&ctx, d);
+}
+} // namespace
+
+void RenderTargets::ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug) {
+    constexpr VkImageUsageFlags color =
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    if (w != width || h != height || !hdr) {
+        width = w;
+        height = h;
+        mReadback.clear();
+        hdr = makeTarget(ctx, w, h, kHdrFormat, color | VK_IMAGE_USAGE_SAMPLED_BIT);
+        depth = makeTarget(ctx, w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+        ldr = makeTarget(ctx, w, h, kLdrFormat, color);
+        position = vk::Image();
+        normal = vk::Image();
+        surface = vk::Image();
+    }
+    if (debug && !position) {
+        position = makeTarget(ctx, w, h, kDebugFormat, color);
+        normal = makeTarget(ctx, w, h, kDebugFormat, color);
+        surface = makeTarget(ctx, w, h, kDebugFormat, color);
+    }
+}
+
+vk::Buffer& RenderTargets::readbackFor(vk::Context& ctx, const vk::Image* image) {
+    const VkDeviceSize bytes = VkDeviceSize(image->desc().width) * image->desc().height *
+                               vk::formatBytes(image->desc().format);
+    vk::Buffer& b = mReadback[image];
+    if (!b || b.size() != bytes)
+        b = vk::Buffer(&ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback);
+    return b;
+}
+
+} // namespace weft::render

@@ -1,0 +1,32 @@
+#pragma once
+// The renderer's offscreen images (sized to the output) and their readback buffers.
+#include <unordered_map>
+
+#include "vk/Resources.h"
+
+namespace weft::render {
+
+constexpr VkFormat kHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kDebugFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_SRGB;
+
+struct RenderTargets {
+    uint32_t width = 0, height = 0;
+    vk::Image hdr;      // linear radiance
+    vk::Image depth;
+    vk::Image ldr;      // sRGB 8-bit (offscreen output)
+    vk::Image position; // debug outputs, created on first request
+    vk::Image normal;
+    vk::Image surface;
+
+    /// (Re)creates the images for a size; debug images only when asked for.
+    void ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug);
+    /// A host-visible buffer the size of `image` to copy it into.
+    vk::Buffer& readbackFor(vk::Context& ctx, const vk::Image* image);
+
+private:
+    std::unordered_map<const vk::Image*, vk::Buffer> mReadback;
+};
+
+} // namespace weft::render

@@ -1,0 +1,671 @@
+// Renderer: turns a Scene + Camera into a frame graph of passes (shadow maps, forward shading,
+// sRGB output, readback/present) and runs it on the shared Vulkan context.
+#include <weft/Renderer.h>
+
+#include <array>
+#include <chrono>
+#include <cstring>
+#include <string>
+#include <unordered_map>
+
+#include "render/FrameGraph.h"
+#include "render/GpuCache.h"
+#include "render/GpuTypes.h"
+#include "render/RenderTargets.h"
+#include "render/ShadowFit.h"
+#include "vk/Pipeline.h"
+#include "vk/Swapchain.h"
+
+namespace weft {
+
+using render::FrameGraph;
+using render::ResourceUse;
+using render::Use;
+
+void RenderSettings::validate() const {
+    if (shadowMapSize < 16 || shadowMapSize > 16384)
+        throw InvalidArgument("shadow_map_size must be in [16, 16384] (got " +
+                              std::to_string(shadowMapSize) + ")");
+    if (pcfRadius < 0 || pcfRadius > 7)
+        throw InvalidArgument("pcf_radius must be in [0, 7] (got " + std::to_string(pcfRadius) + ")");
+    for (float v : {biasConstant, biasSlope, biasMax, normalOffset})
+        if (!(std::isfinite(v) && v >= 0.0f))
+            throw InvalidArgument("shadow bias and normal offset must be finite and >= 0");
+}
+
+namespace {
+
+constexpr uint32_t kFramesInFlight = 2;
+constexpr uint32_t kMaxPasses = 16;
+
+struct FrameSlot {
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    uint64_t serial = 0;
+    vk::Buffer ubo, instances, lights;
+    vk::DescriptorPool pool;
+    std::unique_ptr<render::Timestamps> timestamps;
+    vk::Semaphore acquired;
+    FrameStats stats;
+    bool statsPending = false;
+};
+
+struct Draw {
+    const render::MeshGpu* mesh;
+    VkDescriptorSet material;
+    uint32_t instance;
+    bool castShadows;
+    glm::mat4 model;
+};
+
+struct ShadowLight {
+    int lightIndex;
+    int layer;
+    render::ShadowFrustum frustum;
+};
+
+// Grows a host-visible buffer to hold `bytes`.
+void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
+    bytes = std::max<VkDeviceSize>(bytes, 256);
+    if (buffer && buffer.size() >= bytes) return;
+    buffer = vk::Buffer(&ctx, bytes * 3 / 2, usage, vk::MemoryUsage::Upload);
+}
+
+} // namespace
+
+struct Renderer::Impl {
+    std::shared_ptr<vk::Context> ctx = vk::Context::shared();
+    RenderSettings settings;
+    uint32_t width = 0, height = 0;
+
+    vk::Sampler textureSampler, nearestSampler;
+    vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout;
+    vk::PipelineLayout sceneLayout, shadowLayout, outputLayout;
+    vk::Pipeline forward, forwardDebug, shadow;
+    std::unordered_map<int, vk::Pipeline> outputPipelines; // by colour format
+    std::unique_ptr<render::GpuCache> cache;
+
+    std::array<FrameSlot, kFramesInFlight> slots;
+    uint64_t frameCounter = 0;
+    render::RenderTargets targets;
+    vk::Image shadowMaps;
+    vk::Image dummyShadow;
+    std::vector<ShadowInfo> shadowInfos;
+    FrameStats stats;
+
+    Impl(uint32_t w, uint32_t h, const RenderSettings& s) : settings(s), width(w), height(h) {
+        createPipelines();
+        cache = std::make_unique<render::GpuCache>(*ctx, materialSetLayout, textureSampler);
+        createSlots();
+        createDummyShadow();
+    }
+
+    ~Impl() {
+        // Wait for this renderer's work so command buffers can be freed; no device-wide idle.
+        for (auto& s : slots) ctx->waitFor(s.serial);
+        for (auto& s : slots)
+            if (s.cmd) vkFreeCommandBuffers(ctx->device(), ctx->commandPool(), 1, &s.cmd);
+    }
+
+    void createPipelines();
+    void createSlots();
+    void createDummyShadow();
+    VkPipeline outputPipeline(VkFormat format);
+    FrameSlot& beginFrame();
+    void finishStats(FrameSlot& slot);
+    void recordFrame(FrameSlot& slot, const Scene& scene, const Camera& camera, uint32_t outputs,
+                     vk::Image* ldr, bool present);
+    void ensureShadowMaps(uint32_t layers);
+};
+
+void Renderer::Impl::createPipelines() {
+    vk::Context& c = *ctx;
+    VkSamplerCreateInfo s{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    s.magFilter = s.minFilter = VK_FILTER_LINEAR;
+    s.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    s.addressModeU = s.addressModeV = s.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    s.maxLod = VK_LOD_CLAMP_NONE;
+    VkSampler sampler;
+    VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
+    textureSampler = vk::Sampler(&c, sampler, vkDestroySampler);
+    s.magFilter = s.minFilter = VK_FILTER_NEAREST;
+    s.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    s.addressModeU = s.addressModeV = s.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    s.maxLod = 0.0f;
+    VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
+    nearestSampler = vk::Sampler(&c, sampler, vkDestroySampler);
+
+    frameSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                             {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                             {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    outputSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    sceneLayout = vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));
+    shadowLayout = vk::createPipelineLayout(c, {}, sizeof(glm::mat4));
+    outputLayout = vk::createPipelineLayout(c, {outputSetLayout}, 0);
+
+    vk::GraphicsPipelineDesc d;
+    d.vertexShader = "render/forward.vert";
+    d.fragmentShader = "render/forward.frag";
+    d.colorFormats = {render::kHdrFormat};
+    d.depthFormat = render::kDepthFormat;
+    d.layout = sceneLayout;
+    forward = vk::createGraphicsPipeline(c, d);
+    d.fragmentShader = "render/forward_debug.frag";
+    d.colorFormats = {render::kHdrFormat, render::kDebugFormat, render::kDebugFormat,
+                      render::kDebugFormat};
+    forwardDebug = vk::createGraphicsPipeline(c, d);
+
+    vk::GraphicsPipelineDesc sd;
+    sd.vertexShader = "render/shadow.vert";
+    sd.vertexLayout = vk::VertexLayout::Position;
+    sd.depthFormat = render::kDepthFormat;
+    sd.cullMode = VK_CULL_MODE_NONE; // open meshes (planes, cloth) must cast from both sides
+    sd.layout = shadowLayout;
+    shadow = vk::createGraphicsPipeline(c, sd);
+}
+
+VkPipeline Renderer::Impl::outputPipeline(VkFormat format) {
+    auto it = outputPipelines.find(int(format));
+    if (it != outputPipelines.end()) return it->second;
+    vk::GraphicsPipelineDesc d;
+    d.vertexShader = "render/fullscreen.vert";
+    d.fragmentShader = "render/output.frag";
+    d.vertexLayout = vk::VertexLayout::None;
+    d.colorFormats = {format};
+    d.cullMode = VK_CULL_MODE_NONE;
+    d.depthTest = d.depthWrite = false;
+    d.layout = outputLayout;
+    return outputPipelines.emplace(int(format), vk::createGraphicsPipeline(*ctx, d)).first->second;
+}
+
+void Renderer::Impl::createSlots() {
+    for (FrameSlot& s : slots) {
+        VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        alloc.commandPool = ctx->commandPool();
+        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        alloc.commandBufferCount = 1;
+        VK_CHECK(vkAllocateCommandBuffers(ctx->device(), &alloc, &s.cmd));
+        const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2},
+                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}};
+        VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        pool.maxSets = 2;
+        pool.poolSizeCount = 3;
+        pool.pPoolSizes = sizes;
+        VkDescriptorPool p;
+        VK_CHECK(vkCreateDescriptorPool(ctx->device(), &pool, nullptr, &p));
+        s.pool = vk::DescriptorPool(ctx.get(), p, vkDestroyDescriptorPool);
+        s.timestamps = std::make_unique<render::Timestamps>(*ctx, kMaxPasses);
+        VkSemaphoreCreateInfo sem{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+        VkSemaphore handle;
+        VK_CHECK(vkCreateSemaphore(ctx->device(), &sem, nullptr, &handle));
+        s.acquired = vk::Semaphore(ctx.get(), handle, vkDestroySemaphore);
+    }
+}
+
+// A 1x1 shadow map cleared to the far plane, bound when no light casts shadows.
+void Renderer::Impl::createDummyShadow() {
+    vk::ImageDesc d;
+    d.format = render::kDepthFormat;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    dummyShadow = vk::Image(ctx.get(), d);
+    ctx->immediate([&](VkCommandBuffer cmd) {
+        vk::transition(*ctx, cmd, dummyShadow, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        VkClearDepthStencilValue one{1.0f, 0};
+        VkImageSubresourceRange range{VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
+        vkCmdClearDepthStencilImage(cmd, dummyShadow.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                    &one, 1, &range);
+        const render::UseState s = render::useState(Use::Sampled, true);
+        vk::transition(*ctx, cmd, dummyShadow, s.layout, s.stage, s.access);
+    });
+}
+
+void Renderer::Impl::ensureShadowMaps(uint32_t layers) {
+    const uint32_t size = settings.shadowMapSize;
+    if (shadowMaps && shadowMaps.desc().layers == layers && shadowMaps.desc().width == size) return;
+    vk::ImageDesc d;
+    d.width = d.height = size;
+    d.layers = layers;
+    d.format = render::kDepthFormat;
+    d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+              VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    shadowMaps = vk::Image(ctx.get(), d);
+}
+
+FrameSlot& Renderer::Impl::beginFrame() {
+    FrameSlot& slot = slots[frameCounter % kFramesInFlight];
+    ctx->waitFor(slot.serial); // the frame that last used this slot is done
+    finishStats(slot);
+    ctx->collectGarbage();
+    cache->evictExpired();
+    return slot;
+}
+
+void Renderer::Impl::finishStats(FrameSlot& slot) {
+    if (!slot.statsPending) return;
+    slot.statsPending = false;
+    const std::vector<double> gpu = slot.timestamps->read(uint32_t(slot.stats.passes.size()));
+    double total = 0.0;
+    bool all = !gpu.empty();
+    for (size_t i = 0; i < slot.stats.passes.size(); ++i) {
+        slot.stats.passes[i].gpuMs = gpu[i];
+        all &= gpu[i] >= 0.0;
+        total += std::max(gpu[i], 0.0);
+    }
+    slot.stats.gpuMs = all ? total : -1.0;
+    stats = slot.stats;
+}
+
+void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Camera& camera,
+                                 uint32_t outputs, vk::Image* ldr, bool present) {
+    vk::Context& c = *ctx;
+    const bool debug = outputs & OutputDebug;
+    const float aspect = float(targets.width) / float(targets.height);
+
+    // ---- scene data for this frame -------------------------------------------------------
+    std::vector<render::GpuInstance> instances;
+    std::vector<Draw> draws;
+    for (const MeshInstance& inst : scene.instances()) {
+        render::GpuInstance g;
+        g.model = inst.transform;
+        g.normalMatrix = glm::transpose(glm::inverse(inst.transform));
+        g.ka = glm::vec4(inst.material.ka, 0);
+        g.kd = glm::vec4(inst.material.kd, 0);
+        g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
+        g.baseColor = glm::vec4(inst.material.baseColor, 1);
+        draws.push_back({&cache->mesh(inst.mesh), cache->texture(inst.material.texture),
+                         uint32_t(instances.size()), inst.castShadows, inst.transform});
+        instances.push_back(g);
+    }
+    glm::vec3 lo, hi;
+    scene.bounds(lo, hi);
+    std::vector<render::GpuLight> lights;
+    std::vector<ShadowLight> shadowLights;
+    shadowInfos.assign(scene.lights().size(), ShadowInfo{});
+    for (size_t i = 0; i < scene.lights().size(); ++i) {
+        const DirectionalLight& l = scene.lights()[i];
+        int layer = -1;
+        if (l.castShadows && !draws.empty() && int(shadowLights.size()) < render::kMaxShadowLights) {
+            layer = int(shadowLights.size());
+            shadowLights.push_back(
+                {int(i), layer, render::fitDirectionalShadow(l.toLight(), lo, hi, settings.shadowMapSize)});
+            ShadowInfo& info = shadowInfos[i];
+            info.active = true;
+            info.layer = layer;
+            info.size = settings.shadowMapSize;
+            info.viewProj = shadowLights.back().frustum.viewProj;
+            info.normalOffsetWorld = settings.normalOffset * shadowLights.back().frustum.texelWorld;
+            info.settings = settings;
+        }
+        lights.push_back({glm::vec4(l.toLight(), 0), glm::vec4(l.radiance(), float(layer))});
+    }
+    if (!shadowLights.empty()) ensureShadowMaps(uint32_t(shadowLights.size()));
+
+    render::GpuFrame frame{};
+    frame.viewProj = camera.projection(aspect) * camera.view();
+    frame.cameraPos = glm::vec4(camera.position, 1);
+    frame.ambient = glm::vec4(scene.ambient(), 0);
+    frame.background = glm::vec4(scene.background(), 1);
+    for (const ShadowLight& s : shadowLights) {
+        frame.lightViewProj[s.layer] = s.frustum.viewProj;
+        frame.normalOffset[s.layer].x = shadowInfos[size_t(s.lightIndex)].normalOffsetWorld;
+    }
+    frame.bias = glm::vec4(settings.biasConstant, settings.biasSlope, settings.biasMax, 0);
+    frame.counts = glm::ivec4(int(lights.size()), settings.pcfRadius, int(settings.shadowMapSize),
+                              shadowLights.empty() ? -1 : 0);
+
+    ensureBuffer(c, slot.ubo, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    ensureBuffer(c, slot.instances, instances.size() * sizeof(render::GpuInstance),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    ensureBuffer(c, slot.lights, lights.size() * sizeof(render::GpuLight),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    slot.ubo.write(&frame, sizeof(frame));
+    if (!instances.empty())
+        slot.instances.write(instances.data(), instances.size() * sizeof(render::GpuInstance));
+    if (!lights.empty()) slot.lights.write(lights.data(), lights.size() * sizeof(render::GpuLight));
+
+    // ---- descriptors ----------------------------------------------------------------------
+    VK_CHECK(vkResetDescriptorPool(c.device(), slot.pool, 0));
+    VkDescriptorSetLayout layouts[] = {frameSetLayout, outputSetLayout};
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = slot.pool;
+    alloc.descriptorSetCount = 2;
+    alloc.pSetLayouts = layouts;
+    VkDescriptorSet sets[2];
+    VK_CHECK(vkAllocateDescriptorSets(c.device(), &alloc, sets));
+    const VkDescriptorSet frameSet = sets[0], outputSet = sets[1];
+    vk::Image& shadowImage = shadowLights.empty() ? dummyShadow : shadowMaps;
+    VkDescriptorBufferInfo uboInfo{slot.ubo.get(), 0, sizeof(frame)};
+    VkDescriptorBufferInfo instInfo{slot.instances.get(), 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo lightInfo{slot.lights.get(), 0, VK_WHOLE_SIZE};
+    VkDescriptorImageInfo shadowInfo{nearestSampler, shadowImage.view(),
+                                     render::useState(Use::Sampled, true).layout};
+    VkDescriptorImageInfo hdrInfo{nearestSampler, targets.hdr.view(),
+                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet writes[5];
+    for (auto& w : writes) w = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    auto setWrite = [&](int i, VkDescriptorSet set, uint32_t binding, VkDescriptorType type) {
+        writes[i].dstSet = set;
+        writes[i].dstBinding = binding;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = type;
+    };
+    setWrite(0, frameSet, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+    writes[0].pBufferInfo = &uboInfo;
+    setWrite(1, frameSet, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    writes[1].pBufferInfo = &instInfo;
+    setWrite(2, frameSet, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    writes[2].pBufferInfo = &lightInfo;
+    setWrite(3, frameSet, 3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    writes[3].pImageInfo = &shadowInfo;
+    setWrite(4, outputSet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    writes[4].pImageInfo = &hdrInfo;
+    vkUpdateDescriptorSets(c.device(), 5, writes, 0, nullptr);
+
+    // ---- frame graph ----------------------------------------------------------------------
+    FrameGraph g;
+    const int rShadow = g.addResource("shadow_maps", &shadowImage);
+    const int rDepth = g.addResource("depth", &targets.depth);
+    const int rHdr = g.addResource("hdr", &targets.hdr);
+    const int rLdr = g.addResource("ldr", ldr);
+    int rDebug[3] = {-1, -1, -1};
+    if (debug) {
+        rDebug[0] = g.addResource("position", &targets.position);
+        rDebug[1] = g.addResource("normal", &targets.normal);
+        rDebug[2] = g.addResource("surface", &targets.surface);
+    }
+    auto viewportScissor = [](VkCommandBuffer cmd, uint32_t w, uint32_t h) {
+        VkViewport vp{0, 0, float(w), float(h), 0.0f, 1.0f};
+        VkRect2D sc{{0, 0}, {w, h}};
+        vkCmdSetViewport(cmd, 0, 1, &vp);
+        vkCmdSetScissor(cmd, 0, 1, &sc);
+    };
+
+    for (const ShadowLight& s : shadowLights) {
+        g.addPass({"shadow[" + std::to_string(s.lightIndex) + "]", {}, {{rShadow, Use::DepthWrite}},
+                   [&, s](VkCommandBuffer cmd) {
+                       VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                       depth.imageView = shadowMaps.layerView(uint32_t(s.layer));
+                       depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+                       depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+                       depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                       depth.clearValue.depthStencil = {1.0f, 0};
+                       const uint32_t size = settings.shadowMapSize;
+                       VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                       info.renderArea = {{0, 0}, {size, size}};
+                       info.layerCount = 1;
+                       info.pDepthAttachment = &depth;
+                       c.fn().cmdBeginRendering(cmd, &info);
+                       viewportScissor(cmd, size, size);
+                       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow);
+                       for (const Draw& d : draws) {
+                           if (!d.castShadows) continue;
+                           const glm::mat4 mvp = s.frustum.viewProj * d.model;
+                           vkCmdPushConstants(cmd, shadowLayout, VK_SHADER_STAGE_VERTEX_BIT |
+                                              VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(mvp), &mvp);
+                           VkDeviceSize offset = 0;
+                           VkBuffer vb = d.mesh->vertices.get();
+                           vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+                           vkCmdBindIndexBuffer(cmd, d.mesh->indices.get(), 0, VK_INDEX_TYPE_UINT32);
+                           vkCmdDrawIndexed(cmd, d.mesh->indexCount, 1, 0, 0, 0);
+                       }
+                       c.fn().cmdEndRendering(cmd);
+                   }});
+    }
+
+    std::vector<ResourceUse> forwardWrites = {{rHdr, Use::ColorWrite}, {rDepth, Use::DepthWrite}};
+    for (int r : rDebug)
+        if (r >= 0) forwardWrites.push_back({r, Use::ColorWrite});
+    g.addPass({"forward", {{rShadow, Use::Sampled}}, forwardWrites, [&](VkCommandBuffer cmd) {
+                   std::vector<VkRenderingAttachmentInfo> colors;
+                   auto color = [&](VkImageView view, glm::vec4 clear) {
+                       VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                       a.imageView = view;
+                       a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                       a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+                       a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                       std::memcpy(a.clearValue.color.float32, &clear, sizeof(clear));
+                       colors.push_back(a);
+                   };
+                   color(targets.hdr.view(), glm::vec4(scene.background(), 1.0f));
+                   if (debug)
+                       for (vk::Image* im : {&targets.position, &targets.normal, &targets.surface})
+                           color(im->view(), glm::vec4(0.0f));
+                   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                   depth.imageView = targets.depth.view();
+                   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+                   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+                   depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+                   depth.clearValue.depthStencil = {1.0f, 0};
+                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                   info.renderArea = {{0, 0}, {targets.width, targets.height}};
+                   info.layerCount = 1;
+                   info.colorAttachmentCount = uint32_t(colors.size());
+                   info.pColorAttachments = colors.data();
+                   info.pDepthAttachment = &depth;
+                   c.fn().cmdBeginRendering(cmd, &info);
+                   viewportScissor(cmd, targets.width, targets.height);
+                   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                     debug ? forwardDebug.get() : forward.get());
+                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sceneLayout, 0, 1,
+                                           &frameSet, 0, nullptr);
+                   for (const Draw& d : draws) {
+                       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sceneLayout, 1,
+                                               1, &d.material, 0, nullptr);
+                       vkCmdPushConstants(cmd, sceneLayout,
+                                          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                          0, sizeof(uint32_t), &d.instance);
+                       VkDeviceSize offset = 0;
+                       VkBuffer vb = d.mesh->vertices.get();
+                       vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+                       vkCmdBindIndexBuffer(cmd, d.mesh->indices.get(), 0, VK_INDEX_TYPE_UINT32);
+                       vkCmdDrawIndexed(cmd, d.mesh->indexCount, 1, 0, 0, 0);
+                   }
+                   c.fn().cmdEndRendering(cmd);
+               }});
+
+    const VkPipeline outPipeline = outputPipeline(ldr->desc().format);
+    g.addPass({"output", {{rHdr, Use::Sampled}}, {{rLdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
+                   VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                   a.imageView = ldr->view();
+                   a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                   a.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+                   a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                   info.renderArea = {{0, 0}, {targets.width, targets.height}};
+                   info.layerCount = 1;
+                   info.colorAttachmentCount = 1;
+                   info.pColorAttachments = &a;
+                   c.fn().cmdBeginRendering(cmd, &info);
+                   viewportScissor(cmd, targets.width, targets.height);
+                   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, outPipeline);
+                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, outputLayout, 0, 1,
+                                           &outputSet, 0, nullptr);
+                   vkCmdDraw(cmd, 3, 1, 0, 0);
+                   c.fn().cmdEndRendering(cmd);
+               }});
+
+    // Readback copies: colour (ldr), linear (hdr), debug images.
+    std::vector<std::pair<int, vk::Image*>> copies;
+    if (outputs & OutputColor) copies.push_back({rLdr, ldr});
+    if (outputs & OutputLinear) copies.push_back({rHdr, &targets.hdr});
+    if (debug)
+        for (int i = 0; i < 3; ++i)
+            copies.push_back({rDebug[i], i == 0   ? &targets.position
+                                         : i == 1 ? &targets.normal
+                                                  : &targets.surface});
+    if (!copies.empty()) {
+        std::vector<ResourceUse> reads;
+        for (auto& [r, im] : copies) reads.push_back({r, Use::TransferRead});
+        g.addPass({"readback", reads, {}, [&, copies](VkCommandBuffer cmd) {
+                       for (auto& [r, im] : copies) {
+                           vk::Buffer& dst = targets.readbackFor(*ctx, im);
+                           VkBufferImageCopy region{};
+                           region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+                           region.imageExtent = {targets.width, targets.height, 1};
+                           vkCmdCopyImageToBuffer(cmd, im->get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                                  dst.get(), 1, &region);
+                       }
+                   },
+                   true});
+    }
+    if (present)
+        g.addPass({"present", {{rLdr, Use::Present}}, {}, [](VkCommandBuffer) {}, true});
+
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkResetCommandBuffer(slot.cmd, 0));
+    VK_CHECK(vkBeginCommandBuffer(slot.cmd, &begin));
+    slot.timestamps->reset(slot.cmd);
+    slot.stats = FrameStats{};
+    slot.stats.frameIndex = frameCounter;
+    g.execute(c, slot.cmd, slot.timestamps.get(), slot.stats);
+    // The present pseudo-pass only transitions; it is not a pass users should time.
+    if (present && !slot.stats.passes.empty() && slot.stats.passes.back().name == "present")
+        slot.stats.passes.pop_back();
+    VK_CHECK(vkEndCommandBuffer(slot.cmd));
+}
+
+// ---- public API -------------------------------------------------------------------------------
+
+Renderer::Renderer(uint32_t width, uint32_t height, const RenderSettings& settings) {
+    if (width == 0 || height == 0)
+        throw InvalidArgument("render target size must be positive (got " + std::to_string(width) +
+                              "x" + std::to_string(height) + ")");
+    settings.validate();
+    mImpl = std::make_unique<Impl>(width, height, settings);
+}
+
+Renderer::~Renderer() = default;
+
+uint32_t Renderer::width() const { return mImpl->width; }
+uint32_t Renderer::height() const { return mImpl->height; }
+const RenderSettings& Renderer::settings() const { return mImpl->settings; }
+const FrameStats& Renderer::stats() const { return mImpl->stats; }
+std::string Renderer::deviceName() const { return mImpl->ctx->properties().deviceName; }
+
+void Renderer::setSettings(const RenderSettings& settings) {
+    settings.validate();
+    mImpl->settings = settings;
+}
+
+void Renderer::resize(uint32_t width, uint32_t height) {
+    if (width == 0 || height == 0)
+        throw InvalidArgument("render target size must be positive (got " + std::to_string(width) +
+                              "x" + std::to_string(height) + ")");
+    const auto limit = mImpl->ctx->properties().limits.maxImageDimension2D;
+    if (width > limit || height > limit)
+        throw InvalidArgument("render target size exceeds the device limit " + std::to_string(limit));
+    mImpl->width = width;
+    mImpl->height = height;
+}
+
+Frame Renderer::render(const Scene& scene, const Camera& camera, uint32_t outputs) {
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
+    camera.validate();
+    if ((outputs & (OutputColor | OutputLinear | OutputDebug)) == 0)
+        throw InvalidArgument("render: ask for at least one output");
+    Impl& m = *mImpl;
+    FrameSlot& slot = m.beginFrame();
+    m.targets.ensure(*m.ctx, m.width, m.height, outputs & OutputDebug);
+    m.recordFrame(slot, scene, camera, outputs, &m.targets.ldr, false);
+    slot.serial = m.ctx->submit(slot.cmd);
+    slot.statsPending = true;
+    ++m.frameCounter;
+    m.ctx->waitFor(slot.serial);
+    m.finishStats(slot);
+
+    Frame f;
+    f.width = int(m.width);
+    f.height = int(m.height);
+    const size_t pixels = size_t(m.width) * m.height;
+    auto floats = [&](vk::Image& im) {
+        std::vector<float> v(pixels * 4);
+        std::memcpy(v.data(), m.targets.readbackFor(*m.ctx, &im).mapped(), v.size() * sizeof(float));
+        return v;
+    };
+    if (outputs & OutputColor) {
+        f.color = ImageU8(f.width, f.height, 4);
+        std::memcpy(f.color.pixels.data(), m.targets.readbackFor(*m.ctx, &m.targets.ldr).mapped(),
+                    pixels * 4);
+    }
+    if (outputs & OutputLinear) f.linear = floats(m.targets.hdr);
+    if (outputs & OutputDebug) {
+        f.position = floats(m.targets.position);
+        f.normal = floats(m.targets.normal);
+        f.surface = floats(m.targets.surface);
+    }
+    m.stats.cpuMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    return f;
+}
+
+ImageU8 Renderer::present(Window& window, const Scene& scene, const Camera& camera, bool capture) {
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
+    camera.validate();
+    Impl& m = *mImpl;
+    Window::Native& n = window.native();
+    if (capture && !n.transferSrc) throw Error("this swapchain does not allow screenshots");
+    FrameSlot& slot = m.beginFrame();
+    uint32_t index = 0;
+    if (!n.acquire(slot.acquired, index)) return {}; // minimised: nothing to draw
+    m.targets.ensure(*m.ctx, n.extent.width, n.extent.height, false);
+    m.width = n.extent.width;
+    m.height = n.extent.height;
+    vk::Image& image = n.images[index];
+    // Contents are discarded; the acquire semaphore is waited on at colour-output stage.
+    image.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    image.stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+    image.access = VK_ACCESS_2_NONE;
+    m.recordFrame(slot, scene, camera, capture ? OutputColor : 0, &image, true);
+    slot.serial = m.ctx->submit(slot.cmd, {slot.acquired}, {VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT},
+                                {n.renderDone[index]});
+    slot.statsPending = true;
+    ++m.frameCounter;
+    n.present(index);
+    ImageU8 shot;
+    if (capture) {
+        m.ctx->waitFor(slot.serial);
+        m.finishStats(slot);
+        shot = ImageU8(int(n.extent.width), int(n.extent.height), 4);
+        std::memcpy(shot.pixels.data(), m.targets.readbackFor(*m.ctx, &image).mapped(),
+                    shot.pixels.size());
+        if (n.format == VK_FORMAT_B8G8R8A8_SRGB || n.format == VK_FORMAT_B8G8R8A8_UNORM)
+            for (size_t i = 0; i < shot.pixels.size(); i += 4) std::swap(shot.pixels[i], shot.pixels[i + 2]);
+    }
+    m.stats.cpuMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    return shot;
+}
+
+ShadowInfo Renderer::shadowInfo(int lightIndex) const {
+    if (lightIndex < 0 || size_t(lightIndex) >= mImpl->shadowInfos.size())
+        throw InvalidArgument("light index " + std::to_string(lightIndex) +
+                              " is not a light of the last rendered scene");
+    return mImpl->shadowInfos[size_t(lightIndex)];
+}
+
+std::vector<float> Renderer::shadowMap(int lightIndex, uint32_t* sizeOut) {
+    const ShadowInfo info = shadowInfo(lightIndex);
+    if (!info.active) throw InvalidArgument("light " + std::to_string(lightIndex) + " cast no shadow in the last frame");
+    Impl& m = *mImpl;
+    const uint32_t size = m.shadowMaps.desc().width;
+    vk::Buffer buffer(m.ctx.get(), VkDeviceSize(size) * size * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      vk::MemoryUsage::Readback);
+    m.ctx->immediate([&](VkCommandBuffer cmd) {
+        const render::UseState s = render::useState(Use::TransferRead, true);
+        vk::transition(*m.ctx, cmd, m.shadowMaps, s.layout, s.stage, s.access);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, uint32_t(info.layer), 1};
+        region.imageExtent = {size, size, 1};
+        vkCmdCopyImageToBuffer(cmd, m.shadowMaps.get(), s.layout, buffer.get(), 1, &region);
+    });
+    std::vector<float> out(size_t(size) * size);
+    std::memcpy(out.data(), buffer.mapped(), out.size() * sizeof(float));
+    if (sizeOut) *sizeOut = size;
+    return out;
+}
+
+} // namespace weft

@@ -1,0 +1,42 @@
+#include "render/ShadowFit.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace weft::render {
+
+glm::mat4 vulkanClipFlip() {
+    glm::mat4 flip(1.0f);
+    flip[1][1] = -1.0f;
+    return flip;
+}
+
+ShadowFrustum fitDirectionalShadow(const glm::vec3& toLight, const glm::vec3& lo,
+                                   const glm::vec3& hi, unsigned size) {
+    const glm::vec3 center = 0.5f * (lo + hi);
+    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
+    const glm::vec3 l = glm::normalize(toLight);
+    const glm::vec3 up = std::abs(l.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    const glm::mat4 view = glm::lookAtRH(center + l * (2.0f * radius), center, up);
+
+    glm::vec3 mn(1e30f), mx(-1e30f);
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+        const glm::vec3 p = glm::vec3(view * glm::vec4(corner, 1.0f));
+        mn = glm::min(mn, p);
+        mx = glm::max(mx, p);
+    }
+    // A margin keeps geometry on the boundary inside the map and off the far plane.
+    const float pad = 0.01f * std::max({mx.x - mn.x, mx.y - mn.y, 1e-3f});
+    mn -= glm::vec3(pad);
+    mx += glm::vec3(pad);
+    const glm::mat4 proj = glm::orthoRH_ZO(mn.x, mx.x, mn.y, mx.y, -mx.z, -mn.z);
+    ShadowFrustum f;
+    f.viewProj = vulkanClipFlip() * proj * view;
+    f.texelWorld = std::max(mx.x - mn.x, mx.y - mn.y) / float(size);
+    return f;
+}
+
+} // namespace weft::render

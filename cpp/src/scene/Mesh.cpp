@@ -1,0 +1,191 @@
+// Mesh validation and the built-in shapes.
+#include <weft/Error.h>
+#include <weft/Mesh.h>
+
+#include <cmath>
+#include <string>
+
+namespace weft {
+
+namespace {
+
+// Upper limit of any segment count; 4096 x 4096 quads is already 32M triangles.
+constexpr int kMaxSegments = 4096;
+
+bool isFinite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool isFinite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+void checkSize(const char* shape, const char* name, float value) {
+    if (!std::isfinite(value) || value <= 0.0f) {
+        throw InvalidArgument(std::string(shape) + ": " + name +
+                              " must be positive and finite, got " + std::to_string(value));
+    }
+}
+
+void checkSegments(const char* shape, const char* name, int value, int minimum) {
+    if (value < minimum || value > kMaxSegments) {
+        throw InvalidArgument(std::string(shape) + ": " + name + " must be in [" +
+                              std::to_string(minimum) + ", " + std::to_string(kMaxSegments) +
+                              "], got " + std::to_string(value));
+    }
+}
+
+} // namespace
+
+void Mesh::validate() const {
+    const size_t n = positions.size();
+    if (n == 0) throw InvalidArgument("mesh has no vertices");
+    if (indices.empty()) throw InvalidArgument("mesh has no triangles");
+    if (normals.size() != n || uvs.size() != n) {
+        throw InvalidArgument("mesh has " + std::to_string(n) + " positions but " +
+                              std::to_string(normals.size()) + " normals and " +
+                              std::to_string(uvs.size()) + " uvs");
+    }
+    if (indices.size() % 3 != 0) {
+        throw InvalidArgument("mesh index count " + std::to_string(indices.size()) +
+                              " is not a multiple of 3");
+    }
+    for (size_t i = 0; i < indices.size(); ++i) {
+        if (indices[i] >= n) {
+            throw InvalidArgument("mesh index " + std::to_string(i) + " is " +
+                                  std::to_string(indices[i]) + ", but there are only " +
+                                  std::to_string(n) + " vertices");
+        }
+    }
+    for (size_t i = 0; i < n; ++i) {
+        if (!isFinite(positions[i]) || !isFinite(normals[i]) || !isFinite(uvs[i])) {
+            throw InvalidArgument("mesh vertex " + std::to_string(i) + " has a non-finite value");
+        }
+        if (glm::dot(normals[i], normals[i]) < 1e-24f) {
+            throw InvalidArgument("mesh vertex " + std::to_string(i) + " has a zero normal");
+        }
+    }
+}
+
+void Mesh::bounds(glm::vec3& lo, glm::vec3& hi) const {
+    if (positions.empty()) throw InvalidArgument("bounds of a mesh without vertices");
+    lo = hi = positions[0];
+    for (const glm::vec3& p : positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+}
+
+Mesh Mesh::plane(float sizeX, float sizeZ, int segmentsX, int segmentsZ) {
+    checkSize("plane", "sizeX", sizeX);
+    checkSize("plane", "sizeZ", sizeZ);
+    checkSegments("plane", "segmentsX", segmentsX, 1);
+    checkSegments("plane", "segmentsZ", segmentsZ, 1);
+
+    Mesh mesh;
+    const size_t columns = size_t(segmentsX) + 1;
+    const size_t vertexCount = columns * (size_t(segmentsZ) + 1);
+    mesh.positions.reserve(vertexCount);
+    mesh.normals.assign(vertexCount, glm::vec3(0.0f, 1.0f, 0.0f));
+    mesh.uvs.reserve(vertexCount);
+    for (int j = 0; j <= segmentsZ; ++j) {
+        const float v = float(j) / float(segmentsZ);
+        for (int i = 0; i <= segmentsX; ++i) {
+            const float u = float(i) / float(segmentsX);
+            mesh.positions.emplace_back((u - 0.5f) * sizeX, 0.0f, (v - 0.5f) * sizeZ);
+            mesh.uvs.emplace_back(u, v);
+        }
+    }
+
+    // Vertex (i, j) is j * columns + i. Going +Z then +X is counter-clockwise seen from +Y.
+    mesh.indices.reserve(size_t(segmentsX) * size_t(segmentsZ) * 6);
+    for (int j = 0; j < segmentsZ; ++j) {
+        for (int i = 0; i < segmentsX; ++i) {
+            const uint32_t a = uint32_t(j * columns + i); // (i, j)
+            const uint32_t b = uint32_t(a + columns);     // (i, j + 1)
+            const uint32_t c = a + 1;                     // (i + 1, j)
+            const uint32_t d = b + 1;                     // (i + 1, j + 1)
+            mesh.indices.insert(mesh.indices.end(), {a, b, c, c, b, d});
+        }
+    }
+    return mesh;
+}
+
+Mesh Mesh::uvSphere(float radius, int segments, int rings) {
+    checkSize("uvSphere", "radius", radius);
+    checkSegments("uvSphere", "segments", segments, 3);
+    checkSegments("uvSphere", "rings", rings, 2);
+
+    // Ring r is at polar angle pi * r / rings from +Y; column s at azimuth 2 pi * s / segments,
+    // starting at +Z and turning towards +X, so that u grows to the right seen from outside
+    // and v = 0 is the north pole. Column `segments` repeats column 0 with u = 1 (the seam).
+    Mesh mesh;
+    const size_t columns = size_t(segments) + 1;
+    const size_t vertexCount = columns * (size_t(rings) + 1);
+    mesh.positions.reserve(vertexCount);
+    mesh.normals.reserve(vertexCount);
+    mesh.uvs.reserve(vertexCount);
+    const double pi = 3.14159265358979323846;
+    for (int r = 0; r <= rings; ++r) {
+        const double polar = pi * r / rings;
+        const double sinPolar = (r == 0 || r == rings) ? 0.0 : std::sin(polar);
+        const double cosPolar = std::cos(polar);
+        for (int s = 0; s <= segments; ++s) {
+            const double azimuth = 2.0 * pi * (s % segments) / segments;
+            const glm::vec3 n(float(sinPolar * std::sin(azimuth)), float(cosPolar),
+                              float(sinPolar * std::cos(azimuth)));
+            mesh.positions.push_back(n * radius);
+            mesh.normals.push_back(n);
+            mesh.uvs.emplace_back(float(s) / float(segments), float(r) / float(rings));
+        }
+    }
+
+    // Quad (a top-left, b bottom-left, c bottom-right, d top-right) seen from outside; the
+    // triangle touching a pole with two corners is degenerate and left out.
+    mesh.indices.reserve(size_t(segments) * size_t(rings - 1) * 6);
+    for (int r = 0; r < rings; ++r) {
+        for (int s = 0; s < segments; ++s) {
+            const uint32_t a = uint32_t(r * columns + s);
+            const uint32_t b = uint32_t(a + columns);
+            const uint32_t c = b + 1;
+            const uint32_t d = a + 1;
+            if (r != rings - 1) mesh.indices.insert(mesh.indices.end(), {a, b, c});
+            if (r != 0) mesh.indices.insert(mesh.indices.end(), {a, c, d});
+        }
+    }
+    return mesh;
+}
+
+Mesh Mesh::box(const glm::vec3& size) {
+    checkSize("box", "size.x", size.x);
+    checkSize("box", "size.y", size.y);
+    checkSize("box", "size.z", size.z);
+
+    // Per face: outward normal, direction of growing u and direction of growing v. Seen from
+    // outside u runs left to right and v top to bottom, so cross(down, right) == normal.
+    struct Face {
+        glm::vec3 normal, right, down;
+    };
+    static const Face faces[6] = {
+        {{1, 0, 0}, {0, 0, -1}, {0, -1, 0}}, {{-1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
+        {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}},   {{0, -1, 0}, {1, 0, 0}, {0, 0, -1}},
+        {{0, 0, 1}, {1, 0, 0}, {0, -1, 0}},  {{0, 0, -1}, {-1, 0, 0}, {0, -1, 0}},
+    };
+    static const glm::vec2 corners[4] = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+
+    Mesh mesh;
+    const glm::vec3 half = size * 0.5f;
+    for (const Face& face : faces) {
+        const uint32_t base = uint32_t(mesh.positions.size());
+        for (const glm::vec2& uv : corners) {
+            const glm::vec3 unit =
+                face.normal + face.right * (2.0f * uv.x - 1.0f) + face.down * (2.0f * uv.y - 1.0f);
+            mesh.positions.push_back(unit * half);
+            mesh.normals.push_back(face.normal);
+            mesh.uvs.push_back(uv);
+        }
+        mesh.indices.insert(mesh.indices.end(),
+                            {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+    return mesh;
+}
+
+} // namespace weft

@@ -1,0 +1,37 @@
+#pragma once
+// Graphics pipelines for dynamic rendering, described by a small struct.
+#include <vector>
+
+#include "vk/Resources.h"
+
+namespace weft::vk {
+
+enum class VertexLayout {
+    None,          // no vertex buffer (full-screen triangle)
+    Position,      // vec3 position, stride of the full vertex
+    PositionNormalUv,
+};
+
+struct GraphicsPipelineDesc {
+    const char* vertexShader = nullptr;   // embedded shader names
+    const char* fragmentShader = nullptr; // null: depth-only
+    VertexLayout vertexLayout = VertexLayout::PositionNormalUv;
+    uint32_t vertexStride = 32;
+    std::vector<VkFormat> colorFormats;
+    VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+    VkCullModeFlags cullMode = VK_CULL_MODE_BACK_BIT;
+    bool depthTest = true;
+    bool depthWrite = true;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+};
+
+Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);
+
+/// Descriptor set layout from (binding, type) pairs, visible to vertex and fragment stages.
+DescriptorSetLayout createSetLayout(Context& ctx,
+                                    const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings,
+                                    VkDescriptorSetLayoutCreateFlags flags = 0);
+PipelineLayout createPipelineLayout(Context& ctx, const std::vector<VkDescriptorSetLayout>& sets,
+                                    uint32_t pushConstantBytes);
+
+} // namespace weft::vk

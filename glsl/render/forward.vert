@@ -1,0 +1,19 @@
+#version 450
+#include "frame.glsl"
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+
+layout(location = 0) out vec3 outWorldPos;
+layout(location = 1) out vec3 outNormal;
+layout(location = 2) out vec2 outUv;
+
+void main() {
+    Instance ins = instances[push.instance];
+    vec4 world = ins.model * vec4(inPosition, 1.0);
+    outWorldPos = world.xyz;
+    outNormal = mat3(ins.normalMatrix) * inNormal;
+    outUv = inUv;
+    gl_Position = frame.viewProj * world;
+}

@@ -1,0 +1,21 @@
+#version 450
+// The forward pass plus the inputs of its shading, for the NumPy shading oracle.
+#include "shading.glsl"
+
+layout(location = 0) in vec3 inWorldPos;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+
+layout(location = 0) out vec4 outColor;
+layout(location = 1) out vec4 outPosition; // world xyz, 1 = covered
+layout(location = 2) out vec4 outNormal;   // shading normal, shadow visibility
+layout(location = 3) out vec4 outSurface;  // uv, light-space depth
+
+void main() {
+    float vis, depth;
+    vec3 n = normalize(inNormal);
+    outColor = vec4(shade(inWorldPos, n, inUv, instances[push.instance], vis, depth), 1.0);
+    outPosition = vec4(inWorldPos, 1.0);
+    outNormal = vec4(n, vis);
+    outSurface = vec4(inUv, depth, 0.0);
+}

@@ -1,0 +1,22 @@
+# Finds weft's system dependencies (Debian packages); no third-party source lives in this repo.
+#   Vulkan  : libvulkan-dev (+ mesa-vulkan-drivers for lavapipe, vulkan-validationlayers)
+#   glslc   : glslc (shaders -> SPIR-V at build time)
+#   glfw3   : libglfw3-dev      glm : libglm-dev      PNG : libpng-dev
+#   GTest   : libgtest-dev (tests only)               Ceres: libceres-dev (optional)
+find_package(Vulkan REQUIRED)
+find_package(glfw3 3.3 REQUIRED)
+find_package(glm REQUIRED)
+find_package(PNG REQUIRED)
+find_package(Threads REQUIRED)
+
+find_program(WEFT_GLSLC glslc REQUIRED)
+
+# shaderc (runtime shader compilation for hot reload) is optional.
+find_package(PkgConfig QUIET)
+if(PkgConfig_FOUND)
+    pkg_check_modules(WEFT_SHADERC QUIET IMPORTED_TARGET shaderc)
+endif()
+
+# Ceres is optional; the BTF fitter falls back to its own Levenberg-Marquardt without it.
+find_package(Ceres QUIET)
+set(WEFT_HAVE_CERES ${Ceres_FOUND})
