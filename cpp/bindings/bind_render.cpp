@@ -1,4 +1,5 @@
 // Bindings of the renderer: offscreen frames as NumPy arrays, statistics, shadow data.
+#include <cmath>
 #include <cstring>
 
 #include <pybind11/stl.h>
@@ -122,10 +123,15 @@ void bindRender(py::module_& m) {
             d["shadow"] = floatImage(f.normal, h, w, 4, 1, 3);
             d["uv"] = floatImage(f.surface, h, w, 4, 2, 0);
             d["light_depth"] = floatImage(f.surface, h, w, 4, 1, 2);
+            py::array_t<int32_t> instance({h, w});
+            for (size_t i = 0; i < size_t(h) * w; ++i)
+                instance.mutable_data()[i] = int32_t(std::lround(f.surface[i * 4 + 3])) - 1;
+            d["instance"] = instance;
             return d;
         }, py::arg("scene"), py::arg("camera"),
            "One frame's colour, linear radiance and the inputs of its shading (position, mask,\n"
-           "normal, shadow visibility of the first shadow-casting light, uv, light_depth).")
+           "normal, shadow visibility of the first shadow-casting light, uv, light_depth,\n"
+           "instance: the mesh id drawn at each pixel or -1).")
         .def_property_readonly("stats", [](const Renderer& r) { return statsDict(r.stats()); },
                                "The last frame: passes run with CPU/GPU ms, culled passes.")
         .def("shadow_map", [](Renderer& r, int light) {

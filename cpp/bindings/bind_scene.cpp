@@ -244,6 +244,14 @@ void bindScene(py::module_& m) {
             s.setTransform(id, toMat4(t, "transform"));
         })
         .def("set_material", &Scene::setMaterial)
+        .def("material", [](const Scene& s, uint32_t id) {
+            if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
+            return s.instances()[id].material;
+        }, py::arg("id"), "A copy of an instance's material.")
+        .def("transform", [](const Scene& s, uint32_t id) {
+            if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
+            return fromMat4(s.instances()[id].transform);
+        }, py::arg("id"), "An instance's object -> world matrix (4x4).")
         .def("add_light", &Scene::addLight, py::arg("light"))
         .def("set_light", &Scene::setLight)
         .def_property("ambient", [](const Scene& s) { return fromVec3(s.ambient()); },

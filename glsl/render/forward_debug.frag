@@ -9,7 +9,7 @@ layout(location = 2) in vec2 inUv;
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outPosition; // world xyz, 1 = covered
 layout(location = 2) out vec4 outNormal;   // shading normal, shadow visibility
-layout(location = 3) out vec4 outSurface;  // uv, light-space depth
+layout(location = 3) out vec4 outSurface;  // uv, light-space depth, instance + 1
 
 void main() {
     float vis, depth;
@@ -17,5 +17,5 @@ void main() {
     outColor = vec4(shade(inWorldPos, n, inUv, instances[push.instance], vis, depth), 1.0);
     outPosition = vec4(inWorldPos, 1.0);
     outNormal = vec4(n, vis);
-    outSurface = vec4(inUv, depth, 0.0);
+    outSurface = vec4(inUv, depth, float(push.instance + 1u));
 }

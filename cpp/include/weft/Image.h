@@ -14,7 +14,8 @@ struct ImageU8 {
     std::vector<uint8_t> pixels; // width * height * channels bytes
 
     ImageU8() = default;
-    ImageU8(int w, int h, int c) : width(w), height(h), channels(c), pixels(size_t(w) * h * c) {}
+    /// Throws InvalidArgument unless w, h > 0 and c in [1, 4].
+    ImageU8(int w, int h, int c);
     uint8_t* at(int x, int y) { return pixels.data() + (size_t(y) * width + x) * channels; }
     const uint8_t* at(int x, int y) const {
         return pixels.data() + (size_t(y) * width + x) * channels;
@@ -27,9 +28,12 @@ struct ImageU8 {
 
 /// Reads a PNG (8 or 16 bit, any colour type; 16-bit is reduced to 8). Throws IoError naming
 /// the file when it is missing, truncated or not a PNG.
+/// Channels after expansion: grey 1, grey+alpha 2, rgb 3, rgba 4; palettes become rgb, and a
+/// tRNS chunk adds an alpha channel.
 ImageU8 loadPng(const std::string& path);
 
-/// Writes a PNG; creates no directories. Throws IoError when the file cannot be written.
+/// Writes a PNG; creates no directories. Throws InvalidArgument when image.validate() fails
+/// and IoError when the file cannot be written (a partly written file is removed).
 void savePng(const std::string& path, const ImageU8& image);
 
 } // namespace weft

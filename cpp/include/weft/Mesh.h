@@ -20,17 +20,22 @@ struct Mesh {
     size_t triangleCount() const { return indices.size() / 3; }
 
     /// Throws InvalidArgument for mismatched array sizes, indices out of range, a count of
-    /// indices that is not a multiple of 3, an empty mesh, or non-finite values.
+    /// indices that is not a multiple of 3, an empty mesh, non-finite values or a zero normal.
     void validate() const;
-    /// Axis-aligned bounds of the positions (min, max).
+    /// Axis-aligned bounds of the positions (min, max). Throws InvalidArgument without vertices.
     void bounds(glm::vec3& lo, glm::vec3& hi) const;
 
     /// A rectangle in the XZ plane centred at the origin, normal +Y, UVs spanning [0,1]
     /// (u along +X, v along +Z), subdivided into segmentsX x segmentsZ quads.
+    /// Sizes must be positive and finite, segment counts in [1, 4096] (else InvalidArgument).
     static Mesh plane(float sizeX = 1.0f, float sizeZ = 1.0f, int segmentsX = 1, int segmentsZ = 1);
     /// A sphere centred at the origin; `segments` around the Y axis, `rings` from pole to pole.
+    /// v = 0 at the +Y pole; the u = 0 / u = 1 seam is duplicated. segments in [3, 4096],
+    /// rings in [2, 4096], radius positive and finite (else InvalidArgument).
     static Mesh uvSphere(float radius = 0.5f, int segments = 32, int rings = 16);
-    /// An axis-aligned box centred at the origin with flat-shaded faces (24 vertices).
+    /// An axis-aligned box centred at the origin with flat-shaded faces (24 vertices), each
+    /// face's UVs spanning [0,1] upright seen from outside (+Y/-Y faces: u along +X).
+    /// Sizes must be positive and finite (else InvalidArgument).
     static Mesh box(const glm::vec3& size = glm::vec3(1.0f));
 };
 
@@ -38,6 +43,8 @@ struct Mesh {
 /// v, v/t, v//n, v/t/n; negative indices). Missing normals are computed (area-weighted),
 /// missing UVs are zero. Groups, objects and materials are ignored. Throws IoError naming the
 /// file and line for missing files, malformed lines or out-of-range indices.
+/// OBJ puts vt v = 0 at the bottom image row, so the loaded uv is (u, 1 - v). Each distinct
+/// (v, vt, vn) triple becomes one vertex; computed normals are smooth over each OBJ position.
 Mesh loadObj(const std::string& path);
 
 } // namespace weft

@@ -44,7 +44,7 @@ struct Frame {
     std::vector<float> linear;   // OutputLinear: r, g, b, a
     std::vector<float> position; // OutputDebug: world x, y, z, coverage (1 drawn / 0 background)
     std::vector<float> normal;   // OutputDebug: shading normal x, y, z (unit), shadow visibility
-    std::vector<float> surface;  // OutputDebug: u, v, light-space depth, 0
+    std::vector<float> surface;  // OutputDebug: u, v, light-space depth, instance id + 1 (0: none)
 };
 
 /// Everything needed to redo the shadow test of light `lightIndex` outside the renderer.

@@ -17,6 +17,14 @@
 
 namespace weft {
 
+ImageU8::ImageU8(int w, int h, int c) : width(w), height(h), channels(c) {
+    if (w <= 0 || h <= 0 || c < 1 || c > 4 || w > 65536 || h > 65536)
+        throw InvalidArgument("image must be 1..65536 pixels per side with 1-4 channels (got " +
+                              std::to_string(w) + "x" + std::to_string(h) + "x" +
+                              std::to_string(c) + ")");
+    pixels.resize(size_t(w) * size_t(h) * size_t(c));
+}
+
 void ImageU8::validate() const {
     if (width <= 0 || height <= 0) {
         throw InvalidArgument("image size must be positive, got " + std::to_string(width) + "x" +
@@ -102,7 +110,7 @@ struct PngWriter {
 
 struct ReadContext {
     std::FILE* file = nullptr;
-    uint64_t fileSize = 0;
+    uint64_t fileSize = 0; // 0 when unknown (not seekable)
     ImageU8 image;
     std::vector<png_bytep> rows;
 };
@@ -118,7 +126,8 @@ void readPngBody(png_structp png, png_infop info, ReadContext& ctx) {
     int bitDepth = 0, colorType = 0;
     png_get_IHDR(png, info, &width, &height, &bitDepth, &colorType, nullptr, nullptr, nullptr);
     const uint64_t rawRowBytes = (uint64_t(width) * bitDepth * png_get_channels(png, info) + 7) / 8;
-    if (uint64_t(height) * (rawRowBytes + 1) > kMaxDeflateRatio * ctx.fileSize + 4096) {
+    if (ctx.fileSize > 0 &&
+        uint64_t(height) * (rawRowBytes + 1) > kMaxDeflateRatio * ctx.fileSize + 4096) {
         png_error(png, "image size in header is impossible for the file size (corrupt)");
     }
 

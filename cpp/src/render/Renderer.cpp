@@ -430,9 +430,11 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                        colors.push_back(a);
                    };
                    color(targets.hdr.view(), glm::vec4(scene.background(), 1.0f));
-                   if (debug)
-                       for (vk::Image* im : {&targets.position, &targets.normal, &targets.surface})
-                           color(im->view(), glm::vec4(0.0f));
+                   if (debug) { // background: not covered, not shadowed
+                       color(targets.position.view(), glm::vec4(0.0f));
+                       color(targets.normal.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+                       color(targets.surface.view(), glm::vec4(0.0f));
+                   }
                    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
                    depth.imageView = targets.depth.view();
                    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs what weft needs on a Debian machine, only when missing: system packages from Debian
+# (Vulkan loader + lavapipe + validation layers, glslc, GLFW, GLM, libpng, GoogleTest, Xvfb)
+# and Python build/test packages from PyPI.
+set -euo pipefail
+
+packages=(g++ pkg-config ccache libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc
+          libglfw3-dev libglm-dev libpng-dev libgtest-dev xvfb xauth)
+command -v cmake >/dev/null || packages+=(cmake)
+command -v ninja >/dev/null || packages+=(ninja-build)
+
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+    sudo=""
+    [ "$(id -u)" -ne 0 ] && sudo="sudo"
+    echo "install-deps: apt-get install ${missing[*]}"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.22" "pytest>=7"
+import importlib.util, sys
+need = ["scikit_build_core", "pybind11", "numpy", "pytest"]
+sys.exit(0 if all(importlib.util.find_spec(n) for n in need) else 1)
+PY

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Every test: install, build, then ctest (C++ unit tests, demo, consumer project against the
+# installed CMake package) and pytest (Python API, shading oracle, shadows, window, CLI, bench).
+# Vulkan validation layers are on throughout; any validation message fails the test.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh
+source scripts/env.sh
+export WEFT_VALIDATION=1
+ctest --test-dir build/py --output-on-failure --timeout 600
+python3 -m pytest tests/python -q -p no:cacheprovider
