@@ -8,30 +8,24 @@
 #include <string>
 #include <unordered_map>
 
+#include "render/FrameData.h"
 #include "render/FrameGraph.h"
 #include "render/GpuCache.h"
 #include "render/GpuTypes.h"
 #include "render/RenderTargets.h"
+#include "render/ScenePipelines.h"
 #include "render/ShadowFit.h"
 #include "vk/Pipeline.h"
 #include "vk/Swapchain.h"
 
 namespace weft {
 
+using render::Draw;
+using render::FrameData;
 using render::FrameGraph;
+using render::ShadowLight;
 using render::ResourceUse;
 using render::Use;
-
-void RenderSettings::validate() const {
-    if (shadowMapSize < 16 || shadowMapSize > 16384)
-        throw InvalidArgument("shadow_map_size must be in [16, 16384] (got " +
-                              std::to_string(shadowMapSize) + ")");
-    if (pcfRadius < 0 || pcfRadius > 7)
-        throw InvalidArgument("pcf_radius must be in [0, 7] (got " + std::to_string(pcfRadius) + ")");
-    for (float v : {biasConstant, biasSlope, biasMax, normalOffset})
-        if (!(std::isfinite(v) && v >= 0.0f))
-            throw InvalidArgument("shadow bias and normal offset must be finite and >= 0");
-}
 
 namespace {
 
@@ -49,20 +43,6 @@ struct FrameSlot {
     bool statsPending = false;
 };
 
-struct Draw {
-    const render::MeshGpu* mesh;
-    VkDescriptorSet material;
-    uint32_t instance;
-    bool castShadows;
-    glm::mat4 model;
-};
-
-struct ShadowLight {
-    int lightIndex;
-    int layer;
-    render::ShadowFrustum frustum;
-};
-
 // Grows a host-visible buffer to hold `bytes`.
 void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
     bytes = std::max<VkDeviceSize>(bytes, 256);
@@ -77,11 +57,7 @@ struct Renderer::Impl {
     RenderSettings settings;
     uint32_t width = 0, height = 0;
 
-    vk::Sampler textureSampler, nearestSampler;
-    vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout;
-    vk::PipelineLayout sceneLayout, shadowLayout, outputLayout;
-    vk::Pipeline forward, forwardDebug, shadow;
-    std::unordered_map<int, vk::Pipeline> outputPipelines; // by colour format
+    render::ScenePipelines pipes{*ctx};
     std::unique_ptr<render::GpuCache> cache;
 
     std::array<FrameSlot, kFramesInFlight> slots;
@@ -93,8 +69,7 @@ struct Renderer::Impl {
     FrameStats stats;
 
     Impl(uint32_t w, uint32_t h, const RenderSettings& s) : settings(s), width(w), height(h) {
-        createPipelines();
-        cache = std::make_unique<render::GpuCache>(*ctx, materialSetLayout, textureSampler);
+        cache = std::make_unique<render::GpuCache>(*ctx, pipes.materialSetLayout, pipes.textureSampler);
         createSlots();
         createDummyShadow();
     }
@@ -106,78 +81,14 @@ struct Renderer::Impl {
             if (s.cmd) vkFreeCommandBuffers(ctx->device(), ctx->commandPool(), 1, &s.cmd);
     }
 
-    void createPipelines();
     void createSlots();
     void createDummyShadow();
-    VkPipeline outputPipeline(VkFormat format);
     FrameSlot& beginFrame();
     void finishStats(FrameSlot& slot);
     void recordFrame(FrameSlot& slot, const Scene& scene, const Camera& camera, uint32_t outputs,
                      vk::Image* ldr, bool present);
     void ensureShadowMaps(uint32_t layers);
 };
-
-void Renderer::Impl::createPipelines() {
-    vk::Context& c = *ctx;
-    VkSamplerCreateInfo s{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    s.magFilter = s.minFilter = VK_FILTER_LINEAR;
-    s.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-    s.addressModeU = s.addressModeV = s.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    s.maxLod = VK_LOD_CLAMP_NONE;
-    VkSampler sampler;
-    VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
-    textureSampler = vk::Sampler(&c, sampler, vkDestroySampler);
-    s.magFilter = s.minFilter = VK_FILTER_NEAREST;
-    s.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    s.addressModeU = s.addressModeV = s.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    s.maxLod = 0.0f;
-    VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
-    nearestSampler = vk::Sampler(&c, sampler, vkDestroySampler);
-
-    frameSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                                             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                             {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                             {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
-    materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
-    outputSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
-    sceneLayout = vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));
-    shadowLayout = vk::createPipelineLayout(c, {}, sizeof(glm::mat4));
-    outputLayout = vk::createPipelineLayout(c, {outputSetLayout}, 0);
-
-    vk::GraphicsPipelineDesc d;
-    d.vertexShader = "render/forward.vert";
-    d.fragmentShader = "render/forward.frag";
-    d.colorFormats = {render::kHdrFormat};
-    d.depthFormat = render::kDepthFormat;
-    d.layout = sceneLayout;
-    forward = vk::createGraphicsPipeline(c, d);
-    d.fragmentShader = "render/forward_debug.frag";
-    d.colorFormats = {render::kHdrFormat, render::kDebugFormat, render::kDebugFormat,
-                      render::kDebugFormat};
-    forwardDebug = vk::createGraphicsPipeline(c, d);
-
-    vk::GraphicsPipelineDesc sd;
-    sd.vertexShader = "render/shadow.vert";
-    sd.vertexLayout = vk::VertexLayout::Position;
-    sd.depthFormat = render::kDepthFormat;
-    sd.cullMode = VK_CULL_MODE_NONE; // open meshes (planes, cloth) must cast from both sides
-    sd.layout = shadowLayout;
-    shadow = vk::createGraphicsPipeline(c, sd);
-}
-
-VkPipeline Renderer::Impl::outputPipeline(VkFormat format) {
-    auto it = outputPipelines.find(int(format));
-    if (it != outputPipelines.end()) return it->second;
-    vk::GraphicsPipelineDesc d;
-    d.vertexShader = "render/fullscreen.vert";
-    d.fragmentShader = "render/output.frag";
-    d.vertexLayout = vk::VertexLayout::None;
-    d.colorFormats = {format};
-    d.cullMode = VK_CULL_MODE_NONE;
-    d.depthTest = d.depthWrite = false;
-    d.layout = outputLayout;
-    return outputPipelines.emplace(int(format), vk::createGraphicsPipeline(*ctx, d)).first->second;
-}
 
 void Renderer::Impl::createSlots() {
     for (FrameSlot& s : slots) {
@@ -264,57 +175,14 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     const bool debug = outputs & OutputDebug;
     const float aspect = float(targets.width) / float(targets.height);
 
-    // ---- scene data for this frame -------------------------------------------------------
-    std::vector<render::GpuInstance> instances;
-    std::vector<Draw> draws;
-    for (const MeshInstance& inst : scene.instances()) {
-        render::GpuInstance g;
-        g.model = inst.transform;
-        g.normalMatrix = glm::transpose(glm::inverse(inst.transform));
-        g.ka = glm::vec4(inst.material.ka, 0);
-        g.kd = glm::vec4(inst.material.kd, 0);
-        g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
-        g.baseColor = glm::vec4(inst.material.baseColor, 1);
-        draws.push_back({&cache->mesh(inst.mesh), cache->texture(inst.material.texture),
-                         uint32_t(instances.size()), inst.castShadows, inst.transform});
-        instances.push_back(g);
-    }
-    glm::vec3 lo, hi;
-    scene.bounds(lo, hi);
-    std::vector<render::GpuLight> lights;
-    std::vector<ShadowLight> shadowLights;
-    shadowInfos.assign(scene.lights().size(), ShadowInfo{});
-    for (size_t i = 0; i < scene.lights().size(); ++i) {
-        const DirectionalLight& l = scene.lights()[i];
-        int layer = -1;
-        if (l.castShadows && !draws.empty() && int(shadowLights.size()) < render::kMaxShadowLights) {
-            layer = int(shadowLights.size());
-            shadowLights.push_back(
-                {int(i), layer, render::fitDirectionalShadow(l.toLight(), lo, hi, settings.shadowMapSize)});
-            ShadowInfo& info = shadowInfos[i];
-            info.active = true;
-            info.layer = layer;
-            info.size = settings.shadowMapSize;
-            info.viewProj = shadowLights.back().frustum.viewProj;
-            info.normalOffsetWorld = settings.normalOffset * shadowLights.back().frustum.texelWorld;
-            info.settings = settings;
-        }
-        lights.push_back({glm::vec4(l.toLight(), 0), glm::vec4(l.radiance(), float(layer))});
-    }
-    if (!shadowLights.empty()) ensureShadowMaps(uint32_t(shadowLights.size()));
-
-    render::GpuFrame frame{};
-    frame.viewProj = camera.projection(aspect) * camera.view();
-    frame.cameraPos = glm::vec4(camera.position, 1);
-    frame.ambient = glm::vec4(scene.ambient(), 0);
-    frame.background = glm::vec4(scene.background(), 1);
-    for (const ShadowLight& s : shadowLights) {
-        frame.lightViewProj[s.layer] = s.frustum.viewProj;
-        frame.normalOffset[s.layer].x = shadowInfos[size_t(s.lightIndex)].normalOffsetWorld;
-    }
-    frame.bias = glm::vec4(settings.biasConstant, settings.biasSlope, settings.biasMax, 0);
-    frame.counts = glm::ivec4(int(lights.size()), settings.pcfRadius, int(settings.shadowMapSize),
-                              shadowLights.empty() ? -1 : 0);
+    FrameData data = buildFrameData(scene, camera, settings, aspect, *cache);
+    shadowInfos = data.shadowInfos;
+    if (!data.shadowLights.empty()) ensureShadowMaps(uint32_t(data.shadowLights.size()));
+    const render::GpuFrame& frame = data.frame;
+    const std::vector<render::GpuInstance>& instances = data.instances;
+    const std::vector<render::GpuLight>& lights = data.lights;
+    const std::vector<Draw>& draws = data.draws;
+    const std::vector<ShadowLight>& shadowLights = data.shadowLights;
 
     ensureBuffer(c, slot.ubo, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     ensureBuffer(c, slot.instances, instances.size() * sizeof(render::GpuInstance),
@@ -328,7 +196,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
 
     // ---- descriptors ----------------------------------------------------------------------
     VK_CHECK(vkResetDescriptorPool(c.device(), slot.pool, 0));
-    VkDescriptorSetLayout layouts[] = {frameSetLayout, outputSetLayout};
+    VkDescriptorSetLayout layouts[] = {pipes.frameSetLayout, pipes.outputSetLayout};
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = slot.pool;
     alloc.descriptorSetCount = 2;
@@ -340,9 +208,9 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     VkDescriptorBufferInfo uboInfo{slot.ubo.get(), 0, sizeof(frame)};
     VkDescriptorBufferInfo instInfo{slot.instances.get(), 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo lightInfo{slot.lights.get(), 0, VK_WHOLE_SIZE};
-    VkDescriptorImageInfo shadowInfo{nearestSampler, shadowImage.view(),
+    VkDescriptorImageInfo shadowInfo{pipes.nearestSampler, shadowImage.view(),
                                      render::useState(Use::Sampled, true).layout};
-    VkDescriptorImageInfo hdrInfo{nearestSampler, targets.hdr.view(),
+    VkDescriptorImageInfo hdrInfo{pipes.nearestSampler, targets.hdr.view(),
                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet writes[5];
     for (auto& w : writes) w = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -399,11 +267,11 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                        info.pDepthAttachment = &depth;
                        c.fn().cmdBeginRendering(cmd, &info);
                        viewportScissor(cmd, size, size);
-                       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow);
+                       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.shadow);
                        for (const Draw& d : draws) {
                            if (!d.castShadows) continue;
                            const glm::mat4 mvp = s.frustum.viewProj * d.model;
-                           vkCmdPushConstants(cmd, shadowLayout, VK_SHADER_STAGE_VERTEX_BIT |
+                           vkCmdPushConstants(cmd, pipes.shadowLayout, VK_SHADER_STAGE_VERTEX_BIT |
                                               VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(mvp), &mvp);
                            VkDeviceSize offset = 0;
                            VkBuffer vb = d.mesh->vertices.get();
@@ -450,13 +318,13 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    c.fn().cmdBeginRendering(cmd, &info);
                    viewportScissor(cmd, targets.width, targets.height);
                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                     debug ? forwardDebug.get() : forward.get());
-                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sceneLayout, 0, 1,
+                                     debug ? pipes.forwardDebug.get() : pipes.forward.get());
+                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.sceneLayout, 0, 1,
                                            &frameSet, 0, nullptr);
                    for (const Draw& d : draws) {
-                       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sceneLayout, 1,
+                       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.sceneLayout, 1,
                                                1, &d.material, 0, nullptr);
-                       vkCmdPushConstants(cmd, sceneLayout,
+                       vkCmdPushConstants(cmd, pipes.sceneLayout,
                                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                           0, sizeof(uint32_t), &d.instance);
                        VkDeviceSize offset = 0;
@@ -468,7 +336,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    c.fn().cmdEndRendering(cmd);
                }});
 
-    const VkPipeline outPipeline = outputPipeline(ldr->desc().format);
+    const VkPipeline outPipeline = pipes.outputPipeline(ldr->desc().format);
     g.addPass({"output", {{rHdr, Use::Sampled}}, {{rLdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
                    VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
                    a.imageView = ldr->view();
@@ -483,7 +351,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    c.fn().cmdBeginRendering(cmd, &info);
                    viewportScissor(cmd, targets.width, targets.height);
                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, outPipeline);
-                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, outputLayout, 0, 1,
+                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.outputLayout, 0, 1,
                                            &outputSet, 0, nullptr);
                    vkCmdDraw(cmd, 3, 1, 0, 0);
                    c.fn().cmdEndRendering(cmd);
@@ -622,7 +490,7 @@ ImageU8 Renderer::present(Window& window, const Scene& scene, const Camera& came
     image.layout = VK_IMAGE_LAYOUT_UNDEFINED;
     image.stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
     image.access = VK_ACCESS_2_NONE;
-    m.recordFrame(slot, scene, camera, capture ? OutputColor : 0, &image, true);
+    m.recordFrame(slot, scene, camera, capture ? uint32_t(OutputColor) : 0u, &image, true);
     slot.serial = m.ctx->submit(slot.cmd, {slot.acquired}, {VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT},
                                 {n.renderDone[index]});
     slot.statsPending = true;

@@ -1,0 +1,88 @@
+#include "render/ScenePipelines.h"
+
+#include <cmath>
+#include <string>
+
+#include <weft/Renderer.h>
+
+#include "render/RenderTargets.h"
+
+namespace weft {
+
+void RenderSettings::validate() const {
+    if (shadowMapSize < 16 || shadowMapSize > 16384)
+        throw InvalidArgument("shadow_map_size must be in [16, 16384] (got " +
+                              std::to_string(shadowMapSize) + ")");
+    if (pcfRadius < 0 || pcfRadius > 7)
+        throw InvalidArgument("pcf_radius must be in [0, 7] (got " + std::to_string(pcfRadius) + ")");
+    for (float v : {biasConstant, biasSlope, biasMax, normalOffset})
+        if (!(std::isfinite(v) && v >= 0.0f))
+            throw InvalidArgument("shadow bias and normal offset must be finite and >= 0");
+}
+
+} // namespace weft
+
+namespace weft::render {
+
+ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
+    VkSamplerCreateInfo s{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    s.magFilter = s.minFilter = VK_FILTER_LINEAR;
+    s.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    s.addressModeU = s.addressModeV = s.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    s.maxLod = VK_LOD_CLAMP_NONE;
+    VkSampler sampler;
+    VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
+    textureSampler = vk::Sampler(&c, sampler, vkDestroySampler);
+    s.magFilter = s.minFilter = VK_FILTER_NEAREST;
+    s.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    s.addressModeU = s.addressModeV = s.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    s.maxLod = 0.0f;
+    VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
+    nearestSampler = vk::Sampler(&c, sampler, vkDestroySampler);
+
+    frameSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                             {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                             {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    outputSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    sceneLayout = vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));
+    shadowLayout = vk::createPipelineLayout(c, {}, sizeof(glm::mat4));
+    outputLayout = vk::createPipelineLayout(c, {outputSetLayout}, 0);
+
+    vk::GraphicsPipelineDesc d;
+    d.vertexShader = "render/forward.vert";
+    d.fragmentShader = "render/forward.frag";
+    d.colorFormats = {kHdrFormat};
+    d.depthFormat = kDepthFormat;
+    d.layout = sceneLayout;
+    forward = vk::createGraphicsPipeline(c, d);
+    d.fragmentShader = "render/forward_debug.frag";
+    d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat,
+                      kDebugFormat};
+    forwardDebug = vk::createGraphicsPipeline(c, d);
+
+    vk::GraphicsPipelineDesc sd;
+    sd.vertexShader = "render/shadow.vert";
+    sd.vertexLayout = vk::VertexLayout::Position;
+    sd.depthFormat = kDepthFormat;
+    sd.cullMode = VK_CULL_MODE_NONE; // open meshes (planes, cloth) must cast from both sides
+    sd.layout = shadowLayout;
+    shadow = vk::createGraphicsPipeline(c, sd);
+}
+
+VkPipeline ScenePipelines::outputPipeline(VkFormat format) {
+    auto it = mOutput.find(int(format));
+    if (it != mOutput.end()) return it->second;
+    vk::GraphicsPipelineDesc d;
+    d.vertexShader = "render/fullscreen.vert";
+    d.fragmentShader = "render/output.frag";
+    d.vertexLayout = vk::VertexLayout::None;
+    d.colorFormats = {format};
+    d.cullMode = VK_CULL_MODE_NONE;
+    d.depthTest = d.depthWrite = false;
+    d.layout = outputLayout;
+    return mOutput.emplace(int(format), vk::createGraphicsPipeline(mCtx, d)).first->second;
+}
+
+} // namespace weft::render

@@ -1,0 +1,27 @@
+#pragma once
+// Everything the scene passes draw with: samplers, descriptor-set and pipeline layouts, and
+// the graphics pipelines (shadow depth, forward, forward + debug outputs, sRGB output).
+#include <unordered_map>
+
+#include "vk/Pipeline.h"
+
+namespace weft::render {
+
+struct ScenePipelines {
+    explicit ScenePipelines(vk::Context& ctx);
+
+    vk::Sampler textureSampler; // trilinear, repeat
+    vk::Sampler nearestSampler; // texel fetches (shadow maps, hdr)
+    vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout;
+    vk::PipelineLayout sceneLayout, shadowLayout, outputLayout;
+    vk::Pipeline forward, forwardDebug, shadow;
+
+    /// The sRGB output pipeline for a colour format (offscreen RGBA8 or a swapchain's format).
+    VkPipeline outputPipeline(VkFormat format);
+
+private:
+    vk::Context& mCtx;
+    std::unordered_map<int, vk::Pipeline> mOutput; // by format
+};
+
+} // namespace weft::render
