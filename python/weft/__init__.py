@@ -1,0 +1,58 @@
+"""weft: real-time rendering of soft, textured materials with Vulkan, driven from Python.
+
+The renderer and scene types live in the compiled module ``weft._core`` and are re-exported
+here: build a :class:`Scene` from :class:`Mesh` instances with :class:`Material` s and
+:class:`DirectionalLight` s, then ``Renderer(w, h).render(scene, camera)`` returns an sRGB
+``uint8`` (H, W, 4) NumPy array (``render_linear`` and ``render_debug`` give float outputs).
+
+Errors raise :class:`Error` (a ``RuntimeError``); bad input raises :class:`InvalidArgument`
+(also a ``ValueError``) and file problems :class:`IoError` (also an ``OSError``).
+``weft.reference`` holds NumPy reference implementations, ``python -m weft`` is the command
+line (demo, devices, render) and ``python -m weft.bench`` runs the benchmarks.
+"""
+
+from weft._core import (
+    Camera,
+    DirectionalLight,
+    Error,
+    InvalidArgument,
+    IoError,
+    Material,
+    Mesh,
+    Renderer,
+    Scene,
+    Texture,
+    __version__,
+    clear_validation_messages,
+    default_scene,
+    devices,
+    load_obj,
+    load_png,
+    run_demo,
+    save_png,
+    validation_enabled,
+    validation_messages,
+)
+
+__all__ = [
+    "Camera",
+    "DirectionalLight",
+    "Error",
+    "InvalidArgument",
+    "IoError",
+    "Material",
+    "Mesh",
+    "Renderer",
+    "Scene",
+    "Texture",
+    "__version__",
+    "clear_validation_messages",
+    "default_scene",
+    "devices",
+    "load_obj",
+    "load_png",
+    "run_demo",
+    "save_png",
+    "validation_enabled",
+    "validation_messages",
+]

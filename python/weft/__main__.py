@@ -1,0 +1,160 @@
+"""Command line of weft: ``python -m weft {demo,devices,render} ...``.
+
+    python -m weft demo [--width W] [--height H] [--frames N] [--headless] [--no-vsync]
+                        [--out PNG] [--screenshot PNG] [--stats JSON]
+    python -m weft devices [--json]
+    python -m weft render [--width W] [--height H] [--out PNG]
+
+Benchmarks have their own entry point: ``python -m weft.bench --help``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from typing import Any, Dict, List, Optional, Sequence
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {value}")
+    return value
+
+
+def _non_negative_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {value}")
+    return value
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="python -m weft",
+        description="weft: Vulkan renderer for soft, textured materials. Run the demo, list "
+                    "Vulkan devices or render the default scene to a PNG.",
+        epilog="Environment: WEFT_DEVICE=<index|name substring> picks the Vulkan device, "
+               "WEFT_VALIDATION=1 enables the validation layers. Benchmarks: "
+               "python -m weft.bench --help",
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+
+    demo = sub.add_parser(
+        "demo", help="run the demo (window if a display exists, else a headless PNG)",
+        description="Runs the demo scene: a GLFW window when a display exists (and --headless "
+                    "is not given), otherwise one offscreen frame written to --out.")
+    demo.add_argument("--width", type=_positive_int, default=1280, help="width in pixels (1280)")
+    demo.add_argument("--height", type=_positive_int, default=720, help="height in pixels (720)")
+    demo.add_argument("--frames", type=_non_negative_int, default=0,
+                      help="window mode: stop after this many frames (0 = until closed)")
+    demo.add_argument("--headless", action="store_true",
+                      help="render offscreen even when a display is available")
+    demo.add_argument("--no-vsync", dest="vsync", action="store_false",
+                      help="present without waiting for vertical sync")
+    demo.add_argument("--out", default="out/demo.png",
+                      help="headless output PNG (default out/demo.png)")
+    demo.add_argument("--screenshot", default="",
+                      help="window mode: save the last presented frame to this PNG")
+    demo.add_argument("--stats", default="", metavar="JSON",
+                      help="write the last frame's statistics to this JSON file")
+    demo.set_defaults(handler=_cmd_demo)
+
+    devices = sub.add_parser("devices", help="list the Vulkan devices and the selected one",
+                             description="Lists every Vulkan device; '*' marks the one weft "
+                                         "renders with (override with WEFT_DEVICE).")
+    devices.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    devices.set_defaults(handler=_cmd_devices)
+
+    render = sub.add_parser("render", help="render the default scene headless to a PNG",
+                            description="Renders the default scene offscreen, writes a PNG and "
+                                        "prints its path and the frame statistics.")
+    render.add_argument("--width", type=_positive_int, default=1280, help="width in pixels (1280)")
+    render.add_argument("--height", type=_positive_int, default=720, help="height in pixels (720)")
+    render.add_argument("--out", default="out/render.png", help="output PNG (out/render.png)")
+    render.set_defaults(handler=_cmd_render)
+    return parser
+
+
+def _cmd_demo(args: argparse.Namespace) -> int:
+    import weft
+
+    return int(weft.run_demo(width=args.width, height=args.height, frames=args.frames,
+                             headless=args.headless, vsync=args.vsync, out=args.out,
+                             screenshot=args.screenshot, stats_json=args.stats))
+
+
+def format_table(rows: List[Dict[str, Any]], columns: Sequence[str]) -> str:
+    """Plain-text table with a header row and left-aligned columns."""
+    cells = [[str(c) for c in columns]] + [[str(row.get(c, "")) for c in columns] for row in rows]
+    widths = [max(len(r[i]) for r in cells) for i in range(len(columns))]
+    lines = ["  ".join(v.ljust(w) for v, w in zip(r, widths)).rstrip() for r in cells]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join(lines)
+
+
+def _cmd_devices(args: argparse.Namespace) -> int:
+    import weft
+
+    devices = weft.devices()
+    if args.json:
+        print(json.dumps(devices, indent=2))
+        return 0
+    rows = [dict(d, sel="*" if d.get("selected") else "") for d in devices]
+    print(format_table(rows, ["sel", "index", "name", "type", "api_version", "driver"]))
+    if not devices:
+        print("no Vulkan devices found", file=sys.stderr)
+        return 1
+    return 0
+
+
+def format_stats(stats: Dict[str, Any]) -> str:
+    """Human-readable frame statistics (one line per pass)."""
+    def ms(value: Optional[float]) -> str:
+        return "n/a" if value is None or value < 0 else f"{value:.3f} ms"
+
+    lines = [f"frame {stats.get('frame_index')}: cpu {ms(stats.get('cpu_ms'))}, "
+             f"gpu {ms(stats.get('gpu_ms'))}"]
+    for p in stats.get("passes", []):
+        lines.append(f"  {p['name']:<12} cpu {ms(p.get('cpu_ms')):>12}   gpu {ms(p.get('gpu_ms'))}")
+    if stats.get("culled"):
+        lines.append("  culled: " + ", ".join(stats["culled"]))
+    return "\n".join(lines)
+
+
+def _cmd_render(args: argparse.Namespace) -> int:
+    import weft
+
+    scene, camera = weft.default_scene()
+    renderer = weft.Renderer(args.width, args.height)
+    image = renderer.render(scene, camera)
+    directory = os.path.dirname(args.out)
+    if directory:
+        os.makedirs(directory, exist_ok=True)
+    weft.save_png(args.out, image)
+    print(f"wrote {os.path.abspath(args.out)} ({args.width}x{args.height}, "
+          f"{renderer.device_name})")
+    print(format_stats(renderer.stats))
+    return 0
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return args.handler(args)
+    except (ValueError, OSError, RuntimeError) as exc:
+        print(f"weft: error: {exc}", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

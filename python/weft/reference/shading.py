@@ -1,0 +1,690 @@
+"""NumPy reference ("oracle") for weft's per-pixel shading and shadow test, in float64.
+
+Everything here is written from the equations of SPEC §1.3 and §1.5 and never calls the
+renderer: it takes the debug outputs of a frame (world position, shading normal, UV, coverage
+and shadow visibility, see ``Renderer.render_debug``) plus a description of the scene, and
+recomputes what every covered pixel must look like.
+
+Shading (SPEC §1.3, eq. 2.5, 2.8, 2.9 and 2.10), per pixel with position p, unit normal n,
+camera position c, ``v = normalize(c - p)`` and ``T = base_color * texture(uv)``::
+
+    colour = I_A * K_A * T
+    for each directional light (l = -normalize(direction), L = color * intensity):
+        if n.l > 0:
+            h = normalize(l + v)                             # eq. 2.8
+            I_D = (n.l) L                                    # eq. 2.5
+            I_S = max(n.h, 0)^shininess L                    # eq. 2.9
+            colour += vis * (I_D K_D T + I_S K_S)            # eq. 2.10, a = 1
+
+``vis`` is the PCF shadow visibility of the light (1 for lights without shadows). A debug frame
+reports it for the first shadow-casting light; others can be computed with
+:func:`pcf_visibility` from their shadow maps.
+
+Shadows (SPEC §1.5): the receiver is offset along its normal, projected into the light's
+clip space, and compared against a (2r+1)^2 texel neighbourhood of the shadow map with a
+slope-scaled, clamped depth bias; see :func:`shadow_lookup`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Dict, Iterable, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+ArrayLike = Union[np.ndarray, Sequence[float], float]
+Vec3 = Tuple[float, float, float]
+
+__all__ = [
+    "srgb_encode",
+    "srgb_decode",
+    "encode_u8",
+    "texture_to_linear",
+    "sample_bilinear_repeat",
+    "build_mip_chain",
+    "sample_trilinear_repeat",
+    "texture_lod",
+    "LightDesc",
+    "SurfaceMaterial",
+    "as_light",
+    "first_shadow_light",
+    "material_maps",
+    "blinn_phong",
+    "ShadowLookup",
+    "shadow_lookup",
+    "pcf_visibility",
+    "shade_debug_frame",
+    "OracleErrors",
+    "compare_frame",
+]
+
+
+# --------------------------------------------------------------------------------------------
+# Colour encoding
+# --------------------------------------------------------------------------------------------
+
+def srgb_encode(linear: ArrayLike) -> np.ndarray:
+    """Standard sRGB transfer function (linear -> encoded), float64, input clamped to [0, 1].
+
+    ``12.92 x`` below 0.0031308, else ``1.055 x^(1/2.4) - 0.055``.
+    """
+    x = np.clip(np.asarray(linear, dtype=np.float64), 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
+
+
+def srgb_decode(encoded: ArrayLike) -> np.ndarray:
+    """Inverse of :func:`srgb_encode` (encoded in [0, 1] -> linear), float64."""
+    x = np.clip(np.asarray(encoded, dtype=np.float64), 0.0, 1.0)
+    return np.where(x <= 0.04045, x / 12.92, np.power((x + 0.055) / 1.055, 2.4))
+
+
+def encode_u8(linear: ArrayLike) -> np.ndarray:
+    """8-bit sRGB value of linear radiance: ``round(255 * srgb_encode(clamp(x, 0, 1)))``."""
+    return np.rint(255.0 * srgb_encode(linear)).astype(np.uint8)
+
+
+# --------------------------------------------------------------------------------------------
+# Textures
+# --------------------------------------------------------------------------------------------
+
+def texture_to_linear(image: np.ndarray, srgb: bool = True) -> np.ndarray:
+    """Converts a texture image to linear float64 RGBA (H, W, 4) the way the renderer sees it.
+
+    ``image`` is uint8 (H, W), (H, W, 1), (H, W, 2) (grey + alpha), (H, W, 3) or (H, W, 4):
+    grey is replicated to RGB, missing alpha is 1. With ``srgb`` the colour channels are
+    sRGB-decoded (alpha never is).
+    A floating-point image is taken as already linear and only expanded to RGBA.
+    """
+    img = np.asarray(image)
+    if img.ndim == 2:
+        img = img[:, :, None]
+    if img.ndim != 3 or not 1 <= img.shape[2] <= 4 or img.shape[0] < 1 or img.shape[1] < 1:
+        raise ValueError(f"texture image must be (H,W) or (H,W,1..4), got shape {img.shape}")
+    floating = np.issubdtype(img.dtype, np.floating)
+    data = img.astype(np.float64) if floating else img.astype(np.float64) / 255.0
+    h, w, c = data.shape
+    out = np.ones((h, w, 4), dtype=np.float64)
+    if c <= 2:
+        out[:, :, :3] = data[:, :, :1]
+        if c == 2:
+            out[:, :, 3] = data[:, :, 1]
+    else:
+        out[:, :, :3] = data[:, :, :3]
+        if c == 4:
+            out[:, :, 3] = data[:, :, 3]
+    if srgb and not floating:
+        out[:, :, :3] = srgb_decode(out[:, :, :3])
+    return out
+
+
+def sample_bilinear_repeat(tex_linear: np.ndarray, uv: np.ndarray) -> np.ndarray:
+    """Bilinear lookup with REPEAT wrapping, no mipmaps (what a sampler does at LOD 0).
+
+    ``tex_linear`` is (H, W, C) linear values (decode sRGB *before* filtering, as the hardware
+    does); ``uv`` is (..., 2). Texel (i, j) has its centre at ((i + 0.5) / W, (j + 0.5) / H);
+    v = 0 is the top row (row 0). Returns (..., C) float64.
+    """
+    tex = np.asarray(tex_linear, dtype=np.float64)
+    if tex.ndim == 2:
+        tex = tex[:, :, None]
+    uv = np.asarray(uv, dtype=np.float64)
+    if uv.shape[-1] != 2:
+        raise ValueError(f"uv must have a last axis of 2, got shape {uv.shape}")
+    h, w = tex.shape[:2]
+    x = uv[..., 0] * w - 0.5
+    y = uv[..., 1] * h - 0.5
+    x0 = np.floor(x)
+    y0 = np.floor(y)
+    fx = (x - x0)[..., None]
+    fy = (y - y0)[..., None]
+    x0 = x0.astype(np.int64)
+    y0 = y0.astype(np.int64)
+    xi0 = np.mod(x0, w)
+    xi1 = np.mod(x0 + 1, w)
+    yi0 = np.mod(y0, h)
+    yi1 = np.mod(y0 + 1, h)
+    top = tex[yi0, xi0] * (1.0 - fx) + tex[yi0, xi1] * fx
+    bottom = tex[yi1, xi0] * (1.0 - fx) + tex[yi1, xi1] * fx
+    return top * (1.0 - fy) + bottom * fy
+
+
+def _bilinear_clamp(tex: np.ndarray, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Bilinear lookup at unnormalised texel coordinates (centres at i + 0.5), CLAMP_TO_EDGE."""
+    h, w = tex.shape[:2]
+    fx0 = np.floor(x - 0.5)
+    fy0 = np.floor(y - 0.5)
+    ax = (x - 0.5 - fx0)[..., None]
+    ay = (y - 0.5 - fy0)[..., None]
+    x0 = np.clip(fx0.astype(np.int64), 0, w - 1)
+    x1 = np.clip(fx0.astype(np.int64) + 1, 0, w - 1)
+    y0 = np.clip(fy0.astype(np.int64), 0, h - 1)
+    y1 = np.clip(fy0.astype(np.int64) + 1, 0, h - 1)
+    top = tex[y0, x0] * (1.0 - ax) + tex[y0, x1] * ax
+    bottom = tex[y1, x0] * (1.0 - ax) + tex[y1, x1] * ax
+    return top * (1.0 - ay) + bottom * ay
+
+
+def build_mip_chain(tex_linear: np.ndarray, srgb: bool = True,
+                    quantize: bool = True) -> List[np.ndarray]:
+    """Mip levels of a texture as a GPU builds them with successive linear-filtered blits.
+
+    Level k+1 has ``max(1, size_k // 2)`` texels per side; each texel is the bilinear sample
+    (in linear space, CLAMP_TO_EDGE) of level k at its centre, i.e. the 2x2 box average for
+    even sizes. With ``quantize`` every level is stored back to 8 bits (sRGB-encoded if
+    ``srgb``) as an RGBA8 image would be. Returns the levels as linear float64 arrays.
+    """
+    level = np.asarray(tex_linear, dtype=np.float64)
+    if level.ndim == 2:
+        level = level[:, :, None]
+    levels = [level]
+    while level.shape[0] > 1 or level.shape[1] > 1:
+        h, w = level.shape[:2]
+        h2, w2 = max(1, h // 2), max(1, w // 2)
+        yy, xx = np.mgrid[0:h2, 0:w2].astype(np.float64)
+        level = _bilinear_clamp(level, (xx + 0.5) * (w / w2), (yy + 0.5) * (h / h2))
+        if quantize:
+            if srgb:
+                level[..., :3] = srgb_decode(np.rint(srgb_encode(level[..., :3]) * 255.0) / 255.0)
+                if level.shape[2] > 3:
+                    level[..., 3:] = np.rint(np.clip(level[..., 3:], 0, 1) * 255.0) / 255.0
+            else:
+                level = np.rint(np.clip(level, 0.0, 1.0) * 255.0) / 255.0
+        levels.append(level)
+    return levels
+
+
+def sample_trilinear_repeat(levels: Sequence[np.ndarray], uv: np.ndarray,
+                            lod: ArrayLike) -> np.ndarray:
+    """Trilinear lookup (bilinear in the two nearest mip levels, linear between them), REPEAT
+    wrapping; ``lod`` (broadcastable to uv.shape[:-1]) is clamped to [0, len(levels) - 1]."""
+    uv = np.asarray(uv, dtype=np.float64)
+    lod = np.clip(np.broadcast_to(np.asarray(lod, dtype=np.float64), uv.shape[:-1]), 0.0,
+                  len(levels) - 1)
+    lod = np.where(np.isfinite(lod), lod, 0.0)
+    lo = np.floor(lod).astype(np.int64)
+    frac = (lod - lo)[..., None]
+    out = np.zeros(uv.shape[:-1] + (levels[0].shape[-1],), dtype=np.float64)
+    for k in np.unique(lo):
+        sel = lo == k
+        a = sample_bilinear_repeat(levels[k], uv[sel])
+        b = sample_bilinear_repeat(levels[min(k + 1, len(levels) - 1)], uv[sel])
+        out[sel] = a * (1.0 - frac[sel]) + b * frac[sel]
+    return out
+
+
+def texture_lod(uv: np.ndarray, labels: np.ndarray, width: int, height: int) -> np.ndarray:
+    """Level of detail of a texture of ``width`` x ``height`` texels at every pixel, from the
+    screen-space derivatives of an interpolated UV image (H, W, 2), as a fragment shader's
+    implicit-LOD ``texture()`` computes it: differences inside each 2x2 pixel quad
+    (d/dx within the row, d/dy within the column), ``rho = max(|d(uv)/dx|, |d(uv)/dy|)`` in
+    texels, ``lod = log2(rho)``.
+
+    Only neighbours with the same label count; where the quad partner belongs to something
+    else (silhouettes) the pixel on the other side is used instead, and where neither exists
+    the derivative of that direction is taken from the other one. Along silhouettes this can
+    differ from the GPU, whose helper invocations extrapolate the triangle.
+    """
+    uv = np.asarray(uv, dtype=np.float64)
+    labels = np.asarray(labels)
+    h, w = labels.shape
+    scale = np.array([float(width), float(height)])
+    ys, xs = np.mgrid[0:h, 0:w]
+
+    def derivative(axis: int) -> Tuple[np.ndarray, np.ndarray]:
+        coord = xs if axis == 1 else ys
+        size = w if axis == 1 else h
+        partner = coord ^ 1  # the other pixel of the quad along this axis
+        other = np.where(coord % 2 == 0, coord - 1, coord + 1)  # outside the quad
+        result = np.zeros(uv.shape)
+        valid = np.zeros(labels.shape, dtype=bool)
+        for cand in (partner, other):
+            ok = (cand >= 0) & (cand < size) & ~valid
+            cc = np.clip(cand, 0, size - 1)
+            if axis == 1:
+                nb_label, nb_uv = labels[ys, cc], uv[ys, cc]
+            else:
+                nb_label, nb_uv = labels[cc, xs], uv[cc, xs]
+            ok &= (nb_label == labels) & (labels >= 0)
+            step = np.where(cand > coord, 1.0, -1.0)[..., None]
+            result = np.where(ok[..., None], (nb_uv - uv) * step, result)
+            valid |= ok
+        return result * scale, valid
+
+    dx, vx = derivative(1)
+    dy, vy = derivative(0)
+    rho_x = np.linalg.norm(dx, axis=-1)
+    rho_y = np.linalg.norm(dy, axis=-1)
+    rho_x = np.where(vx, rho_x, rho_y)
+    rho_y = np.where(vy, rho_y, rho_x)
+    rho = np.maximum(rho_x, rho_y)
+    with np.errstate(divide="ignore"):
+        lod = np.log2(rho)
+    return np.where(np.isfinite(lod), lod, 0.0)
+
+
+# --------------------------------------------------------------------------------------------
+# Scene description
+# --------------------------------------------------------------------------------------------
+
+def _vec3(value: Any, name: str) -> np.ndarray:
+    arr = np.asarray(value, dtype=np.float64).reshape(-1)
+    if arr.size == 1:
+        arr = np.repeat(arr, 3)
+    if arr.shape != (3,):
+        raise ValueError(f"{name} must be a 3-vector, got {value!r}")
+    return arr
+
+
+@dataclass(frozen=True)
+class LightDesc:
+    """A directional light as the oracle needs it (SPEC §1.2).
+
+    ``direction`` points from the light into the scene; the vector towards the light is
+    ``l = -normalize(direction)`` and the radiance is ``L = color * intensity``.
+    """
+
+    direction: Vec3 = (0.0, -1.0, 0.0)
+    color: Vec3 = (1.0, 1.0, 1.0)
+    intensity: float = 1.0
+    cast_shadows: bool = True
+
+    def to_light(self) -> np.ndarray:
+        """Unit vector from the surface towards the light, ``l``."""
+        d = _vec3(self.direction, "direction")
+        norm = np.linalg.norm(d)
+        if not np.isfinite(norm) or norm == 0.0:
+            raise ValueError(f"light direction must be finite and non-zero, got {self.direction}")
+        return -d / norm
+
+    def radiance(self) -> np.ndarray:
+        """``L = color * intensity`` (RGB)."""
+        return _vec3(self.color, "color") * float(self.intensity)
+
+
+def as_light(light: Any) -> LightDesc:
+    """Accepts a :class:`LightDesc`, a ``weft.DirectionalLight`` (or any object with
+    ``direction``/``color``/``intensity``/``cast_shadows`` attributes) or a dict with those keys."""
+    if isinstance(light, LightDesc):
+        return light
+    if isinstance(light, Mapping):
+        get = light.get
+    else:
+        def get(key: str, default: Any = None) -> Any:
+            return getattr(light, key, default)
+    return LightDesc(
+        direction=tuple(_vec3(get("direction", (0.0, -1.0, 0.0)), "direction")),
+        color=tuple(_vec3(get("color", (1.0, 1.0, 1.0)), "color")),
+        intensity=float(get("intensity", 1.0)),
+        cast_shadows=bool(get("cast_shadows", True)),
+    )
+
+
+def first_shadow_light(lights: Iterable[Any]) -> Optional[int]:
+    """Index of the first light with ``cast_shadows`` (the one whose visibility the renderer
+    reports in ``render_debug()["shadow"]``), or None."""
+    for i, light in enumerate(lights):
+        if as_light(light).cast_shadows:
+            return i
+    return None
+
+
+@dataclass
+class SurfaceMaterial:
+    """Blinn-Phong material of SPEC eq. 2.10 with an optional base-colour texture.
+
+    ``texture`` is the *image* the ``weft.Texture`` was made from (uint8, any shape
+    ``weft.Texture`` accepts) or a float image that is already linear; ``texture_srgb`` says
+    whether uint8 texels are sRGB-encoded. ``T = base_color * texture(uv)``, white without a
+    texture. Textures are sampled bilinearly at level 0 (exact for ``mipmaps=False``), or, with
+    ``texture_mipmaps`` and a per-pixel LOD, trilinearly from a mip chain built like the GPU's.
+    """
+
+    ka: Vec3 = (1.0, 1.0, 1.0)
+    kd: Vec3 = (1.0, 1.0, 1.0)
+    ks: Vec3 = (0.0, 0.0, 0.0)
+    shininess: float = 32.0
+    base_color: Vec3 = (1.0, 1.0, 1.0)
+    texture: Optional[np.ndarray] = None
+    texture_srgb: bool = True
+    texture_mipmaps: bool = False
+    _linear: Optional[np.ndarray] = field(default=None, init=False, repr=False, compare=False)
+    _levels: Optional[List[np.ndarray]] = field(default=None, init=False, repr=False,
+                                                compare=False)
+
+    @classmethod
+    def from_weft(cls, material: Any, texture_image: Optional[np.ndarray] = None,
+                  texture_srgb: Optional[bool] = None,
+                  texture_mipmaps: Optional[bool] = None) -> "SurfaceMaterial":
+        """Copies the coefficients of a ``weft.Material`` (or any object with the same
+        attributes). The texture's image defaults to ``material.texture.image``; pass
+        ``texture_image`` (the array the ``weft.Texture`` was made from) otherwise.
+        ``texture_srgb``/``texture_mipmaps`` default to the texture's ``srgb``/``mipmaps``
+        (True/False where it does not say)."""
+        tex = getattr(material, "texture", None)
+        if texture_image is None and tex is not None:
+            texture_image = getattr(tex, "image", None)
+            if texture_image is None:
+                raise ValueError("the material has a texture but no image was given; pass "
+                                 "texture_image= (the array the weft.Texture was made from)")
+        if texture_srgb is None:
+            texture_srgb = bool(getattr(tex, "srgb", True)) if tex is not None else True
+        if texture_mipmaps is None:
+            texture_mipmaps = bool(getattr(tex, "mipmaps", False)) if tex is not None else False
+        return cls(ka=tuple(_vec3(material.ka, "ka")), kd=tuple(_vec3(material.kd, "kd")),
+                   ks=tuple(_vec3(material.ks, "ks")), shininess=float(material.shininess),
+                   base_color=tuple(_vec3(material.base_color, "base_color")),
+                   texture=None if texture_image is None else np.asarray(texture_image),
+                   texture_srgb=texture_srgb,
+                   texture_mipmaps=texture_mipmaps and texture_image is not None)
+
+    @property
+    def texture_size(self) -> Optional[Tuple[int, int]]:
+        """(width, height) of the texture, None without one."""
+        if self.texture is None:
+            return None
+        shape = np.shape(self.texture)
+        return int(shape[1]), int(shape[0])
+
+    def albedo(self, uv: np.ndarray, lod: Optional[ArrayLike] = None) -> np.ndarray:
+        """``T = base_color * texture(uv)`` for uv (..., 2) -> (..., 3) linear RGB.
+
+        Without ``lod`` (or without mipmaps) the texture is sampled bilinearly at level 0;
+        with a ``lod`` per sample (see :func:`texture_lod`) and ``texture_mipmaps`` it is
+        sampled trilinearly from :func:`build_mip_chain`.
+        """
+        uv = np.asarray(uv, dtype=np.float64)
+        base = _vec3(self.base_color, "base_color")
+        if self.texture is None:
+            return np.broadcast_to(base, uv.shape[:-1] + (3,)).copy()
+        if self._linear is None:
+            self._linear = texture_to_linear(self.texture, self.texture_srgb)
+        if lod is None or not self.texture_mipmaps:
+            return base * sample_bilinear_repeat(self._linear[:, :, :3], uv)
+        if self._levels is None:
+            self._levels = [lvl[:, :, :3] for lvl in build_mip_chain(self._linear,
+                                                                     self.texture_srgb)]
+        return base * sample_trilinear_repeat(self._levels, uv, lod)
+
+
+def material_maps(materials: Sequence[SurfaceMaterial], labels: np.ndarray,
+                  uv: np.ndarray, mip_lod: bool = False,
+                  lod_bias: float = 0.0) -> Dict[str, np.ndarray]:
+    """Per-pixel material arrays from a label image.
+
+    ``labels`` (H, W) integer: index into ``materials`` per pixel, negative = no material
+    (those pixels get zeros). Returns ``ka``, ``kd``, ``ks``, ``albedo`` (H, W, 3) and
+    ``shininess`` (H, W), float64, ready for :func:`blinn_phong`. With ``mip_lod``, textures
+    that have mipmaps are sampled at the LOD :func:`texture_lod` estimates from ``uv``
+    (which must then be the whole (H, W, 2) UV image), plus ``lod_bias``.
+    """
+    labels = np.asarray(labels)
+    uv = np.asarray(uv, dtype=np.float64)
+    shape = labels.shape
+    out = {key: np.zeros(shape + (3,)) for key in ("ka", "kd", "ks", "albedo")}
+    out["shininess"] = np.ones(shape)
+    if labels.size and labels.max(initial=-1) >= len(materials):
+        raise ValueError(f"label {int(labels.max())} but only {len(materials)} materials")
+    for index, mat in enumerate(materials):
+        sel = labels == index
+        if not np.any(sel):
+            continue
+        out["ka"][sel] = _vec3(mat.ka, "ka")
+        out["kd"][sel] = _vec3(mat.kd, "kd")
+        out["ks"][sel] = _vec3(mat.ks, "ks")
+        out["shininess"][sel] = float(mat.shininess)
+        lod = None
+        if mip_lod and mat.texture_mipmaps and mat.texture is not None:
+            tw, th = mat.texture_size  # type: ignore[misc]
+            lod = texture_lod(uv, labels, tw, th)[sel] + lod_bias
+        out["albedo"][sel] = mat.albedo(uv[sel], lod)
+    return out
+
+
+# --------------------------------------------------------------------------------------------
+# Shading
+# --------------------------------------------------------------------------------------------
+
+def _normalize(v: np.ndarray) -> np.ndarray:
+    n = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / np.where(n > 0.0, n, 1.0)
+
+
+def blinn_phong(position: np.ndarray, normal: np.ndarray, camera_position: ArrayLike,
+                lights: Sequence[Any], ambient: ArrayLike, *, albedo: np.ndarray,
+                ka: ArrayLike = 1.0, kd: ArrayLike = 1.0, ks: ArrayLike = 0.0,
+                shininess: ArrayLike = 32.0,
+                shadow: Union[None, ArrayLike, Mapping[int, ArrayLike]] = None) -> np.ndarray:
+    """Blinn-Phong radiance of SPEC §1.3 (eq. 2.5, 2.8, 2.9, 2.10) for directional lights.
+
+    Parameters
+    ----------
+    position, normal:
+        (..., 3) world position and *unit* shading normal per pixel (the normal is used as
+        given, like the renderer's debug output).
+    camera_position:
+        (3,) eye position; ``v = normalize(camera_position - position)``.
+    lights:
+        sequence of lights (anything :func:`as_light` accepts), in scene order.
+    ambient:
+        ``I_A`` (RGB).
+    albedo:
+        (..., 3) ``T = base_color * texture(uv)``.
+    ka, kd, ks, shininess:
+        material coefficients, broadcastable to (..., 3) (``shininess`` to (...)).
+    shadow:
+        (...) visibility of the first shadow-casting light (e.g. ``render_debug()["shadow"]``
+        or :func:`pcf_visibility`), or a mapping {light index: (...) visibility} for any
+        lights; None means fully lit. Lights without an entry are not shadowed.
+
+    Returns (..., 3) float64 linear radiance, not clamped.
+    """
+    p = np.asarray(position, dtype=np.float64)
+    n = np.asarray(normal, dtype=np.float64)
+    t = np.asarray(albedo, dtype=np.float64)
+    lead = p.shape[:-1]
+    v = _normalize(np.asarray(camera_position, dtype=np.float64).reshape(3) - p)
+
+    def coefficient(value: ArrayLike) -> Union[np.ndarray, float]:
+        if np.ndim(value) == 0:
+            return float(value)  # type: ignore[arg-type]
+        return np.broadcast_to(np.asarray(value, dtype=np.float64), lead + (3,))
+
+    ka, kd, ks = coefficient(ka), coefficient(kd), coefficient(ks)
+    shin = np.asarray(shininess, dtype=np.float64)
+    colour = _vec3(ambient, "ambient") * ka * t
+    if shadow is None:
+        visibility: Dict[int, np.ndarray] = {}
+    elif isinstance(shadow, Mapping):
+        visibility = {int(k): np.asarray(v, dtype=np.float64)[..., None]
+                      for k, v in shadow.items()}
+    else:
+        first = first_shadow_light(lights)
+        visibility = {} if first is None else {
+            first: np.asarray(shadow, dtype=np.float64)[..., None]}
+    for index, raw in enumerate(lights):
+        light = as_light(raw)
+        l = light.to_light()
+        radiance = light.radiance()
+        ndl = np.einsum("...k,k->...", n, l)
+        lit = ndl > 0.0
+        h = _normalize(l + v)
+        ndh = np.maximum(np.einsum("...k,...k->...", n, h), 0.0)
+        spec = np.power(ndh, shin)
+        term = (np.maximum(ndl, 0.0)[..., None] * radiance * kd * t
+                + spec[..., None] * radiance * ks)
+        term = np.where(lit[..., None], term, 0.0)
+        if index in visibility:
+            term = term * visibility[index]
+        colour = colour + term
+    return colour
+
+
+# --------------------------------------------------------------------------------------------
+# Shadows
+# --------------------------------------------------------------------------------------------
+
+class ShadowLookup(NamedTuple):
+    """Result of :func:`shadow_lookup`: PCF visibility in [0, 1], the receiver's light-space
+    depth ``d`` (what ``render_debug()["light_depth"]`` reports) and its map coordinates."""
+
+    visibility: np.ndarray
+    depth: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+
+
+def _info(info: Any, key: str) -> Any:
+    return info[key] if isinstance(info, Mapping) else getattr(info, key)
+
+
+def shadow_lookup(position: np.ndarray, normal: np.ndarray, light_direction: ArrayLike,
+                  shadow_map: np.ndarray, shadow_info: Any,
+                  pcf_radius: Optional[int] = None) -> ShadowLookup:
+    """Shadow-map test with normal offset, slope-scaled bias and PCF (SPEC §1.5).
+
+    ``light_direction`` is the light's ``direction`` (pointing into the scene);
+    ``shadow_map`` (S, S) depth in [0, 1] with row 0 at NDC y = -1; ``shadow_info`` is
+    ``Renderer.shadow_info()`` (keys ``view_proj``, ``normal_offset_world``,
+    ``bias_constant``, ``bias_slope``, ``bias_max``, ``pcf_radius``). Per receiver::
+
+        ndl   = clamp(n.l, -1, 1),  sin = sqrt(max(0, 1 - ndl^2))
+        p_off = p + n * normal_offset_world * sin
+        c     = view_proj @ (p_off, 1);  ndc = c.xyz / c.w
+        u, v  = ndc.xy * 0.5 + 0.5;  d = ndc.z
+        outside the map or d > 1  ->  visibility 1
+        bias  = min(bias_constant + bias_slope * sin / max(ndl, 1e-4), bias_max)
+        visibility = fraction of the (2r+1)^2 texels around (floor(u S), floor(v S)) (clamped
+                     to the map) with  d - bias <= depth
+    """
+    p = np.asarray(position, dtype=np.float64)
+    n = np.asarray(normal, dtype=np.float64)
+    smap = np.asarray(shadow_map, dtype=np.float64)
+    if smap.ndim != 2 or smap.shape[0] != smap.shape[1] or smap.shape[0] < 1:
+        raise ValueError(f"shadow_map must be square (S, S), got {smap.shape}")
+    size = smap.shape[0]
+    l = LightDesc(direction=tuple(_vec3(light_direction, "light_direction"))).to_light()
+    view_proj = np.asarray(_info(shadow_info, "view_proj"), dtype=np.float64).reshape(4, 4)
+    offset = float(_info(shadow_info, "normal_offset_world"))
+    bias_constant = float(_info(shadow_info, "bias_constant"))
+    bias_slope = float(_info(shadow_info, "bias_slope"))
+    bias_max = float(_info(shadow_info, "bias_max"))
+    radius = int(_info(shadow_info, "pcf_radius") if pcf_radius is None else pcf_radius)
+
+    ndl = np.clip(np.einsum("...k,k->...", n, l), -1.0, 1.0)
+    sin = np.sqrt(np.maximum(0.0, 1.0 - ndl * ndl))
+    p_off = p + n * (offset * sin)[..., None]
+    clip = np.einsum("ij,...j->...i", view_proj[:, :3], p_off) + view_proj[:, 3]
+    w = clip[..., 3]
+    safe_w = np.where(w != 0.0, w, 1.0)
+    ndc = clip[..., :3] / safe_w[..., None]
+    u = ndc[..., 0] * 0.5 + 0.5
+    v = ndc[..., 1] * 0.5 + 0.5
+    d = ndc[..., 2]
+    outside = (u < 0.0) | (u > 1.0) | (v < 0.0) | (v > 1.0) | (d > 1.0) | (w == 0.0)
+    outside |= ~np.isfinite(u) | ~np.isfinite(v) | ~np.isfinite(d)
+
+    bias = np.minimum(bias_constant + bias_slope * sin / np.maximum(ndl, 1e-4), bias_max)
+    ref = d - bias
+    with np.errstate(invalid="ignore"):
+        tx = np.floor(np.where(outside, 0.0, u) * size).astype(np.int64)
+        ty = np.floor(np.where(outside, 0.0, v) * size).astype(np.int64)
+    lit = np.zeros(d.shape, dtype=np.float64)
+    for dy in range(-radius, radius + 1):
+        rows = np.clip(ty + dy, 0, size - 1)
+        for dx in range(-radius, radius + 1):
+            cols = np.clip(tx + dx, 0, size - 1)
+            lit += ref <= smap[rows, cols]
+    vis = lit / float((2 * radius + 1) ** 2)
+    vis = np.where(outside, 1.0, vis)
+    return ShadowLookup(visibility=vis, depth=d, u=u, v=v)
+
+
+def pcf_visibility(position: np.ndarray, normal: np.ndarray, light_direction: ArrayLike,
+                   shadow_map: np.ndarray, shadow_info: Any) -> np.ndarray:
+    """PCF shadow visibility in [0, 1] per receiver (SPEC §1.5); see :func:`shadow_lookup`."""
+    return shadow_lookup(position, normal, light_direction, shadow_map, shadow_info).visibility
+
+
+# --------------------------------------------------------------------------------------------
+# Whole frames
+# --------------------------------------------------------------------------------------------
+
+def shade_debug_frame(debug: Mapping[str, np.ndarray], camera_position: ArrayLike,
+                      lights: Sequence[Any], ambient: ArrayLike, background: ArrayLike,
+                      materials: Union[SurfaceMaterial, Sequence[SurfaceMaterial]],
+                      labels: Optional[np.ndarray] = None,
+                      shadow: Union[None, np.ndarray, Mapping[int, np.ndarray]] = None,
+                      mip_lod: bool = True,
+                      lod_bias: float = 0.0,
+                      frame_albedo: bool = False) -> np.ndarray:
+    """Recomputes a frame's linear RGBA image (H, W, 4) from its ``render_debug`` outputs.
+
+    ``debug`` needs ``position``, ``normal``, ``uv``, ``mask`` and (unless ``shadow`` is
+    given) ``shadow``; ``shadow`` overrides the visibility as in :func:`blinn_phong` (e.g. a
+    {light index: visibility} mapping for several shadow-casting lights). ``materials`` is one material for every covered pixel, or a list indexed
+    by ``labels`` (H, W) (defaults to ``debug["instance"]`` when the frame has one). Uncovered
+    pixels get ``(background, 1)``; covered pixels ``(blinn_phong(...), 1)``
+    (SPEC §1.3 eq. 2.5, 2.8–2.10; shadows §1.5). Mip-mapped textures are sampled trilinearly
+    at the LOD estimated from the frame's UV derivatives (``mip_lod``; see
+    :func:`texture_lod` for where that is approximate; ``lod_bias`` is added to it), others
+    bilinearly at level 0. With ``frame_albedo`` the texture term T is taken from the frame's
+    ``albedo`` output instead: the oracle then checks the shading equation alone, free of the
+    sampler's implementation-defined precision (tested separately against NumPy sampling).
+    """
+    mask = np.asarray(debug["mask"], dtype=bool)
+    uv = np.asarray(debug["uv"], dtype=np.float64)
+    if isinstance(materials, SurfaceMaterial):
+        mats: List[SurfaceMaterial] = [materials]
+        labels = np.where(mask, 0, -1)
+    else:
+        mats = list(materials)
+        if labels is None:
+            if "instance" not in debug:
+                raise ValueError("several materials need a label image (labels= or "
+                                 "debug['instance'])")
+            labels = np.asarray(debug["instance"])
+        labels = np.where(mask, np.asarray(labels), -1)
+        if np.any(mask & (labels < 0)):
+            raise ValueError(f"{int(np.sum(mask & (labels < 0)))} covered pixels have no material")
+    maps = material_maps(mats, labels, uv, mip_lod=mip_lod, lod_bias=lod_bias)
+    vis = debug["shadow"] if shadow is None else shadow
+    albedo = np.asarray(debug["albedo"], dtype=np.float64) if frame_albedo else maps["albedo"]
+    colour = blinn_phong(debug["position"], debug["normal"], camera_position, lights, ambient,
+                         albedo=albedo, ka=maps["ka"], kd=maps["kd"], ks=maps["ks"],
+                         shininess=maps["shininess"], shadow=vis)
+    out = np.ones(mask.shape + (4,), dtype=np.float64)
+    out[..., :3] = np.where(mask[..., None], colour, _vec3(background, "background"))
+    return out
+
+
+class OracleErrors(NamedTuple):
+    """How far a rendered frame is from the oracle, over the compared pixels (RGB)."""
+
+    max_abs: float        # max |linear - oracle|
+    mean_abs: float       # mean |linear - oracle|
+    p99_abs: float        # 99th percentile of the per-pixel max |linear - oracle|
+    max_u8: int           # max |color - encode_u8(oracle)| in 8-bit levels
+    u8_over_1: float      # fraction of pixels more than one 8-bit level off
+    covered: int          # number of pixels compared
+
+    def as_dict(self) -> Dict[str, float]:
+        return dict(self._asdict())
+
+
+def compare_frame(debug: Mapping[str, np.ndarray], oracle_linear: np.ndarray,
+                  mask: Optional[np.ndarray] = None) -> OracleErrors:
+    """Compares ``debug["linear"]`` and ``debug["color"]`` with the oracle's linear image on
+    ``mask`` (default: the covered pixels, ``debug["mask"]``)."""
+    if mask is None:
+        mask = np.asarray(debug["mask"], dtype=bool)
+    oracle = np.asarray(oracle_linear, dtype=np.float64)[..., :3][mask]
+    linear = np.asarray(debug["linear"], dtype=np.float64)[..., :3][mask]
+    color = np.asarray(debug["color"])[..., :3][mask].astype(np.int64)
+    if oracle.size == 0:
+        return OracleErrors(0.0, 0.0, 0.0, 0, 0.0, 0)
+    diff = np.abs(linear - oracle)
+    u8 = np.abs(color - encode_u8(oracle).astype(np.int64)).max(axis=-1)
+    return OracleErrors(max_abs=float(diff.max()), mean_abs=float(diff.mean()),
+                        p99_abs=float(np.percentile(diff.max(axis=-1), 99.0)),
+                        max_u8=int(u8.max()), u8_over_1=float(np.mean(u8 > 1)),
+                        covered=int(np.count_nonzero(mask)))
