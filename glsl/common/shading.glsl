@@ -29,9 +29,11 @@ float shadowVisibility(int layer, vec3 p, vec3 n, float ndl, out float lightDept
     return lit / float((2 * r + 1) * (2 * r + 1));
 }
 
+// T of eq. 2.10: the material's base colour times its texture.
+vec3 albedo(vec2 uv, Instance ins) { return ins.baseColor.rgb * texture(baseTexture, uv).rgb; }
+
 // Eq. 2.10 summed over lights. `debugVis`/`debugDepth` report the debug shadow light.
-vec3 shade(vec3 p, vec3 n, vec2 uv, Instance ins, out float debugVis, out float debugDepth) {
-    vec3 T = ins.baseColor.rgb * texture(baseTexture, uv).rgb;
+vec3 shade(vec3 p, vec3 n, vec3 T, Instance ins, out float debugVis, out float debugDepth) {
     vec3 v = normalize(frame.cameraPos.xyz - p);
     vec3 color = frame.ambient.rgb * ins.ka.rgb * T;
     debugVis = 1.0;

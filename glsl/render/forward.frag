@@ -10,5 +10,6 @@ layout(location = 0) out vec4 outColor;
 void main() {
     float vis, depth;
     vec3 n = normalize(inNormal);
-    outColor = vec4(shade(inWorldPos, n, inUv, instances[push.instance], vis, depth), 1.0);
+    Instance ins = instances[push.instance];
+    outColor = vec4(shade(inWorldPos, n, albedo(inUv, ins), ins, vis, depth), 1.0);
 }

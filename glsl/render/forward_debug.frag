@@ -10,11 +10,15 @@ layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outPosition; // world xyz, 1 = covered
 layout(location = 2) out vec4 outNormal;   // shading normal, shadow visibility
 layout(location = 3) out vec4 outSurface;  // uv, light-space depth, instance + 1
+layout(location = 4) out vec4 outAlbedo;   // T: base colour * sampled texture
 
 void main() {
     float vis, depth;
     vec3 n = normalize(inNormal);
-    outColor = vec4(shade(inWorldPos, n, inUv, instances[push.instance], vis, depth), 1.0);
+    Instance ins = instances[push.instance];
+    vec3 T = albedo(inUv, ins);
+    outColor = vec4(shade(inWorldPos, n, T, ins, vis, depth), 1.0);
+    outAlbedo = vec4(T, 1.0);
     outPosition = vec4(inWorldPos, 1.0);
     outNormal = vec4(n, vis);
     outSurface = vec4(inUv, depth, float(push.instance + 1u));

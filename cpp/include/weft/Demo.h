@@ -17,7 +17,8 @@ struct DemoOptions {
 };
 
 /// Runs the demo: a window when a display exists (and !headless), otherwise one offscreen
-/// frame written to `out`. Returns a process exit code; prints what it wrote.
+/// frame written to `out`. Returns a process exit code (3 when validation is enabled and the
+/// layers reported anything); prints what it wrote.
 int runDemo(const DemoOptions& options);
 
 } // namespace weft

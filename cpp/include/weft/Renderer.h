@@ -33,7 +33,7 @@ struct RenderSettings {
 enum FrameOutput : uint32_t {
     OutputColor = 1u << 0,  // RGBA8 sRGB
     OutputLinear = 1u << 1, // RGBA32F linear radiance before encoding
-    OutputDebug = 1u << 2,  // position, normal, uv, light depth, shadow visibility
+    OutputDebug = 1u << 2,  // position, normal, uv, light depth, shadow visibility, albedo
 };
 
 /// Images of one frame, rows top to bottom. Float images are interleaved RGBA32F.
@@ -45,6 +45,7 @@ struct Frame {
     std::vector<float> position; // OutputDebug: world x, y, z, coverage (1 drawn / 0 background)
     std::vector<float> normal;   // OutputDebug: shading normal x, y, z (unit), shadow visibility
     std::vector<float> surface;  // OutputDebug: u, v, light-space depth, instance id + 1 (0: none)
+    std::vector<float> albedo;   // OutputDebug: T = base colour * texture sample, 1
 };
 
 /// Everything needed to redo the shadow test of light `lightIndex` outside the renderer.

@@ -10,6 +10,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include <weft/Device.h>
 #include <weft/Renderer.h>
 #include <weft/Window.h>
 
@@ -111,8 +112,12 @@ int runDemo(const DemoOptions& o) {
     Scene scene;
     Camera camera;
     makeDefaultScene(scene, camera);
-    if (!o.headless && Window::displayAvailable()) return runWindow(o, scene, camera);
-    return runHeadless(o, scene, camera);
+    const int rc = !o.headless && Window::displayAvailable() ? runWindow(o, scene, camera)
+                                                             : runHeadless(o, scene, camera);
+    // With validation on, any message the layers reported makes the run fail visibly.
+    const auto messages = validationMessages();
+    for (const std::string& m : messages) std::cerr << "weft-demo: validation " << m << "\n";
+    return messages.empty() ? rc : 3;
 }
 
 } // namespace weft

@@ -27,11 +27,13 @@ void RenderTargets::ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug)
         position = vk::Image();
         normal = vk::Image();
         surface = vk::Image();
+        albedo = vk::Image();
     }
     if (debug && !position) {
         position = makeTarget(ctx, w, h, kDebugFormat, color);
         normal = makeTarget(ctx, w, h, kDebugFormat, color);
         surface = makeTarget(ctx, w, h, kDebugFormat, color);
+        albedo = makeTarget(ctx, w, h, kDebugFormat, color);
     }
 }
 

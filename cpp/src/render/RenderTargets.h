@@ -19,6 +19,7 @@ struct RenderTargets {
     vk::Image position; // debug outputs, created on first request
     vk::Image normal;
     vk::Image surface;
+    vk::Image albedo;
 
     /// (Re)creates the images for a size; debug images only when asked for.
     void ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug);

@@ -238,11 +238,12 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     const int rDepth = g.addResource("depth", &targets.depth);
     const int rHdr = g.addResource("hdr", &targets.hdr);
     const int rLdr = g.addResource("ldr", ldr);
-    int rDebug[3] = {-1, -1, -1};
+    int rDebug[4] = {-1, -1, -1, -1};
     if (debug) {
         rDebug[0] = g.addResource("position", &targets.position);
         rDebug[1] = g.addResource("normal", &targets.normal);
         rDebug[2] = g.addResource("surface", &targets.surface);
+        rDebug[3] = g.addResource("albedo", &targets.albedo);
     }
     auto viewportScissor = [](VkCommandBuffer cmd, uint32_t w, uint32_t h) {
         VkViewport vp{0, 0, float(w), float(h), 0.0f, 1.0f};
@@ -302,6 +303,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                        color(targets.position.view(), glm::vec4(0.0f));
                        color(targets.normal.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
                        color(targets.surface.view(), glm::vec4(0.0f));
+                       color(targets.albedo.view(), glm::vec4(0.0f));
                    }
                    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
                    depth.imageView = targets.depth.view();
@@ -361,11 +363,10 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     std::vector<std::pair<int, vk::Image*>> copies;
     if (outputs & OutputColor) copies.push_back({rLdr, ldr});
     if (outputs & OutputLinear) copies.push_back({rHdr, &targets.hdr});
-    if (debug)
-        for (int i = 0; i < 3; ++i)
-            copies.push_back({rDebug[i], i == 0   ? &targets.position
-                                         : i == 1 ? &targets.normal
-                                                  : &targets.surface});
+    if (debug) {
+        vk::Image* images[4] = {&targets.position, &targets.normal, &targets.surface, &targets.albedo};
+        for (int i = 0; i < 4; ++i) copies.push_back({rDebug[i], images[i]});
+    }
     if (!copies.empty()) {
         std::vector<ResourceUse> reads;
         for (auto& [r, im] : copies) reads.push_back({r, Use::TransferRead});
@@ -467,6 +468,7 @@ Frame Renderer::render(const Scene& scene, const Camera& camera, uint32_t output
         f.position = floats(m.targets.position);
         f.normal = floats(m.targets.normal);
         f.surface = floats(m.targets.surface);
+        f.albedo = floats(m.targets.albedo);
     }
     m.stats.cpuMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     return f;

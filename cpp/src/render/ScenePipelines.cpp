@@ -58,8 +58,7 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     d.layout = sceneLayout;
     forward = vk::createGraphicsPipeline(c, d);
     d.fragmentShader = "render/forward_debug.frag";
-    d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat,
-                      kDebugFormat};
+    d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat, kDebugFormat, kDebugFormat};
     forwardDebug = vk::createGraphicsPipeline(c, d);
 
     vk::GraphicsPipelineDesc sd;
