@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "TempDir.h"
+
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -16,26 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh directory under the system temp dir, removed with everything in it at the end.
-class TempDir {
-public:
-    TempDir() {
-        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-        std::random_device random;
-        do {
-            mPath = fs::temp_directory_path() /
-                    ("weft-" + std::string(test->name()) + "-" + std::to_string(random()));
-        } while (!fs::create_directory(mPath));
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(mPath, ignored);
-    }
-    std::string file(const std::string& name) const { return (mPath / name).string(); }
-
-private:
-    fs::path mPath;
-};
 
 void writeBytes(const std::string& path, const std::string& bytes) {
     std::ofstream out(path, std::ios::binary);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "TempDir.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -14,33 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh directory under the system temp dir, removed with everything in it at the end.
-class TempDir {
-public:
-    TempDir() {
-        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-        std::random_device random;
-        do {
-            mPath = fs::temp_directory_path() /
-                    ("weft-" + std::string(test->name()) + "-" + std::to_string(random()));
-        } while (!fs::create_directory(mPath));
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(mPath, ignored);
-    }
-    // Writes `text` byte for byte (no newline translation) and returns the file's path.
-    std::string write(const std::string& name, const std::string& text) const {
-        const std::string path = (mPath / name).string();
-        std::ofstream out(path, std::ios::binary);
-        out << text;
-        EXPECT_TRUE(out.good()) << path;
-        return path;
-    }
-
-private:
-    fs::path mPath;
-};
 
 // The IoError message of loading `path`, or "" when it loads.
 std::string loadError(const std::string& path) {

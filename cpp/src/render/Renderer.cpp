@@ -43,6 +43,14 @@ struct FrameSlot {
     bool statsPending = false;
 };
 
+void drawMesh(VkCommandBuffer cmd, const render::MeshGpu& mesh) {
+    const VkDeviceSize offset = 0;
+    const VkBuffer vertices = mesh.vertices.get();
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+    vkCmdBindIndexBuffer(cmd, mesh.indices.get(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
+}
+
 // Grows a host-visible buffer to hold `bytes`.
 void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
     bytes = std::max<VkDeviceSize>(bytes, 256);
@@ -274,11 +282,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                            const glm::mat4 mvp = s.frustum.viewProj * d.model;
                            vkCmdPushConstants(cmd, pipes.shadowLayout, VK_SHADER_STAGE_VERTEX_BIT |
                                               VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(mvp), &mvp);
-                           VkDeviceSize offset = 0;
-                           VkBuffer vb = d.mesh->vertices.get();
-                           vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-                           vkCmdBindIndexBuffer(cmd, d.mesh->indices.get(), 0, VK_INDEX_TYPE_UINT32);
-                           vkCmdDrawIndexed(cmd, d.mesh->indexCount, 1, 0, 0, 0);
+                           drawMesh(cmd, *d.mesh);
                        }
                        c.fn().cmdEndRendering(cmd);
                    }});
@@ -329,11 +333,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                        vkCmdPushConstants(cmd, pipes.sceneLayout,
                                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                           0, sizeof(uint32_t), &d.instance);
-                       VkDeviceSize offset = 0;
-                       VkBuffer vb = d.mesh->vertices.get();
-                       vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-                       vkCmdBindIndexBuffer(cmd, d.mesh->indices.get(), 0, VK_INDEX_TYPE_UINT32);
-                       vkCmdDrawIndexed(cmd, d.mesh->indexCount, 1, 0, 0, 0);
+                       drawMesh(cmd, *d.mesh);
                    }
                    c.fn().cmdEndRendering(cmd);
                }});
