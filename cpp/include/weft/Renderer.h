@@ -1,6 +1,7 @@
 #pragma once
 // The Vulkan renderer: draws a Scene from a Camera offscreen (read back to memory) or into a
-// Window. Every Renderer in a process shares one Vulkan device.
+// Window. Every Renderer in a process shares one Vulkan device. Different Renderers may be used
+// from different threads at the same time; one Renderer is used by one thread at a time.
 #include <weft/Error.h>
 #include <cstdint>
 #include <memory>

@@ -68,6 +68,7 @@ struct Renderer::Impl {
     render::ScenePipelines pipes{*ctx};
     std::unique_ptr<render::GpuCache> cache;
 
+    vk::CommandPool commandPool; // this renderer's; recording never contends with others
     std::array<FrameSlot, kFramesInFlight> slots;
     uint64_t frameCounter = 0;
     render::RenderTargets targets;
@@ -83,10 +84,9 @@ struct Renderer::Impl {
     }
 
     ~Impl() {
-        // Wait for this renderer's work so command buffers can be freed; no device-wide idle.
+        // The pool (and its command buffers) is retired; wait only for this renderer's frames so
+        // no slot is mid-flight while its buffers are released.
         for (auto& s : slots) ctx->waitFor(s.serial);
-        for (auto& s : slots)
-            if (s.cmd) vkFreeCommandBuffers(ctx->device(), ctx->commandPool(), 1, &s.cmd);
     }
 
     void createSlots();
@@ -99,9 +99,15 @@ struct Renderer::Impl {
 };
 
 void Renderer::Impl::createSlots() {
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = ctx->queueFamily();
+    VkCommandPool pool;
+    VK_CHECK(vkCreateCommandPool(ctx->device(), &poolInfo, nullptr, &pool));
+    commandPool = vk::CommandPool(ctx.get(), pool, vkDestroyCommandPool);
     for (FrameSlot& s : slots) {
         VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        alloc.commandPool = ctx->commandPool();
+        alloc.commandPool = commandPool;
         alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
         alloc.commandBufferCount = 1;
         VK_CHECK(vkAllocateCommandBuffers(ctx->device(), &alloc, &s.cmd));

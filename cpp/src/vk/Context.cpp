@@ -373,7 +373,8 @@ void Context::createDevice() {
 uint64_t Context::submit(VkCommandBuffer cmd, const std::vector<VkSemaphore>& waits,
                          const std::vector<VkPipelineStageFlags>& waitStages,
                          const std::vector<VkSemaphore>& signals) {
-    const uint64_t serial = mLastSubmitted + 1;
+    std::lock_guard<std::mutex> lock(mQueueMutex);
+    const uint64_t serial = mLastSubmitted.load() + 1;
     std::vector<VkSemaphore> signalAll = signals;
     signalAll.push_back(mTimeline);
     std::vector<uint64_t> signalValues(signalAll.size(), 0);
@@ -399,6 +400,11 @@ uint64_t Context::submit(VkCommandBuffer cmd, const std::vector<VkSemaphore>& wa
     return serial;
 }
 
+VkResult Context::present(const VkPresentInfoKHR& info) {
+    std::lock_guard<std::mutex> lock(mQueueMutex);
+    return vkQueuePresentKHR(mQueue, &info);
+}
+
 void Context::waitFor(uint64_t serial) {
     if (serial == 0) return;
     VkSemaphoreWaitInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_WAIT_INFO};
@@ -419,7 +425,7 @@ uint64_t Context::completedSerial() const {
 
 void Context::retire(std::function<void()> destroy) {
     std::lock_guard<std::mutex> lock(mRetireMutex);
-    mRetired.emplace_back(mLastSubmitted, std::move(destroy));
+    mRetired.emplace_back(mLastSubmitted.load(), std::move(destroy));
 }
 
 void Context::collectGarbage() {
@@ -436,6 +442,7 @@ void Context::collectGarbage() {
 }
 
 void Context::immediate(const std::function<void(VkCommandBuffer)>& record) {
+    std::lock_guard<std::mutex> lock(mImmediateMutex);
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = mCommandPool;
     alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;

@@ -2,6 +2,7 @@
 // The process-wide Vulkan context: instance (+ validation), the selected physical device, one
 // graphics queue, the memory allocator, and deferred destruction keyed to a timeline semaphore
 // that every submission signals.
+#include <atomic>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -45,8 +46,10 @@ public:
     uint64_t submit(VkCommandBuffer cmd, const std::vector<VkSemaphore>& waits = {},
                     const std::vector<VkPipelineStageFlags>& waitStages = {},
                     const std::vector<VkSemaphore>& signals = {});
+    /// Presents under the queue lock (the queue is shared by every renderer and window).
+    VkResult present(const VkPresentInfoKHR& info);
     /// Serial of the last submission.
-    uint64_t lastSubmitted() const { return mLastSubmitted; }
+    uint64_t lastSubmitted() const { return mLastSubmitted.load(); }
     void waitFor(uint64_t serial);
     uint64_t completedSerial() const;
 
@@ -57,8 +60,6 @@ public:
 
     /// Records commands into a one-time command buffer, submits them and waits (uploads).
     void immediate(const std::function<void(VkCommandBuffer)>& record);
-
-    VkCommandPool commandPool() const { return mCommandPool; }
 
 private:
     Context();
@@ -78,9 +79,13 @@ private:
     DeviceFunctions mFn;
     std::unique_ptr<Allocator> mAllocator;
 
+    // Thread safety: the queue and the immediate-upload pool are locked; each Renderer records
+    // into command buffers from its own pool.
     VkSemaphore mTimeline = VK_NULL_HANDLE;
-    uint64_t mLastSubmitted = 0;
-    VkCommandPool mCommandPool = VK_NULL_HANDLE;
+    std::atomic<uint64_t> mLastSubmitted{0};
+    std::mutex mQueueMutex;
+    std::mutex mImmediateMutex;
+    VkCommandPool mCommandPool = VK_NULL_HANDLE; // for immediate()
 
     std::mutex mRetireMutex;
     std::deque<std::pair<uint64_t, std::function<void()>>> mRetired;

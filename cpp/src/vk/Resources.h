@@ -56,6 +56,7 @@ using ShaderModule = Handle<VkShaderModule>;
 using Semaphore = Handle<VkSemaphore>;
 using QueryPool = Handle<VkQueryPool>;
 using ImageView = Handle<VkImageView>;
+using CommandPool = Handle<VkCommandPool>;
 
 class Buffer {
 public:

@@ -1,8 +1,11 @@
 #include "vk/Swapchain.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
 #include <mutex>
 #include <string>
+#include <thread>
 
 namespace weft {
 namespace {
@@ -13,12 +16,22 @@ std::string gGlfwError;
 
 void glfwErrorCallback(int, const char* description) { gGlfwError = description ? description : ""; }
 
-// GLFW is initialised while any window exists.
+// GLFW is initialised while any window exists. Opening the display connection can fail
+// transiently (a busy X server refuses a connection now and then), so when a display is
+// configured a failed initialisation is retried a few times before it counts.
 bool acquireGlfw() {
     std::lock_guard<std::mutex> lock(gGlfwMutex);
     if (gGlfwUsers == 0) {
         glfwSetErrorCallback(glfwErrorCallback);
-        if (!glfwInit()) return false;
+        const char* display = std::getenv("DISPLAY");
+        const char* wayland = std::getenv("WAYLAND_DISPLAY");
+        const bool configured = (display && *display) || (wayland && *wayland);
+        bool ok = glfwInit();
+        for (int attempt = 1; !ok && configured && attempt < 5; ++attempt) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20 * attempt));
+            ok = glfwInit();
+        }
+        if (!ok) return false;
     }
     ++gGlfwUsers;
     return true;
@@ -224,7 +237,7 @@ void Window::Native::present(uint32_t index) {
     info.swapchainCount = 1;
     info.pSwapchains = &swapchain;
     info.pImageIndices = &index;
-    VkResult r = vkQueuePresentKHR(ctx->queue(), &info);
+    VkResult r = ctx->present(info);
     if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR)
         outOfDate = true;
     else
