@@ -13,6 +13,8 @@ line (demo, devices, render) and ``python -m weft.bench`` runs the benchmarks.
 
 from weft._core import (
     Camera,
+    Cloth,
+    Collider,
     DirectionalLight,
     Error,
     InvalidArgument,
@@ -22,6 +24,7 @@ from weft._core import (
     Renderer,
     Scene,
     Texture,
+    Wind,
     __version__,
     clear_validation_messages,
     default_scene,
@@ -36,6 +39,8 @@ from weft._core import (
 
 __all__ = [
     "Camera",
+    "Cloth",
+    "Collider",
     "DirectionalLight",
     "Error",
     "InvalidArgument",
@@ -45,6 +50,7 @@ __all__ = [
     "Renderer",
     "Scene",
     "Texture",
+    "Wind",
     "__version__",
     "clear_validation_messages",
     "default_scene",

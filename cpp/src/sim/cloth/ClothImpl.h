@@ -1,0 +1,83 @@
+#pragma once
+// Private state of weft::Cloth, shared by the files of the solver.
+#include <memory>
+#include <vector>
+
+#include <weft/Cloth.h>
+
+#include "core/ThreadPool.h"
+
+namespace weft::cloth {
+
+/// A particle record: position and inverse mass, 16 bytes (one SIMD register).
+struct alignas(16) Particle {
+    glm::vec3 x;
+    float w;
+};
+
+struct Constraint {
+    int a, b;
+    float rest;
+};
+
+/// Constraints that share no particle: projected in any order, or in parallel.
+struct Batch {
+    ConstraintFamily family;
+    int begin, end; // range in the constraint arrays
+};
+
+/// Long-range attachment: |x_particle - x_anchor| <= length (the rest distance), one-sided.
+struct Tether {
+    int anchor;
+    float length;
+};
+
+} // namespace weft::cloth
+
+namespace weft {
+
+struct Cloth::Impl {
+    ClothParams params;
+    int n = 0;
+
+    std::vector<cloth::Particle> particles; // current positions + inverse mass
+    std::vector<glm::vec3> previous;        // x_prev of Verlet
+    std::vector<glm::vec3> rest;            // initial positions
+    std::vector<float> baseInvMass;         // inverse mass without pins/grabs
+    std::vector<uint8_t> pinned, hole;
+    std::vector<glm::vec4> normals;
+    std::vector<glm::vec3> pendingVelocity;
+    bool hasPendingVelocity = false;
+
+    std::vector<cloth::Constraint> constraints; // ordered by batch
+    std::vector<uint8_t> family, active;
+    std::vector<float> lambda;
+    std::vector<cloth::Batch> batches;
+    std::vector<cloth::Tether> tethers;   // grouped by particle
+    std::vector<int> tetherStart;         // particle k owns tethers [start[k], start[k+1])
+
+    std::vector<int> grabbed;
+    std::vector<glm::vec3> grabTargets;
+    Wind wind;
+    std::vector<Collider> colliders;
+
+    double accumulator = 0.0;
+    uint64_t steps = 0;
+    int quietSteps = 0;
+    bool asleep = false;
+    float lastH = 1.0f / 60.0f;
+    std::unique_ptr<ThreadPool> pool;
+
+    void build();                    // grid, constraints, batches (ClothSetup.cpp)
+    void rebuildTethers();           // (ClothSetup.cpp)
+    void applyInverseMasses();       // base, pins, grabs, holes
+    void substep(float h, float damping);              // (ClothSolver.cpp)
+    void relax(float h);                               // one sweep: batches, tethers, colliders
+    void projectBatch(const cloth::Batch& batch, float alphaTilde);
+    void collide(int begin, int end);
+    void selfCollide();
+    void computeNormals();
+    void afterStep(float dt);        // tearing, sleeping
+};
+
+} // namespace weft

@@ -1,0 +1,142 @@
+// Building a cloth: parameter checks, the particle grid, constraints sorted into
+// conflict-free batches (graph colouring of the regular grid), tethers, inverse masses.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/Validate.h"
+#include "sim/cloth/ClothImpl.h"
+
+namespace weft {
+
+void ClothParams::validate() const {
+    if (nx < 1 || ny < 1 || int64_t(nx) * ny < 2 || nx > 4096 || ny > 4096)
+        throw InvalidArgument("cloth grid must have 1..4096 particles per side and at least 2 "
+                              "in all (got " + std::to_string(nx) + "x" + std::to_string(ny) + ")");
+    requirePositive(size.x, "cloth size_x");
+    requirePositive(size.y, "cloth size_y");
+    requireFinite(origin, "cloth origin");
+    requireFinite(axisU, "cloth axis_u");
+    requireFinite(axisV, "cloth axis_v");
+    if (glm::length(axisU) < 1e-6f || glm::length(axisV) < 1e-6f ||
+        glm::length(glm::cross(glm::normalize(axisU), glm::normalize(axisV))) < 1e-3f)
+        throw InvalidArgument("cloth axes must be non-zero and not parallel");
+    requirePositive(mass, "cloth mass");
+    if (bendDistance < 2 || bendDistance > 64)
+        throw InvalidArgument("bend_distance must be in [2, 64] (seed: 2, 4 or 6)");
+    requireFinite(damping, "damping");
+    if (damping < 0.0f || damping > 1.0f) throw InvalidArgument("damping must be in [0, 1]");
+    requireFinite(gravity, "gravity");
+    if (iterations < 1 || iterations > 1000) throw InvalidArgument("iterations must be in [1, 1000]");
+    if (substeps < 1 || substeps > 1000) throw InvalidArgument("substeps must be in [1, 1000]");
+    for (float c : {complianceStretch, complianceShear, complianceBend})
+        if (!(std::isfinite(c) && c >= 0.0f)) throw InvalidArgument("compliance must be finite and >= 0");
+    for (float v : {thickness, selfThickness, tearStrain, sleepThreshold})
+        if (!(std::isfinite(v) && v >= 0.0f))
+            throw InvalidArgument("thickness, self_thickness, tear_strain and sleep_threshold "
+                                  "must be finite and >= 0");
+    if (sleepSteps < 1) throw InvalidArgument("sleep_steps must be >= 1");
+    if (threads < 0 || threads > 256) throw InvalidArgument("threads must be in [0, 256]");
+}
+
+namespace {
+struct Offset {
+    int dx, dy;
+    ConstraintFamily family;
+};
+} // namespace
+
+void Cloth::Impl::build() {
+    const ClothParams& p = params;
+    n = p.nx * p.ny;
+    const glm::vec3 u = glm::normalize(p.axisU), v = glm::normalize(p.axisV);
+    rest.resize(size_t(n));
+    for (int j = 0; j < p.ny; ++j)
+        for (int i = 0; i < p.nx; ++i) {
+            const float fu = p.nx > 1 ? float(i) / float(p.nx - 1) : 0.0f;
+            const float fv = p.ny > 1 ? float(j) / float(p.ny - 1) : 0.0f;
+            rest[size_t(j * p.nx + i)] = p.origin + u * (p.size.x * fu) + v * (p.size.y * fv);
+        }
+    baseInvMass.assign(size_t(n), float(n) / p.mass);
+    pinned.assign(size_t(n), 0);
+    hole.assign(size_t(n), 0);
+    normals.assign(size_t(n), glm::vec4(glm::normalize(glm::cross(v, u)), 0.0f));
+    particles.resize(size_t(n));
+    previous.resize(size_t(n));
+    for (int k = 0; k < n; ++k) {
+        particles[size_t(k)] = {rest[size_t(k)], baseInvMass[size_t(k)]};
+        previous[size_t(k)] = rest[size_t(k)];
+    }
+
+    const int k = p.bendDistance;
+    std::vector<Offset> offsets = {{1, 0, ConstraintFamily::Stretch}, {0, 1, ConstraintFamily::Stretch},
+                                   {1, 1, ConstraintFamily::Shear},   {1, -1, ConstraintFamily::Shear},
+                                   {k, k, ConstraintFamily::Bend},    {k, -k, ConstraintFamily::Bend}};
+    if (p.extraAxial) {
+        offsets.push_back({k, 0, ConstraintFamily::Bend});
+        offsets.push_back({0, k, ConstraintFamily::Bend});
+    }
+    constraints.clear();
+    family.clear();
+    batches.clear();
+    for (const Offset& o : offsets) {
+        for (int parity = 0; parity < 2; ++parity) {
+            const int begin = int(constraints.size());
+            for (int j = 0; j < p.ny; ++j) {
+                for (int i = 0; i < p.nx; ++i) {
+                    const int i2 = i + o.dx, j2 = j + o.dy;
+                    if (i2 < 0 || i2 >= p.nx || j2 < 0 || j2 >= p.ny) continue;
+                    const int colour = (o.dx != 0 ? i / std::abs(o.dx) : j / std::abs(o.dy)) % 2;
+                    if (colour != parity) continue;
+                    const int a = j * p.nx + i, b = j2 * p.nx + i2;
+                    constraints.push_back({a, b, glm::length(rest[size_t(b)] - rest[size_t(a)])});
+                    family.push_back(uint8_t(o.family));
+                }
+            }
+            if (int(constraints.size()) > begin)
+                batches.push_back({o.family, begin, int(constraints.size())});
+        }
+    }
+    active.assign(constraints.size(), 1);
+    lambda.assign(constraints.size(), 0.0f);
+}
+
+void Cloth::Impl::applyInverseMasses() {
+    for (int k = 0; k < n; ++k) {
+        const bool fixed = pinned[size_t(k)] || hole[size_t(k)];
+        particles[size_t(k)].w = fixed ? 0.0f : baseInvMass[size_t(k)];
+    }
+    for (int g : grabbed) particles[size_t(g)].w = 0.0f;
+    // Constraints touching a hole are gone for good (the mesh leaves them out too).
+    for (size_t c = 0; c < constraints.size(); ++c)
+        if (hole[size_t(constraints[c].a)] || hole[size_t(constraints[c].b)]) active[c] = 0;
+    rebuildTethers();
+}
+
+void Cloth::Impl::rebuildTethers() {
+    // Every free particle is tied to its nearest anchors (pinned or grabbed particles) at their
+    // rest distance: an inextensible cloth never gets farther from any anchor than that, so
+    // the tethers only remove stretch the constraints have not resolved yet. Tying to one
+    // anchor only would pull the cloth apart where the nearest anchor changes.
+    constexpr size_t kMaxAnchors = 4;
+    tethers.clear();
+    tetherStart.assign(size_t(n) + 1, 0);
+    if (!params.tethers) return;
+    std::vector<int> anchors;
+    for (int k = 0; k < n; ++k)
+        if (!hole[size_t(k)] && particles[size_t(k)].w == 0.0f) anchors.push_back(k);
+    std::vector<std::pair<float, int>> nearest;
+    for (int k = 0; k < n; ++k) {
+        tetherStart[size_t(k)] = int(tethers.size());
+        if (particles[size_t(k)].w == 0.0f || anchors.empty()) continue;
+        nearest.clear();
+        for (int a : anchors) nearest.push_back({glm::length(rest[size_t(k)] - rest[size_t(a)]), a});
+        const size_t keep = std::min(kMaxAnchors, nearest.size());
+        std::partial_sort(nearest.begin(), nearest.begin() + long(keep), nearest.end());
+        for (size_t t = 0; t < keep; ++t) tethers.push_back({nearest[t].second, nearest[t].first});
+    }
+    tetherStart[size_t(n)] = int(tethers.size());
+}
+
+} // namespace weft

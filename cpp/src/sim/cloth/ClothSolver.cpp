@@ -1,0 +1,232 @@
+// The cloth step (SPEC §2.3, seed alg. 3.1 + beyond): normals (eq. 3.6), gravity and wind
+// (eq. 3.5), Position Verlet with damping (eq. 3.12), then relaxation sweeps of XPBD distance
+// constraints (eq. 3.3/3.4 when compliance is 0) over conflict-free batches, tethers and
+// collider projections (eq. 3.7), self-collision, tearing and sleeping.
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "sim/cloth/ClothImpl.h"
+
+namespace weft {
+
+using cloth::Particle;
+
+namespace {
+float compliance(const ClothParams& p, ConstraintFamily f) {
+    switch (f) {
+    case ConstraintFamily::Stretch:
+        return p.complianceStretch;
+    case ConstraintFamily::Shear:
+        return p.complianceShear;
+    case ConstraintFamily::Bend:
+        return p.complianceBend;
+    }
+    return 0.0f;
+}
+} // namespace
+
+void Cloth::Impl::computeNormals() {
+    const int nx = params.nx, ny = params.ny;
+    pool->parallelFor(ny, [&](int j0, int j1) {
+        for (int j = j0; j < j1; ++j) {
+            const int jm = std::max(j - 1, 0), jp = std::min(j + 1, ny - 1);
+            for (int i = 0; i < nx; ++i) {
+                const int im = std::max(i - 1, 0), ip = std::min(i + 1, nx - 1);
+                const glm::vec3 du = particles[size_t(j * nx + ip)].x - particles[size_t(j * nx + im)].x;
+                const glm::vec3 dv = particles[size_t(jp * nx + i)].x - particles[size_t(jm * nx + i)].x;
+                const glm::vec3 c = glm::cross(dv, du);
+                const float len = glm::length(c);
+                glm::vec4& out = normals[size_t(j * nx + i)];
+                if (len > 1e-20f) out = glm::vec4(c / len, 0.0f); // else keep the last normal
+            }
+        }
+    }, 64);
+}
+
+void Cloth::Impl::projectBatch(const cloth::Batch& batch, float alphaTilde) {
+    const cloth::Constraint* cs = constraints.data();
+    const uint8_t* on = active.data();
+    Particle* ps = particles.data();
+    float* lam = lambda.data();
+    pool->parallelFor(batch.end - batch.begin, [&](int b0, int b1) {
+        for (int c = batch.begin + b0; c < batch.begin + b1; ++c) {
+            if (!on[c]) continue;
+            Particle& A = ps[cs[c].a];
+            Particle& B = ps[cs[c].b];
+            const float wsum = A.w + B.w;
+            if (wsum <= 0.0f) continue;
+            const glm::vec3 d = B.x - A.x;
+            const float len2 = glm::dot(d, d);
+            if (len2 < 1e-24f) continue;
+            const float len = std::sqrt(len2);
+            const float C = len - cs[c].rest;
+            float dl;
+            if (alphaTilde == 0.0f) {
+                dl = -C / wsum;
+            } else {
+                dl = (-C - alphaTilde * lam[c]) / (wsum + alphaTilde);
+                lam[c] += dl;
+            }
+            const glm::vec3 corr = d * (dl / len);
+            A.x -= A.w * corr;
+            B.x += B.w * corr;
+        }
+    });
+}
+
+void Cloth::Impl::collide(int begin, int end) {
+    const float thickness = params.thickness;
+    for (int k = begin; k < end; ++k) {
+        Particle& p = particles[size_t(k)];
+        if (p.w == 0.0f) continue;
+        for (const Collider& c : colliders) {
+            glm::vec3 n;
+            const float s = c.distance(p.x, n);
+            if (s >= thickness) continue;
+            p.x += (thickness - s) * n;
+            if (c.friction > 0.0f) {
+                const glm::vec3 v = p.x - previous[size_t(k)];
+                previous[size_t(k)] += (v - n * glm::dot(v, n)) * c.friction;
+            }
+        }
+    }
+}
+
+void Cloth::Impl::relax(float h) {
+    const float h2 = h * h;
+    for (const cloth::Batch& b : batches) projectBatch(b, compliance(params, b.family) / h2);
+    if (!tethers.empty()) {
+        pool->parallelFor(n, [&](int k0, int k1) {
+            for (int k = k0; k < k1; ++k) {
+                Particle& p = particles[size_t(k)];
+                if (p.w == 0.0f) continue;
+                for (int t = tetherStart[size_t(k)]; t < tetherStart[size_t(k) + 1]; ++t) {
+                    const cloth::Tether& te = tethers[size_t(t)];
+                    const glm::vec3 anchor = particles[size_t(te.anchor)].x;
+                    const glm::vec3 d = p.x - anchor;
+                    const float len2 = glm::dot(d, d);
+                    if (len2 > te.length * te.length) p.x = anchor + d * (te.length / std::sqrt(len2));
+                }
+            }
+        });
+    }
+    if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b); }, 1024);
+}
+
+void Cloth::Impl::selfCollide() {
+    const float spacingU = params.nx > 1 ? params.size.x / float(params.nx - 1) : params.size.y;
+    const float spacingV = params.ny > 1 ? params.size.y / float(params.ny - 1) : params.size.x;
+    const float T = params.selfThickness > 0.0f ? params.selfThickness
+                                                : 0.9f * std::min(spacingU, spacingV);
+    // Spatial hash with cell size T: the 27 cells around a particle hold every neighbour
+    // closer than T. Corrections are gathered per particle (Jacobi), so the result does not
+    // depend on the thread count.
+    const size_t tableSize = size_t(2 * n + 1);
+    auto cellOf = [&](const glm::vec3& x) { return glm::ivec3(glm::floor(x / T)); };
+    auto hashOf = [&](const glm::ivec3& c) {
+        return size_t((uint32_t(c.x) * 73856093u) ^ (uint32_t(c.y) * 19349663u) ^
+                      (uint32_t(c.z) * 83492791u)) % tableSize;
+    };
+    std::vector<int> start(tableSize + 1, 0);
+    std::vector<int> order(static_cast<size_t>(n));
+    for (int k = 0; k < n; ++k) ++start[hashOf(cellOf(particles[size_t(k)].x)) + 1];
+    for (size_t b = 0; b < tableSize; ++b) start[b + 1] += start[b];
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int k = 0; k < n; ++k) order[size_t(fill[hashOf(cellOf(particles[size_t(k)].x))]++)] = k;
+
+    std::vector<glm::vec3> delta(size_t(n), glm::vec3(0.0f));
+    pool->parallelFor(n, [&](int k0, int k1) {
+        for (int k = k0; k < k1; ++k) {
+            const Particle& p = particles[size_t(k)];
+            if (p.w == 0.0f || hole[size_t(k)]) continue;
+            const glm::ivec3 c = cellOf(p.x);
+            glm::vec3 sum(0.0f);
+            for (int dz = -1; dz <= 1; ++dz)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const size_t h = hashOf(c + glm::ivec3(dx, dy, dz));
+                        for (int s = start[h]; s < start[h + 1]; ++s) {
+                            const int q = order[size_t(s)];
+                            if (q == k || hole[size_t(q)]) continue;
+                            const glm::vec3 d = p.x - particles[size_t(q)].x;
+                            const float len2 = glm::dot(d, d);
+                            if (len2 >= T * T || len2 < 1e-24f) continue;
+                            // Neighbours that are closer than T at rest are the constraints' job.
+                            if (glm::length(rest[size_t(k)] - rest[size_t(q)]) <= T) continue;
+                            const float len = std::sqrt(len2);
+                            const float wq = particles[size_t(q)].w;
+                            sum += d * ((T - len) / len * p.w / (p.w + wq));
+                        }
+                    }
+            delta[size_t(k)] = sum;
+        }
+    }, 1024);
+    for (int k = 0; k < n; ++k) particles[size_t(k)].x += delta[size_t(k)];
+}
+
+void Cloth::Impl::substep(float h, float damping) {
+    const bool windy = wind.strength != 0.0f;
+    if (windy) computeNormals();
+    const glm::vec3 r = windy ? glm::normalize(wind.direction) : glm::vec3(0.0f);
+    const glm::vec3 g = params.gravity;
+    if (hasPendingVelocity) {
+        for (int k = 0; k < n; ++k)
+            previous[size_t(k)] = particles[size_t(k)].x - pendingVelocity[size_t(k)] * h + 0.5f * g * h * h;
+        hasPendingVelocity = false;
+    }
+    for (size_t q = 0; q < grabbed.size(); ++q) {
+        const int k = grabbed[q];
+        previous[size_t(k)] = particles[size_t(k)].x;
+        particles[size_t(k)].x = grabTargets[q];
+    }
+    pool->parallelFor(n, [&](int k0, int k1) {
+        for (int k = k0; k < k1; ++k) {
+            Particle& p = particles[size_t(k)];
+            if (p.w == 0.0f) {
+                if (!pinned[size_t(k)] || hole[size_t(k)]) continue; // grabbed: keep its velocity
+                previous[size_t(k)] = p.x;
+                continue;
+            }
+            glm::vec3 a = g;
+            if (windy) {
+                const glm::vec3 nn(normals[size_t(k)]);
+                a += wind.strength * glm::dot(nn, r) * nn;
+            }
+            const glm::vec3 x = p.x;
+            p.x = x + damping * (x - previous[size_t(k)]) + a * (h * h);
+            previous[size_t(k)] = x;
+        }
+    }, 4096);
+    const bool compliant = params.complianceStretch > 0 || params.complianceShear > 0 ||
+                           params.complianceBend > 0;
+    if (compliant) std::fill(lambda.begin(), lambda.end(), 0.0f);
+    for (int it = 0; it < params.iterations; ++it) relax(h);
+    if (params.selfCollision) selfCollide();
+}
+
+void Cloth::Impl::afterStep(float dt) {
+    if (params.tearStrain > 0.0f) {
+        for (size_t c = 0; c < constraints.size(); ++c) {
+            if (!active[c]) continue;
+            const cloth::Constraint& k = constraints[c];
+            const float len = glm::length(particles[size_t(k.b)].x - particles[size_t(k.a)].x);
+            if (std::abs(len - k.rest) > params.tearStrain * k.rest) active[c] = 0;
+        }
+    }
+    if (params.sleepThreshold > 0.0f) {
+        double sum = 0.0;
+        int count = 0;
+        for (int k = 0; k < n; ++k) {
+            if (particles[size_t(k)].w == 0.0f) continue;
+            sum += glm::length(particles[size_t(k)].x - previous[size_t(k)]);
+            ++count;
+        }
+        const double h = double(dt) / params.substeps;
+        const double meanSpeed = count ? sum / count / h : 0.0;
+        quietSteps = meanSpeed < params.sleepThreshold ? quietSteps + 1 : 0;
+        if (quietSteps >= params.sleepSteps) asleep = true;
+    }
+}
+
+} // namespace weft
