@@ -56,9 +56,14 @@ void Cloth::Impl::projectBatch(const cloth::Batch& batch, float alphaTilde) {
             Particle& B = ps[cs[c].b];
             const float wsum = A.w + B.w;
             if (wsum <= 0.0f) continue;
-            const glm::vec3 d = B.x - A.x;
-            const float len2 = glm::dot(d, d);
-            if (len2 < 1e-24f) continue;
+            glm::vec3 d = B.x - A.x;
+            float len2 = glm::dot(d, d);
+            if (len2 < 1e-24f) {
+                // Coincident particles have no direction: separate them along their rest
+                // offset, so a collapsed cloth unfolds instead of staying stuck.
+                d = (rest[size_t(cs[c].b)] - rest[size_t(cs[c].a)]) * 1e-6f;
+                len2 = glm::dot(d, d);
+            }
             const float len = std::sqrt(len2);
             const float C = len - cs[c].rest;
             float dl;
