@@ -22,6 +22,7 @@ from typing import Any, Dict, List, Optional, Sequence, TextIO
 #: Benchmark subsystems: command name -> module implementing it.
 SUBSYSTEMS: Dict[str, str] = {
     "render": "weft.bench.render",
+    "cloth": "weft.bench.cloth",
 }
 
 __all__ = ["SUBSYSTEMS", "main", "load_subsystem", "machine_info", "Progress", "write_report",

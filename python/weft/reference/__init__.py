@@ -4,8 +4,36 @@
 outputs (SPEC §1.3 eq. 2.5, 2.8–2.10: ambient + Lambert + Blinn-Phong, and §1.5: shadow map
 with normal offset, slope-scaled bias and PCF). Tests and benchmarks use it as the oracle;
 later shading models add their own functions next to it. Nothing here calls the renderer.
+
+``weft.reference.cloth`` is the cloth solver of SPEC §2 in NumPy (float64):
+:class:`ClothReference` runs the same algorithm as ``weft.Cloth`` (same constraint batches,
+Verlet, XPBD, tethers, collisions), and the literal formulas the tests check against
+(:func:`project_distance` = eq. 3.3/3.4, collider distances, free fall, pendulum period).
 """
 
+from weft.reference.cloth import (
+    BoxShape,
+    CapsuleShape,
+    ClothReference,
+    HeightFieldShape,
+    PlaneShape,
+    SphereShape,
+    WindSetting,
+    box_distance,
+    capsule_distance,
+    constraint_pattern,
+    free_fall,
+    grid_normals,
+    grid_positions,
+    grid_triangles,
+    height_field_distance,
+    hole_mask_from_image,
+    pendulum_period,
+    plane_distance,
+    project_distance,
+    sphere_distance,
+    strain,
+)
 from weft.reference.shading import (
     LightDesc,
     OracleErrors,
@@ -30,6 +58,27 @@ from weft.reference.texture import (
 )
 
 __all__ = [
+    "BoxShape",
+    "CapsuleShape",
+    "ClothReference",
+    "HeightFieldShape",
+    "PlaneShape",
+    "SphereShape",
+    "WindSetting",
+    "box_distance",
+    "capsule_distance",
+    "constraint_pattern",
+    "free_fall",
+    "grid_normals",
+    "grid_positions",
+    "grid_triangles",
+    "height_field_distance",
+    "hole_mask_from_image",
+    "pendulum_period",
+    "plane_distance",
+    "project_distance",
+    "sphere_distance",
+    "strain",
     "LightDesc",
     "OracleErrors",
     "ShadowLookup",

@@ -146,24 +146,33 @@ void Cloth::Impl::selfCollide() {
             const Particle& p = particles[size_t(k)];
             if (p.w == 0.0f || hole[size_t(k)]) continue;
             const glm::ivec3 c = cellOf(p.x);
-            glm::vec3 sum(0.0f);
+            // The 27 cells may share buckets (hash collisions): visit each bucket once, so
+            // no neighbour is counted twice.
+            size_t buckets[27];
+            int bucketCount = 0;
             for (int dz = -1; dz <= 1; ++dz)
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) {
                         const size_t h = hashOf(c + glm::ivec3(dx, dy, dz));
-                        for (int s = start[h]; s < start[h + 1]; ++s) {
-                            const int q = order[size_t(s)];
-                            if (q == k || hole[size_t(q)]) continue;
-                            const glm::vec3 d = p.x - particles[size_t(q)].x;
-                            const float len2 = glm::dot(d, d);
-                            if (len2 >= T * T || len2 < 1e-24f) continue;
-                            // Neighbours that are closer than T at rest are the constraints' job.
-                            if (glm::length(rest[size_t(k)] - rest[size_t(q)]) <= T) continue;
-                            const float len = std::sqrt(len2);
-                            const float wq = particles[size_t(q)].w;
-                            sum += d * ((T - len) / len * p.w / (p.w + wq));
-                        }
+                        if (std::find(buckets, buckets + bucketCount, h) == buckets + bucketCount)
+                            buckets[bucketCount++] = h;
                     }
+            glm::vec3 sum(0.0f);
+            for (int bi = 0; bi < bucketCount; ++bi) {
+                const size_t h = buckets[bi];
+                for (int s = start[h]; s < start[h + 1]; ++s) {
+                    const int q = order[size_t(s)];
+                    if (q == k || hole[size_t(q)]) continue;
+                    const glm::vec3 d = p.x - particles[size_t(q)].x;
+                    const float len2 = glm::dot(d, d);
+                    if (len2 >= T * T || len2 < 1e-24f) continue;
+                    // Neighbours that are closer than T at rest are the constraints' job.
+                    if (glm::length(rest[size_t(k)] - rest[size_t(q)]) <= T) continue;
+                    const float len = std::sqrt(len2);
+                    const float wq = particles[size_t(q)].w;
+                    sum += d * ((T - len) / len * p.w / (p.w + wq));
+                }
+            }
             delta[size_t(k)] = sum;
         }
     }, 1024);

@@ -1,0 +1,777 @@
+"""Cloth benchmark: time against error (SPEC §2.6, issue "Benchmark: time against error").
+
+The standard scene is a 1 m cloth hanging vertically from its two top corners (origin
+(-0.5, 1.5, 0), u = +X, v = -Y, particles (0, 0) and (nx-1, 0) pinned), dt = 1/60 s, gravity,
+the 12-neighbour pattern with k = 2, damping 0.99. For every grid size N x N and every solver
+setting (iterations, substeps, XPBD compliance, tethers) it measures
+
+- speed: steps per second, the median of repeated timed runs after a warm-up run;
+- constraint error: mean and max relative strain ``|len - rest| / rest`` over all constraints
+  after 120 steps from rest (SPEC §2.6 (a));
+- equilibrium error: the cloth is stepped until it is at rest (kinetic energy below
+  ``REST_ENERGY`` J, at most ``--rest-steps`` steps) and compared with a converged reference
+  (many iterations and substeps, same scene, also at rest): mean vertex distance divided by
+  the cloth size (SPEC §2.6 (b)).
+
+Peers in the same run, at the same settings: the NumPy implementation of the same algorithm
+(:class:`weft.reference.cloth.ClothReference`, what a user would otherwise write; its strain is
+measured where 120 steps fit in the time budget, else taken from weft's run of the same
+algorithm and marked so), and NVIDIA Warp CPU kernels of the same algorithm (one launch per
+batch, see :class:`WarpCloth`) when ``import warp`` works. Writes
+``bench.json``, ``bench.md`` and ``pareto.png`` (steps/s against mean strain, matplotlib with
+the Agg backend; skipped with a note when matplotlib is missing).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import statistics
+import sys
+import time
+from dataclasses import asdict, dataclass, field
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from weft.bench import Progress, machine_info, markdown_table, write_report
+
+DESCRIPTION = ("cloth solver: steps/s against strain and equilibrium error over iterations x "
+               "substeps x compliance x tethers, with NumPy (and Warp) peers")
+
+DT = 1.0 / 60.0
+STRAIN_STEPS = 120
+REST_ENERGY = 1e-6  # J: "at rest" for the equilibrium runs
+SIZES: Tuple[int, ...] = (32, 64, 128, 256)
+QUICK_SIZES: Tuple[int, ...] = (8, 12)
+PLOT_SIZES: Tuple[int, ...] = (128, 256)
+TARGET_SIZE = 128
+TARGET_MEAN, TARGET_MAX, TARGET_SPEED = 0.01, 0.10, 100.0
+PEER_RATIO_TARGET = 4.0
+#: Two runs of the same setting differ in strain by float rounding (weft and Warp in float32,
+#: NumPy in float64); "at most the peer's strain" allows this relative slack.
+STRAIN_SLACK = 0.01
+NUMPY_RATIO_TARGET = 50.0
+
+
+@dataclass(frozen=True)
+class Setting:
+    """One solver setting of the grid."""
+
+    name: str
+    iterations: int = 1
+    substeps: int = 1
+    compliance: Tuple[float, float, float] = (0.0, 0.0, 0.0)  # stretch, shear, bend (m/N)
+    tethers: bool = False
+
+    def kwargs(self) -> Dict[str, Any]:
+        """Keyword arguments of ``weft.Cloth`` / ``ClothReference``."""
+        return dict(iterations=self.iterations, substeps=self.substeps,
+                    compliance_stretch=self.compliance[0], compliance_shear=self.compliance[1],
+                    compliance_bend=self.compliance[2], tethers=self.tethers)
+
+    @property
+    def sweeps(self) -> int:
+        """Relaxation sweeps per step (the cost unit)."""
+        return self.iterations * self.substeps
+
+    def label(self) -> str:
+        parts = [f"{self.iterations}it x {self.substeps}sub"]
+        if any(self.compliance):
+            parts.append("xpbd " + "/".join(f"{c:g}" for c in self.compliance))
+        if self.tethers:
+            parts.append("tethers")
+        return ", ".join(parts)
+
+
+#: XPBD compliance (stretch, shear, bend) in m/N of the compliant setting: inextensible, with
+#: softer shear and bending (its strain includes that intended give).
+XPBD = (0.0, 1e-2, 1.0)
+
+SETTINGS: Tuple[Setting, ...] = (
+    Setting("seed"),                      # the seed: one relaxation iteration
+    Setting("it2", 2),
+    Setting("it4", 4),
+    Setting("it8", 8),
+    Setting("sub2", 1, 2),
+    Setting("sub4", 1, 4),
+    Setting("it2-sub2", 2, 2),
+    Setting("it4-sub4", 4, 4),
+    Setting("tethers", 1, 1, tethers=True),
+    Setting("tethers-sub2", 1, 2, tethers=True),
+    Setting("tethers-it2-sub2", 2, 2, tethers=True),
+    Setting("tethers-sub4", 1, 4, tethers=True),
+    Setting("tethers-it4-sub4", 4, 4, tethers=True),
+    Setting("xpbd-tethers-it2-sub2", 2, 2, XPBD, tethers=True),
+)
+QUICK_SETTINGS: Tuple[Setting, ...] = (SETTINGS[0], SETTINGS[4], SETTINGS[10], SETTINGS[13])
+
+#: The converged reference of the equilibrium error, and a cheaper one that bounds its error.
+REFERENCE = Setting("reference", 8, 8, tethers=True)
+REFERENCE_CHECK = Setting("reference-check", 4, 8, tethers=True)
+QUICK_REFERENCE = Setting("reference", 4, 4, tethers=True)
+QUICK_REFERENCE_CHECK = Setting("reference-check", 2, 4, tethers=True)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--quick", action="store_true",
+                        help="tiny grids (8, 12), 4 settings, short runs: a few seconds, for CI")
+    parser.add_argument("--out", default="out/bench/cloth",
+                        help="output folder for bench.json, bench.md, pareto.png "
+                             "(out/bench/cloth)")
+    parser.add_argument("--sizes", type=int, nargs="+", default=None,
+                        help="grid sizes N (N x N particles); default 32 64 128 256")
+    parser.add_argument("--repeats", type=int, default=None,
+                        help="timed runs per measurement after one warm-up (default 5, 3 quick)")
+    parser.add_argument("--run-seconds", type=float, default=None,
+                        help="target length of one timed run (default 0.25 s, 0.02 quick)")
+    parser.add_argument("--rest-steps", type=int, default=None,
+                        help="most steps of an equilibrium run (default 900, 120 quick)")
+    parser.add_argument("--peer-budget", type=float, default=None,
+                        help="seconds a peer's strain run (120 steps) may take before its strain "
+                             "is taken from weft's run of the same algorithm instead "
+                             "(default 15, 5 quick)")
+    parser.add_argument("--no-numpy", dest="numpy", action="store_false",
+                        help="leave out the NumPy peer")
+    parser.add_argument("--no-warp", dest="warp", action="store_false",
+                        help="leave out the Warp peer even when warp is installed")
+    parser.add_argument("--no-plot", dest="plot", action="store_false",
+                        help="do not write pareto.png")
+    parser.add_argument("--threads", type=int, default=0,
+                        help="weft worker threads (0 = all cores)")
+    parser.add_argument("--no-progress", dest="progress", action="store_false",
+                        help="do not print the progress indicator on stderr")
+
+
+# --------------------------------------------------------------------------------------------
+# The scene and the engines
+# --------------------------------------------------------------------------------------------
+
+def scene_kwargs(n: int) -> Dict[str, Any]:
+    """The standard scene's grid: 1 m, hanging in the XY plane."""
+    return dict(nx=n, ny=n, size=(1.0, 1.0), origin=(-0.5, 1.5, 0.0), axis_u=(1.0, 0.0, 0.0),
+                axis_v=(0.0, -1.0, 0.0), bend_distance=2, extra_axial=False, damping=0.99,
+                gravity=(0.0, -9.81, 0.0))
+
+
+class Engine:
+    """An implementation under test: makes a cloth of the standard scene, steps it, reads it."""
+
+    name = "?"
+
+    def make(self, n: int, setting: Setting) -> Any:
+        raise NotImplementedError
+
+    def step(self, cloth: Any, dt: float) -> None:
+        cloth.step(dt)
+
+    def positions(self, cloth: Any) -> np.ndarray:
+        return np.asarray(cloth.positions, dtype=np.float64)
+
+    def strain(self, cloth: Any) -> Tuple[float, float]:
+        s = cloth.stats()
+        return float(s["mean_strain"]), float(s["max_strain"])
+
+    def kinetic_energy(self, cloth: Any) -> float:
+        return float(cloth.kinetic_energy())
+
+
+class WeftEngine(Engine):
+    name = "weft"
+
+    def __init__(self, threads: int = 0) -> None:
+        self.threads = threads
+
+    def make(self, n: int, setting: Setting) -> Any:
+        import weft
+
+        cloth = weft.Cloth(threads=self.threads, **scene_kwargs(n), **setting.kwargs())
+        cloth.pin([0, n - 1])
+        return cloth
+
+
+class NumpyEngine(Engine):
+    name = "numpy"
+
+    def make(self, n: int, setting: Setting) -> Any:
+        from weft.reference.cloth import ClothReference
+
+        cloth = ClothReference(**scene_kwargs(n), **setting.kwargs())
+        cloth.pin([0, n - 1])
+        return cloth
+
+
+# --------------------------------------------------------------------------------------------
+# Warp peer (optional): the same algorithm as CPU kernels, one launch per batch
+# --------------------------------------------------------------------------------------------
+
+_WARP_KERNELS: Optional[Dict[str, Any]] = None
+
+
+def _warp_kernels() -> Dict[str, Any]:
+    """Builds the Warp kernels once (Warp compiles them for the CPU on first launch)."""
+    global _WARP_KERNELS
+    if _WARP_KERNELS is not None:
+        return _WARP_KERNELS
+    import warp as wp
+
+    @wp.kernel
+    def integrate(x: wp.array(dtype=wp.vec3), xp: wp.array(dtype=wp.vec3),
+                  w: wp.array(dtype=float), g: wp.vec3, damping: float, h: float):
+        i = wp.tid()
+        if w[i] == 0.0:
+            xp[i] = x[i]
+            return
+        xi = x[i]
+        x[i] = xi + damping * (xi - xp[i]) + g * (h * h)
+        xp[i] = xi
+
+    @wp.kernel
+    def project(x: wp.array(dtype=wp.vec3), w: wp.array(dtype=float),
+                a: wp.array(dtype=int), b: wp.array(dtype=int), rest: wp.array(dtype=float),
+                lam: wp.array(dtype=float), alpha: float):
+        c = wp.tid()
+        ia = a[c]
+        ib = b[c]
+        wsum = w[ia] + w[ib]
+        if wsum <= 0.0:
+            return
+        d = x[ib] - x[ia]
+        length = wp.length(d)
+        if length < 1e-12:
+            return
+        dl = (-(length - rest[c]) - alpha * lam[c]) / (wsum + alpha)
+        lam[c] = lam[c] + dl
+        corr = d * (dl / length)
+        x[ia] = x[ia] - w[ia] * corr
+        x[ib] = x[ib] + w[ib] * corr
+
+    @wp.kernel
+    def tether(x: wp.array(dtype=wp.vec3), p: wp.array(dtype=int), q: wp.array(dtype=int),
+               length: wp.array(dtype=float)):
+        t = wp.tid()
+        ip = p[t]
+        d = x[ip] - x[q[t]]
+        dist = wp.length(d)
+        if dist > length[t]:
+            x[ip] = x[q[t]] + d * (length[t] / dist)
+
+    _WARP_KERNELS = {"wp": wp, "integrate": integrate, "project": project, "tether": tether}
+    return _WARP_KERNELS
+
+
+class WarpCloth:
+    """The standard scene's solver in Warp (CPU): the batches, tethers and XPBD of
+    :class:`weft.reference.cloth.ClothReference`, each batch one kernel launch."""
+
+    def __init__(self, n: int, setting: Setting) -> None:
+        from weft.reference.cloth import ClothReference
+
+        k = _warp_kernels()
+        wp = k["wp"]
+        self.k = k
+        self.setting = setting
+        layout = ClothReference(**scene_kwargs(n), **setting.kwargs())
+        layout.pin([0, n - 1])
+        self.layout = layout
+        self.device = "cpu"
+        self.x = wp.array(layout.x.astype(np.float32), dtype=wp.vec3, device=self.device)
+        self.xp = wp.array(layout.x.astype(np.float32), dtype=wp.vec3, device=self.device)
+        self.w = wp.array(layout.inverse_masses.astype(np.float32), dtype=float,
+                          device=self.device)
+        self.batches = []
+        for fam, a, b, rest, _, _ in layout._solve_batches():
+            self.batches.append((layout._compliance(fam),
+                                 wp.array(a.astype(np.int32), dtype=int, device=self.device),
+                                 wp.array(b.astype(np.int32), dtype=int, device=self.device),
+                                 wp.array(rest.astype(np.float32), dtype=float, device=self.device),
+                                 wp.zeros(len(a), dtype=float, device=self.device)))
+        self.tethers = []
+        if setting.tethers:
+            for p, q, length in layout._tether_data():
+                self.tethers.append((wp.array(p.astype(np.int32), dtype=int, device=self.device),
+                                     wp.array(q.astype(np.int32), dtype=int, device=self.device),
+                                     wp.array(length.astype(np.float32), dtype=float,
+                                              device=self.device)))
+        self.g = wp.vec3(0.0, -9.81, 0.0)
+        self.last_h = DT
+
+    def step(self, dt: float) -> None:
+        k, wp = self.k, self.k["wp"]
+        h = dt / self.setting.substeps
+        damping = 0.99 ** (h * 60.0)
+        n = self.layout.n
+        for _ in range(self.setting.substeps):
+            wp.launch(k["integrate"], dim=n, inputs=[self.x, self.xp, self.w, self.g, damping, h],
+                      device=self.device)
+            for _, _, _, _, lam in self.batches:
+                lam.zero_()
+            for _ in range(self.setting.iterations):
+                for compliance, a, b, rest, lam in self.batches:
+                    wp.launch(k["project"], dim=a.shape[0],
+                              inputs=[self.x, self.w, a, b, rest, lam, compliance / (h * h)],
+                              device=self.device)
+                for p, q, length in self.tethers:
+                    wp.launch(k["tether"], dim=p.shape[0], inputs=[self.x, p, q, length],
+                              device=self.device)
+        wp.synchronize_device(self.device)
+        self.last_h = h
+
+    def numpy_positions(self) -> np.ndarray:
+        return self.x.numpy().astype(np.float64)
+
+    def stats(self) -> Dict[str, float]:
+        from weft.reference.cloth import strain
+
+        mean, mx = strain(self.numpy_positions(), self.layout.a, self.layout.b, self.layout.rest)
+        return {"mean_strain": mean, "max_strain": mx}
+
+    def kinetic_energy(self) -> float:
+        v = (self.numpy_positions() - self.xp.numpy()) / self.last_h
+        return float(0.5 / self.layout.n * np.sum(v * v))
+
+
+class WarpEngine(Engine):
+    name = "warp"
+
+    def make(self, n: int, setting: Setting) -> Any:
+        return WarpCloth(n, setting)
+
+    def positions(self, cloth: Any) -> np.ndarray:
+        return cloth.numpy_positions()
+
+
+def warp_status() -> Tuple[bool, str]:
+    """Whether the Warp peer can run, and what to say about it."""
+    try:
+        import warp as wp
+
+        wp.config.quiet = True  # no banner on stdout
+        wp.init()
+        _warp_kernels()
+        return True, f"warp {getattr(wp, '__version__', '?')} (CPU kernels)"
+    except Exception as exc:  # not installed, or no usable CPU backend
+        return False, f"not run: import warp failed ({type(exc).__name__}: {exc})"
+
+
+# --------------------------------------------------------------------------------------------
+# Measuring
+# --------------------------------------------------------------------------------------------
+
+def time_steps(engine: Engine, n: int, setting: Setting, repeats: int, run_seconds: float,
+               max_steps_per_run: int = 1000) -> Dict[str, Any]:
+    """Steps/s: a warm-up run, then ``repeats`` timed runs of k steps (k sized so a run takes
+    about ``run_seconds``); the median over the runs."""
+    cloth = engine.make(n, setting)
+    engine.step(cloth, DT)  # warm-up (first touch, Warp compilation, caches)
+    start = time.perf_counter()
+    engine.step(cloth, DT)
+    one = max(time.perf_counter() - start, 1e-7)
+    k = int(min(max(run_seconds / one, 1), max_steps_per_run))
+    rates = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        for _ in range(k):
+            engine.step(cloth, DT)
+        rates.append(k / (time.perf_counter() - start))
+    return {"steps_per_s": float(statistics.median(rates)), "steps_per_run": k,
+            "repeats": repeats, "rates": [float(r) for r in rates]}
+
+
+def strain_after(engine: Engine, n: int, setting: Setting, steps: int = STRAIN_STEPS
+                 ) -> Tuple[float, float]:
+    """Mean and max strain after ``steps`` steps of the standard scene from rest."""
+    cloth = engine.make(n, setting)
+    for _ in range(steps):
+        engine.step(cloth, DT)
+    return engine.strain(cloth)
+
+
+def run_to_rest(engine: Engine, n: int, setting: Setting, max_steps: int,
+                chunk: int = 30) -> Tuple[np.ndarray, int, float]:
+    """Steps until the kinetic energy is below :data:`REST_ENERGY` (checked every ``chunk``
+    steps) or ``max_steps``; returns positions, steps run and the final kinetic energy."""
+    cloth = engine.make(n, setting)
+    steps, energy = 0, math.inf
+    while steps < max_steps:
+        for _ in range(min(chunk, max_steps - steps)):
+            engine.step(cloth, DT)
+        steps += min(chunk, max_steps - steps)
+        energy = engine.kinetic_energy(cloth)
+        if energy < REST_ENERGY:
+            break
+    return engine.positions(cloth), steps, float(energy)
+
+
+def mean_distance(a: np.ndarray, b: np.ndarray, size: float = 1.0) -> float:
+    """Mean vertex distance relative to the cloth size (SPEC §2.6 (b))."""
+    return float(np.mean(np.linalg.norm(a - b, axis=1)) / size)
+
+
+def pareto_front(points: Sequence[Tuple[float, float]]) -> List[int]:
+    """Indices of the points (strain, steps/s) no other point beats in both (lower strain and
+    higher speed), sorted by strain."""
+    order = sorted(range(len(points)), key=lambda i: (points[i][0], -points[i][1]))
+    front: List[int] = []
+    best = -math.inf
+    for i in order:
+        if points[i][1] > best:
+            front.append(i)
+            best = points[i][1]
+    return front
+
+
+def weft_speed_at(results: Sequence[Dict[str, Any]], n: int, mean_strain: float
+                  ) -> Optional[Dict[str, Any]]:
+    """weft's fastest setting at size n whose mean strain is at most ``mean_strain`` (with
+    :data:`STRAIN_SLACK` relative slack for rounding)."""
+    limit = mean_strain * (1.0 + STRAIN_SLACK)
+    ok = [r for r in results if r["engine"] == "weft" and r["n"] == n
+          and r["mean_strain"] is not None and r["mean_strain"] <= limit]
+    return max(ok, key=lambda r: r["steps_per_s"]) if ok else None
+
+
+def summarize(results: List[Dict[str, Any]], sizes: Sequence[int]) -> Dict[str, Any]:
+    """The ratios the issue asks for."""
+    out: Dict[str, Any] = {}
+    # weft vs each peer at equal settings
+    for peer in ("numpy", "warp"):
+        per_size: Dict[str, Any] = {}
+        for n in sizes:
+            ratios = {}
+            for r in results:
+                if r["engine"] != peer or r["n"] != n:
+                    continue
+                mine = next((w for w in results if w["engine"] == "weft" and w["n"] == n
+                             and w["setting"] == r["setting"]), None)
+                if mine and r["steps_per_s"]:
+                    ratios[r["setting"]] = mine["steps_per_s"] / r["steps_per_s"]
+            if ratios:
+                vals = list(ratios.values())
+                per_size[str(n)] = {"min": min(vals), "median": statistics.median(vals),
+                                    "max": max(vals), "by_setting": ratios}
+        if per_size:
+            out[f"weft_vs_{peer}_equal_settings"] = per_size
+    # Pareto: at every strain level a peer reaches, weft's speed / the peer's
+    pareto: Dict[str, Any] = {}
+    for n in sizes:
+        rows = []
+        for r in results:
+            if r["engine"] == "weft" or r["n"] != n or r["mean_strain"] is None:
+                continue
+            best = weft_speed_at(results, n, r["mean_strain"])
+            rows.append({"peer": r["engine"], "setting": r["setting"],
+                         "peer_mean_strain": r["mean_strain"],
+                         "peer_steps_per_s": r["steps_per_s"],
+                         "weft_setting": best["setting"] if best else None,
+                         "weft_steps_per_s": best["steps_per_s"] if best else None,
+                         "ratio": (best["steps_per_s"] / r["steps_per_s"]) if best else None})
+        if rows:
+            ratios = [row["ratio"] for row in rows if row["ratio"] is not None]
+            pareto[str(n)] = {"min_ratio": min(ratios) if ratios else None, "points": rows}
+    out["pareto_vs_peers"] = pareto
+    # the accuracy-at-speed target
+    target = [r for r in results if r["engine"] == "weft" and r["n"] == TARGET_SIZE
+              and r["mean_strain"] is not None and r["mean_strain"] <= TARGET_MEAN
+              and r["max_strain"] <= TARGET_MAX]
+    fast = [r for r in target if r["steps_per_s"] >= TARGET_SPEED]
+    out["target_128"] = {
+        "size": TARGET_SIZE, "mean_strain_max": TARGET_MEAN, "max_strain_max": TARGET_MAX,
+        "steps_per_s_min": TARGET_SPEED, "evaluated": any(r["n"] == TARGET_SIZE for r in results),
+        "met": bool(fast),
+        "settings_meeting": [r["setting"] for r in fast],
+        "accurate_enough_settings": [{"setting": r["setting"], "steps_per_s": r["steps_per_s"],
+                                      "mean_strain": r["mean_strain"],
+                                      "max_strain": r["max_strain"]} for r in target],
+    }
+    return out
+
+
+# --------------------------------------------------------------------------------------------
+# Reporting
+# --------------------------------------------------------------------------------------------
+
+def _pct(v: Optional[float]) -> str:
+    if v is None or not math.isfinite(v):
+        return "n/a"
+    return f"{100.0 * v:.3g}%"
+
+
+def _num(v: Optional[float], fmt: str = ".1f") -> str:
+    return "n/a" if v is None or not math.isfinite(v) else format(v, fmt)
+
+
+def to_markdown(report: Dict[str, Any]) -> str:
+    m = report["machine"]
+    lines = [
+        "# weft cloth benchmark: time against error",
+        "",
+        f"- machine: {m.get('platform')}, {m.get('cpu_count')} CPUs"
+        + (f" ({m['processor']})" if m.get("processor") else "")
+        + f"; weft {m.get('weft', '?')}, Python {m.get('python')}, NumPy {m.get('numpy')}",
+        f"- command: `{report['command']}`",
+        "- scene: 1 m cloth hanging from its two top corners (XY plane), dt = 1/60 s, gravity, "
+        "12-neighbour pattern (k = 2), damping 0.99; weft with "
+        f"{report['weft_threads'] or 'all'} thread(s).",
+        f"- steps/s: median of {report['repeats']} timed runs after a warm-up; strain "
+        f"|len - rest| / rest after {STRAIN_STEPS} steps from rest (mean, max over all "
+        "constraints); equilibrium error: mean vertex distance to the converged reference at "
+        f"rest (kinetic energy < {REST_ENERGY:g} J or {report['rest_steps']} steps), relative "
+        "to the cloth size.",
+        f"- reference: {report['reference']['setting']}; its own error (distance to "
+        f"{report['reference']['check_setting']}) per size: "
+        + ", ".join(f"{n}²: {_num(v, '.1e')}"
+                    for n, v in report["reference"]["check_error"].items()) + ".",
+        f"- peers: NumPy = `weft.reference.cloth.ClothReference` (same algorithm, float64, "
+        "vectorised per batch){}; Warp: {}. Peers run the same settings; where a NumPy strain "
+        "run would exceed the time budget its strain is weft's (same algorithm).".format(
+            "" if report["numpy"] else " — not run", report["warp"]),
+        "- settings: `itK` = K relaxation iterations per substep, `subK` = K substeps per "
+        "step, `tethers` = long-range attachments to the pinned corners, `xpbd` = compliance "
+        "(stretch/shear/bend m/N) "
+        + "/".join(f"{c:g}" for c in XPBD) + " (its strain includes that intended give); "
+        "rest steps = steps until the kinetic energy fell below the threshold (the maximum: "
+        "never at rest).",
+        "",
+    ]
+    header = ["N", "setting", "sweeps/step", "weft steps/s", "mean strain", "max strain",
+              "equilibrium err", "rest steps", "NumPy steps/s", "weft/NumPy"]
+    if any(r["engine"] == "warp" for r in report["results"]):
+        header += ["Warp steps/s", "weft/Warp"]
+    rows = []
+    for r in report["results"]:
+        if r["engine"] != "weft":
+            continue
+        peer = {p["engine"]: p for p in report["results"] if p["engine"] != "weft"
+                and p["n"] == r["n"] and p["setting"] == r["setting"]}
+        row = [f"{r['n']}²", r["setting"], r["sweeps"], _num(r["steps_per_s"]),
+               _pct(r["mean_strain"]), _pct(r["max_strain"]), _num(r["equilibrium_error"], ".2e"),
+               r["equilibrium_steps"]]
+        np_r = peer.get("numpy")
+        row += [_num(np_r["steps_per_s"], ".2f") if np_r else "—",
+                _num(r["steps_per_s"] / np_r["steps_per_s"], ".0f") + "x" if np_r else "—"]
+        if "Warp steps/s" in header:
+            wr = peer.get("warp")
+            row += [_num(wr["steps_per_s"]) if wr else "—",
+                    _num(r["steps_per_s"] / wr["steps_per_s"], ".1f") + "x" if wr else "—"]
+        rows.append(row)
+    lines.append(markdown_table(header, rows))
+
+    s = report["summary"]
+    lines += ["", "## Ratios", ""]
+    for peer in ("numpy", "warp"):
+        key = f"weft_vs_{peer}_equal_settings"
+        if key in s:
+            parts = [f"{n}²: {_num(v['min'], '.0f')}–{_num(v['max'], '.0f')}x "
+                     f"(median {_num(v['median'], '.0f')}x)" for n, v in s[key].items()]
+            target = f" (target ≥ {NUMPY_RATIO_TARGET:g}x)" if peer == "numpy" else ""
+            lines.append(f"- weft / {peer} steps/s at equal settings{target}: " + "; ".join(parts))
+    for n, v in s["pareto_vs_peers"].items():
+        worst = min((p for p in v["points"] if p["ratio"] is not None),
+                    key=lambda p: p["ratio"], default=None)
+        detail = (f"; tightest: {worst['peer']} {worst['setting']} at "
+                  f"{_pct(worst['peer_mean_strain'])}, {worst['peer_steps_per_s']:.1f} steps/s vs "
+                  f"weft {worst['weft_setting']} {worst['weft_steps_per_s']:.1f} steps/s"
+                  if worst else "")
+        lines.append(f"- {n}²: at every mean strain a peer reaches, weft's fastest setting at "
+                     f"that strain or lower (±{100 * STRAIN_SLACK:g}% rounding slack) runs "
+                     f"≥ {_num(v['min_ratio'], '.1f')}x the peer's steps/s "
+                     f"(target ≥ {PEER_RATIO_TARGET:g}x){detail}")
+    t = s["target_128"]
+    if t["evaluated"]:
+        if t["met"]:
+            best = max((a for a in t["accurate_enough_settings"]
+                        if a["setting"] in t["settings_meeting"]), key=lambda a: a["steps_per_s"])
+            lines.append(f"- target at {TARGET_SIZE}²: mean strain ≤ {_pct(TARGET_MEAN)} and max "
+                         f"≤ {_pct(TARGET_MAX)} at ≥ {TARGET_SPEED:g} steps/s: **met** by "
+                         + ", ".join(t["settings_meeting"])
+                         + f" (fastest: {best['setting']}, {best['steps_per_s']:.0f} steps/s, "
+                         f"mean {_pct(best['mean_strain'])}, max {_pct(best['max_strain'])})")
+        else:
+            acc = ", ".join(f"{a['setting']} ({a['steps_per_s']:.0f} steps/s)"
+                            for a in t["accurate_enough_settings"]) or "none"
+            lines.append(f"- target at {TARGET_SIZE}²: mean strain ≤ {_pct(TARGET_MEAN)} and max "
+                         f"≤ {_pct(TARGET_MAX)} at ≥ {TARGET_SPEED:g} steps/s: **not met**; "
+                         f"settings accurate enough: {acc}")
+    else:
+        lines.append(f"- target at {TARGET_SIZE}²: not evaluated (size not in this run)")
+    if report.get("plot"):
+        lines += ["", f"Pareto plot (steps/s against mean strain): `{report['plot']}`"]
+    elif report.get("plot_note"):
+        lines += ["", f"Pareto plot: {report['plot_note']}"]
+    notes = report.get("notes") or []
+    if notes:
+        lines += ["", "Notes:"] + [f"- {n}" for n in notes]
+    return "\n".join(lines) + "\n"
+
+
+def plot_pareto(results: Sequence[Dict[str, Any]], sizes: Sequence[int], path: str
+                ) -> Optional[str]:
+    """Steps/s against mean strain (log-log) per size, weft's Pareto front drawn; returns a
+    note when it cannot plot (no matplotlib)."""
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except Exception as exc:
+        return f"skipped: matplotlib is not available ({exc})"
+    fig, axes = plt.subplots(1, len(sizes), figsize=(6.5 * len(sizes), 5.2), squeeze=False)
+    style = {"weft": ("o", "tab:blue"), "numpy": ("s", "tab:orange"), "warp": ("^", "tab:green")}
+    for ax, n in zip(axes[0], sizes):
+        for engine, (marker, colour) in style.items():
+            pts = [r for r in results if r["engine"] == engine and r["n"] == n
+                   and r["mean_strain"] is not None and r["mean_strain"] > 0]
+            if not pts:
+                continue
+            xs = [r["mean_strain"] for r in pts]
+            ys = [r["steps_per_s"] for r in pts]
+            ax.scatter(xs, ys, marker=marker, color=colour, label=engine, zorder=3)
+            if engine == "weft":
+                front = pareto_front(list(zip(xs, ys)))
+                ax.step([xs[i] for i in front], [ys[i] for i in front], where="post",
+                        color=colour, alpha=0.6, zorder=2, label="weft Pareto front")
+                for r in pts:
+                    ax.annotate(r["setting"], (r["mean_strain"], r["steps_per_s"]), fontsize=6,
+                                xytext=(3, 3), textcoords="offset points")
+        ax.axvline(TARGET_MEAN, color="grey", ls=":", lw=1)
+        ax.axhline(TARGET_SPEED, color="grey", ls=":", lw=1)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(f"mean strain after {STRAIN_STEPS} steps")
+        ax.set_ylabel("steps / s")
+        ax.set_title(f"hanging cloth {n} x {n}")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return None
+
+
+# --------------------------------------------------------------------------------------------
+# Driver
+# --------------------------------------------------------------------------------------------
+
+def run(args: argparse.Namespace) -> int:
+    quick = bool(args.quick)
+    sizes = tuple(args.sizes) if args.sizes else (QUICK_SIZES if quick else SIZES)
+    if any(n < 4 for n in sizes):
+        print("python -m weft.bench cloth: error: sizes must be >= 4", file=sys.stderr)
+        return 2
+    settings = QUICK_SETTINGS if quick else SETTINGS
+    reference = QUICK_REFERENCE if quick else REFERENCE
+    reference_check = QUICK_REFERENCE_CHECK if quick else REFERENCE_CHECK
+    repeats = args.repeats or (3 if quick else 5)
+    run_seconds = args.run_seconds or (0.02 if quick else 0.25)
+    rest_steps = args.rest_steps or (120 if quick else 900)
+    peer_budget = args.peer_budget if args.peer_budget is not None else (5.0 if quick else 15.0)
+    if repeats < 1 or rest_steps < 1 or run_seconds <= 0:
+        print("python -m weft.bench cloth: error: --repeats, --rest-steps and --run-seconds "
+              "must be positive", file=sys.stderr)
+        return 2
+
+    weft_engine = WeftEngine(args.threads)
+    peers: List[Engine] = []
+    if args.numpy:
+        peers.append(NumpyEngine())
+    warp_ok, warp_note = (warp_status() if args.warp else (False, "not run (--no-warp)"))
+    if warp_ok:
+        peers.append(WarpEngine())
+
+    total = len(sizes) * (1 + len(settings) * (1 + len(peers)))
+    progress = Progress(total, enabled=args.progress)
+    results: List[Dict[str, Any]] = []
+    ref_check: Dict[str, float] = {}
+    ref_steps: Dict[str, int] = {}
+    notes: List[str] = []
+    for n in sizes:
+        progress.update(f"{n}²: converged reference")
+        ref_x, steps, energy = run_to_rest(weft_engine, n, reference, rest_steps)
+        chk_x, _, _ = run_to_rest(weft_engine, n, reference_check, rest_steps)
+        ref_check[str(n)] = mean_distance(ref_x, chk_x)
+        ref_steps[str(n)] = steps
+        if energy >= REST_ENERGY:
+            notes.append(f"{n}²: the reference was not at rest after {steps} steps "
+                         f"(kinetic energy {energy:.2e} J)")
+        progress.step(f"{n}²: reference")
+        for setting in settings:
+            label = f"{n}² {setting.name}"
+            progress.update(f"{label}: weft")
+            timing = time_steps(weft_engine, n, setting, repeats, run_seconds)
+            mean, mx = strain_after(weft_engine, n, setting)
+            x, steps, energy = run_to_rest(weft_engine, n, setting, rest_steps)
+            results.append({"engine": "weft", "n": n, "setting": setting.name,
+                            "label": setting.label(), "sweeps": setting.sweeps, **timing,
+                            "mean_strain": mean, "max_strain": mx, "strain_source": "weft",
+                            "equilibrium_error": mean_distance(x, ref_x),
+                            "equilibrium_steps": steps, "equilibrium_kinetic_energy": energy,
+                            "at_rest": energy < REST_ENERGY})
+            progress.step(f"{label}: weft")
+            for peer in peers:
+                progress.update(f"{label}: {peer.name}")
+                run_s = run_seconds if peer.name != "numpy" else max(run_seconds, 0.05)
+                timing = time_steps(peer, n, setting, max(1, min(repeats, 3)), run_s,
+                                    max_steps_per_run=200)
+                est = STRAIN_STEPS / timing["steps_per_s"]
+                if est <= peer_budget:
+                    pmean, pmx = strain_after(peer, n, setting)
+                    source = peer.name
+                else:
+                    pmean, pmx = mean, mx
+                    source = (f"weft (same algorithm; {STRAIN_STEPS} {peer.name} steps over "
+                              "the time budget)")
+                results.append({"engine": peer.name, "n": n, "setting": setting.name,
+                                "label": setting.label(), "sweeps": setting.sweeps, **timing,
+                                "mean_strain": pmean, "max_strain": pmx,
+                                "strain_source": source, "equilibrium_error": None,
+                                "equilibrium_steps": None})
+                progress.step(f"{label}: {peer.name}")
+    progress.close()
+
+    summary = summarize(results, sizes)
+    plot_sizes = [n for n in PLOT_SIZES if n in sizes] or sorted(sizes)[-2:]
+    plot_path: Optional[str] = None
+    plot_note: Optional[str] = None
+    if args.plot:
+        path = os.path.join(args.out, "pareto.png")
+        plot_note = plot_pareto(results, plot_sizes, path)
+        if plot_note is None:
+            plot_path = path
+    else:
+        plot_note = "not drawn (--no-plot)"
+
+    command = "python -m weft.bench cloth" + (" --quick" if quick else "")
+    if args.sizes:
+        command += " --sizes " + " ".join(str(n) for n in args.sizes)
+    report: Dict[str, Any] = {
+        "benchmark": "cloth",
+        "command": command,
+        "machine": machine_info(),
+        "scene": {"kind": "hanging from two top corners", **{k: v for k, v in
+                  scene_kwargs(0).items() if k not in ("nx", "ny")}, "dt": DT,
+                  "strain_steps": STRAIN_STEPS},
+        "sizes": list(sizes),
+        "settings": [{**asdict(s), "sweeps": s.sweeps, "label": s.label()} for s in settings],
+        "reference": {"setting": reference.label(), "check_setting": reference_check.label(),
+                      "check_error": ref_check, "steps": ref_steps},
+        "rest_energy": REST_ENERGY,
+        "rest_steps": rest_steps,
+        "repeats": repeats,
+        "weft_threads": args.threads,
+        "numpy": bool(args.numpy),
+        "warp": warp_note,
+        "results": results,
+        "summary": summary,
+        "plot": plot_path,
+        "plot_sizes": plot_sizes,
+        "plot_note": plot_note,
+        "notes": notes,
+    }
+    markdown = to_markdown(report)
+    paths = write_report(args.out, report, markdown)
+    print(markdown)
+    print("wrote " + " and ".join(paths + ([plot_path] if plot_path else [])))
+    return 0

@@ -1,0 +1,915 @@
+"""NumPy reference of weft's position-based cloth (SPEC §2, seed chapter 3), in float64.
+
+:class:`ClothReference` is an independent, plainly vectorised implementation of the algorithm
+``weft.Cloth`` runs in C++: the same grid, the same 12(+4)-neighbour constraint pattern sorted
+into the same conflict-free batches (graph colouring of the grid), Position Verlet with damping
+(eq. 3.12), gravity and wind (eq. 3.5, normals eq. 3.6), distance constraints (eq. 3.3/3.4) with
+XPBD compliance per family, long-range tethers, collisions by projection (sphere eq. 3.7, plane,
+box, capsule, height field), grabbing, holes, tearing and sleeping. Within a batch no two
+constraints share a particle, so one batch is projected at once with fancy indexing and the
+result equals a sequential Gauss-Seidel sweep over the batches. It is what a user without weft
+would write; tests use it as the oracle and ``python -m weft.bench cloth`` as a peer.
+
+The module also has the literal formulas the tests compare against: :func:`project_distance`
+(eq. 3.3/3.4), signed distances of the collider shapes, free fall and the pendulum period.
+Nothing here calls weft's compiled code.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+ArrayLike = Union[np.ndarray, Sequence[float], float]
+
+__all__ = [
+    "ClothReference",
+    "SphereShape",
+    "PlaneShape",
+    "BoxShape",
+    "CapsuleShape",
+    "HeightFieldShape",
+    "WindSetting",
+    "project_distance",
+    "constraint_pattern",
+    "grid_positions",
+    "grid_normals",
+    "grid_triangles",
+    "strain",
+    "sphere_distance",
+    "plane_distance",
+    "box_distance",
+    "capsule_distance",
+    "height_field_distance",
+    "hole_mask_from_image",
+    "free_fall",
+    "pendulum_period",
+]
+
+#: Constraint family codes, as ``weft.Cloth.constraints()["family"]`` reports them.
+STRETCH, SHEAR, BEND = 0, 1, 2
+
+_EPS = 1e-12
+
+
+def _vec(value: ArrayLike, n: int, name: str) -> np.ndarray:
+    arr = np.asarray(value, dtype=np.float64).reshape(-1)
+    if arr.shape != (n,):
+        raise ValueError(f"{name} must have {n} components, got shape {np.shape(value)}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite, got {arr}")
+    return arr
+
+
+def _points(value: ArrayLike, name: str = "points") -> np.ndarray:
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.ndim == 1 and arr.shape[0] == 3:
+        arr = arr[None, :]
+    if arr.ndim != 2 or arr.shape[1] != 3:
+        raise ValueError(f"{name} must be (M, 3), got shape {arr.shape}")
+    return arr
+
+
+def _normalize(v: np.ndarray) -> np.ndarray:
+    length = np.linalg.norm(v, axis=-1, keepdims=True)
+    return np.where(length > _EPS, v / np.where(length > _EPS, length, 1.0), 0.0)
+
+
+# --------------------------------------------------------------------------------------------
+# Literal formulas
+# --------------------------------------------------------------------------------------------
+
+def project_distance(xa: ArrayLike, xb: ArrayLike, wa: float, wb: float,
+                     rest: float) -> Tuple[np.ndarray, np.ndarray]:
+    """One distance-constraint projection, eq. 3.3/3.4 of the seed (SPEC §2.1), literally::
+
+        d   = (|x_b - x_a| - l) (x_b - x_a) / |x_b - x_a|
+        x_a += w_a / (w_a + w_b) d
+        x_b -= w_b / (w_a + w_b) d
+
+    ``w`` are inverse masses (0 pins). Returns the new ``(x_a, x_b)``; unchanged when both are
+    pinned or the points coincide (the direction is undefined).
+    """
+    a = np.asarray(xa, dtype=np.float64)
+    b = np.asarray(xb, dtype=np.float64)
+    delta = b - a
+    length = float(np.linalg.norm(delta))
+    if wa + wb <= 0.0 or length <= _EPS:
+        return a.copy(), b.copy()
+    d = (length - rest) * delta / length
+    return a + wa / (wa + wb) * d, b - wb / (wa + wb) * d
+
+
+def free_fall(x0: ArrayLike, v0: ArrayLike, gravity: ArrayLike, t: float) -> np.ndarray:
+    """Free fall ``x0 + v0 t + g t^2 / 2`` (Position Verlet is exact for it, SPEC §2.3)."""
+    return (np.asarray(x0, dtype=np.float64) + np.asarray(v0, dtype=np.float64) * t
+            + 0.5 * np.asarray(gravity, dtype=np.float64) * t * t)
+
+
+def pendulum_period(length: float, g: float = 9.81, amplitude: float = 0.0) -> float:
+    """Period of a simple pendulum, ``2 pi sqrt(L/g)`` for small angles; with ``amplitude``
+    (radians) the series ``1 + theta^2/16 + 11 theta^4/3072`` corrects for finite swing."""
+    t0 = 2.0 * math.pi * math.sqrt(length / g)
+    th2 = amplitude * amplitude
+    return t0 * (1.0 + th2 / 16.0 + 11.0 * th2 * th2 / 3072.0)
+
+
+# --------------------------------------------------------------------------------------------
+# The grid
+# --------------------------------------------------------------------------------------------
+
+def grid_positions(nx: int, ny: int, size: ArrayLike = (1.0, 1.0),
+                   origin: ArrayLike = (-0.5, 1.0, -0.5), axis_u: ArrayLike = (1.0, 0.0, 0.0),
+                   axis_v: ArrayLike = (0.0, 0.0, 1.0)) -> np.ndarray:
+    """Initial (= rest) positions (nx*ny, 3), index ``j * nx + i`` (SPEC §2.1)::
+
+        x(i, j) = origin + u size_u i/(nx-1) + v size_v j/(ny-1)   (a term is 0 for nx or ny 1)
+
+    with ``u``, ``v`` the normalised axes."""
+    s = _vec(size, 2, "size")
+    o = _vec(origin, 3, "origin")
+    u = _normalize(_vec(axis_u, 3, "axis_u"))
+    v = _normalize(_vec(axis_v, 3, "axis_v"))
+    fu = np.arange(nx, dtype=np.float64) / (nx - 1) if nx > 1 else np.zeros(1)
+    fv = np.arange(ny, dtype=np.float64) / (ny - 1) if ny > 1 else np.zeros(1)
+    x = (o[None, None, :] + (s[0] * fu)[None, :, None] * u[None, None, :]
+         + (s[1] * fv)[:, None, None] * v[None, None, :])
+    return x.reshape(nx * ny, 3)
+
+
+def constraint_pattern(nx: int, ny: int, bend_distance: int = 2, extra_axial: bool = False
+                       ) -> List[Tuple[int, np.ndarray, np.ndarray]]:
+    """The neighbour pattern (SPEC §2.1, seed fig. 3.4/3.8) as conflict-free batches.
+
+    Offsets (dx, dy) in this order: (1,0), (0,1) stretch; (1,1), (1,-1) shear; (k,k), (k,-k)
+    bend; with ``extra_axial`` also (k,0), (0,k) bend. Each offset gives two batches, parity 0
+    then 1, where ``parity = (i // |dx|) % 2`` (or ``(j // |dy|) % 2`` when dx = 0); a
+    constraint joins particle (i, j) to (i+dx, j+dy). No two constraints of a batch share a
+    particle. Returns ``[(family, a, b), ...]`` (empty batches left out), a and b int64 arrays
+    in row-major order of (j, i).
+    """
+    k = int(bend_distance)
+    offsets = [(1, 0, STRETCH), (0, 1, STRETCH), (1, 1, SHEAR), (1, -1, SHEAR),
+               (k, k, BEND), (k, -k, BEND)]
+    if extra_axial:
+        offsets += [(k, 0, BEND), (0, k, BEND)]
+    jj, ii = np.meshgrid(np.arange(ny), np.arange(nx), indexing="ij")
+    ii, jj = ii.reshape(-1), jj.reshape(-1)
+    batches: List[Tuple[int, np.ndarray, np.ndarray]] = []
+    for dx, dy, fam in offsets:
+        i2, j2 = ii + dx, jj + dy
+        inside = (i2 >= 0) & (i2 < nx) & (j2 >= 0) & (j2 < ny)
+        colour = (ii // abs(dx)) % 2 if dx != 0 else (jj // abs(dy)) % 2
+        for parity in (0, 1):
+            sel = inside & (colour == parity)
+            if not np.any(sel):
+                continue
+            a = (jj[sel] * nx + ii[sel]).astype(np.int64)
+            b = (j2[sel] * nx + i2[sel]).astype(np.int64)
+            batches.append((fam, a, b))
+    return batches
+
+
+def grid_normals(x: np.ndarray, nx: int, ny: int,
+                 previous: Optional[np.ndarray] = None) -> np.ndarray:
+    """Per-particle normals (eq. 3.6 on the grid): ``normalize((x[i,j+1] - x[i,j-1]) x
+    (x[i+1,j] - x[i-1,j]))`` with one-sided differences at the borders. Where the cross
+    product vanishes the normal is taken from ``previous`` (zero without it). +Y for the
+    default horizontal cloth (u = +X, v = +Z)."""
+    g = np.asarray(x, dtype=np.float64).reshape(ny, nx, 3)
+
+    def diff(axis: int) -> np.ndarray:
+        n = g.shape[axis]
+        if n < 2:
+            return np.zeros_like(g)
+        take = lambda s: np.take(g, s, axis=axis)  # noqa: E731
+        d = np.empty_like(g)
+        sl = [slice(None)] * 3
+        sl[axis] = slice(1, n - 1)
+        d[tuple(sl)] = take(np.arange(2, n)) - take(np.arange(0, n - 2))
+        sl[axis] = slice(0, 1)
+        d[tuple(sl)] = take([1]) - take([0])
+        sl[axis] = slice(n - 1, n)
+        d[tuple(sl)] = take([n - 1]) - take([n - 2])
+        return d
+
+    du = diff(1)  # along i
+    dv = diff(0)  # along j
+    c = np.cross(dv, du).reshape(nx * ny, 3)
+    length = np.linalg.norm(c, axis=1)
+    ok = length > 1e-20
+    out = np.zeros_like(c) if previous is None else np.array(previous, dtype=np.float64)
+    out[ok] = c[ok] / length[ok, None]
+    return out
+
+
+def grid_triangles(nx: int, ny: int, edge_active: Optional[Any] = None,
+                   hole: Optional[np.ndarray] = None) -> np.ndarray:
+    """Triangle indices (M, 3) uint32 of the mesh output (SPEC §2.2 holes and tears): quad
+    (i, j) gives (p00, p11, p10) and (p00, p01, p11); a triangle is kept only if no vertex is a
+    hole and ``edge_active(a, b)`` (a callable on index arrays, default all True) holds for its
+    three edges."""
+    if nx < 2 or ny < 2:
+        return np.zeros((0, 3), dtype=np.uint32)
+    jj, ii = np.meshgrid(np.arange(ny - 1), np.arange(nx - 1), indexing="ij")
+    p00 = (jj * nx + ii).reshape(-1)
+    p10, p01, p11 = p00 + 1, p00 + nx, p00 + nx + 1
+    tris = np.stack([np.stack([p00, p11, p10], 1), np.stack([p00, p01, p11], 1)], 1)
+    tris = tris.reshape(-1, 3)
+    keep = np.ones(len(tris), dtype=bool)
+    if hole is not None:
+        keep &= ~np.asarray(hole, dtype=bool).reshape(-1)[tris].any(axis=1)
+    if edge_active is not None:
+        for e0, e1 in ((0, 1), (1, 2), (2, 0)):
+            keep &= np.asarray(edge_active(tris[:, e0], tris[:, e1]), dtype=bool)
+    return tris[keep].astype(np.uint32)
+
+
+def hole_mask_from_image(image: np.ndarray, nx: int, ny: int) -> np.ndarray:
+    """Hole mask (ny, nx) from a uint8 image (H, W) or (H, W, C) of any size (SPEC §2.2: a
+    mask texture): particle (i, j) samples the nearest texel at its UV, column
+    ``min(floor(u W), W - 1)``, row ``min(floor(v H), H - 1)`` (row 0 at v = 0), and is a hole
+    where that texel (its alpha with 4 channels, else its first channel) is below 128."""
+    img = np.asarray(image)
+    if img.ndim == 2:
+        img = img[:, :, None]
+    if img.ndim != 3 or img.shape[0] < 1 or img.shape[1] < 1 or not 1 <= img.shape[2] <= 4:
+        raise ValueError(f"hole image must be (H, W) or (H, W, C <= 4), got {np.shape(image)}")
+    h, w, c = img.shape
+    u = np.arange(nx) / (nx - 1) if nx > 1 else np.zeros(1)
+    v = np.arange(ny) / (ny - 1) if ny > 1 else np.zeros(1)
+    cols = np.minimum((u * w).astype(np.int64), w - 1)
+    rows = np.minimum((v * h).astype(np.int64), h - 1)
+    channel = 3 if c == 4 else 0
+    return img[rows[:, None], cols[None, :], channel] < 128
+
+
+def strain(positions: np.ndarray, a: np.ndarray, b: np.ndarray, rest: np.ndarray,
+           active: Optional[np.ndarray] = None) -> Tuple[float, float]:
+    """Mean and max relative strain ``|len - rest| / rest`` over the active constraints
+    (SPEC §2.6 (a)); (0, 0) when none is active."""
+    x = np.asarray(positions, dtype=np.float64)
+    a, b = np.asarray(a), np.asarray(b)
+    rest = np.asarray(rest, dtype=np.float64)
+    if active is not None:
+        sel = np.asarray(active, dtype=bool)
+        a, b, rest = a[sel], b[sel], rest[sel]
+    if len(a) == 0:
+        return 0.0, 0.0
+    s = np.abs(np.linalg.norm(x[b] - x[a], axis=1) - rest) / rest
+    return float(s.mean()), float(s.max())
+
+
+# --------------------------------------------------------------------------------------------
+# Collider shapes: signed distance (negative inside) and outward normal
+# --------------------------------------------------------------------------------------------
+
+def sphere_distance(points: ArrayLike, center: ArrayLike, radius: float
+                    ) -> Tuple[np.ndarray, np.ndarray]:
+    """Sphere: ``s = |p - M| - r``, ``n = (p - M)/|p - M|`` (eq. 3.7 projects to
+    ``M + (r + thickness) n``)."""
+    p = _points(points)
+    rel = p - _vec(center, 3, "center")
+    return np.linalg.norm(rel, axis=1) - float(radius), _normalize(rel)
+
+
+def plane_distance(points: ArrayLike, point: ArrayLike, normal: ArrayLike
+                   ) -> Tuple[np.ndarray, np.ndarray]:
+    """Plane through ``point`` with normal ``n`` (normalised): ``s = (p - point) . n``."""
+    p = _points(points)
+    n = _normalize(_vec(normal, 3, "normal"))
+    return (p - _vec(point, 3, "point")) @ n, np.broadcast_to(n, p.shape).copy()
+
+
+def box_distance(points: ArrayLike, center: ArrayLike, half_extents: ArrayLike,
+                 rotation: Optional[ArrayLike] = None) -> Tuple[np.ndarray, np.ndarray]:
+    """Oriented box: ``q = R^T (p - c)`` in box space (R maps box axes to world, its columns
+    are the box axes), ``d = |q| - h``; outside ``s = |max(d, 0)|`` with the normal towards
+    the nearest surface point, inside ``s = max_k d_k`` (< 0) with the normal of that face."""
+    p = _points(points)
+    c = _vec(center, 3, "center")
+    h = _vec(half_extents, 3, "half_extents")
+    r = np.eye(3) if rotation is None else np.asarray(rotation, dtype=np.float64).reshape(3, 3)
+    q = (p - c) @ r  # = R^T (p - c) per row
+    d = np.abs(q) - h
+    outside = np.maximum(d, 0.0)
+    out_len = np.linalg.norm(outside, axis=1)
+    inner = d.max(axis=1)
+    s = np.where(out_len > 0.0, out_len, inner)
+    n_out = np.sign(q) * outside / np.where(out_len > 0.0, out_len, 1.0)[:, None]
+    axis = np.argmax(d, axis=1)
+    n_in = np.zeros_like(q)
+    n_in[np.arange(len(q)), axis] = np.where(q[np.arange(len(q)), axis] >= 0.0, 1.0, -1.0)
+    n_local = np.where((out_len > 0.0)[:, None], n_out, n_in)
+    return s, n_local @ r.T
+
+
+def capsule_distance(points: ArrayLike, a: ArrayLike, b: ArrayLike, radius: float
+                     ) -> Tuple[np.ndarray, np.ndarray]:
+    """Capsule around segment ab: ``s = |p - c| - r`` with c the closest point of the segment,
+    ``n = (p - c)/|p - c|``."""
+    p = _points(points)
+    a3, b3 = _vec(a, 3, "a"), _vec(b, 3, "b")
+    ab = b3 - a3
+    denom = float(ab @ ab)
+    t = np.clip(((p - a3) @ ab) / denom, 0.0, 1.0) if denom > 0.0 else np.zeros(len(p))
+    rel = p - (a3 + t[:, None] * ab)
+    return np.linalg.norm(rel, axis=1) - float(radius), _normalize(rel)
+
+
+def height_field_distance(points: ArrayLike, heights: ArrayLike, origin: ArrayLike,
+                          size: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
+    """Height-field terrain: heights (rows, cols), rows along z, cols along x, spanning
+    ``[o.x, o.x + size_x] x [o.z, o.z + size_z]`` at surface height ``H = o.y + h`` (bilinear,
+    clamped at the borders). The normal is that of the bilinear surface,
+    ``normalize(-dH/dx, 1, -dH/dz)``, and the distance is to its tangent plane,
+    ``s = (y - H) n_y`` (exact for a planar field; the push ``(thickness - s) n`` then lands on
+    ``H + thickness`` measured along the normal)."""
+    p = _points(points)
+    hf = np.asarray(heights, dtype=np.float64)
+    if hf.ndim != 2 or hf.shape[0] < 2 or hf.shape[1] < 2:
+        raise ValueError(f"heights must be (rows >= 2, cols >= 2), got {hf.shape}")
+    o = _vec(origin, 3, "origin")
+    sz = _vec(size, 2, "size")
+    rows, cols = hf.shape
+    fx = np.clip((p[:, 0] - o[0]) / sz[0], 0.0, 1.0) * (cols - 1)
+    fz = np.clip((p[:, 2] - o[2]) / sz[1], 0.0, 1.0) * (rows - 1)
+    c0 = np.minimum(np.floor(fx).astype(np.int64), cols - 2)
+    r0 = np.minimum(np.floor(fz).astype(np.int64), rows - 2)
+    tx, tz = fx - c0, fz - r0
+    h00, h01 = hf[r0, c0], hf[r0, c0 + 1]
+    h10, h11 = hf[r0 + 1, c0], hf[r0 + 1, c0 + 1]
+    h = (1 - tz) * ((1 - tx) * h00 + tx * h01) + tz * ((1 - tx) * h10 + tx * h11)
+    dhdx = ((1 - tz) * (h01 - h00) + tz * (h11 - h10)) * (cols - 1) / sz[0]
+    dhdz = ((1 - tx) * (h10 - h00) + tx * (h11 - h01)) * (rows - 1) / sz[1]
+    n = _normalize(np.stack([-dhdx, np.ones_like(h), -dhdz], axis=1))
+    return (p[:, 1] - (o[1] + h)) * n[:, 1], n
+
+
+@dataclass
+class SphereShape:
+    """Sphere collider (eq. 3.7)."""
+    center: ArrayLike
+    radius: float
+    friction: float = 0.0
+
+    def distance(self, points: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
+        return sphere_distance(points, self.center, self.radius)
+
+
+@dataclass
+class PlaneShape:
+    """Plane collider through ``point`` with outward ``normal``."""
+    point: ArrayLike
+    normal: ArrayLike
+    friction: float = 0.0
+
+    def distance(self, points: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
+        return plane_distance(points, self.point, self.normal)
+
+
+@dataclass
+class BoxShape:
+    """Oriented box collider (``rotation`` maps box axes to world)."""
+    center: ArrayLike
+    half_extents: ArrayLike
+    rotation: Optional[ArrayLike] = None
+    friction: float = 0.0
+
+    def distance(self, points: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
+        return box_distance(points, self.center, self.half_extents, self.rotation)
+
+
+@dataclass
+class CapsuleShape:
+    """Capsule collider around segment ab."""
+    a: ArrayLike
+    b: ArrayLike
+    radius: float
+    friction: float = 0.0
+
+    def distance(self, points: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
+        return capsule_distance(points, self.a, self.b, self.radius)
+
+
+@dataclass
+class HeightFieldShape:
+    """Height-field terrain collider (rows along z, cols along x)."""
+    heights: ArrayLike
+    origin: ArrayLike
+    size: ArrayLike = (1.0, 1.0)
+    friction: float = 0.0
+
+    def distance(self, points: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
+        return height_field_distance(points, self.heights, self.origin, self.size)
+
+
+@dataclass
+class WindSetting:
+    """Global wind (eq. 3.5): direction ``r`` (normalised on use) and strength ``s``."""
+    direction: ArrayLike = (1.0, 0.0, 0.0)
+    strength: float = 0.0
+
+
+# --------------------------------------------------------------------------------------------
+# The solver
+# --------------------------------------------------------------------------------------------
+
+@dataclass
+class _Batch:
+    family: int
+    a: np.ndarray
+    b: np.ndarray
+    index: np.ndarray  # constraint ids
+
+
+_SolveBatch = Tuple[int, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+
+
+class ClothReference:
+    """The cloth solver of SPEC §2 in NumPy (float64), step for step what ``weft.Cloth`` does.
+
+    Keyword arguments are those of ``weft.Cloth`` (``threads`` is accepted and ignored).
+    Particles are indexed ``p = j * nx + i``. Per step of ``dt`` (``h = dt / substeps``,
+    ``d = damping ** (60 h)``), each substep:
+
+    1. normals (eq. 3.6 on the grid, :func:`grid_normals`; needed for wind only, and
+       recomputed after every step);
+    2. ``a = gravity + s (n . r) n`` (eq. 3.5, r the normalised wind direction);
+    3. Position Verlet (eq. 3.12) ``x' = x + d (x - x_prev) + a h^2`` for free particles;
+       pinned ones stay, grabbed ones jump to their targets (``x_prev = x``);
+    4. ``iterations`` sweeps over the batches of XPBD distance constraints (multipliers from
+       0 each substep, ``alpha~ = compliance / h^2``; compliance 0 is eq. 3.3/3.4), then
+       tethers, then collisions (push to ``thickness`` along the normal, friction removes
+       part of the tangential motion);
+    5. self-collision (when enabled).
+
+    After the step: tearing (strain > ``tear_strain`` breaks a constraint) and sleeping.
+
+    Tethers tie each free particle to its :attr:`TETHER_ANCHORS` nearest anchors (a single
+    anchor over-stretches the seam where the nearest anchor changes).
+    """
+
+    #: Anchors per particle for long-range tethers.
+    TETHER_ANCHORS = 4
+
+    def __init__(self, nx: int = 32, ny: int = 32, size: ArrayLike = (1.0, 1.0),
+                 origin: ArrayLike = (-0.5, 1.0, -0.5), axis_u: ArrayLike = (1.0, 0.0, 0.0),
+                 axis_v: ArrayLike = (0.0, 0.0, 1.0), mass: float = 1.0, bend_distance: int = 2,
+                 extra_axial: bool = False, damping: float = 0.99,
+                 gravity: ArrayLike = (0.0, -9.81, 0.0), iterations: int = 1, substeps: int = 1,
+                 compliance_stretch: float = 0.0, compliance_shear: float = 0.0,
+                 compliance_bend: float = 0.0, tethers: bool = False, thickness: float = 0.005,
+                 self_collision: bool = False, self_thickness: float = 0.0,
+                 tear_strain: float = 0.0, sleep_threshold: float = 0.0, sleep_steps: int = 30,
+                 threads: int = 0) -> None:
+        nx, ny = int(nx), int(ny)
+        if nx < 1 or ny < 1 or nx * ny < 2:
+            raise ValueError(f"cloth grid needs nx, ny >= 1 and nx*ny >= 2, got {nx}x{ny}")
+        sz = _vec(size, 2, "size")
+        if np.any(sz <= 0.0):
+            raise ValueError(f"size must be positive, got {sz}")
+        if not (math.isfinite(mass) and mass > 0.0):
+            raise ValueError(f"mass must be positive, got {mass}")
+        if int(bend_distance) < 2:
+            raise ValueError("bend_distance must be >= 2")
+        self.nx, self.ny = nx, ny
+        self.n = nx * ny
+        self.size = sz
+        self.mass = float(mass)
+        self.bend_distance = int(bend_distance)
+        self.extra_axial = bool(extra_axial)
+        self.damping = float(damping)
+        self.gravity = _vec(gravity, 3, "gravity")
+        self.iterations = int(iterations)
+        self.substeps = int(substeps)
+        self.compliance_stretch = float(compliance_stretch)
+        self.compliance_shear = float(compliance_shear)
+        self.compliance_bend = float(compliance_bend)
+        self.tethers = bool(tethers)
+        self.thickness = float(thickness)
+        self.self_collision = bool(self_collision)
+        self.self_thickness = float(self_thickness)
+        self.tear_strain = float(tear_strain)
+        self.sleep_threshold = float(sleep_threshold)
+        self.sleep_steps = int(sleep_steps)
+        self.threads = int(threads)
+
+        self.rest_positions = grid_positions(nx, ny, sz, origin, axis_u, axis_v)
+        self.x = self.rest_positions.copy()
+        self.x_prev = self.x.copy()
+        self.base_inverse_mass = np.full(self.n, self.n / self.mass)
+        self.pinned = np.zeros(self.n, dtype=bool)
+        self.hole = np.zeros(self.n, dtype=bool)
+        self.grabbed = np.zeros(0, dtype=np.int64)
+        self.grab_targets = np.zeros((0, 3))
+        self.wind = WindSetting()
+        self.colliders: List[Any] = []
+        self.normals = grid_normals(self.x, nx, ny)
+        self.step_count = 0
+        self.sleeping = False
+        self._quiet_steps = 0
+        self._accumulator = 0.0
+        self._pending_velocity: Optional[np.ndarray] = None
+        self._last_h = 1.0 / 60.0
+
+        pattern = constraint_pattern(nx, ny, self.bend_distance, self.extra_axial)
+        self.batches: List[_Batch] = []
+        a_all, b_all, fam_all = [], [], []
+        start = 0
+        for fam, a, b in pattern:
+            self.batches.append(_Batch(fam, a, b, np.arange(start, start + len(a))))
+            start += len(a)
+            a_all.append(a)
+            b_all.append(b)
+            fam_all.append(np.full(len(a), fam, dtype=np.uint8))
+        self.a = np.concatenate(a_all) if a_all else np.zeros(0, dtype=np.int64)
+        self.b = np.concatenate(b_all) if b_all else np.zeros(0, dtype=np.int64)
+        self.family = np.concatenate(fam_all) if fam_all else np.zeros(0, dtype=np.uint8)
+        self.rest = np.linalg.norm(self.rest_positions[self.b] - self.rest_positions[self.a],
+                                   axis=1)
+        self.active = np.ones(len(self.a), dtype=bool)
+        self._solve_cache: Optional[List[_SolveBatch]] = None
+        self._tether_cache: Optional[List[Tuple[np.ndarray, np.ndarray, np.ndarray]]] = None
+
+    # ---- state -------------------------------------------------------------------------------
+
+    @property
+    def particle_count(self) -> int:
+        return self.n
+
+    @property
+    def constraint_count(self) -> int:
+        return len(self.a)
+
+    @property
+    def positions(self) -> np.ndarray:
+        """(N, 3) positions (a view; do not write)."""
+        return self.x
+
+    @property
+    def inverse_masses(self) -> np.ndarray:
+        """(N,) inverse masses: 0 for pinned, grabbed and hole particles."""
+        w = np.where(self.pinned | self.hole, 0.0, self.base_inverse_mass)
+        w[self.grabbed] = 0.0
+        return w
+
+    @property
+    def holes(self) -> np.ndarray:
+        return self.hole.reshape(self.ny, self.nx).copy()
+
+    def _changed(self) -> None:
+        self._solve_cache = None
+        self._tether_cache = None
+
+    def wake(self) -> None:
+        """Ends sleeping (the next step runs)."""
+        self.sleeping = False
+        self._quiet_steps = 0
+
+    def set_positions(self, positions: ArrayLike, keep_velocity: bool = False) -> None:
+        """Moves every particle; without ``keep_velocity`` the velocity becomes 0."""
+        p = _points(positions, "positions")
+        if p.shape != (self.n, 3) or not np.all(np.isfinite(p)):
+            raise ValueError(f"positions must be finite ({self.n}, 3), got {p.shape}")
+        vel = self.x - self.x_prev
+        self.x = p.copy()
+        self.x_prev = p - vel if keep_velocity else p.copy()
+        self._pending_velocity = None
+        self.wake()
+
+    def set_velocities(self, velocities: ArrayLike) -> None:
+        """Velocities for the next step: it first sets ``x_prev = x - v h + g h^2 / 2`` (with
+        its substep h), which makes free fall exact (SPEC §2.3)."""
+        v = _points(velocities, "velocities")
+        if v.shape != (self.n, 3) or not np.all(np.isfinite(v)):
+            raise ValueError(f"velocities must be finite ({self.n}, 3), got {v.shape}")
+        self._pending_velocity = v.copy()
+        self.wake()
+
+    def velocities(self) -> np.ndarray:
+        """(x - x_prev) / h of the last substep (or the pending set velocities)."""
+        if self._pending_velocity is not None:
+            return self._pending_velocity.copy()
+        return (self.x - self.x_prev) / self._last_h
+
+    def reset(self) -> None:
+        """Back to the rest state: torn constraints mend, grabs are released (pins, holes,
+        wind and colliders stay)."""
+        self.x = self.rest_positions.copy()
+        self.x_prev = self.x.copy()
+        self._pending_velocity = None
+        self.active = ~(self.hole[self.a] | self.hole[self.b])
+        self.grabbed = np.zeros(0, dtype=np.int64)
+        self.grab_targets = np.zeros((0, 3))
+        self._accumulator = 0.0
+        self._changed()
+        self.wake()
+
+    # ---- interaction -------------------------------------------------------------------------
+
+    def _indices(self, indices: ArrayLike) -> np.ndarray:
+        idx = np.asarray(indices, dtype=np.int64).reshape(-1)
+        if np.any((idx < 0) | (idx >= self.n)):
+            raise ValueError(f"particle index out of range [0, {self.n})")
+        return idx
+
+    def pin(self, indices: ArrayLike) -> None:
+        self.pinned[self._indices(indices)] = True
+        self._changed()
+        self.wake()
+
+    def unpin(self, indices: ArrayLike) -> None:
+        self.pinned[self._indices(indices)] = False
+        self._changed()
+        self.wake()
+
+    def grab(self, indices: ArrayLike, targets: ArrayLike) -> None:
+        """Grabbed particles get inverse mass 0 and follow ``targets`` exactly (SPEC §2.2)."""
+        idx = self._indices(indices)
+        t = _points(targets, "targets")
+        if t.shape != (len(idx), 3) or not np.all(np.isfinite(t)):
+            raise ValueError("targets must be finite (k, 3) for k indices")
+        self.grabbed, self.grab_targets = idx, t.copy()
+        self._changed()
+        self.wake()
+
+    def move_grab(self, targets: ArrayLike) -> None:
+        t = _points(targets, "targets")
+        if t.shape != (len(self.grabbed), 3) or not np.all(np.isfinite(t)):
+            raise ValueError("targets must be finite (k, 3) for the k grabbed particles")
+        self.grab_targets = t.copy()
+        self.wake()
+
+    def release(self) -> None:
+        self.grabbed = np.zeros(0, dtype=np.int64)
+        self.grab_targets = np.zeros((0, 3))
+        self._changed()
+        self.wake()
+
+    def set_holes(self, mask: ArrayLike) -> None:
+        """Hole mask (ny, nx), nonzero = hole; the particles and their constraints go (see
+        :func:`hole_mask_from_image` for image masks)."""
+        m = np.asarray(mask)
+        if m.dtype == np.uint8:
+            m = hole_mask_from_image(m, self.nx, self.ny)
+        if m.shape != (self.ny, self.nx):
+            raise ValueError(f"mask must be ({self.ny}, {self.nx}), got {m.shape}")
+        self.hole = (m != 0).reshape(-1)
+        gone = self.hole[self.a] | self.hole[self.b]
+        if self.tear_strain == 0.0:  # constraints come back where both ends are cloth again
+            self.active = ~gone
+        else:  # torn ones stay torn
+            self.active &= ~gone
+        self._changed()
+        self.wake()
+
+    def set_wind(self, direction: ArrayLike = (1.0, 0.0, 0.0), strength: float = 0.0) -> None:
+        self.wind = WindSetting(tuple(_vec(direction, 3, "direction")), float(strength))
+        self.wake()
+
+    def add_collider(self, shape: Any) -> int:
+        """Adds a shape with ``distance(points) -> (s, n)`` and ``friction``; returns its id."""
+        self.colliders.append(shape)
+        self.wake()
+        return len(self.colliders) - 1
+
+    def set_collider(self, index: int, shape: Any) -> None:
+        self.colliders[index] = shape
+        self.wake()
+
+    def clear_colliders(self) -> None:
+        self.colliders = []
+        self.wake()
+
+    # ---- solver ------------------------------------------------------------------------------
+
+    def _compliance(self, family: int) -> float:
+        return (self.compliance_stretch, self.compliance_shear, self.compliance_bend)[family]
+
+    def _solve_batches(self) -> List[_SolveBatch]:
+        """Per batch: (family, a, b, rest, w_a, w_b) of the active constraints with
+        ``w_a + w_b > 0`` (cached until pins, grabs, holes or tears change)."""
+        if self._solve_cache is None:
+            w = self.inverse_masses
+            out = []
+            for batch in self.batches:
+                sel = self.active[batch.index] & (w[batch.a] + w[batch.b] > 0.0)
+                if np.any(sel):
+                    a, b = batch.a[sel], batch.b[sel]
+                    out.append((batch.family, a, b, self.rest[batch.index[sel]], w[a], w[b]))
+            self._solve_cache = out
+        return self._solve_cache
+
+    def _tether_data(self) -> List[Tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """Tethers as rounds ``[(particles, anchors, lengths), ...]``: round t ties every free
+        particle to its (t+1)-th nearest anchor (pinned or grabbed particle, by rest distance,
+        lower index first on ties; at most :attr:`TETHER_ANCHORS`) at that rest distance."""
+        if self._tether_cache is None:
+            w = self.inverse_masses
+            anchors = np.flatnonzero(~self.hole & (w == 0.0))  # pinned or grabbed
+            free = np.flatnonzero(w != 0.0)
+            rounds: List[Tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+            if len(anchors) and len(free):
+                dist = np.linalg.norm(self.rest_positions[free][:, None, :]
+                                      - self.rest_positions[anchors][None, :, :], axis=2)
+                keep = min(self.TETHER_ANCHORS, len(anchors))
+                # stable sort by distance keeps the lower anchor index first on ties
+                order = np.argsort(dist, axis=1, kind="stable")[:, :keep]
+                for t in range(keep):
+                    col = order[:, t]
+                    rounds.append((free, anchors[col], dist[np.arange(len(free)), col]))
+            self._tether_cache = rounds
+        return self._tether_cache
+
+    def _relax(self, h: float, lambdas: Optional[List[np.ndarray]]) -> None:
+        """One sweep: constraint batches (XPBD), then tethers, then collisions."""
+        x = self.x
+        for k, (fam, a, b, rest, wa, wb) in enumerate(self._solve_batches()):
+            delta = x[b] - x[a]
+            length = np.sqrt(np.einsum("ij,ij->i", delta, delta))
+            ok = length > _EPS
+            n = delta / np.where(ok, length, 1.0)[:, None]
+            c = length - rest
+            alpha = self._compliance(fam) / (h * h)
+            if lambdas is not None and alpha > 0.0:
+                lam = lambdas[k]
+                dlam = (-c - alpha * lam) / (wa + wb + alpha)
+                lam += np.where(ok, dlam, 0.0)
+            else:
+                dlam = -c / (wa + wb + alpha)
+            dlam = np.where(ok, dlam, 0.0)
+            x[a] -= (wa * dlam)[:, None] * n
+            x[b] += (wb * dlam)[:, None] * n
+        if self.tethers:
+            # anchors never move here, so doing round t for all particles before round t+1
+            # equals walking each particle's tethers in order
+            for p, q, length in self._tether_data():
+                rel = x[p] - x[q]
+                dist = np.linalg.norm(rel, axis=1)
+                far = dist > length
+                if np.any(far):
+                    pf, qf = p[far], q[far]
+                    x[pf] = x[qf] + length[far][:, None] * rel[far] / dist[far][:, None]
+        if self.colliders:
+            free = np.flatnonzero(self.inverse_masses > 0.0)
+            for shape in self.colliders:
+                s, n = shape.distance(x[free])
+                s, n = np.asarray(s, dtype=np.float64), np.asarray(n, dtype=np.float64)
+                hit = s < self.thickness
+                if not np.any(hit):
+                    continue
+                idx, nh = free[hit], n[hit]
+                x[idx] += (self.thickness - s[hit])[:, None] * nh
+                f = float(getattr(shape, "friction", 0.0))
+                if f > 0.0:
+                    v = x[idx] - self.x_prev[idx]
+                    vt = v - np.einsum("ij,ij->i", v, nh)[:, None] * nh
+                    self.x_prev[idx] += f * vt
+
+    def self_thickness_used(self) -> float:
+        """T of self-collision: ``self_thickness``, or 0.9 x the smaller grid spacing."""
+        if self.self_thickness > 0.0:
+            return self.self_thickness
+        su = self.size[0] / (self.nx - 1) if self.nx > 1 else self.size[1]
+        sv = self.size[1] / (self.ny - 1) if self.ny > 1 else self.size[0]
+        return 0.9 * min(su, sv)
+
+    def _self_collide(self) -> None:
+        """Self-collision (brute force, Jacobi): every free particle p is pushed away from each
+        other cloth particle q closer than T whose rest distance exceeds T, by
+        ``(T - |x_p - x_q|) w_p / (w_p + w_q)`` along ``x_p - x_q``; all pushes are summed
+        from the same positions, then applied (an isolated pair ends exactly T apart)."""
+        w = self.inverse_masses
+        solid = np.flatnonzero(~self.hole)
+        if len(solid) < 2:
+            return
+        t = self.self_thickness_used()
+        x = self.x
+        rel = x[solid][:, None, :] - x[solid][None, :, :]
+        dist = np.linalg.norm(rel, axis=2)
+        rest = np.linalg.norm(self.rest_positions[solid][:, None, :]
+                              - self.rest_positions[solid][None, :, :], axis=2)
+        wp = w[solid][:, None]
+        wq = w[solid][None, :]
+        hit = (dist < t) & (dist > 1e-12) & (rest > t) & (wp > 0.0)
+        scale = np.where(hit, (t - dist) / np.where(hit, dist, 1.0) * wp
+                         / np.where(hit, wp + wq, 1.0), 0.0)
+        x[solid] += np.einsum("pq,pqk->pk", scale, rel)
+
+    def _substep(self, h: float, d: float) -> None:
+        w = self.inverse_masses
+        acc = np.broadcast_to(self.gravity, self.x.shape)
+        if self.wind.strength != 0.0:  # normals are needed for wind only (else after the step)
+            self.normals = grid_normals(self.x, self.nx, self.ny, self.normals)
+            r = _normalize(np.asarray(self.wind.direction, dtype=np.float64))
+            nr = self.normals @ r
+            acc = acc + float(self.wind.strength) * nr[:, None] * self.normals
+        if self._pending_velocity is not None:
+            self.x_prev = self.x - self._pending_velocity * h + 0.5 * self.gravity * h * h
+            self._pending_velocity = None
+        free = w > 0.0
+        x_new = np.where(free[:, None], self.x + d * (self.x - self.x_prev) + acc * h * h, self.x)
+        still = free | (self.pinned & ~self.hole)  # pinned particles have no velocity
+        self.x_prev = np.where(still[:, None], self.x, self.x_prev)
+        self.x = x_new
+        if len(self.grabbed):
+            self.x_prev[self.grabbed] = self.x[self.grabbed]
+            self.x[self.grabbed] = self.grab_targets
+        lambdas = [np.zeros(len(entry[1])) for entry in self._solve_batches()]
+        for _ in range(self.iterations):
+            self._relax(h, lambdas)
+        if self.self_collision:
+            self._self_collide()
+
+    def step(self, dt: float = 1.0 / 60.0) -> None:
+        """One step of ``dt`` seconds split into ``substeps`` (SPEC §2.3, seed alg. 3.1)."""
+        if not (math.isfinite(dt) and 0.0 < dt <= 1.0):
+            raise ValueError(f"dt must be in (0, 1] seconds, got {dt}")
+        if self.sleeping:
+            return
+        h = dt / self.substeps
+        d = self.damping ** (h * 60.0)
+        for _ in range(self.substeps):
+            self._substep(h, d)
+        self._last_h = h
+        self.normals = grid_normals(self.x, self.nx, self.ny, self.normals)
+        self.step_count += 1
+        self._after_step(h)
+
+    def _after_step(self, h: float) -> None:
+        if self.tear_strain > 0.0 and np.any(self.active):
+            idx = np.flatnonzero(self.active)
+            length = np.linalg.norm(self.x[self.b[idx]] - self.x[self.a[idx]], axis=1)
+            broken = np.abs(length - self.rest[idx]) / self.rest[idx] > self.tear_strain
+            if np.any(broken):
+                self.active[idx[broken]] = False
+                self._changed()
+        if self.sleep_threshold > 0.0:
+            free = self.inverse_masses > 0.0
+            speed = (float(np.mean(np.linalg.norm(self.x[free] - self.x_prev[free], axis=1)))
+                     / h if np.any(free) else 0.0)
+            self._quiet_steps = self._quiet_steps + 1 if speed < self.sleep_threshold else 0
+            if self._quiet_steps >= self.sleep_steps:
+                self.sleeping = True
+
+    def advance(self, real_dt: float, rate: float = 60.0, max_steps: int = 8) -> int:
+        """Fixed-rate stepping (SPEC §2.4): runs ``floor(acc * rate)`` steps of ``1/rate``, at
+        most ``max_steps`` (then the leftover time is dropped); returns how many ran."""
+        self._accumulator += real_dt
+        n = int(math.floor(self._accumulator * rate))
+        if n > max_steps:
+            n = max_steps
+            self._accumulator = 0.0
+        else:
+            self._accumulator -= n / rate
+        for _ in range(n):
+            self.step(1.0 / rate)
+        return n
+
+    def project_constraints(self) -> None:
+        """One relaxation sweep (multipliers from 0, h = 1/60) + tethers + collisions, without
+        integration; with compliance 0 exactly eq. 3.3/3.4 per constraint."""
+        lambdas = [np.zeros(len(entry[1])) for entry in self._solve_batches()]
+        self._relax(1.0 / 60.0, lambdas)
+
+    # ---- outputs -----------------------------------------------------------------------------
+
+    def stats(self) -> Dict[str, Any]:
+        mean, mx = strain(self.x, self.a, self.b, self.rest, self.active)
+        return {"mean_strain": mean, "max_strain": mx, "active_constraints": int(self.active.sum())}
+
+    def constraints(self) -> Dict[str, np.ndarray]:
+        return {"a": self.a.astype(np.int32), "b": self.b.astype(np.int32), "rest": self.rest.copy(),
+                "family": self.family.copy(), "active": self.active.copy()}
+
+    def kinetic_energy(self) -> float:
+        """Sum of m v^2 / 2 over the cloth (not holes), v = (x - x_prev)/h of the last
+        substep, m = mass / N."""
+        solid = ~self.hole
+        v = (self.x[solid] - self.x_prev[solid]) / self._last_h
+        return float(0.5 * self.mass / self.n * np.sum(v * v))
+
+    def edge_active(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Whether the grid edges (a, b) are active constraints."""
+        key = np.minimum(self.a, self.b) * self.n + np.maximum(self.a, self.b)
+        order = np.argsort(key)
+        q = np.minimum(a, b).astype(np.int64) * self.n + np.maximum(a, b)
+        pos = np.clip(np.searchsorted(key[order], q), 0, len(order) - 1)
+        found = key[order][pos] == q
+        return found & self.active[order][pos]
+
+    def triangles(self) -> np.ndarray:
+        """Mesh triangle indices (M, 3) uint32 (holes and torn edges left out)."""
+        return grid_triangles(self.nx, self.ny, self.edge_active, self.hole)
+
+    def mesh(self) -> Dict[str, np.ndarray]:
+        """positions, normals, uvs and triangle indices (no tangents)."""
+        jj, ii = np.meshgrid(np.arange(self.ny), np.arange(self.nx), indexing="ij")
+        uv = np.stack([ii.reshape(-1) / max(self.nx - 1, 1), jj.reshape(-1) / max(self.ny - 1, 1)],
+                      axis=1)
+        return {"positions": self.x.copy(), "normals": self.normals.copy(), "uvs": uv,
+                "indices": self.triangles()}
