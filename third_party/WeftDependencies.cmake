@@ -2,11 +2,13 @@
 #   Vulkan  : libvulkan-dev (+ mesa-vulkan-drivers for lavapipe, vulkan-validationlayers)
 #   glslc   : glslc (shaders -> SPIR-V at build time)
 #   glfw3   : libglfw3-dev      glm : libglm-dev      PNG : libpng-dev
+#   OpenEXR : libopenexr-dev (float images)
 #   GTest   : libgtest-dev (tests only)               Ceres: libceres-dev (optional)
 find_package(Vulkan REQUIRED)
 find_package(glfw3 3.3 REQUIRED)
 find_package(glm REQUIRED)
 find_package(PNG REQUIRED)
+find_package(OpenEXR CONFIG REQUIRED)
 find_package(Threads REQUIRED)
 
 find_program(WEFT_GLSLC glslc REQUIRED)
