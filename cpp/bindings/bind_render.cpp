@@ -136,13 +136,15 @@ void bindRender(py::module_& m) {
            "instance: the mesh id drawn at each pixel or -1).")
         .def_property_readonly("stats", [](const Renderer& r) { return statsDict(r.stats()); },
                                "The last frame: passes run with CPU/GPU ms, culled passes.")
-        .def("shadow_map", [](Renderer& r, int light) {
+        .def("shadow_map", [](Renderer& r, int light, int view) {
             uint32_t size = 0;
-            std::vector<float> data = r.shadowMap(light, &size);
+            std::vector<float> data = r.shadowMap(light, &size, view);
             py::array_t<float> out({py::ssize_t(size), py::ssize_t(size)});
             std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
             return out;
-        }, py::arg("light_index") = 0, "Depth in [0,1] of the last frame's shadow map of a light.")
+        }, py::arg("light_index") = 0, py::arg("view") = 0,
+           "Depth in [0,1] of the last frame's shadow map of a light (`view`: one of a point\n"
+           "light's six views +X, -X, +Y, -Y, +Z, -Z).")
         .def("shadow_info", [](const Renderer& r, int light) {
             const ShadowInfo i = r.shadowInfo(light);
             py::dict d;
@@ -150,6 +152,13 @@ void bindRender(py::module_& m) {
             d["size"] = i.size;
             d["view_proj"] = fromMat4(i.viewProj);
             d["normal_offset_world"] = i.normalOffsetWorld;
+            d["layer"] = i.layer;
+            d["perspective"] = i.perspective;
+            d["near"] = i.zNear;
+            d["far"] = i.zFar;
+            py::list views;
+            for (const glm::mat4& v : i.views) views.append(fromMat4(v));
+            d["views"] = views;
             d["bias_constant"] = i.settings.biasConstant;
             d["bias_slope"] = i.settings.biasSlope;
             d["bias_max"] = i.settings.biasMax;

@@ -30,11 +30,12 @@ public:
                      const glm::mat4& transform = glm::mat4(1.0f), bool castShadows = true);
     void setTransform(uint32_t id, const glm::mat4& transform);
     void setMaterial(uint32_t id, const Material& material);
-    uint32_t addLight(const DirectionalLight& light);
-    void setLight(uint32_t id, const DirectionalLight& light);
+    /// Adds a directional, point or spot light (validated) and returns its id.
+    uint32_t addLight(const Light& light);
+    void setLight(uint32_t id, const Light& light);
 
     const std::vector<MeshInstance>& instances() const { return mInstances; }
-    const std::vector<DirectionalLight>& lights() const { return mLights; }
+    const std::vector<Light>& lights() const { return mLights; }
 
     void setAmbient(const glm::vec3& ambient);      // I_A
     void setBackground(const glm::vec3& background); // linear colour behind everything
@@ -48,7 +49,7 @@ public:
 
 private:
     std::vector<MeshInstance> mInstances;
-    std::vector<DirectionalLight> mLights;
+    std::vector<Light> mLights;
     glm::vec3 mAmbient{0.1f};
     glm::vec3 mBackground{0.0f};
     uint64_t mVersion = 1;

@@ -186,14 +186,18 @@ TextureGpu GpuCache::makeTexture(const ImageU8& rgba, bool srgb, bool mipmaps) {
     return t;
 }
 
-VkDescriptorSet GpuCache::texture(const TexturePtr& texture) {
-    if (!texture) return mWhite.set;
+TextureGpu& GpuCache::entry(const TexturePtr& texture) {
+    if (!texture) return mWhite;
     auto it = mTextures.find(texture->id());
-    if (it != mTextures.end()) return it->second.set;
+    if (it != mTextures.end()) return it->second;
     TextureGpu t = makeTexture(texture->image(), texture->srgb(), texture->mipmaps());
     t.source = texture;
-    return mTextures.emplace(texture->id(), std::move(t)).first->second.set;
+    return mTextures.emplace(texture->id(), std::move(t)).first->second;
 }
+
+VkDescriptorSet GpuCache::texture(const TexturePtr& texture) { return entry(texture).set; }
+
+VkImageView GpuCache::textureView(const TexturePtr& texture) { return entry(texture).image.view(); }
 
 void GpuCache::evictExpired() {
     for (auto it = mMeshes.begin(); it != mMeshes.end();)

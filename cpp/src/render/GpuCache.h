@@ -33,6 +33,8 @@ public:
     const MeshGpu& mesh(const MeshPtr& mesh);
     /// Material descriptor set (set 1) for a base-colour texture; null gives white.
     VkDescriptorSet texture(const TexturePtr& texture);
+    /// The image view of a texture (uploaded on first use); null gives white.
+    VkImageView textureView(const TexturePtr& texture);
     /// Drops GPU copies whose CPU objects are gone (deferred until the GPU is done).
     void evictExpired();
 
@@ -42,6 +44,7 @@ public:
 private:
     void upload(const vk::Buffer& dst, const void* data, VkDeviceSize bytes);
     TextureGpu makeTexture(const ImageU8& rgba, bool srgb, bool mipmaps);
+    TextureGpu& entry(const TexturePtr& texture);
     VkDescriptorSet allocateSet(size_t& poolIndex);
     void freeSet(VkDescriptorSet set, size_t pool);
 

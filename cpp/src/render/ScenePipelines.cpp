@@ -5,6 +5,7 @@
 
 #include <weft/Renderer.h>
 
+#include "render/GpuTypes.h"
 #include "render/RenderTargets.h"
 
 namespace weft {
@@ -39,11 +40,17 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     s.maxLod = 0.0f;
     VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
     nearestSampler = vk::Sampler(&c, sampler, vkDestroySampler);
+    s.magFilter = s.minFilter = VK_FILTER_LINEAR;
+    VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
+    cookieSampler = vk::Sampler(&c, sampler, vkDestroySampler);
 
     frameSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                                              {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                              {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                             {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                             {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                             {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                              uint32_t(kMaxCookies)}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     outputSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     sceneLayout = vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));

@@ -89,13 +89,12 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
     return Pipeline(&ctx, pipeline, vkDestroyPipeline);
 }
 
-DescriptorSetLayout createSetLayout(Context& ctx,
-                                    const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings,
+DescriptorSetLayout createSetLayout(Context& ctx, const std::vector<SetBinding>& bindings,
                                     VkDescriptorSetLayoutCreateFlags flags) {
     std::vector<VkDescriptorSetLayoutBinding> b;
-    for (auto [binding, type] : bindings)
-        b.push_back({binding, type, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                     nullptr});
+    for (const SetBinding& s : bindings)
+        b.push_back({s.binding, s.type, s.count,
+                     VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     info.flags = flags;
     info.bindingCount = uint32_t(b.size());

@@ -27,9 +27,14 @@ struct GraphicsPipelineDesc {
 
 Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);
 
-/// Descriptor set layout from (binding, type) pairs, visible to vertex and fragment stages.
-DescriptorSetLayout createSetLayout(Context& ctx,
-                                    const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings,
+struct SetBinding {
+    uint32_t binding;
+    VkDescriptorType type;
+    uint32_t count = 1; // array size
+};
+
+/// Descriptor set layout from {binding, type[, count]}, visible to vertex and fragment stages.
+DescriptorSetLayout createSetLayout(Context& ctx, const std::vector<SetBinding>& bindings,
                                     VkDescriptorSetLayoutCreateFlags flags = 0);
 PipelineLayout createPipelineLayout(Context& ctx, const std::vector<VkDescriptorSetLayout>& sets,
                                     uint32_t pushConstantBytes);
