@@ -109,6 +109,12 @@ float hairFresnel(float eta, float cosI) {
     return 0.5 * (rs * rs + rp * rp);
 }
 
+// Inverse trigonometric/hyperbolic functions written with atan/log/sqrt: some drivers (Mesa's
+// lavapipe) evaluate asin, acos, asinh and acosh with approximations accurate to only ~1e-3.
+float hairAcos(float x) { return atan(sqrt(max(1.0 - x * x, 0.0)), x); }
+float hairAsinh(float x) { return sign(x) * log(abs(x) + sqrt(x * x + 1.0)); }
+float hairAcosh(float x) { return log(x + sqrt(max(x * x - 1.0, 0.0))); }
+
 // Real roots of x^3 + p x + q = 0 (trigonometric / hyperbolic forms); returns their count.
 int hairCubicRoots(float p, float q, out float roots[3]) {
     if (abs(p) < 1e-6) {
@@ -117,24 +123,25 @@ int hairCubicRoots(float p, float q, out float roots[3]) {
     }
     if (p > 0.0) {
         float m = sqrt(p / 3.0);
-        roots[0] = -2.0 * m * sinh(asinh(1.5 * q / (p * m)) / 3.0);
+        roots[0] = -2.0 * m * sinh(hairAsinh(1.5 * q / (p * m)) / 3.0);
         return 1;
     }
     float m = sqrt(-p / 3.0);
     if (4.0 * p * p * p + 27.0 * q * q < 0.0) {
-        float base = acos(clamp(1.5 * q / (p * m), -1.0, 1.0)) / 3.0;
+        float base = hairAcos(clamp(1.5 * q / (p * m), -1.0, 1.0)) / 3.0;
         for (int k = 0; k < 3; ++k) roots[k] = 2.0 * m * cos(base - 2.0 * HAIR_PI * float(k) / 3.0);
         return 3;
     }
-    roots[0] = -2.0 * sign(q) * m * cosh(acosh(max(-1.5 * abs(q) / (p * m), 1.0)) / 3.0);
+    roots[0] = -2.0 * sign(q) * m * cosh(hairAcosh(max(-1.5 * abs(q) / (p * m), 1.0)) / 3.0);
     return 1;
 }
 
 // Marschner's azimuthal N_p for p = 1 (TT) or 2 (TRT): the sum over the offsets h whose path
-// leaves at phi of A(p, h) / sqrt((2 dphi/dh)^2 + eps^2), with
+// leaves at phi of A(p, h) x / (x^2 + eps^2), x = |2 dphi/dh| (1 / x away from caustics; zero
+// instead of infinite where two paths merge, so N stays continuous in phi), with
 // phi(p, gamma) = (6pc/pi - 2) gamma - 8pc/pi^3 gamma^3 + p pi, c = asin(1 / eta').
 vec3 hairMarschnerN(HairShading s, int p, float phi, float etaP, float sigmaScale) {
-    float c = asin(1.0 / etaP);
+    float c = atan(1.0, sqrt(etaP * etaP - 1.0)); // asin(1 / eta')
     float pc = float(p) * c;
     float a = -8.0 * pc / (HAIR_PI * HAIR_PI * HAIR_PI);
     float b = 6.0 * pc / HAIR_PI - 2.0;
@@ -146,13 +153,13 @@ vec3 hairMarschnerN(HairShading s, int p, float phi, float etaP, float sigmaScal
         float gamma = roots[i];
         if (abs(gamma) > 0.5 * HAIR_PI) continue;
         float h = sin(gamma);
-        float gammaT = asin(clamp(h / etaP, -1.0, 1.0));
         float fresnel = hairFresnel(etaP, cos(gamma));
-        vec3 transmit = exp(-2.0 * sigmaScale * s.absorption.rgb * (1.0 + cos(2.0 * gammaT)));
+        vec3 transmit = exp(-2.0 * sigmaScale * s.absorption.rgb * (2.0 - 2.0 * h * h / (etaP * etaP)));
         vec3 att = (1.0 - fresnel) * (1.0 - fresnel) * transmit;
         if (p == 2) att *= fresnel * transmit;
         float dphidh = (3.0 * a * gamma * gamma + b) / max(cos(gamma), 1e-6);
-        n += att / sqrt(4.0 * dphidh * dphidh + s.absorption.w * s.absorption.w);
+        float x = abs(2.0 * dphidh);
+        n += att * (x / (x * x + s.absorption.w * s.absorption.w));
     }
     return n;
 }

@@ -21,10 +21,10 @@ struct HairMaterial {
     glm::vec3 width{0.122173f, 0.0610865f, 0.244346f};    // 7, 3.5, 14 degrees
 
     // Marschner: refractive index, absorption sigma_a per fibre radius (RGB), and the width
-    // eps of the caustic regularisation 1 / sqrt((2 dphi/dh)^2 + eps^2).
+    // eps of the caustic regularisation 1 / x -> x / (x^2 + eps^2), x = |2 dphi/dh|.
     float eta = 1.55f;
     glm::vec3 absorption{0.2f, 0.35f, 0.6f};
-    float causticWidth = 0.5f;
+    float causticWidth = 0.2f;
 
     // Sadeghi: colour C_p and intensity I_p per lobe, TT azimuthal width xi_TT, glints
     // (relative intensity I_g, azimuthal width xi_g, per-strand half-angle in [min, max]).
