@@ -63,5 +63,21 @@ def sorted_over(color: np.ndarray, alpha: np.ndarray, z: np.ndarray,
     return out
 
 
-__all__ = ["WEIGHTS", "sorted_over", "wboit_composite", "weight_eq7", "weight_eq8", "weight_eq9",
-           "weight_eq10"]
+
+def random_stack_errors(stacks: int = 2000, layers: int = 8, seed: int = 0):
+    """Mean and max |WBOIT - sorted over| per weight on random stacks (8 layers, alpha in [0.05, 0.6], z in [0.5, 20] m, z_ndc = z / 25)."""
+    rng = np.random.default_rng(seed)
+    c = rng.random((stacks, layers, 3))
+    a = rng.uniform(0.05, 0.6, (stacks, layers))
+    z = rng.uniform(0.5, 20.0, (stacks, layers))
+    bg = rng.random((stacks, 3))
+    exact = sorted_over(c, a, z, bg)
+    out = {}
+    for name in WEIGHTS:
+        got = wboit_composite(c, a, z, z / 25.0, bg, name)
+        out[name] = (float(np.mean(np.abs(got - exact))), float(np.max(np.abs(got - exact))))
+    return out
+
+
+__all__ = ["WEIGHTS", "random_stack_errors", "sorted_over", "wboit_composite", "weight_eq7",
+           "weight_eq8", "weight_eq9", "weight_eq10"]

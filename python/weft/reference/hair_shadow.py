@@ -142,5 +142,44 @@ def transmittance(occlusion: np.ndarray) -> np.ndarray:
     return np.exp(-occlusion)
 
 
+
+def slab_scene(n_per_row: int, rows: int, thickness: float, seed: int = 0):
+    """Straight strands along X filling y in [0, thickness] evenly (stratified), one set per
+    light pixel row; the light looks down -Y from y = thickness."""
+    rng = np.random.default_rng(seed)
+    z = (np.repeat(np.arange(rows), n_per_row) + 0.5) / rows - 0.5
+    y = (np.tile(np.arange(n_per_row), rows) + rng.random(rows * n_per_row)) / n_per_row * thickness
+    a = np.stack([np.full_like(z, -0.49), y, z], axis=1)
+    b = np.stack([np.full_like(z, 0.49), y, z], axis=1)
+    points = np.stack([a, b], axis=1).reshape(-1, 3)
+    offsets = np.arange(0, len(points) + 1, 2)
+    grid = LightGrid(direction=(0, -1, 0), center=(0, thickness, 0), extent=1.0, resolution=rows)
+    return points, offsets, grid
+
+
+def slab_errors(layers: int = 3, spacing: str = "linear", rows: int = 16):
+    """Mean |transmittance error| of a uniform slab: (exact vs analytic, DOM vs exact,
+    DOM vs 64-layer map, 64-layer map vs analytic) for `layers` layers spaced `spacing`."""
+    n, depth_extent, alpha = 40, 0.2, 0.05
+    points, offsets, grid = slab_scene(n, rows, depth_extent)
+    pix, dep, alp = rasterize_segments(points, offsets, np.full(len(points), alpha), grid)
+    z0 = depth_pass(pix, dep, rows * rows)
+    covered = np.nonzero(np.isfinite(z0))[0]
+    qd = np.linspace(0.02, 0.19, 8)
+    qp, qz = np.repeat(covered, qd.size), np.tile(qd, covered.size)
+    exact = exact_occlusion(pix, dep, alp, qp, qz)
+    k = alpha * n / depth_extent
+    analytic = np.exp(-k * qz)
+
+    def dom(count: int, kind: str) -> np.ndarray:
+        d = depth_extent / count if kind == "linear" else depth_extent / (2.0 ** count - 1)
+        b = layer_bounds(d, count, kind)
+        return occlusion_at(opacity_layers(pix, dep, alp, z0, b), z0, b, qp, qz)
+
+    t_exact, t_dom, t_64 = np.exp(-exact), np.exp(-dom(layers, spacing)), np.exp(-dom(64, "linear"))
+    return (float(np.mean(np.abs(t_exact - analytic))), float(np.mean(np.abs(t_dom - t_exact))),
+            float(np.mean(np.abs(t_dom - t_64))), float(np.mean(np.abs(t_64 - analytic))))
+
+
 __all__ = ["LightGrid", "depth_pass", "exact_occlusion", "layer_bounds", "occlusion_at",
-           "opacity_layers", "rasterize_segments", "transmittance"]
+           "opacity_layers", "rasterize_segments", "slab_errors", "slab_scene", "transmittance"]
