@@ -13,6 +13,7 @@ namespace weft::py_bind {
 void bindScene(py::module_& m);
 void bindRender(py::module_& m);
 void bindCloth(py::module_& m);
+void bindHair(py::module_& m);
 } // namespace weft::py_bind
 
 using namespace weft::py_bind;
@@ -175,4 +176,5 @@ PYBIND11_MODULE(_core, m) {
     bindScene(m);
     bindRender(m);
     bindCloth(m);
+    bindHair(m);
 }
