@@ -123,6 +123,7 @@ void bindRender(py::module_& m) {
             d["shadow"] = floatImage(f.normal, h, w, 4, 1, 3);
             d["uv"] = floatImage(f.surface, h, w, 4, 2, 0);
             d["albedo"] = floatImage(f.albedo, h, w, 4, 3, 0);
+            d["specular_map"] = floatImage(f.albedo, h, w, 4, 1, 3);
             d["light_depth"] = floatImage(f.surface, h, w, 4, 1, 2);
             py::array_t<int32_t> instance({h, w});
             for (size_t i = 0; i < size_t(h) * w; ++i)
@@ -133,6 +134,7 @@ void bindRender(py::module_& m) {
            "One frame's colour, linear radiance and the inputs of its shading (position, mask,\n"
            "normal, shadow visibility of the first shadow-casting light, uv, light_depth,\n"
            "albedo: T = base colour * texture sample (what eq. 2.10 multiplies),\n"
+           "specular_map: the green channel of the specular-map sample (1 without a map),\n"
            "instance: the mesh id drawn at each pixel or -1).")
         .def_property_readonly("stats", [](const Renderer& r) { return statsDict(r.stats()); },
                                "The last frame: passes run with CPU/GPU ms, culled passes.")

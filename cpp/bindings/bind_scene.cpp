@@ -98,6 +98,10 @@ void bindScene(py::module_& m) {
                 std::memcpy(out.mutable_data(), x.indices.data(), x.indices.size() * 4);
             return out;
         })
+        .def_property_readonly("tangents", [](const Mesh& x) {
+            return toRows<glm::vec4, 4>(computeTangents(x));
+        }, "(N, 4) tangents the renderer uses for normal mapping: xyz along +u, w = handedness\n"
+           "(bitangent w (n x t) points towards decreasing v, up the image).")
         .def_property_readonly("vertex_count", &Mesh::vertexCount)
         .def_property_readonly("triangle_count", &Mesh::triangleCount)
         .def("bounds", [](const Mesh& x) {
@@ -141,9 +145,14 @@ void bindScene(py::module_& m) {
         });
 
     py::class_<Material>(m, "Material",
-        "Blinn-Phong material: P = (I_A K_A + I_D K_D a) T + I_S K_S a (SPEC eq. 2.10).")
+        "Blinn-Phong material: P = (I_A K_A + I_D K_D a) T + I_S K_S a (SPEC eq. 2.10).\n"
+        "normal_map: tangent-space normal map (a linear Texture; x right, y up in the image,\n"
+        "(128, 128, 255) flat); specular_map: its RGB multiplies ks; alpha_cutoff > 0 discards\n"
+        "fragments whose base-texture alpha is below it, in the image and the shadow maps.")
         .def(py::init([](py::handle ka, py::handle kd, py::handle ks, float shininess,
-                         py::handle baseColor, std::shared_ptr<Texture> texture) {
+                         py::handle baseColor, std::shared_ptr<Texture> texture,
+                         std::shared_ptr<Texture> normalMap, std::shared_ptr<Texture> specularMap,
+                         float alphaCutoff) {
             Material mat;
             mat.ka = toVec3(ka, "ka");
             mat.kd = toVec3(kd, "kd");
@@ -151,11 +160,16 @@ void bindScene(py::module_& m) {
             mat.shininess = shininess;
             mat.baseColor = toVec3(baseColor, "base_color");
             mat.texture = texture;
+            mat.normalMap = normalMap;
+            mat.specularMap = specularMap;
+            mat.alphaCutoff = alphaCutoff;
             mat.validate();
             return mat;
         }), py::arg("ka") = py::make_tuple(1, 1, 1), py::arg("kd") = py::make_tuple(1, 1, 1),
            py::arg("ks") = py::make_tuple(0, 0, 0), py::arg("shininess") = 32.0f,
-           py::arg("base_color") = py::make_tuple(1, 1, 1), py::arg("texture") = nullptr)
+           py::arg("base_color") = py::make_tuple(1, 1, 1), py::arg("texture") = nullptr,
+           py::arg("normal_map") = nullptr, py::arg("specular_map") = nullptr,
+           py::arg("alpha_cutoff") = 0.0f)
         .WEFT_VEC3_PROPERTY(Material, "ka", ka)
         .WEFT_VEC3_PROPERTY(Material, "kd", kd)
         .WEFT_VEC3_PROPERTY(Material, "ks", ks)
@@ -165,6 +179,16 @@ void bindScene(py::module_& m) {
         .def_property("texture",
                       [](const Material& x) { return std::const_pointer_cast<Texture>(x.texture); },
                       [](Material& x, std::shared_ptr<Texture> t) { x.texture = t; })
+        .def_property("normal_map",
+                      [](const Material& x) { return std::const_pointer_cast<Texture>(x.normalMap); },
+                      [](Material& x, std::shared_ptr<Texture> t) {
+                          setChecked(x, [&](Material& y) { y.normalMap = t; });
+                      })
+        .def_property("specular_map",
+                      [](const Material& x) { return std::const_pointer_cast<Texture>(x.specularMap); },
+                      [](Material& x, std::shared_ptr<Texture> t) { x.specularMap = t; })
+        .def_property("alpha_cutoff", [](const Material& x) { return x.alphaCutoff; },
+                      [](Material& x, float v) { setChecked(x, [&](Material& y) { y.alphaCutoff = v; }); })
         .def("__repr__", [](const Material& x) {
             return "<weft.Material kd=" + vecRepr(x.kd) + " ks=" + vecRepr(x.ks) +
                    " shininess=" + std::to_string(x.shininess) +

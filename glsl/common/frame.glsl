@@ -22,8 +22,8 @@ struct ShadowLayer {
 struct Instance {
     mat4 model;
     mat4 normalMatrix; // inverse transpose of the model matrix (upper 3x3 used)
-    vec4 ka;
-    vec4 kd;
+    vec4 ka;        // w: alpha cutoff (0: opaque)
+    vec4 kd;        // w: 1 with a normal map
     vec4 ks;        // w: shininess
     vec4 baseColor;
 };

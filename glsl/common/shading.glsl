@@ -4,6 +4,8 @@
 #include "frame.glsl"
 
 layout(set = 1, binding = 0) uniform sampler2D baseTexture;
+layout(set = 1, binding = 1) uniform sampler2D normalMap;   // linear, tangent space
+layout(set = 1, binding = 2) uniform sampler2D specularMap; // linear, multiplies K_S
 
 // Depth of a perspective shadow map's NDC depth d as distance along the view axis.
 float linearShadowDepth(float d, float zNear, float zFar) {
@@ -109,8 +111,31 @@ vec3 incidentRadiance(Light L, vec3 p, out vec3 l) {
 // T of eq. 2.10: the material's base colour times its texture.
 vec3 albedo(vec2 uv, Instance ins) { return ins.baseColor.rgb * texture(baseTexture, uv).rgb; }
 
+// Alpha test (SPEC §1.5): true when the fragment is a hole.
+bool alphaDiscarded(vec2 uv, Instance ins) {
+    return ins.ka.w > 0.0 && texture(baseTexture, uv).a < ins.ka.w;
+}
+
+// The shading normal: the interpolated vertex normal, perturbed by the tangent-space normal
+// map (eq. 2.11: m = texel * 2 - 1; eq. 2.12: the frame t, b = w (n x t), n).
+vec3 shadingNormal(vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins) {
+    vec3 n = normalize(vertexNormal);
+    if (ins.kd.w < 0.5) return n;
+    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
+    float tl = length(t);
+    if (tl < 1e-12) return n;
+    t /= tl;
+    vec3 b = tangent.w * cross(n, t);
+    vec3 m = texture(normalMap, uv).rgb * 2.0 - 1.0;
+    return normalize(t * m.x + b * m.y + n * m.z);
+}
+
+// K_S at uv: the material's coefficient times its specular map.
+vec3 specular(vec2 uv, Instance ins) { return ins.ks.rgb * texture(specularMap, uv).rgb; }
+
 // Eq. 2.10 summed over lights. `debugVis`/`debugDepth` report the debug light's shadow test.
-vec3 shade(vec3 p, vec3 n, vec3 T, Instance ins, out float debugVis, out float debugDepth) {
+vec3 shade(vec3 p, vec3 n, vec3 T, vec3 ks, Instance ins, out float debugVis,
+           out float debugDepth) {
     vec3 v = normalize(frame.cameraPos.xyz - p);
     vec3 color = frame.ambient.rgb * ins.ka.rgb * T;
     debugVis = 1.0;
@@ -131,7 +156,7 @@ vec3 shade(vec3 p, vec3 n, vec3 T, Instance ins, out float debugVis, out float d
         if (ndl > 0.0) {
             vec3 h = normalize(l + v);
             float s = pow(max(dot(n, h), 0.0), ins.ks.w);
-            color += vis * (ndl * L * ins.kd.rgb * T + s * L * ins.ks.rgb);
+            color += vis * (ndl * L * ins.kd.rgb * T + s * L * ks);
         }
     }
     return color;

@@ -39,6 +39,14 @@ struct Mesh {
     static Mesh box(const glm::vec3& size = glm::vec3(1.0f));
 };
 
+/// Per-vertex tangents for normal mapping (SPEC §1.4): xyz = the unit direction of increasing u
+/// in the surface (area-weighted over the triangles, orthogonalised against the normal),
+/// w = +1 or -1 so that the bitangent b = w * (n x t) points towards decreasing v (up the
+/// image, since v = 0 is the top row). Tangent-space normal maps therefore use x right and
+/// y up in the image, z out of the surface ("OpenGL" convention); (128, 128, 255) is flat.
+/// Vertices without a usable UV gradient get any unit tangent orthogonal to n.
+std::vector<glm::vec4> computeTangents(const Mesh& mesh);
+
 /// Loads a Wavefront OBJ: v, vt, vn, f (triangles and convex polygons, fan-triangulated;
 /// v, v/t, v//n, v/t/n; negative indices). Missing normals are computed (area-weighted),
 /// missing UVs are zero. Groups, objects and materials are ignored. Throws IoError naming the

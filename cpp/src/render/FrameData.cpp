@@ -111,12 +111,14 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
         GpuInstance g;
         g.model = inst.transform;
         g.normalMatrix = glm::transpose(glm::inverse(inst.transform));
-        g.ka = glm::vec4(inst.material.ka, 0);
-        g.kd = glm::vec4(inst.material.kd, 0);
+        g.ka = glm::vec4(inst.material.ka, inst.material.alphaCutoff);
+        g.kd = glm::vec4(inst.material.kd, inst.material.normalMap ? 1.0f : 0.0f);
         g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
         g.baseColor = glm::vec4(inst.material.baseColor, 1);
-        f.draws.push_back({&cache.mesh(inst.mesh), cache.texture(inst.material.texture),
-                           uint32_t(f.instances.size()), inst.castShadows, inst.transform});
+        f.draws.push_back({&cache.mesh(inst.mesh), cache.materialSet(inst.material),
+                           uint32_t(f.instances.size()), inst.castShadows, inst.transform,
+                           inst.material.alphaCutoff,
+                           glm::determinant(glm::mat3(inst.transform)) < 0.0f});
         f.instances.push_back(g);
         anyCaster |= inst.castShadows;
     }

@@ -17,6 +17,8 @@ struct Draw {
     uint32_t instance; // index into `instances`, also the scene's mesh id
     bool castShadows;
     glm::mat4 model;
+    float alphaCutoff; // > 0: alpha-tested (also in shadow maps)
+    bool mirrored;     // det(model) < 0: the triangles' winding is reversed
 };
 
 /// One shadow-map layer to render: a view of a shadow-casting light.

@@ -28,8 +28,8 @@ struct GpuShadowLayer {
 struct GpuInstance {
     glm::mat4 model;
     glm::mat4 normalMatrix;
-    glm::vec4 ka;
-    glm::vec4 kd;
+    glm::vec4 ka; // w: alpha cutoff (0: opaque)
+    glm::vec4 kd; // w: 1 with a normal map
     glm::vec4 ks; // w: shininess
     glm::vec4 baseColor;
 };

@@ -303,12 +303,18 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                        info.pDepthAttachment = &depth;
                        c.fn().cmdBeginRendering(cmd, &info);
                        viewportScissor(cmd, size, size);
-                       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.shadow);
+                       VkPipeline bound = VK_NULL_HANDLE;
                        for (const Draw& d : draws) {
                            if (!d.castShadows) continue;
-                           const glm::mat4 mvp = s.frustum.viewProj * d.model;
+                           const VkPipeline p = d.alphaCutoff > 0.0f ? pipes.shadowAlpha.get()
+                                                                     : pipes.shadow.get();
+                           if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+                           if (d.alphaCutoff > 0.0f)
+                               vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                       pipes.shadowLayout, 0, 1, &d.material, 0, nullptr);
+                           const render::ShadowPush push{s.frustum.viewProj * d.model, d.alphaCutoff};
                            vkCmdPushConstants(cmd, pipes.shadowLayout, VK_SHADER_STAGE_VERTEX_BIT |
-                                              VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(mvp), &mvp);
+                                              VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
                            drawMesh(cmd, *d.mesh);
                        }
                        c.fn().cmdEndRendering(cmd);
@@ -350,11 +356,17 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    info.pDepthAttachment = &depth;
                    c.fn().cmdBeginRendering(cmd, &info);
                    viewportScissor(cmd, targets.width, targets.height);
-                   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                     debug ? pipes.forwardDebug.get() : pipes.forward.get());
-                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.sceneLayout, 0, 1,
-                                           &frameSet, 0, nullptr);
+                   VkPipeline bound = VK_NULL_HANDLE;
                    for (const Draw& d : draws) {
+                       const VkPipeline p = debug ? (d.mirrored ? pipes.forwardDebugMirrored.get()
+                                                                : pipes.forwardDebug.get())
+                                                  : (d.mirrored ? pipes.forwardMirrored.get()
+                                                                : pipes.forward.get());
+                       if (p != bound) {
+                           vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+                           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                   pipes.sceneLayout, 0, 1, &frameSet, 0, nullptr);
+                       }
                        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.sceneLayout, 1,
                                                1, &d.material, 0, nullptr);
                        vkCmdPushConstants(cmd, pipes.sceneLayout,

@@ -5,6 +5,7 @@
 
 #include <weft/Renderer.h>
 
+#include "render/GpuCache.h"
 #include "render/GpuTypes.h"
 #include "render/RenderTargets.h"
 
@@ -51,30 +52,42 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
                                              {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                              {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                               uint32_t(kMaxCookies)}});
-    materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     outputSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     sceneLayout = vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));
-    shadowLayout = vk::createPipelineLayout(c, {}, sizeof(glm::mat4));
+    shadowLayout = vk::createPipelineLayout(c, {materialSetLayout}, sizeof(ShadowPush));
     outputLayout = vk::createPipelineLayout(c, {outputSetLayout}, 0);
 
     vk::GraphicsPipelineDesc d;
+    d.vertexStride = kVertexStride;
     d.vertexShader = "render/forward.vert";
     d.fragmentShader = "render/forward.frag";
     d.colorFormats = {kHdrFormat};
     d.depthFormat = kDepthFormat;
     d.layout = sceneLayout;
     forward = vk::createGraphicsPipeline(c, d);
+    d.frontFace = VK_FRONT_FACE_CLOCKWISE; // mirroring transforms reverse the winding
+    forwardMirrored = vk::createGraphicsPipeline(c, d);
     d.fragmentShader = "render/forward_debug.frag";
     d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat, kDebugFormat, kDebugFormat};
+    forwardDebugMirrored = vk::createGraphicsPipeline(c, d);
+    d.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     forwardDebug = vk::createGraphicsPipeline(c, d);
 
     vk::GraphicsPipelineDesc sd;
     sd.vertexShader = "render/shadow.vert";
     sd.vertexLayout = vk::VertexLayout::Position;
+    sd.vertexStride = kVertexStride;
     sd.depthFormat = kDepthFormat;
     sd.cullMode = VK_CULL_MODE_NONE; // open meshes (planes, cloth) must cast from both sides
     sd.layout = shadowLayout;
     shadow = vk::createGraphicsPipeline(c, sd);
+    sd.vertexShader = "render/shadow_alpha.vert";
+    sd.fragmentShader = "render/shadow_alpha.frag"; // discards texels below the alpha cutoff
+    sd.vertexLayout = vk::VertexLayout::PositionUv;
+    shadowAlpha = vk::createGraphicsPipeline(c, sd);
 }
 
 VkPipeline ScenePipelines::outputPipeline(VkFormat format) {

@@ -3,9 +3,17 @@
 // the graphics pipelines (shadow depth, forward, forward + debug outputs, sRGB output).
 #include <unordered_map>
 
+#include <glm/glm.hpp>
+
 #include "vk/Pipeline.h"
 
 namespace weft::render {
+
+/// Push constants of the shadow pipelines.
+struct ShadowPush {
+    glm::mat4 lightMvp;
+    float alphaCutoff;
+};
 
 struct ScenePipelines {
     explicit ScenePipelines(vk::Context& ctx);
@@ -15,7 +23,8 @@ struct ScenePipelines {
     vk::Sampler cookieSampler;  // bilinear, clamp to edge, level 0 (spot-light cookies)
     vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout;
     vk::PipelineLayout sceneLayout, shadowLayout, outputLayout;
-    vk::Pipeline forward, forwardDebug, shadow;
+    vk::Pipeline forward, forwardDebug, shadow, shadowAlpha;
+    vk::Pipeline forwardMirrored, forwardDebugMirrored; // for transforms with det < 0
 
     /// The sRGB output pipeline for a colour format (offscreen RGBA8 or a swapchain's format).
     VkPipeline outputPipeline(VkFormat format);

@@ -14,6 +14,11 @@ void Material::validate() const {
     requireNonNegative(ks, "Material.ks");
     requireNonNegative(baseColor, "Material.base_color");
     requirePositive(shininess, "Material.shininess");
+    requireFinite(alphaCutoff, "Material.alpha_cutoff");
+    if (alphaCutoff < 0.0f || alphaCutoff > 1.0f)
+        throw InvalidArgument("Material.alpha_cutoff must be in [0, 1]");
+    if (normalMap && normalMap->srgb())
+        throw InvalidArgument("Material.normal_map must be a linear texture (Texture(..., srgb=False))");
 }
 
 void DirectionalLight::validate() const {

@@ -9,7 +9,8 @@ namespace weft::vk {
 enum class VertexLayout {
     None,          // no vertex buffer (full-screen triangle)
     Position,      // vec3 position, stride of the full vertex
-    PositionNormalUv,
+    PositionUv,       // vec3 position (location 0), vec2 uv at offset 24 (location 2)
+    PositionNormalUv, // + tangent (vec4 at offset 32) when the stride is at least 48
 };
 
 struct GraphicsPipelineDesc {
@@ -20,6 +21,7 @@ struct GraphicsPipelineDesc {
     std::vector<VkFormat> colorFormats;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkCullModeFlags cullMode = VK_CULL_MODE_BACK_BIT;
+    VkFrontFace frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     bool depthTest = true;
     bool depthWrite = true;
     VkPipelineLayout layout = VK_NULL_HANDLE;
