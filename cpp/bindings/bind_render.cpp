@@ -46,6 +46,8 @@ py::dict statsDict(const FrameStats& s) {
     }
     d["passes"] = passes;
     d["culled"] = s.culled;
+    d["mesh_uploads"] = s.meshUploads;
+    d["upload_bytes"] = s.uploadBytes;
     return d;
 }
 

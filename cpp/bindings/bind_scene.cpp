@@ -187,6 +187,8 @@ void bindScene(py::module_& m) {
         .def_property("specular_map",
                       [](const Material& x) { return std::const_pointer_cast<Texture>(x.specularMap); },
                       [](Material& x, std::shared_ptr<Texture> t) { x.specularMap = t; })
+        .def_readwrite("two_sided", &Material::twoSided,
+                       "Draw both faces; the back face uses the flipped normal (cloth: always).")
         .def_property("alpha_cutoff", [](const Material& x) { return x.alphaCutoff; },
                       [](Material& x, float v) { setChecked(x, [&](Material& y) { y.alphaCutoff = v; }); })
         .def("__repr__", [](const Material& x) {
@@ -368,6 +370,12 @@ void bindScene(py::module_& m) {
             return s.addMesh(mesh, material.value_or(Material{}), t, castShadows);
         }, py::arg("mesh"), py::arg("material") = py::none(), py::arg("transform") = py::none(),
            py::arg("cast_shadows") = true, "Adds a mesh instance; returns its id.")
+        .def("add_cloth", [](Scene& s, std::shared_ptr<Cloth> cloth, std::optional<Material> material,
+                             bool castShadows) {
+            return s.addCloth(cloth, material.value_or(Material{}), castShadows);
+        }, py::arg("cloth"), py::arg("material") = py::none(), py::arg("cast_shadows") = true,
+           "Adds a weft.Cloth, drawn two-sided from its state at each render (its mesh is\n"
+           "uploaded only when it changed). Do not step it while a render runs. Returns its id.")
         .def("set_transform", [](Scene& s, uint32_t id, py::handle t) {
             s.setTransform(id, toMat4(t, "transform"));
         })

@@ -118,8 +118,15 @@ bool alphaDiscarded(vec2 uv, Instance ins) {
 
 // The shading normal: the interpolated vertex normal, perturbed by the tangent-space normal
 // map (eq. 2.11: m = texel * 2 - 1; eq. 2.12: the frame t, b = w (n x t), n).
-vec3 shadingNormal(vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins) {
+vec3 shadingNormal(vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins, bool frontFacing) {
     vec3 n = normalize(vertexNormal);
+    // Two-sided (bit 0 of baseColor.w): the back face is shaded with the flipped normal; a
+    // mirroring transform (bit 1) reverses which side the rasteriser calls front.
+    int flags = int(ins.baseColor.w);
+    if ((flags & 1) != 0 && frontFacing == ((flags & 2) != 0)) {
+        n = -n;
+        tangent.w = -tangent.w;
+    }
     if (ins.kd.w < 0.5) return n;
     vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
     float tl = length(t);

@@ -17,7 +17,7 @@ void main() {
     Instance ins = instances[push.instance];
     if (alphaDiscarded(inUv, ins)) discard;
     float vis, depth;
-    vec3 n = shadingNormal(inNormal, inTangent, inUv, ins);
+    vec3 n = shadingNormal(inNormal, inTangent, inUv, ins, gl_FrontFacing);
     vec3 T = albedo(inUv, ins);
     vec3 ks = specular(inUv, ins);
     outColor = vec4(shade(inWorldPos, n, T, ks, ins, vis, depth), 1.0);

@@ -21,6 +21,8 @@ struct Material {
     /// Alpha test: fragments whose base-texture alpha is below this are discarded, also from
     /// shadow maps (holes cast holes). 0 = opaque.
     float alphaCutoff = 0.0f;
+    /// Both faces are drawn; the back face is shaded with the flipped normal (cloth).
+    bool twoSided = false;
 
     /// Throws InvalidArgument for negative or non-finite coefficients or shininess <= 0.
     void validate() const;

@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include <weft/Cloth.h>
 #include <weft/Light.h>
 #include <weft/Material.h>
 #include <weft/Camera.h>
@@ -17,9 +18,10 @@ namespace weft {
 using MeshPtr = std::shared_ptr<const Mesh>;
 
 struct MeshInstance {
-    MeshPtr mesh;
+    MeshPtr mesh;                       // null for a cloth instance
+    std::shared_ptr<const Cloth> cloth; // drawn from its current state (positions are world)
     Material material;
-    glm::mat4 transform{1.0f}; // object -> world
+    glm::mat4 transform{1.0f}; // object -> world (identity for cloth)
     bool castShadows = true;
 };
 
@@ -28,6 +30,10 @@ public:
     /// Adds an instance and returns its id. The mesh and material are validated here.
     uint32_t addMesh(MeshPtr mesh, const Material& material = {},
                      const glm::mat4& transform = glm::mat4(1.0f), bool castShadows = true);
+    /// Adds a simulated cloth, drawn two-sided from its state at render time (the renderer
+    /// uploads its mesh only when Cloth::meshVersion() changed). Returns its instance id.
+    uint32_t addCloth(std::shared_ptr<const Cloth> cloth, const Material& material = {},
+                      bool castShadows = true);
     void setTransform(uint32_t id, const glm::mat4& transform);
     void setMaterial(uint32_t id, const Material& material);
     /// Adds a directional, point or spot light (validated) and returns its id.

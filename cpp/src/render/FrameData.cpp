@@ -114,11 +114,21 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
         g.ka = glm::vec4(inst.material.ka, inst.material.alphaCutoff);
         g.kd = glm::vec4(inst.material.kd, inst.material.normalMap ? 1.0f : 0.0f);
         g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
-        g.baseColor = glm::vec4(inst.material.baseColor, 1);
-        f.draws.push_back({&cache.mesh(inst.mesh), cache.materialSet(inst.material),
-                           uint32_t(f.instances.size()), inst.castShadows, inst.transform,
-                           inst.material.alphaCutoff,
-                           glm::determinant(glm::mat3(inst.transform)) < 0.0f});
+        const bool mirrored = glm::determinant(glm::mat3(inst.transform)) < 0.0f;
+        // baseColor.w: bit 0 two-sided, bit 1 mirrored (for the back-face test)
+        g.baseColor = glm::vec4(inst.material.baseColor,
+                                float((inst.material.twoSided ? 1 : 0) | (mirrored ? 2 : 0)));
+        const MeshGpu* mesh = nullptr;
+        if (inst.cloth) {
+            const uint64_t before = f.uploadBytes;
+            mesh = &cache.cloth(inst.cloth, f.uploadBytes);
+            f.meshUploads += f.uploadBytes != before ? 1 : 0;
+        } else {
+            mesh = &cache.mesh(inst.mesh);
+        }
+        f.draws.push_back({mesh, cache.materialSet(inst.material), uint32_t(f.instances.size()),
+                           inst.castShadows, inst.transform, inst.material.alphaCutoff, mirrored,
+                           inst.material.twoSided});
         f.instances.push_back(g);
         anyCaster |= inst.castShadows;
     }

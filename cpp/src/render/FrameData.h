@@ -19,6 +19,7 @@ struct Draw {
     glm::mat4 model;
     float alphaCutoff; // > 0: alpha-tested (also in shadow maps)
     bool mirrored;     // det(model) < 0: the triangles' winding is reversed
+    bool twoSided;     // no culling; back faces shaded with the flipped normal
 };
 
 /// One shadow-map layer to render: a view of a shadow-casting light.
@@ -37,6 +38,8 @@ struct FrameData {
     std::vector<ShadowInfo> shadowInfos;   // one per scene light
     std::vector<TexturePtr> cookies;       // by cookie slot, at most kMaxCookies
     GpuFrame frame{};
+    int meshUploads = 0;
+    uint64_t uploadBytes = 0;
 };
 
 /// Uploads meshes/textures the scene needs (through `cache`) and fills the frame's GPU data.

@@ -30,21 +30,56 @@ void GpuCache::upload(const vk::Buffer& dst, const void* data, VkDeviceSize byte
     });
 }
 
+namespace {
+
+// Interleaves a mesh's vertices in the kVertexStride layout.
+std::vector<float> packVertices(const Mesh& mesh) {
+    const std::vector<glm::vec4> tangents = computeTangents(mesh);
+    constexpr size_t kFloats = kVertexStride / sizeof(float);
+    std::vector<float> vertices(mesh.vertexCount() * kFloats);
+    for (size_t i = 0; i < mesh.vertexCount(); ++i) {
+        float* v = &vertices[i * kFloats];
+        std::memcpy(v, &mesh.positions[i], 12);
+        std::memcpy(v + 3, &mesh.normals[i], 12);
+        std::memcpy(v + 6, &mesh.uvs[i], 8);
+        std::memcpy(v + 8, &tangents[i], 16);
+    }
+    return vertices;
+}
+
+} // namespace
+
+const MeshGpu& GpuCache::cloth(const std::shared_ptr<const Cloth>& cloth, uint64_t& uploadedBytes) {
+    ClothGpu& slot = mCloths[cloth.get()];
+    if (slot.source.lock() == cloth && slot.version == cloth->meshVersion()) return slot.mesh;
+    ClothMesh cm = cloth->mesh();
+    Mesh mesh;
+    mesh.positions = std::move(cm.positions);
+    mesh.normals = std::move(cm.normals);
+    mesh.uvs = std::move(cm.uvs);
+    mesh.indices = std::move(cm.indices);
+    const std::vector<float> vertices = packVertices(mesh);
+    const VkDeviceSize vbytes = vertices.size() * sizeof(float);
+    const VkDeviceSize ibytes = std::max<size_t>(mesh.indices.size(), 1) * sizeof(uint32_t);
+    MeshGpu gpu;
+    gpu.vertices = vk::Buffer(&mCtx, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vk::MemoryUsage::Upload);
+    gpu.indices = vk::Buffer(&mCtx, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, vk::MemoryUsage::Upload);
+    gpu.vertices.write(vertices.data(), vbytes);
+    if (!mesh.indices.empty()) gpu.indices.write(mesh.indices.data(), mesh.indices.size() * 4);
+    gpu.indexCount = uint32_t(mesh.indices.size());
+    uploadedBytes += vbytes + mesh.indices.size() * 4;
+    slot.source = cloth;
+    slot.version = cloth->meshVersion();
+    slot.mesh = std::move(gpu);
+    return slot.mesh;
+}
+
 const MeshGpu& GpuCache::mesh(const MeshPtr& mesh) {
     auto it = mMeshes.find(mesh.get());
     if (it != mMeshes.end() && !it->second.source.expired() &&
         it->second.source.lock() == mesh)
         return it->second;
-    const std::vector<glm::vec4> tangents = computeTangents(*mesh);
-    constexpr size_t kFloats = kVertexStride / sizeof(float);
-    std::vector<float> vertices(mesh->vertexCount() * kFloats);
-    for (size_t i = 0; i < mesh->vertexCount(); ++i) {
-        float* v = &vertices[i * kFloats];
-        std::memcpy(v, &mesh->positions[i], 12);
-        std::memcpy(v + 3, &mesh->normals[i], 12);
-        std::memcpy(v + 6, &mesh->uvs[i], 8);
-        std::memcpy(v + 8, &tangents[i], 16);
-    }
+    const std::vector<float> vertices = packVertices(*mesh);
     MeshGpu gpu;
     gpu.source = mesh;
     const VkDeviceSize vbytes = vertices.size() * sizeof(float);
@@ -222,6 +257,8 @@ VkDescriptorSet GpuCache::materialSet(const Material& material) {
 void GpuCache::evictExpired() {
     for (auto it = mMeshes.begin(); it != mMeshes.end();)
         it = it->second.source.expired() ? mMeshes.erase(it) : std::next(it);
+    for (auto it = mCloths.begin(); it != mCloths.end();)
+        it = it->second.source.expired() ? mCloths.erase(it) : std::next(it);
     for (auto it = mMaterialSets.begin(); it != mMaterialSets.end();) {
         const MaterialSetGpu& m = it->second;
         const bool expired = (m.used[0] && m.sources[0].expired()) ||

@@ -28,6 +28,13 @@ struct TextureGpu {
     vk::Image image;
 };
 
+/// A cloth's surface as last uploaded.
+struct ClothGpu {
+    std::weak_ptr<const Cloth> source;
+    uint64_t version = 0;
+    MeshGpu mesh;
+};
+
 /// The descriptor set (set 1) of a material's textures: base colour, normal map, specular map.
 struct MaterialSetGpu {
     std::weak_ptr<const Texture> sources[3]; // empty where the material has none
@@ -42,6 +49,11 @@ public:
     ~GpuCache();
 
     const MeshGpu& mesh(const MeshPtr& mesh);
+    /// A cloth's current surface (positions, normals, UVs, tangents, the triangles left by holes
+    /// and tears). Rebuilt into new host-visible buffers (the old ones are retired after the
+    /// frames that use them) only when Cloth::meshVersion() changed; `uploadedBytes` grows by
+    /// what was written.
+    const MeshGpu& cloth(const std::shared_ptr<const Cloth>& cloth, uint64_t& uploadedBytes);
     /// Material descriptor set (set 1): base colour (none: white), normal map (none: flat),
     /// specular map (none: white).
     VkDescriptorSet materialSet(const Material& material);
@@ -65,6 +77,7 @@ private:
     VkSampler mSampler;
     std::vector<vk::DescriptorPool> mPools;
     std::unordered_map<const Mesh*, MeshGpu> mMeshes;
+    std::unordered_map<const Cloth*, ClothGpu> mCloths;
     std::unordered_map<uint64_t, TextureGpu> mTextures;
     std::map<std::array<uint64_t, 3>, MaterialSetGpu> mMaterialSets; // by texture ids (0: none)
     TextureGpu mWhite, mFlatNormal;

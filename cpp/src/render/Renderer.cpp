@@ -305,7 +305,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                        viewportScissor(cmd, size, size);
                        VkPipeline bound = VK_NULL_HANDLE;
                        for (const Draw& d : draws) {
-                           if (!d.castShadows) continue;
+                           if (!d.castShadows || d.mesh->indexCount == 0) continue;
                            const VkPipeline p = d.alphaCutoff > 0.0f ? pipes.shadowAlpha.get()
                                                                      : pipes.shadow.get();
                            if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
@@ -358,10 +358,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    viewportScissor(cmd, targets.width, targets.height);
                    VkPipeline bound = VK_NULL_HANDLE;
                    for (const Draw& d : draws) {
-                       const VkPipeline p = debug ? (d.mirrored ? pipes.forwardDebugMirrored.get()
-                                                                : pipes.forwardDebug.get())
-                                                  : (d.mirrored ? pipes.forwardMirrored.get()
-                                                                : pipes.forward.get());
+                       if (d.mesh->indexCount == 0) continue; // e.g. a cloth torn to pieces
+                       const VkPipeline p = pipes.forwardFor(debug, d.mirrored, d.twoSided);
                        if (p != bound) {
                            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
                            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
@@ -431,6 +429,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     slot.timestamps->reset(slot.cmd);
     slot.stats = FrameStats{};
     slot.stats.frameIndex = frameCounter;
+    slot.stats.meshUploads = data.meshUploads;
+    slot.stats.uploadBytes = data.uploadBytes;
     g.execute(c, slot.cmd, slot.timestamps.get(), slot.stats);
     // The present pseudo-pass only transitions; it is not a pass users should time.
     if (present && !slot.stats.passes.empty() && slot.stats.passes.back().name == "present")

@@ -67,14 +67,17 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     d.colorFormats = {kHdrFormat};
     d.depthFormat = kDepthFormat;
     d.layout = sceneLayout;
-    forward = vk::createGraphicsPipeline(c, d);
-    d.frontFace = VK_FRONT_FACE_CLOCKWISE; // mirroring transforms reverse the winding
-    forwardMirrored = vk::createGraphicsPipeline(c, d);
-    d.fragmentShader = "render/forward_debug.frag";
-    d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat, kDebugFormat, kDebugFormat};
-    forwardDebugMirrored = vk::createGraphicsPipeline(c, d);
-    d.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    forwardDebug = vk::createGraphicsPipeline(c, d);
+    for (int debug = 0; debug < 2; ++debug) {
+        if (debug) {
+            d.fragmentShader = "render/forward_debug.frag";
+            d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat, kDebugFormat, kDebugFormat};
+        }
+        for (int facing = 0; facing < 3; ++facing) {
+            d.cullMode = facing == 2 ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+            d.frontFace = facing == 1 ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+            forward[debug][facing] = vk::createGraphicsPipeline(c, d);
+        }
+    }
 
     vk::GraphicsPipelineDesc sd;
     sd.vertexShader = "render/shadow.vert";

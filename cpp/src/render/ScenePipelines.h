@@ -23,8 +23,14 @@ struct ScenePipelines {
     vk::Sampler cookieSampler;  // bilinear, clamp to edge, level 0 (spot-light cookies)
     vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout;
     vk::PipelineLayout sceneLayout, shadowLayout, outputLayout;
-    vk::Pipeline forward, forwardDebug, shadow, shadowAlpha;
-    vk::Pipeline forwardMirrored, forwardDebugMirrored; // for transforms with det < 0
+    vk::Pipeline shadow, shadowAlpha;
+    /// Forward shading, [debug outputs][facing]: facing 0 = back faces culled, 1 = the same for
+    /// mirroring transforms (det < 0 reverses the winding), 2 = two-sided (no culling).
+    vk::Pipeline forward[2][3];
+
+    VkPipeline forwardFor(bool debug, bool mirrored, bool twoSided) const {
+        return forward[debug ? 1 : 0][twoSided ? 2 : mirrored ? 1 : 0];
+    }
 
     /// The sRGB output pipeline for a colour format (offscreen RGBA8 or a swapchain's format).
     VkPipeline outputPipeline(VkFormat format);

@@ -104,13 +104,25 @@ uint32_t Scene::addMesh(MeshPtr mesh, const Material& material, const glm::mat4&
     mesh->validate();
     material.validate();
     requireInvertible(transform, "mesh transform");
-    mInstances.push_back({std::move(mesh), material, transform, castShadows});
+    mInstances.push_back({std::move(mesh), nullptr, material, transform, castShadows});
+    ++mVersion;
+    return uint32_t(mInstances.size() - 1);
+}
+
+uint32_t Scene::addCloth(std::shared_ptr<const Cloth> cloth, const Material& material,
+                         bool castShadows) {
+    if (!cloth) throw InvalidArgument("Scene.add_cloth: cloth is null");
+    material.validate();
+    Material m = material;
+    m.twoSided = true;
+    mInstances.push_back({nullptr, std::move(cloth), m, glm::mat4(1.0f), castShadows});
     ++mVersion;
     return uint32_t(mInstances.size() - 1);
 }
 
 void Scene::setTransform(uint32_t id, const glm::mat4& transform) {
     checkId(id, mInstances.size(), "mesh");
+    if (mInstances[id].cloth) throw InvalidArgument("a cloth's particles are in world space; it has no transform");
     requireInvertible(transform, "mesh transform");
     mInstances[id].transform = transform;
     ++mVersion;
@@ -120,6 +132,7 @@ void Scene::setMaterial(uint32_t id, const Material& material) {
     checkId(id, mInstances.size(), "mesh");
     material.validate();
     mInstances[id].material = material;
+    if (mInstances[id].cloth) mInstances[id].material.twoSided = true;
     ++mVersion;
 }
 
@@ -153,6 +166,16 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
     lo = glm::vec3(1e30f);
     hi = glm::vec3(-1e30f);
     for (const MeshInstance& inst : mInstances) {
+        if (inst.cloth) {
+            const float* p = inst.cloth->particleData(); // x, y, z, w records
+            for (int k = 0; k < inst.cloth->particleCount(); ++k) {
+                if (inst.cloth->isHole(k)) continue;
+                const glm::vec3 x(p[4 * k], p[4 * k + 1], p[4 * k + 2]);
+                lo = glm::min(lo, x);
+                hi = glm::max(hi, x);
+            }
+            continue;
+        }
         glm::vec3 mlo, mhi;
         inst.mesh->bounds(mlo, mhi);
         for (int i = 0; i < 8; ++i) {

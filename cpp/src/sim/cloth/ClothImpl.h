@@ -71,6 +71,7 @@ struct Cloth::Impl {
 
     double accumulator = 0.0;
     uint64_t steps = 0;
+    uint64_t meshVersion = 1;
     int quietSteps = 0;
     bool asleep = false;
     float lastH = 1.0f / 60.0f;
