@@ -156,7 +156,7 @@ PYBIND11_MODULE(_core, m) {
 
     m.def("run_demo", [](int width, int height, int frames, bool headless, bool vsync,
                          const std::string& out, const std::string& screenshot,
-                         const std::string& statsJson) {
+                         const std::string& statsJson, const std::string& script) {
         weft::DemoOptions o;
         o.width = width;
         o.height = height;
@@ -166,12 +166,14 @@ PYBIND11_MODULE(_core, m) {
         o.out = out;
         o.screenshot = screenshot;
         o.statsJson = statsJson;
+        o.script = script;
         py::gil_scoped_release release;
         return weft::runDemo(o);
     }, py::arg("width") = 1280, py::arg("height") = 720, py::arg("frames") = 0,
        py::arg("headless") = false, py::arg("vsync") = true, py::arg("out") = "out/demo.png",
-       py::arg("screenshot") = "", py::arg("stats_json") = "",
-       "Runs the demo: a window when a display exists, else a headless render to `out`.");
+       py::arg("screenshot") = "", py::arg("stats_json") = "", py::arg("script") = "",
+       "Runs the demo (the seed's cloth environment): a window when a display exists, else\n"
+       "headless to `out` (see `weft-demo --help` for frames, scripts and output folders).");
 
     bindScene(m);
     bindRender(m);

@@ -37,6 +37,12 @@ struct Mesh {
     /// face's UVs spanning [0,1] upright seen from outside (+Y/-Y faces: u along +X).
     /// Sizes must be positive and finite (else InvalidArgument).
     static Mesh box(const glm::vec3& size = glm::vec3(1.0f));
+    /// Terrain over a rows x cols grid of heights (row-major, rows along +Z) spanning
+    /// [origin.x, origin.x + size.x] x [origin.z, origin.z + size.y] at height origin.y + h: the
+    /// surface a cloth Collider::HeightField with the same data collides with (there bilinear,
+    /// here two triangles per cell). Normals from central differences; UVs span [0, uvScale].
+    static Mesh heightField(const std::vector<float>& heights, int rows, int cols,
+                            const glm::vec3& origin, const glm::vec2& size, float uvScale = 1.0f);
 };
 
 /// Per-vertex tangents for normal mapping (SPEC §1.4): xyz = the unit direction of increasing u
