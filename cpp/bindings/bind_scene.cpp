@@ -10,9 +10,6 @@
 
 namespace weft::py_bind {
 
-py::array_t<uint8_t> toNumpy(const ImageU8& img);
-ImageU8 fromNumpy(py::handle obj);
-
 namespace {
 
 // (N, K) float array -> vector of glm vectors.

@@ -1,8 +1,10 @@
 // Reader of the Bonn BTF layout from a folder or a zip (shared/formats/bonn-btf.md).
 #include <weft/BtfIo.h>
 #include <weft/Error.h>
+#include <weft/Image.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +14,8 @@
 #include <iterator>
 #include <map>
 #include <mutex>
+
+#include <unistd.h>
 
 #include "btf/BtfImageCodec.h"
 #include "btf/BtfParallel.h"
@@ -52,6 +56,29 @@ std::string angleText(float t, float p) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "(θ %g°, φ %g°)", double(t), double(p));
     return buf;
+}
+
+bool isExr(const std::string& name) { return lower(fs::path(name).extension().string()) == ".exr"; }
+
+// OpenEXR reads files; a zip entry goes through a private temporary file.
+ImageF loadExrBytes(const std::vector<uint8_t>& bytes, const std::string& name) {
+    static std::atomic<unsigned> counter{0};
+    const fs::path tmp = fs::temp_directory_path() /
+                         ("weft-btf-" + std::to_string(::getpid()) + "-" +
+                          std::to_string(counter++) + ".exr");
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        if (!out) throw IoError("cannot extract EXR '" + name + "' to " + tmp.string());
+    }
+    try {
+        ImageF img = loadExr(tmp.string());
+        fs::remove(tmp);
+        return img;
+    } catch (const IoError& e) {
+        fs::remove(tmp);
+        throw IoError("cannot read EXR '" + name + "': " + e.what());
+    }
 }
 
 std::vector<uint8_t> readFile(const std::string& path) {
@@ -177,10 +204,6 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
                       ", view " + angleText(v.x, v.y) + " (expected a file like '" + expected +
                       "')");
     }
-    for (const Entry* e : chosen)
-        if (lower(fs::path(e->name).extension().string()) == ".exr")
-            throw IoError("BTF image '" + e->name +
-                          "' is EXR, which this build of weft cannot read yet");
 
     // Compressed bytes first (zip access is sequential), then parallel decoding.
     std::vector<std::vector<uint8_t>> bytes(chosen.size());
@@ -188,13 +211,27 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
         for (size_t i = 0; i < chosen.size(); ++i) bytes[i] = zip->read(chosen[i]->source);
     }
     std::vector<DecodedImage> images(chosen.size());
+    std::vector<ImageF> floats(chosen.size()); // EXR samples (linear, used as they are)
     std::mutex errorMutex;
     std::exception_ptr firstError;
     btfParallelFor(int(chosen.size()), options.threads, [&](int b, int e) {
         for (int i = b; i < e; ++i) {
             try {
-                if (!zip) bytes[size_t(i)] = readFile(chosen[size_t(i)]->name);
-                images[size_t(i)] = decodeBtfImage(bytes[size_t(i)], chosen[size_t(i)]->name);
+                const std::string& name = chosen[size_t(i)]->name;
+                if (isExr(name)) {
+                    floats[size_t(i)] = zip ? loadExrBytes(bytes[size_t(i)], name) : loadExr(name);
+                    try {
+                        floats[size_t(i)].requireFinite("EXR '" + name + "'");
+                    } catch (const InvalidArgument& e) {
+                        throw IoError(e.what());
+                    }
+                    images[size_t(i)].width = floats[size_t(i)].width;
+                    images[size_t(i)].height = floats[size_t(i)].height;
+                    images[size_t(i)].channels = floats[size_t(i)].channels;
+                    continue;
+                }
+                if (!zip) bytes[size_t(i)] = readFile(name);
+                images[size_t(i)] = decodeBtfImage(bytes[size_t(i)], name);
                 std::vector<uint8_t>().swap(bytes[size_t(i)]);
             } catch (...) {
                 std::lock_guard<std::mutex> lock(errorMutex);
@@ -224,7 +261,15 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
     btfParallelFor(samples.count(), options.threads, [&](int b, int e) {
         for (int s = b; s < e; ++s) {
             const DecodedImage& img = images[size_t(s)];
+            const ImageF& exr = floats[size_t(s)];
             for (int c = 0; c < 3; ++c) {
+                if (!exr.pixels.empty()) {
+                    float* dst = samples.plane(s, c);
+                    const int src = exr.channels < 3 ? 0 : c;
+                    for (size_t t = 0; t < texels; ++t)
+                        dst[t] = exr.pixels[t * size_t(exr.channels) + size_t(src)];
+                    continue;
+                }
                 float* dst = samples.plane(s, c);
                 const int src = img.channels == 1 ? 0 : c;
                 for (size_t t = 0; t < texels; ++t)
