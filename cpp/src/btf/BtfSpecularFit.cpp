@@ -193,7 +193,10 @@ BtfSpecularFit fitBtfSpecular(const BtfSamples& samples, const BtfLinearFit& fit
     out.maps.exponent = float(bestE);
 
     if (options.perTexel) {
-        const std::vector<int> grid = logCandidates(maxE, 64);
+        std::vector<int> grid = logCandidates(maxE, 64);
+        grid.push_back(bestE); // never worse than the global exponent
+        std::sort(grid.begin(), grid.end());
+        grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
         out.maps.exponentMap.assign(texels, float(bestE));
         std::vector<float> flatG(grid.size() * size_t(count)); // g_s(e) for n_s = (0, 0, 1)
         for (int s = 0; s < count; ++s) {
