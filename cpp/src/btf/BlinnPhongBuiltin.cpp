@@ -105,8 +105,8 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
     const double start[3] = {0.0, 0.0, std::min(std::max(eta0, etaMin), etaMax)};
     evaluate(tx, start, true, cur);
     double lambda = 1e-3;
-    int it = 0;
-    for (; it < maxIterations; ++it) {
+    int done = 0; // accepted steps
+    for (int it = 0; it < maxIterations; ++it) {
         const size_t n = cur.d.size();
         double jtj[3][3] = {}, grad[3] = {};
         for (int c = 0; c < 3; ++c) {
@@ -157,17 +157,23 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
             evaluate(tx, next, true, trial);
             if (trial.result.cost < cur.result.cost) {
                 const double gain = cur.result.cost - trial.result.cost;
+                const double stepSize = std::sqrt(step[0] * step[0] + step[1] * step[1] +
+                                                  step[2] * step[2]);
                 accepted = true;
+                ++done;
                 std::swap(cur, trial);
                 lambda = std::max(lambda / 3.0, 1e-9);
-                if (gain <= 1e-9 * cur.result.cost + 1e-14) it = maxIterations; // converged
+                // Converged: the cost changes by less than 1e-6 of itself, or the step is below
+                // 1e-6 (radians of normal tilt, relative exponent change).
+                if (gain <= 1e-6 * cur.result.cost + 1e-20 || stepSize < 1e-6)
+                    it = maxIterations;
             } else {
                 lambda *= 4.0;
             }
         }
         if (!accepted) break;
     }
-    cur.result.iterations = std::min(it, maxIterations);
+    cur.result.iterations = done;
     return cur.result;
 }
 

@@ -49,49 +49,82 @@ struct Residuals {
     std::vector<float> logDot;  // log max(n·h, 0) per [sample][texel] (fitted-normal variant)
 };
 
+// One pass over the samples, texel block by texel block (the block's maps stay in cache while
+// all samples stream by): Σ r², α (stored when `storeAlpha`), A_s = Σ_t α_st into `alphaSums`,
+// and log(n·h) for the fitted-normal variant. The linear model is P_c = base_c + m_c·l with
+// base_c = ρ_c a_c and m_c = ρ_c n.
 Residuals residuals(const BtfSamples& samples, const BtfMaterialMaps& linear, bool needLogDot,
-                    int threads) {
+                    bool storeAlpha, std::vector<double>& alphaSums, int threads) {
+    constexpr int kBlock = 512;
     const size_t texels = samples.texels();
     const int count = samples.count();
     Residuals r;
-    r.alpha.resize(texels * size_t(count));
+    if (storeAlpha) r.alpha.resize(texels * size_t(count));
+    if (needLogDot) r.logDot.resize(texels * size_t(count));
     r.beta.resize(texels);
     for (size_t t = 0; t < texels; ++t) {
         const float* k = &linear.specular[t * 3];
         r.beta[t] = k[0] * k[0] + k[1] * k[1] + k[2] * k[2];
     }
-    if (needLogDot) r.logDot.resize(texels * size_t(count));
-    std::vector<double> partial(size_t(count), 0.0);
-    BtfMaterialMaps diffuse = linear;
-    diffuse.specular.clear();
-    btfParallelFor(count, threads, [&](int s0, int s1) {
-        std::vector<float> scratch(texels * 3);
-        float* const out[3] = {scratch.data(), scratch.data() + texels,
-                               scratch.data() + 2 * texels};
-        for (int s = s0; s < s1; ++s) {
-            btfEvaluateSample(diffuse, samples.light(s), samples.view(s), nullptr, 0, texels, out);
-            const glm::vec3 h = btfHalfVector(samples.light(s), samples.view(s));
-            float* alpha = r.alpha.data() + size_t(s) * texels;
-            double sum = 0.0;
-            for (size_t t = 0; t < texels; ++t) {
-                float a = 0.0f;
-                for (int c = 0; c < 3; ++c) {
-                    const float res = samples.plane(s, c)[t] - out[c][t];
-                    sum += double(res) * res;
-                    a += res * linear.specular[t * 3 + c];
-                }
-                alpha[t] = a;
-                if (needLogDot) {
-                    const float* n = &linear.normal[t * 3];
-                    const float u = n[0] * h.x + n[1] * h.y + n[2] * h.z;
-                    r.logDot[size_t(s) * texels + t] =
-                        u > 0.0f ? std::log(u) : -std::numeric_limits<float>::infinity();
+    const int blocks = int((texels + kBlock - 1) / kBlock);
+    std::vector<double> partialR(size_t(blocks), 0.0), partialA(size_t(blocks) * size_t(count));
+    std::vector<glm::vec3> halves(static_cast<size_t>(count));
+    for (int s = 0; s < count; ++s)
+        halves[size_t(s)] = btfHalfVector(samples.light(s), samples.view(s));
+    btfParallelFor(blocks, threads, [&](int b0, int b1) {
+        std::vector<float> coef(size_t(kBlock) * 15); // base[3], m[3][3], K[3] per texel
+        for (int b = b0; b < b1; ++b) {
+            const size_t begin = size_t(b) * kBlock;
+            const int len = int(std::min<size_t>(kBlock, texels - begin));
+            for (int i = 0; i < len; ++i) {
+                const size_t t = begin + size_t(i);
+                float* c = &coef[size_t(i) * 15];
+                for (int ch = 0; ch < 3; ++ch) {
+                    const float rho = linear.albedo[t * 3 + size_t(ch)];
+                    c[ch] = rho * linear.ambient[t * 3 + size_t(ch)];
+                    for (int k = 0; k < 3; ++k) c[3 + ch * 3 + k] = rho * linear.normal[t * 3 + size_t(k)];
+                    c[12 + ch] = linear.specular[t * 3 + size_t(ch)];
                 }
             }
-            partial[size_t(s)] = sum;
+            double sumR = 0.0;
+            for (int s = 0; s < count; ++s) {
+                const glm::vec3 l = samples.light(s), h = halves[size_t(s)];
+                const float* p[3] = {samples.plane(s, 0) + begin, samples.plane(s, 1) + begin,
+                                     samples.plane(s, 2) + begin};
+                float* alpha = storeAlpha ? r.alpha.data() + size_t(s) * texels + begin : nullptr;
+                float sq = 0.0f, alphaSum = 0.0f;
+                for (int i = 0; i < len; ++i) {
+                    const float* c = &coef[size_t(i) * 15];
+                    float a = 0.0f;
+                    for (int ch = 0; ch < 3; ++ch) {
+                        const float* m = c + 3 + ch * 3;
+                        const float res = p[ch][i] - (c[ch] + m[0] * l.x + m[1] * l.y + m[2] * l.z);
+                        sq += res * res;
+                        a += res * c[12 + ch];
+                    }
+                    alphaSum += a;
+                    if (alpha) alpha[i] = a;
+                }
+                if (needLogDot) {
+                    float* ld = r.logDot.data() + size_t(s) * texels + begin;
+                    for (int i = 0; i < len; ++i) {
+                        const float* n = &linear.normal[(begin + size_t(i)) * 3];
+                        const float u = n[0] * h.x + n[1] * h.y + n[2] * h.z;
+                        ld[i] = u > 0.0f ? std::log(u) : -std::numeric_limits<float>::infinity();
+                    }
+                }
+                sumR += sq;
+                partialA[size_t(b) * size_t(count) + size_t(s)] = alphaSum;
+            }
+            partialR[size_t(b)] = sumR;
         }
     });
-    for (double p : partial) r.total += p;
+    alphaSums.assign(size_t(count), 0.0);
+    for (int b = 0; b < blocks; ++b) {
+        r.total += partialR[size_t(b)];
+        for (int s = 0; s < count; ++s)
+            alphaSums[size_t(s)] += partialA[size_t(b) * size_t(count) + size_t(s)];
+    }
     return r;
 }
 
@@ -142,27 +175,24 @@ BtfSpecularFit fitBtfSpecular(const BtfSamples& samples, const BtfLinearFit& fit
             for (int c = 0; c < 3; ++c)
                 out.maps.specular[t * 3 + c] = samples.plane(s, c)[t] - planes[c][t];
     }
-    const Residuals r = residuals(samples, out.maps, !options.flatSpecularNormal, options.threads);
+    std::vector<double> a; // A_s = Σ_t α_st
+    const bool storeAlpha = !options.flatSpecularNormal || options.perTexel;
+    const Residuals r = residuals(samples, out.maps, !options.flatSpecularNormal, storeAlpha, a,
+                                  options.threads);
     const int maxE = options.maxExponent;
     out.curve.assign(size_t(maxE), std::numeric_limits<double>::quiet_NaN());
 
     if (options.flatSpecularNormal) {
-        std::vector<double> a(static_cast<size_t>(count), 0.0), logg(a.size());
         double b = 0.0;
         for (float v : r.beta) b += v;
-        for (int s = 0; s < count; ++s) {
-            const float* alpha = r.alpha.data() + size_t(s) * texels;
-            double sum = 0.0;
-            for (size_t t = 0; t < texels; ++t) sum += alpha[t];
-            a[size_t(s)] = sum;
-            const double hz = btfHalfVector(samples.light(s), samples.view(s)).z;
-            logg[size_t(s)] = hz > 0 ? std::log(hz) : -std::numeric_limits<double>::infinity();
-        }
+        std::vector<double> g(a.size(), 1.0), hz(a.size());
+        for (int s = 0; s < count; ++s)
+            hz[size_t(s)] = std::max(btfHalfVector(samples.light(s), samples.view(s)).z, 0.0f);
         for (int e = 1; e <= maxE; ++e) {
             double err = r.total;
-            for (int s = 0; s < count; ++s) {
-                const double g = std::exp(e * logg[size_t(s)]);
-                err += g * (g * b - 2.0 * a[size_t(s)]);
+            for (size_t s = 0; s < g.size(); ++s) {
+                g[s] *= hz[s]; // g_s(e) = hz_s^e, one product per candidate
+                err += g[s] * (g[s] * b - 2.0 * a[s]);
             }
             out.curve[size_t(e - 1)] = err;
         }
