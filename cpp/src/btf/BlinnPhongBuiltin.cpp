@@ -57,8 +57,9 @@ void evaluate(const BlinnPhongTexel& tx, const double theta[3], bool derivatives
         const glm::dvec3 l(L[s]), h(H[s]);
         const double nl = glm::dot(nrm, l), nh = glm::dot(nrm, h);
         const double d = nl > 0 ? nl : 0.0;
-        const double lg = nh > 0 ? std::log(nh) : 0.0;
-        const double g = nh > 0 ? std::exp(e * lg) : 0.0;
+        // float log/exp: twice as fast as double and far below the data's precision
+        const double lg = nh > 0 ? double(std::log(float(nh))) : 0.0;
+        const double g = nh > 0 ? double(std::exp(float(e * lg))) : 0.0;
         ev.d[s] = d;
         ev.g[s] = g;
         if (derivatives) {
@@ -101,7 +102,7 @@ BlinnPhongResult blinnPhongProject(const BlinnPhongTexel& texel, const double th
 
 BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, double etaMin,
                                    double etaMax, int maxIterations) {
-    Evaluation cur, trial;
+    thread_local Evaluation cur, trial; // reused: no allocations per texel
     const double start[3] = {0.0, 0.0, std::min(std::max(eta0, etaMin), etaMax)};
     evaluate(tx, start, true, cur);
     double lambda = 1e-3;
