@@ -70,7 +70,8 @@ BtfMaterialMaps mapsFrom(const BtfSamples& samples, py::dict d) {
     if (d.contains("exponent_map") && !d["exponent_map"].is_none())
         m.exponentMap = floatArray(d["exponent_map"], "exponent_map", {h, w});
     m.exponent = d.contains("exponent") ? d["exponent"].cast<float>() : 1.0f;
-    m.flatSpecularNormal = d.contains("flat_specular_normal") && d["flat_specular_normal"].cast<bool>();
+    m.flatSpecularNormal =
+        d.contains("flat_specular_normal") && d["flat_specular_normal"].cast<bool>();
     m.clampDiffuse = d.contains("clamp_diffuse") && d["clamp_diffuse"].cast<bool>();
     for (size_t i = 0; i < m.normal.size(); i += 3) {
         const float len = std::sqrt(m.normal[i] * m.normal[i] + m.normal[i + 1] * m.normal[i + 1] +
@@ -89,7 +90,8 @@ py::dict mapsTo(const BtfMaterialMaps& m) {
     d["ambient"] = toArray(m.ambient, {h, w, 3});
     d["specular"] = m.specular.empty() ? py::object(py::none()) : toArray(m.specular, {h, w, 3});
     d["exponent"] = m.exponent;
-    d["exponent_map"] = m.exponentMap.empty() ? py::object(py::none()) : toArray(m.exponentMap, {h, w});
+    d["exponent_map"] =
+        m.exponentMap.empty() ? py::object(py::none()) : toArray(m.exponentMap, {h, w});
     d["flat_specular_normal"] = m.flatSpecularNormal;
     d["clamp_diffuse"] = m.clampDiffuse;
     return d;

@@ -92,7 +92,8 @@ def numpy_specular_error(samples, linear, exponents, flat: bool) -> np.ndarray:
     l = np.asarray(samples.light_dirs, np.float64)
     v = np.asarray(samples.view_dirs, np.float64)
     n = linear.normal.astype(np.float64)
-    lin = linear.texture[None] * (linear.ambient[None] + (np.einsum("hwk,sk->shw", n, l))[..., None])
+    nl = np.einsum("hwk,sk->shw", n, l)[..., None]
+    lin = linear.texture[None] * (linear.ambient[None] + nl)
     r = values - lin.transpose(0, 3, 1, 2)
     s0 = int(np.flatnonzero((samples.angles[:, 0] == 0) & (samples.angles[:, 2] == 0))[0])
     k = r[s0]

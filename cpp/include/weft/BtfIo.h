@@ -34,7 +34,7 @@ struct BtfWriteOptions {
     int jpegQuality = 95;       ///< 1..100
     bool zip = false;           ///< write `path` as a zip archive instead of a folder
     BtfGamma gamma = BtfGamma::Raw; ///< Linear: values are encoded with 1/2.2 before quantising
-    std::string prefix;         ///< empty: `NNNNN tl.. pl.. tv.. pv..`; else `PREFIX_NNNNN_tl.._...`
+    std::string prefix; ///< empty: `NNNNN tl.. pl.. tv.. pv..`; else `PREFIX_NNNNN_tl.._...`
 };
 
 /// Writes samples (values in [0, 1], clipped, quantised to 8 bits) in the Bonn layout under

@@ -15,16 +15,26 @@ void BlinnPhongTexel::setSeedNormal(glm::vec3 n) {
     t2 = glm::cross(n0, t1);
 }
 
+void BlinnPhongTexel::updateSquares() {
+    for (int c = 0; c < 3; ++c) squares[c] = 0.0;
+    for (size_t i = 0; i < values.size(); ++i) squares[i % 3] += double(values[i]) * values[i];
+}
+
 glm::dvec3 BlinnPhongTexel::normal(double u, double v) const {
     return glm::normalize(n0 + u * t1 + v * t2);
 }
 
 namespace {
 
+// Sums over the samples of products of the basis Φ = (d, 1, g), its derivatives ∂d_j (j = u, v;
+// ∂d/∂η = 0), ∂g_j (j = u, v, η) and the data: everything Kaufman's JᵀJ and the gradient need,
+// independent of the channel, so a channel costs O(1) instead of O(samples).
 struct Evaluation {
     BlinnPhongResult result;
-    std::vector<double> d, g, dd[2], dg[3]; // basis values and derivatives per sample
-    double gram[3][3] = {};
+    double b[3][3] = {};          // Φᵀ p_c per channel
+    double sdd[2][2] = {}, sdg[2][3] = {}, sgg[3][3] = {};
+    double pd[3][2] = {}, pg[3][3] = {}; // Φᵀ ∂d, Φᵀ ∂g
+    double yd[3][2] = {}, yg[3][3] = {}; // p_cᵀ ∂d, p_cᵀ ∂g
     Cholesky3 factor;
 };
 
@@ -42,17 +52,14 @@ void evaluate(const BlinnPhongTexel& tx, const double theta[3], bool derivatives
     const std::vector<glm::vec3>& L = *tx.lights;
     const std::vector<glm::vec3>& H = *tx.halves;
     const size_t n = L.size();
-    ev.d.resize(n);
-    ev.g.resize(n);
-    for (auto& v : ev.dd) v.resize(derivatives ? n : 0);
-    for (auto& v : ev.dg) v.resize(derivatives ? n : 0);
+    ev = Evaluation();
     const glm::dvec3 w = tx.n0 + theta[0] * tx.t1 + theta[1] * tx.t2;
     const double len = glm::length(w);
     const glm::dvec3 nrm = w / len;
     const glm::dvec3 dn[2] = {(tx.t1 - nrm * glm::dot(nrm, tx.t1)) / len,
                               (tx.t2 - nrm * glm::dot(nrm, tx.t2)) / len};
     const double e = std::exp(theta[2]);
-    double G[3][3] = {}, b[3][3] = {}; // b[c] = Φᵀ p_c
+    double G[3][3] = {};
     for (size_t s = 0; s < n; ++s) {
         const glm::dvec3 l(L[s]), h(H[s]);
         const double nl = glm::dot(nrm, l), nh = glm::dot(nrm, h);
@@ -60,36 +67,45 @@ void evaluate(const BlinnPhongTexel& tx, const double theta[3], bool derivatives
         // float log/exp: twice as fast as double and far below the data's precision
         const double lg = nh > 0 ? double(std::log(float(nh))) : 0.0;
         const double g = nh > 0 ? double(std::exp(float(e * lg))) : 0.0;
-        ev.d[s] = d;
-        ev.g[s] = g;
-        if (derivatives) {
-            for (int j = 0; j < 2; ++j) {
-                ev.dd[j][s] = nl > 0 ? glm::dot(l, dn[j]) : 0.0;
-                ev.dg[j][s] = nh > 0 ? e * g / nh * glm::dot(h, dn[j]) : 0.0;
-            }
-            ev.dg[2][s] = g * e * lg;
-        }
         const double phi[3] = {d, 1.0, g};
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) G[i][j] += phi[i] * phi[j];
+        const double p[3] = {tx.values[s * 3], tx.values[s * 3 + 1], tx.values[s * 3 + 2]};
+        for (int i = 0; i < 3; ++i) {
+            for (int j = i; j < 3; ++j) G[i][j] += phi[i] * phi[j];
+            for (int c = 0; c < 3; ++c) ev.b[c][i] += phi[i] * p[c];
+        }
+        if (!derivatives) continue;
+        double dd[2], dg[3];
+        for (int j = 0; j < 2; ++j) {
+            dd[j] = nl > 0 ? glm::dot(l, dn[j]) : 0.0;
+            dg[j] = nh > 0 ? e * g / nh * glm::dot(h, dn[j]) : 0.0;
+        }
+        dg[2] = g * e * lg;
+        for (int j = 0; j < 2; ++j) {
+            for (int q = 0; q < 2; ++q) ev.sdd[j][q] += dd[j] * dd[q];
+            for (int q = 0; q < 3; ++q) ev.sdg[j][q] += dd[j] * dg[q];
+        }
+        for (int j = 0; j < 3; ++j)
+            for (int q = 0; q < 3; ++q) ev.sgg[j][q] += dg[j] * dg[q];
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 2; ++j) ev.pd[i][j] += phi[i] * dd[j];
+            for (int j = 0; j < 3; ++j) ev.pg[i][j] += phi[i] * dg[j];
+        }
         for (int c = 0; c < 3; ++c) {
-            const double p = tx.values[s * 3 + size_t(c)];
-            for (int i = 0; i < 3; ++i) b[c][i] += phi[i] * p;
+            for (int j = 0; j < 2; ++j) ev.yd[c][j] += p[c] * dd[j];
+            for (int j = 0; j < 3; ++j) ev.yg[c][j] += p[c] * dg[j];
         }
     }
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) ev.gram[i][j] = G[i][j];
+        for (int j = 0; j < i; ++j) G[i][j] = G[j][i];
     factorGram(G, ev.factor);
-    for (int c = 0; c < 3; ++c) ev.factor.solve(b[c], ev.result.coef[c]);
-    double cost = 0.0;
-    for (size_t s = 0; s < n; ++s)
-        for (int c = 0; c < 3; ++c) {
-            const double* k = ev.result.coef[c];
-            const double r = tx.values[s * 3 + size_t(c)] - (k[0] * ev.d[s] + k[1] + k[2] * ev.g[s]);
-            cost += r * r;
-        }
+    double cost = 0.0; // Σ p² - Σ_c b_cᵀ x_c at the least-squares solution
+    for (int c = 0; c < 3; ++c) {
+        ev.factor.solve(ev.b[c], ev.result.coef[c]);
+        cost += tx.squares[c];
+        for (int i = 0; i < 3; ++i) cost -= ev.b[c][i] * ev.result.coef[c][i];
+    }
     for (int i = 0; i < 3; ++i) ev.result.theta[i] = theta[i];
-    ev.result.cost = cost;
+    ev.result.cost = std::max(cost, 0.0);
 }
 
 } // namespace
@@ -102,30 +118,33 @@ BlinnPhongResult blinnPhongProject(const BlinnPhongTexel& texel, const double th
 
 BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, double etaMin,
                                    double etaMax, int maxIterations) {
-    thread_local Evaluation cur, trial; // reused: no allocations per texel
+    Evaluation cur, trial;
     const double start[3] = {0.0, 0.0, std::min(std::max(eta0, etaMin), etaMax)};
     evaluate(tx, start, true, cur);
     double lambda = 1e-3;
     int done = 0; // accepted steps
     for (int it = 0; it < maxIterations; ++it) {
-        const size_t n = cur.d.size();
         double jtj[3][3] = {}, grad[3] = {};
         for (int c = 0; c < 3; ++c) {
-            const double m = cur.result.coef[c][0], k = cur.result.coef[c][2];
-            double dd[3][3] = {}, phiD[3][3] = {}; // DᵀD, ΦᵀD (rows: basis, cols: θ_j)
-            for (size_t s = 0; s < n; ++s) {
-                const double D[3] = {m * cur.dd[0][s] + k * cur.dg[0][s],
-                                     m * cur.dd[1][s] + k * cur.dg[1][s], k * cur.dg[2][s]};
-                const double phi[3] = {cur.d[s], 1.0, cur.g[s]};
-                const double r = tx.values[s * 3 + size_t(c)] -
-                                 (m * cur.d[s] + cur.result.coef[c][1] + k * cur.g[s]);
-                for (int j = 0; j < 3; ++j) {
-                    grad[j] -= D[j] * r;
-                    for (int q = 0; q < 3; ++q) {
-                        dd[j][q] += D[j] * D[q];
-                        phiD[j][q] += phi[j] * D[q];
-                    }
+            const double* x = cur.result.coef[c];
+            const double m = x[0], k = x[2];
+            double dd[3][3], phiD[3][3]; // DᵀD and ΦᵀD for D_j = m ∂d_j + k ∂g_j
+            for (int j = 0; j < 3; ++j)
+                for (int q = 0; q < 3; ++q) {
+                    double v = k * k * cur.sgg[j][q];
+                    if (j < 2 && q < 2) v += m * m * cur.sdd[j][q];
+                    if (j < 2) v += m * k * cur.sdg[j][q];
+                    if (q < 2) v += m * k * cur.sdg[q][j];
+                    dd[j][q] = v;
                 }
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                    phiD[i][j] = k * cur.pg[i][j] + (j < 2 ? m * cur.pd[i][j] : 0.0);
+            for (int j = 0; j < 3; ++j) {
+                // r_cᵀ D_j = p_cᵀ D_j - x_cᵀ Φᵀ D_j
+                double rD = k * cur.yg[c][j] + (j < 2 ? m * cur.yd[c][j] : 0.0);
+                for (int i = 0; i < 3; ++i) rD -= x[i] * phiD[i][j];
+                grad[j] -= rD;
             }
             double sol[3][3]; // G⁻¹ ΦᵀD, column per θ_j
             for (int q = 0; q < 3; ++q) {

@@ -11,9 +11,11 @@ struct BlinnPhongTexel {
     const std::vector<glm::vec3>* lights = nullptr; ///< l_s
     const std::vector<glm::vec3>* halves = nullptr; ///< h_s
     std::vector<float> values;                      ///< p, [sample][channel]
+    double squares[3] = {0, 0, 0};                  ///< Σ_s p_sc² (set with the values)
     glm::dvec3 n0{0, 0, 1}, t1{1, 0, 0}, t2{0, 1, 0};
 
     void setSeedNormal(glm::vec3 n);
+    void updateSquares();
     glm::dvec3 normal(double u, double v) const;
 };
 

@@ -69,6 +69,7 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
             for (int s = 0; s < count; ++s)
                 for (int c = 0; c < 3; ++c)
                     tx.values[size_t(s) * 3 + size_t(c)] = samples.plane(s, c)[t];
+            tx.updateSquares();
             tx.setSeedNormal(glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1],
                                        seed.normal[t * 3 + 2]));
             const float e0 = seed.exponentMap.empty() ? seed.exponent : seed.exponentMap[t];

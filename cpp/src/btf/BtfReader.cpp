@@ -84,7 +84,8 @@ ImageF loadExrBytes(const std::vector<uint8_t>& bytes, const std::string& name) 
 std::vector<uint8_t> readFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError("cannot open BTF image '" + path + "'");
-    std::vector<uint8_t> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<uint8_t> data((std::istreambuf_iterator<char>(in)),
+                              std::istreambuf_iterator<char>());
     if (in.bad()) throw IoError("cannot read BTF image '" + path + "'");
     return data;
 }

@@ -82,7 +82,8 @@ Residuals residuals(const BtfSamples& samples, const BtfMaterialMaps& linear, bo
                 for (int ch = 0; ch < 3; ++ch) {
                     const float rho = linear.albedo[t * 3 + size_t(ch)];
                     c[ch] = rho * linear.ambient[t * 3 + size_t(ch)];
-                    for (int k = 0; k < 3; ++k) c[3 + ch * 3 + k] = rho * linear.normal[t * 3 + size_t(k)];
+                    for (int k = 0; k < 3; ++k)
+                        c[3 + ch * 3 + k] = rho * linear.normal[t * 3 + size_t(k)];
                     c[12 + ch] = linear.specular[t * 3 + size_t(ch)];
                 }
             }

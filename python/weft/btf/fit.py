@@ -10,7 +10,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Dict, List, Optional, Sequence, Union
+from typing import Any, Dict, Sequence, Union
 
 import numpy as np
 
@@ -47,10 +47,6 @@ class LinearFit:
 
     def core(self) -> Dict[str, Any]:
         return dict(texture=self.texture, normal=self.normal, ambient=self.ambient)
-
-    def unit_normal(self) -> np.ndarray:
-        n = self.normal.astype(np.float64)
-        return n / np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-12)
 
     def material(self, samples: Any) -> BtfMaterial:
         """The seed's maps as a material (ρ = T|n|, a = I_A/|n|, unit n; linear diffuse)."""
@@ -154,17 +150,3 @@ def normal_stats(fitted: np.ndarray, truth: np.ndarray) -> Dict[str, float]:
     err = angular_error_deg(fitted, truth)
     return {"mean_deg": float(err.mean()), "p95_deg": float(np.percentile(err, 95))}
 
-
-def group_angles(samples: Any) -> List[float]:
-    """The distinct θ_l values (degrees)."""
-    return [float(t) for t in np.unique(np.asarray(samples.angles)[:, 0])]
-
-
-def per_sample_table(samples: Any, errors: np.ndarray,
-                     limit: Optional[int] = None) -> List[Dict[str, float]]:
-    """Rows (index, angles, deviation %) for reports."""
-    rows = []
-    for i, (a, e) in enumerate(zip(np.asarray(samples.angles), errors)):
-        rows.append({"index": i, "theta_l": float(a[0]), "phi_l": float(a[1]),
-                     "theta_v": float(a[2]), "phi_v": float(a[3]), "deviation": float(e * 100)})
-    return rows[:limit] if limit else rows

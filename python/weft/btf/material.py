@@ -66,7 +66,8 @@ class BtfMaterial:
             raise weft.InvalidArgument("material normals must have unit length")
         exps = [self.exponent] + ([] if self.exponent_map is None else [self.exponent_map])
         for e in exps:
-            if not np.all(np.isfinite(e)) or np.any(np.asarray(e) < 0) or np.any(np.asarray(e) > 1e6):
+            arr = np.asarray(e)
+            if not np.all(np.isfinite(arr)) or np.any(arr < 0) or np.any(arr > 1e6):
                 raise weft.InvalidArgument("specular exponents must lie in [0, 1e6]")
         self.exponent = float(self.exponent)
 
@@ -84,8 +85,12 @@ class BtfMaterial:
 
     def __repr__(self) -> str:
         h, w = self.shape
-        spec = "none" if self.specular is None else (
-            "per-texel exponent" if self.exponent_map is not None else f"exponent {self.exponent:g}")
+        if self.specular is None:
+            spec = "none"
+        elif self.exponent_map is not None:
+            spec = "per-texel exponent"
+        else:
+            spec = f"exponent {self.exponent:g}"
         ns = "(0,0,1)" if self.flat_specular_normal else "n"
         return (f"<weft.BtfMaterial {w}x{h} specular {spec}, n_s={ns}, "
                 f"{'clamped' if self.clamp_diffuse else 'linear'} diffuse>")
