@@ -308,6 +308,47 @@ void bindBtf(py::module_& m) {
         return py::make_tuple(e, toArray(recon, {s.count(), 3, s.height(), s.width()}));
     }, py::arg("samples"), py::arg("maps"), py::arg("reconstruct") = false,
        py::arg("threads") = 0);
+    m.def("btf_fit_lafortune", [](const BtfSamples& s, py::dict seed, int lobes,
+                                  int maxIterations, int threads) {
+        const BtfMaterialMaps mm = mapsFrom(s, seed);
+        BtfLafortuneFit f;
+        {
+            py::gil_scoped_release release;
+            f = fitBtfLafortune(s, mm, lobes, maxIterations, threads);
+        }
+        const py::ssize_t h = f.height, w = f.width, l = f.lobes;
+        py::dict d;
+        d["normal"] = toArray(f.normal, {h, w, 3});
+        d["diffuse"] = toArray(f.diffuse, {h, w, 3});
+        d["ambient"] = toArray(f.ambient, {h, w, 3});
+        d["lobe_albedo"] = toArray(f.lobeAlbedo, {h, w, l, 3});
+        d["lobe_shape"] = toArray(f.lobeShape, {h, w, l, 4});
+        d["mean_iterations"] = f.meanIterations;
+        return d;
+    }, py::arg("samples"), py::arg("seed"), py::arg("lobes") = 1,
+       py::arg("max_iterations") = 30, py::arg("threads") = 0);
+    m.def("btf_lafortune_errors", [](const BtfSamples& s, py::dict fit, int threads) {
+        const py::ssize_t h = s.height(), w = s.width();
+        BtfLafortuneFit f;
+        f.width = s.width();
+        f.height = s.height();
+        auto shape = numericArray(fit["lobe_shape"], "lobe_shape");
+        if (shape.ndim() != 4) throw InvalidArgument("lobe_shape must be (H, W, lobes, 4)");
+        f.lobes = int(shape.shape(2));
+        f.normal = floatArray(fit["normal"], "normal", {h, w, 3});
+        f.diffuse = floatArray(fit["diffuse"], "diffuse", {h, w, 3});
+        f.ambient = floatArray(fit["ambient"], "ambient", {h, w, 3});
+        f.lobeAlbedo = floatArray(fit["lobe_albedo"], "lobe_albedo", {h, w, f.lobes, 3});
+        f.lobeShape = floatArray(fit["lobe_shape"], "lobe_shape", {h, w, f.lobes, 4});
+        std::vector<double> errors;
+        {
+            py::gil_scoped_release release;
+            errors = btfLafortuneErrors(s, f, nullptr, threads);
+        }
+        py::array_t<double> e(py::ssize_t(errors.size()));
+        std::memcpy(e.mutable_data(), errors.data(), errors.size() * sizeof(double));
+        return e;
+    }, py::arg("samples"), py::arg("fit"), py::arg("threads") = 0);
     m.def("btf_have_ceres", &btfHaveCeres);
     m.def("btf_fit_blinn_phong", [](const BtfSamples& s, py::dict seed, const std::string& solver,
                                     int maxIterations, float minExponent, float maxExponent,

@@ -27,12 +27,15 @@ def test_synth_then_fit_writes_maps_metrics_and_report(tmp_path: Path) -> None:
     assert proc.returncode == 0, proc.stderr
     assert (data / "truth" / "material.json").is_file()
     out = tmp_path / "fit"
-    proc = run("-m", "weft", "btf", "fit", str(data), "--out", str(out), "--robust")
+    proc = run("-m", "weft", "btf", "fit", str(data), "--out", str(out), "--robust",
+               "--lafortune", "2")
     assert proc.returncode == 0, proc.stderr
     assert "Blinn-Phong" in proc.stderr  # progress on stderr
     metrics = json.loads((out / "metrics.json").read_text())
     models = metrics["models"]
-    assert set(models) == {"linear", "specular_eq4.29", "specular_eq4.30", "blinn_phong"}
+    assert set(models) == {"linear", "specular_eq4.29", "specular_eq4.30", "blinn_phong",
+                           "lafortune_2"}
+    assert (out / "maps" / "lafortune_2" / "lobe1_shape.exr").is_file()
     assert models["specular_eq4.30"]["deviation"]["groups"]["0"] < 1e-10
     assert models["blinn_phong"]["deviation"]["total"] < models["linear"]["deviation"]["total"]
     assert len(models["linear"]["sample_deviation"]) == 81

@@ -77,3 +77,23 @@ def test_all_views_share_one_model() -> None:
     one = btf.normal_stats(btf.fit_linear(frontal).normal, truth.material.normal)
     many = btf.normal_stats(linear.normal, truth.material.normal)
     assert many["mean_deg"] < 2 * one["mean_deg"] + 0.5  # more views never derail the normal
+
+
+def test_lafortune_lobes_beat_linear_plus_specular(wool) -> None:
+    samples, truth, _, spec = wool
+    two = btf.fit_lafortune(samples, spec.material, lobes=2)
+    assert two.lobe_shape.shape == (24, 24, 2, 4) and "2 lobe" in repr(two)
+    assert btf.deviation(samples, two.errors(samples))["total"] < total(samples, spec.material)
+    one = btf.fit_lafortune(samples, spec.material, lobes=1)
+    assert two.errors(samples).mean() < one.errors(samples).mean()
+    with pytest.raises(ValueError):
+        btf.fit_lafortune(samples, spec.material, lobes=3)
+
+
+def test_lafortune_uses_the_view_directions() -> None:
+    samples, _ = btf.synthesize("wool", 12, views=4, noise=0.001)
+    spec = btf.fit_specular(samples, btf.fit_linear(samples))
+    one = btf.fit_lafortune(samples, spec.material, lobes=1)
+    assert btf.deviation(samples, one.errors(samples))["total"] < total(samples, spec.material)
+    # with oblique views C_x, C_y move from their start (-1) towards the mirror lobe's values
+    assert np.any(np.abs(one.lobe_shape[..., 0] + 1) > 1e-4)

@@ -32,3 +32,30 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                                  const BtfNonlinearOptions& options = {});
 
 } // namespace weft
+
+namespace weft {
+
+/// Per-texel diffuse term plus Lafortune lobes (seed eq. 4.10/4.11):
+/// P_c = m_c max(n·l, 0) + b_c + Σ_j ρ_jc max(C_xj l_x v_x + C_yj l_y v_y + C_zj l_z v_z, 0)^e_j
+/// with C_zj = 1 (its scale is absorbed by ρ_jc). Built-in LM by variable projection (the
+/// linear m, b, ρ eliminated), seeded by the normal and exponent of `seed`. With the frontal
+/// view only, C_x and C_y have no effect (v_x = v_y = 0) and keep their start values (-1).
+struct BtfLafortuneFit {
+    int width = 0, height = 0, lobes = 1;
+    std::vector<float> normal;  ///< (H, W, 3) unit
+    std::vector<float> diffuse; ///< m (H, W, 3)
+    std::vector<float> ambient; ///< b (H, W, 3), additive
+    std::vector<float> lobeAlbedo; ///< ρ (H, W, lobes, 3)
+    std::vector<float> lobeShape;  ///< (C_x, C_y, C_z, e) (H, W, lobes, 4)
+    double meanIterations = 0;
+};
+
+BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps& seed, int lobes,
+                                int maxIterations = 30, int threads = 0);
+
+/// Per-sample mean squared error of a Lafortune fit (and the reconstruction when asked).
+std::vector<double> btfLafortuneErrors(const BtfSamples& samples, const BtfLafortuneFit& fit,
+                                       std::vector<float>* reconstruction = nullptr,
+                                       int threads = 0);
+
+} // namespace weft

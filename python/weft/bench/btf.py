@@ -3,7 +3,8 @@
 For each preset a synthetic 256 x 256 x 81 BTF (sensor noise 0.004, JPEG quality 95, frontal
 view) is written in the Bonn layout and read back; then timed: load, linear fit (plain and
 robust), exponent search (eq. 4.30: every integer 1..4096; eq. 4.29: grid + refinement),
-nonlinear Blinn-Phong (built-in LM on every texel; Ceres on a 32 x 32 crop when built with it).
+nonlinear Blinn-Phong (built-in LM on every texel; Ceres on a 32 x 32 crop when built with it)
+and diffuse + 2 Lafortune lobes (built-in LM).
 Errors against the ground truth: normal angular error (mean, 95th percentile), ambient error
 (|a - a_true| with a = I_A/|n|), total deviation (SPEC §3.4) of every model.
 Peers in the same run: the batched NumPy normal equations (:func:`weft.reference.btf.
@@ -82,12 +83,14 @@ def run_preset(preset: str, size: int, repeats: int, tmp: str) -> Dict[str, Any]
     t_flat, flat = best_time(lambda: btf.fit_specular(data, linear), repeats)
     t_fitted, fitted = best_time(lambda: btf.fit_specular(data, linear, False), 1)
     t_bp, bp = best_time(lambda: btf.fit_blinn_phong(data, flat.material, "builtin"), 1)
+    t_laf, laf = best_time(lambda: btf.fit_lafortune(data, flat.material, 2), 1)
     texels = size * size
     row: Dict[str, Any] = {
         "preset": preset, "size": size, "shadows": truth.shadows,
         "load_ms": t_load * 1e3, "linear_ms": t_lin * 1e3, "robust_ms": t_rob * 1e3,
         "search_eq430_ms": t_flat * 1e3, "search_eq429_ms": t_fitted * 1e3,
         "blinn_phong_s": t_bp, "linear_texels_per_s": texels / t_lin,
+        "lafortune2_s": t_laf, "lafortune2_texels_per_s": texels / t_laf,
         "blinn_phong_texels_per_s": texels / t_bp, "bp_mean_iterations": bp.mean_iterations,
         "exponent_eq430": int(flat.exponent), "exponent_eq429": int(fitted.exponent),
         "truth_exponent": truth.material.exponent,
@@ -101,6 +104,8 @@ def run_preset(preset: str, size: int, repeats: int, tmp: str) -> Dict[str, Any]
         stats = btf.normal_stats(m.normal, truth.material.normal)
         row[f"normal_mean_{name}"] = stats["mean_deg"]
         row[f"normal_p95_{name}"] = stats["p95_deg"]
+    row["dev_lafortune2"] = btf.deviation(data, laf.errors(data))["total"]
+    row["normal_mean_lafortune2"] = btf.normal_stats(laf.normal, truth.material.normal)["mean_deg"]
     row["ambient_err_linear"] = float(np.mean(np.abs(lin_material.ambient -
                                                       truth.material.ambient)))
     row["ambient_err_blinn_phong"] = float(np.mean(np.abs(bp.material.ambient *
@@ -173,6 +178,8 @@ def run(args: argparse.Namespace) -> int:
                                      "met": bp_rate >= TARGET_BP_TEXELS_S},
         "bp_beats_pipeline_on_all_presets": all(r["dev_blinn_phong"] < r["dev_spec_eq430"]
                                                 for r in rows),
+        "lafortune2_beats_pipeline_on_all_presets": all(
+            r["dev_lafortune2"] < r["dev_spec_eq430"] for r in rows),
     }
     summary = {"memcpy_GBps": bandwidth / 1e9, "sample_bytes": sample_bytes,
                "bandwidth_bound_ms": bound_ms, "linear_vs_bound": linear_ms / bound_ms,
@@ -207,23 +214,26 @@ def render_markdown(rows: List[Dict[str, Any]], summary: Dict[str, Any],
                   f(r["search_eq430_ms"]), f(r["search_eq429_ms"], 0), f(r["blinn_phong_s"], 3),
                   f"{r['linear_texels_per_s'] / 1e6:.1f} M",
                   f"{r['blinn_phong_texels_per_s'] / 1e3:.1f} k",
+                  f"{r['lafortune2_texels_per_s'] / 1e3:.1f} k",
                   f"{r.get('ceres_texels_per_s', float('nan')) / 1e3:.2f} k"] for r in rows]
     err_rows = [[r["preset"], *(f"{r[f'normal_mean_{m}']:.2f} / {r[f'normal_p95_{m}']:.2f}"
                                 for m in ("linear", "robust", "blinn_phong")),
                  f(r["ambient_err_linear"], 4),
                  *(f(r[f"dev_{m}"], 4) for m in ("linear", "spec_eq429", "spec_eq430",
-                                                 "blinn_phong")),
+                                                 "blinn_phong", "lafortune2")),
                  f"{r['exponent_eq429']} / {r['exponent_eq430']} ({r['truth_exponent']:g})",
                  f"{r['bp_gain_vs_eq430']:.2f}x"] for r in rows]
     lines = [f"# BTF fitting benchmark ({size} x {size} x 81, noise {NOISE}, JPEG 95)", "",
              f"`{command}`", "", "## Times", "",
              markdown_table(["preset", "load ms", "linear ms", "robust ms", "search eq4.30 ms",
                              "search eq4.29 ms", "Blinn-Phong s", "linear texels/s",
-                             "BP texels/s", "Ceres texels/s"], time_rows), "",
+                             "BP texels/s", "Lafortune-2 texels/s", "Ceres texels/s"],
+                            time_rows), "",
              "## Errors against the ground truth", "",
              markdown_table(["preset", "normal ° linear (mean / p95)", "robust", "Blinn-Phong",
                              "ambient |err|", "dev % linear", "dev % eq4.29", "dev % eq4.30",
-                             "dev % BP", "n eq4.29 / eq4.30 (truth)", "BP gain"], err_rows), "",
+                             "dev % BP", "dev % Lafortune-2", "n eq4.29 / eq4.30 (truth)",
+                             "BP gain"], err_rows), "",
              "## Peers and targets", ""]
     peer_rows = [["memcpy bandwidth", f"{summary['memcpy_GBps']:.1f} GB/s"],
                  ["bandwidth bound of the linear fit",
@@ -240,5 +250,7 @@ def render_markdown(rows: List[Dict[str, Any]], summary: Dict[str, Any],
         peer_rows.append([f"target {key}", f"{t['measured']:.2f} vs {t['target']:g}: {state}"])
     peer_rows.append(["Blinn-Phong beats linear + specular on every preset",
                       str(targets["bp_beats_pipeline_on_all_presets"])])
+    peer_rows.append(["Lafortune (2 lobes) beats linear + specular on every preset",
+                      str(targets["lafortune2_beats_pipeline_on_all_presets"])])
     lines.append(markdown_table(["figure", "value"], peer_rows))
     return "\n".join(lines)

@@ -1,5 +1,5 @@
 """BTF fitting (SPEC §3): Bonn-layout datasets, synthetic BTFs with ground truth, the seed's
-linear + specular fit, nonlinear Blinn-Phong, reports and the ``python -m weft btf`` CLI.
+linear + specular fit, nonlinear Blinn-Phong and Lafortune fits, reports and the ``python -m weft btf`` CLI.
 
 Modules: :mod:`weft.btf.fit` (load, fits, error figures), :mod:`weft.btf.synth` (presets,
 rendering, writing), :mod:`weft.btf.material` (:class:`BtfMaterial`), :mod:`weft.btf.report`
@@ -8,12 +8,14 @@ rendering, writing), :mod:`weft.btf.material` (:class:`BtfMaterial`), :mod:`weft
 
 from weft._core import BtfSamples
 from weft.btf.fit import (
+    LafortuneFit,
     LinearFit,
     NonlinearFit,
     SpecularFit,
     angular_error_deg,
     deviation,
     fit_blinn_phong,
+    fit_lafortune,
     fit_linear,
     fit_specular,
     have_ceres,
@@ -25,7 +27,7 @@ from weft.btf.fit import (
 from weft.btf.material import BtfMaterial
 from weft.btf.synth import PRESETS, SynthTruth, synthesize, write
 
-__all__ = ["BtfMaterial", "BtfSamples", "LinearFit", "NonlinearFit", "PRESETS", "SpecularFit",
-           "SynthTruth", "angular_error_deg", "deviation", "fit_blinn_phong", "fit_linear",
+__all__ = ["BtfMaterial", "BtfSamples", "LafortuneFit", "LinearFit", "NonlinearFit", "PRESETS", "SpecularFit",
+           "SynthTruth", "angular_error_deg", "deviation", "fit_blinn_phong", "fit_lafortune", "fit_linear",
            "fit_specular", "have_ceres", "load", "normal_stats", "sample_errors", "solve_linear",
            "synthesize", "write"]

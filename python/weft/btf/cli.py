@@ -2,7 +2,8 @@
 
     python -m weft btf synth PRESET OUT [--size 256] [--views 1] [--zip] [--noise 0.004] ...
     python -m weft btf fit PATH --out DIR [--views frontal|all] [--gamma raw|linear] [--robust]
-                                          [--solver auto|builtin|ceres] [--no-nonlinear] ...
+                                          [--solver auto|builtin|ceres] [--no-nonlinear]
+                                          [--lafortune 0|1|2] ...
 
 ``synth`` writes the Bonn layout (folder, or a zip with --zip) and the ground truth as a
 BtfMaterial folder (OUT/truth, or OUT.truth next to a zip). ``fit`` writes the maps of every
@@ -66,6 +67,8 @@ def add_parsers(sub: Any) -> None:
     f.add_argument("--no-nonlinear", dest="nonlinear", action="store_false",
                    help="skip the per-texel Blinn-Phong fit")
     f.add_argument("--solver", choices=("auto", "builtin", "ceres"), default="builtin")
+    f.add_argument("--lafortune", type=int, choices=(0, 1, 2), default=0,
+                   help="also fit diffuse + this many Lafortune lobes (0 = no)")
     f.add_argument("--truth", default=None, help="ground-truth BtfMaterial folder")
     f.add_argument("--no-progress", dest="progress", action="store_false")
     f.set_defaults(handler=cmd_fit)
@@ -108,7 +111,7 @@ def _views(text: str) -> Any:
 
 
 def cmd_fit(args: argparse.Namespace) -> int:
-    steps = 6 + int(args.nonlinear)
+    steps = 6 + int(args.nonlinear) + int(args.lafortune > 0)
     progress = Progress(steps, enabled=args.progress)
     times: Dict[str, float] = {}
 
@@ -133,6 +136,10 @@ def cmd_fit(args: argparse.Namespace) -> int:
         bp = timed("Blinn-Phong", btf_fit.fit_blinn_phong, samples, spec_ns.material,
                    args.solver)
         models["blinn_phong"] = bp.material
+    lafortune = None
+    if args.lafortune:
+        lafortune = timed("Lafortune", btf_fit.fit_lafortune, samples, spec_ns.material,
+                          args.lafortune)
     progress.update("errors")
     results: Dict[str, Dict[str, Any]] = {}
     recons: Dict[str, np.ndarray] = {}
@@ -144,6 +151,20 @@ def cmd_fit(args: argparse.Namespace) -> int:
         if material.specular is not None:
             results[name]["exponent"] = ("per-texel" if material.exponent_map is not None
                                          else int(material.exponent))
+    if lafortune is not None:
+        errors = lafortune.errors(samples)
+        results[f"lafortune_{args.lafortune}"] = {
+            "deviation": btf_fit.deviation(samples, errors),
+            "sample_deviation": (errors * 100).tolist()}
+        folder = os.path.join(args.out, "maps", f"lafortune_{args.lafortune}")
+        os.makedirs(folder, exist_ok=True)
+        for name in ("normal", "diffuse", "ambient"):
+            weft.save_exr(os.path.join(folder, f"{name}.exr"), getattr(lafortune, name))
+        for j in range(args.lafortune):
+            weft.save_exr(os.path.join(folder, f"lobe{j}_albedo.exr"),
+                          np.ascontiguousarray(lafortune.lobe_albedo[:, :, j]))
+            weft.save_exr(os.path.join(folder, f"lobe{j}_shape.exr"),
+                          np.ascontiguousarray(lafortune.lobe_shape[:, :, j]))
     progress.step("errors")
     truth_dir = args.truth or truth_folder(args.path)
     truth_metrics = _truth_metrics(truth_dir, models) if truth_dir else None
@@ -181,7 +202,7 @@ def write_outputs(out: str, samples: Any, models: Dict[str, BtfMaterial],
     texels = [(w // 2, h // 2), (w // 4, h // 4), (3 * w // 4, h // 3)]
     figures = {name: report.write_figures(os.path.join(out, "figures"), samples, name,
                                           recons[name], texels) for name in models}
-    best = list(models)[-1]
+    best = list(models)[-1]  # figures and histogram of the last BtfMaterial model
     hist, bins = report.histogram_image(np.asarray(results[best]["sample_deviation"]))
     weft.save_png(os.path.join(out, "figures", "histogram.png"), hist)
     metrics = {"path": os.path.abspath(args.path), "samples": samples.count,

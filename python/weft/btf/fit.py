@@ -109,6 +109,38 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
     return NonlinearFit(BtfMaterial.from_core(r["maps"]), r["solver"], r["mean_iterations"])
 
 
+@dataclass
+class LafortuneFit:
+    """Diffuse term plus 1-2 Lafortune lobes per texel (seed eq. 4.10/4.11, C_z = 1):
+    P = diffuse max(n.l, 0) + ambient + Σ_j lobe_albedo_j max(C_x l_x v_x + C_y l_y v_y +
+    C_z l_z v_z, 0)^e; ``lobe_shape`` (H, W, lobes, 4) holds (C_x, C_y, C_z, e)."""
+
+    normal: np.ndarray
+    diffuse: np.ndarray
+    ambient: np.ndarray
+    lobe_albedo: np.ndarray
+    lobe_shape: np.ndarray
+    mean_iterations: float
+
+    def errors(self, samples: Any, threads: int = 0) -> np.ndarray:
+        """Per-sample mean squared error (S,)."""
+        fit = dict(normal=self.normal, diffuse=self.diffuse, ambient=self.ambient,
+                   lobe_albedo=self.lobe_albedo, lobe_shape=self.lobe_shape)
+        return _core.btf_lafortune_errors(samples, fit, int(threads))
+
+    def __repr__(self) -> str:
+        h, w, lobes = self.lobe_shape.shape[:3]
+        return f"<weft.btf.LafortuneFit {w}x{h}, {lobes} lobe(s)>"
+
+
+def fit_lafortune(samples: Any, seed: BtfMaterial, lobes: int = 1, max_iterations: int = 30,
+                  threads: int = 0) -> LafortuneFit:
+    """Per-texel diffuse + ``lobes`` Lafortune lobes (built-in LM), seeded by the normal and
+    exponent of ``seed``."""
+    return LafortuneFit(**_core.btf_fit_lafortune(samples, seed.core_maps(), int(lobes),
+                                                  int(max_iterations), int(threads)))
+
+
 def have_ceres() -> bool:
     """True when weft was built with Ceres Solver."""
     return bool(_core.btf_have_ceres())
