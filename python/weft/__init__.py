@@ -12,6 +12,7 @@ line (demo, devices, render) and ``python -m weft.bench`` runs the benchmarks.
 """
 
 from weft._core import (
+    BtfSamples,
     Camera,
     Cloth,
     Collider,
@@ -53,6 +54,8 @@ from weft._core import (
 )
 
 __all__ = [
+    "BtfMaterial",
+    "BtfSamples",
     "Camera",
     "Cloth",
     "Collider",
@@ -92,3 +95,5 @@ __all__ = [
     "validation_enabled",
     "validation_messages",
 ]
+
+from weft.btf.material import BtfMaterial  # noqa: E402  (needs weft._core first)

@@ -24,6 +24,7 @@ SUBSYSTEMS: Dict[str, str] = {
     "render": "weft.bench.render",
     "cloth": "weft.bench.cloth",
     "hair": "weft.bench.hair",
+    "btf": "weft.bench.btf",
 }
 
 __all__ = ["SUBSYSTEMS", "main", "load_subsystem", "machine_info", "Progress", "write_report",
