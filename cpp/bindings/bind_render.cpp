@@ -46,6 +46,7 @@ py::dict statsDict(const FrameStats& s) {
     }
     d["passes"] = passes;
     d["culled"] = s.culled;
+    d["reused"] = s.reused;
     d["mesh_uploads"] = s.meshUploads;
     d["upload_bytes"] = s.uploadBytes;
     return d;
@@ -71,7 +72,8 @@ void bindRender(py::module_& m) {
     py::class_<Renderer>(m, "Renderer",
         "Vulkan renderer drawing a Scene from a Camera into an offscreen image of width x height.")
         .def(py::init([](int64_t width, int64_t height, int64_t shadowMapSize, int pcfRadius,
-                         float biasConstant, float biasSlope, float biasMax, float normalOffset) {
+                         float biasConstant, float biasSlope, float biasMax, float normalOffset,
+                         bool reuseShadowMaps) {
             if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
                 throw InvalidArgument("render target size must be positive (got " +
                                       std::to_string(width) + "x" + std::to_string(height) + ")");
@@ -84,11 +86,12 @@ void bindRender(py::module_& m) {
             s.biasSlope = biasSlope;
             s.biasMax = biasMax;
             s.normalOffset = normalOffset;
+            s.reuseShadowMaps = reuseShadowMaps;
             return std::make_unique<Renderer>(uint32_t(width), uint32_t(height), s);
         }), py::arg("width"), py::arg("height"), py::arg("shadow_map_size") = 2048,
            py::arg("pcf_radius") = 1, py::arg("bias_constant") = 0.0005f,
            py::arg("bias_slope") = 0.0015f, py::arg("bias_max") = 0.01f,
-           py::arg("normal_offset") = 1.5f)
+           py::arg("normal_offset") = 1.5f, py::arg("reuse_shadow_maps") = true)
         .def_property_readonly("width", &Renderer::width)
         .def_property_readonly("height", &Renderer::height)
         .def_property_readonly("device_name", &Renderer::deviceName)
@@ -104,6 +107,7 @@ void bindRender(py::module_& m) {
         .WEFT_SETTING("bias_slope", biasSlope, float)
         .WEFT_SETTING("bias_max", biasMax, float)
         .WEFT_SETTING("normal_offset", normalOffset, float)
+        .WEFT_SETTING("reuse_shadow_maps", reuseShadowMaps, bool)
         .def("render", [](Renderer& r, const Scene& scene, const Camera& camera) {
             return colorImage(renderFrame(r, scene, camera, OutputColor).color);
         }, py::arg("scene"), py::arg("camera"), "sRGB-encoded RGBA uint8 image (H, W, 4).")

@@ -236,12 +236,15 @@ def test_stats_list_passes(make_renderer) -> None:
     renderer.render(scene, camera)
     stats = renderer.stats
     assert stats["frame_index"] > first["frame_index"]
+    first_names = [p["name"] for p in first["passes"]]
+    shadow_pos = min(i for i, n in enumerate(first_names) if n.startswith("shadow["))
+    assert shadow_pos < first_names.index("forward")
+    # nothing the light sees changed: the second frame reuses the shadow map
     names = [p["name"] for p in stats["passes"]]
-    assert any(n.startswith("shadow[") for n in names), names
+    assert not any(n.startswith("shadow[") for n in names), names
+    assert stats["reused"] == ["shadow[0]"]
     assert "forward" in names and "output" in names, names
     assert names.index("forward") < names.index("output")
-    shadow_pos = min(i for i, n in enumerate(names) if n.startswith("shadow["))
-    assert shadow_pos < names.index("forward")
     assert stats["cpu_ms"] >= 0.0
     for p in stats["passes"]:
         assert p["cpu_ms"] >= 0.0, p

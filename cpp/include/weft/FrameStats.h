@@ -16,6 +16,7 @@ struct FrameStats {
     uint64_t frameIndex = 0;
     std::vector<PassStats> passes; // in execution order, culled passes absent
     std::vector<std::string> culled; // passes the frame graph removed because nobody read them
+    std::vector<std::string> reused; // passes skipped because their output is still valid
     double cpuMs = 0.0;            // whole frame on the CPU (record + submit + wait + readback)
     double gpuMs = -1.0;           // sum of the passes' GPU times, negative if unmeasured
     int meshUploads = 0;           // dynamic meshes (cloth) re-uploaded for this frame

@@ -26,6 +26,8 @@ struct RenderSettings {
     float biasSlope = 0.0015f;      // ... plus this times tan(angle between n and l) ...
     float biasMax = 0.01f;          // ... clamped to this
     float normalOffset = 1.5f;      // receiver offset along n, in shadow-map texels
+    /// Keep the shadow maps of the last frame when no shadow view and no shadow caster changed.
+    bool reuseShadowMaps = true;
     /// Throws InvalidArgument for out-of-range values.
     void validate() const;
 };

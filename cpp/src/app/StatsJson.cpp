@@ -31,6 +31,8 @@ std::string statsToJson(const FrameStats& stats, const std::string& device) {
           << ", \"gpu_ms\": " << ms(stats.passes[i].gpuMs) << "}";
     o << "], \"culled\": [";
     for (size_t i = 0; i < stats.culled.size(); ++i) o << (i ? ", " : "") << quoted(stats.culled[i]);
+    o << "], \"reused\": [";
+    for (size_t i = 0; i < stats.reused.size(); ++i) o << (i ? ", " : "") << quoted(stats.reused[i]);
     o << "]}";
     return o.str();
 }

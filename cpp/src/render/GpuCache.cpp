@@ -1,6 +1,7 @@
 #include "render/GpuCache.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 
@@ -31,6 +32,11 @@ void GpuCache::upload(const vk::Buffer& dst, const void* data, VkDeviceSize byte
 }
 
 namespace {
+
+uint64_t nextContentId() {
+    static std::atomic<uint64_t> counter{0};
+    return ++counter;
+}
 
 // Interleaves a mesh's vertices in the kVertexStride layout.
 std::vector<float> packVertices(const Mesh& mesh) {
@@ -67,6 +73,7 @@ const MeshGpu& GpuCache::cloth(const std::shared_ptr<const Cloth>& cloth, uint64
     gpu.vertices.write(vertices.data(), vbytes);
     if (!mesh.indices.empty()) gpu.indices.write(mesh.indices.data(), mesh.indices.size() * 4);
     gpu.indexCount = uint32_t(mesh.indices.size());
+    gpu.contentId = nextContentId();
     uploadedBytes += vbytes + mesh.indices.size() * 4;
     slot.source = cloth;
     slot.version = cloth->meshVersion();
@@ -93,6 +100,7 @@ const MeshGpu& GpuCache::mesh(const MeshPtr& mesh) {
     upload(gpu.vertices, vertices.data(), vbytes);
     upload(gpu.indices, mesh->indices.data(), ibytes);
     gpu.indexCount = uint32_t(mesh->indices.size());
+    gpu.contentId = nextContentId();
     auto& slot = mMeshes[mesh.get()];
     slot = std::move(gpu);
     return slot;

@@ -21,6 +21,7 @@ struct MeshGpu {
     vk::Buffer vertices; // kVertexStride bytes per vertex
     vk::Buffer indices;  // uint32
     uint32_t indexCount = 0;
+    uint64_t contentId = 0; // unique per upload: equal ids mean equal geometry
 };
 
 struct TextureGpu {

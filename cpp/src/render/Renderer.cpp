@@ -43,6 +43,26 @@ struct FrameSlot {
     bool statsPending = false;
 };
 
+// Everything the shadow maps' contents depend on: the light views and every caster's geometry,
+// transform and alpha test. Equal keys mean the maps can be reused.
+std::vector<uint64_t> shadowKey(const render::FrameData& data) {
+    std::vector<uint64_t> key;
+    auto put = [&](const void* p, size_t bytes) {
+        const size_t at = key.size();
+        key.resize(at + (bytes + 7) / 8, 0);
+        std::memcpy(key.data() + at, p, bytes);
+    };
+    for (const render::ShadowView& v : data.shadowViews) put(&v.frustum.viewProj, sizeof(glm::mat4));
+    for (const render::Draw& d : data.draws) {
+        if (!d.castShadows) continue;
+        key.push_back(d.mesh->contentId);
+        put(&d.model, sizeof(glm::mat4));
+        put(&d.alphaCutoff, sizeof(float));
+        if (d.alphaCutoff > 0.0f) put(&d.material, sizeof(d.material));
+    }
+    return key;
+}
+
 void drawMesh(VkCommandBuffer cmd, const render::MeshGpu& mesh) {
     const VkDeviceSize offset = 0;
     const VkBuffer vertices = mesh.vertices.get();
@@ -73,6 +93,7 @@ struct Renderer::Impl {
     uint64_t frameCounter = 0;
     render::RenderTargets targets;
     vk::Image shadowMaps;
+    std::vector<uint64_t> shadowSignature; // what the shadow maps hold (see shadowKey)
     vk::Image dummyShadow;
     std::vector<ShadowInfo> shadowInfos;
     FrameStats stats;
@@ -158,6 +179,7 @@ void Renderer::Impl::ensureShadowMaps(uint32_t layers) {
     d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
               VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     shadowMaps = vk::Image(ctx.get(), d);
+    shadowSignature.clear();
 }
 
 FrameSlot& Renderer::Impl::beginFrame() {
@@ -193,6 +215,10 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     FrameData data = buildFrameData(scene, camera, settings, aspect, *cache);
     shadowInfos = data.shadowInfos;
     if (!data.shadowViews.empty()) ensureShadowMaps(uint32_t(data.shadowViews.size()));
+    std::vector<uint64_t> key = shadowKey(data);
+    const bool reuseShadows = settings.reuseShadowMaps && !data.shadowViews.empty() &&
+                              key == shadowSignature;
+    shadowSignature = std::move(key);
     const render::GpuFrame& frame = data.frame;
     const std::vector<render::GpuInstance>& instances = data.instances;
     const std::vector<render::GpuLight>& lights = data.lights;
@@ -284,10 +310,15 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
         vkCmdSetScissor(cmd, 0, 1, &sc);
     };
 
+    std::vector<std::string> reused;
     for (const ShadowView& s : shadowViews) {
         std::string name = "shadow[" + std::to_string(s.lightIndex) + "]";
         if (scene.lights()[size_t(s.lightIndex)].index() == 1) // a point light's six views
             name += "." + std::to_string(s.layer - shadowInfos[size_t(s.lightIndex)].layer);
+        if (reuseShadows) { // the map already holds exactly this view of these casters
+            reused.push_back(std::move(name));
+            continue;
+        }
         g.addPass({name, {}, {{rShadow, Use::DepthWrite}},
                    [&, s](VkCommandBuffer cmd) {
                        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -429,6 +460,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     slot.timestamps->reset(slot.cmd);
     slot.stats = FrameStats{};
     slot.stats.frameIndex = frameCounter;
+    slot.stats.reused = std::move(reused);
     slot.stats.meshUploads = data.meshUploads;
     slot.stats.uploadBytes = data.uploadBytes;
     g.execute(c, slot.cmd, slot.timestamps.get(), slot.stats);

@@ -166,7 +166,9 @@ def measure_setting(width: int, height: int, shadow_size: int, frames: int,
 
     label = f"{width}x{height} shadow {shadow_size}"
     scene, camera = weft.default_scene()
-    renderer = weft.Renderer(width, height, shadow_map_size=shadow_size)
+    # Shadow maps are re-rendered every frame so that their cost is measured (a static scene
+    # would otherwise reuse them after the first frame).
+    renderer = weft.Renderer(width, height, shadow_map_size=shadow_size, reuse_shadow_maps=False)
     materials: Optional[List[Any]] = None
     oracle_error: Optional[str] = None
     try:
