@@ -14,6 +14,7 @@ void bindScene(py::module_& m);
 void bindRender(py::module_& m);
 void bindCloth(py::module_& m);
 void bindHair(py::module_& m);
+void bindHairRender(py::module_& m);
 } // namespace weft::py_bind
 
 using namespace weft::py_bind;
@@ -177,4 +178,5 @@ PYBIND11_MODULE(_core, m) {
     bindRender(m);
     bindCloth(m);
     bindHair(m);
+    bindHairRender(m);
 }

@@ -147,17 +147,21 @@ void Scene::setBackground(const glm::vec3& background) {
 void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
     lo = glm::vec3(1e30f);
     hi = glm::vec3(-1e30f);
-    for (const MeshInstance& inst : mInstances) {
-        glm::vec3 mlo, mhi;
-        inst.mesh->bounds(mlo, mhi);
+    auto add = [&](const glm::vec3& olo, const glm::vec3& ohi, const glm::mat4& transform) {
         for (int i = 0; i < 8; ++i) {
-            const glm::vec3 c((i & 1) ? mhi.x : mlo.x, (i & 2) ? mhi.y : mlo.y,
-                              (i & 4) ? mhi.z : mlo.z);
-            const glm::vec3 w = glm::vec3(inst.transform * glm::vec4(c, 1.0f));
+            const glm::vec3 c((i & 1) ? ohi.x : olo.x, (i & 2) ? ohi.y : olo.y,
+                              (i & 4) ? ohi.z : olo.z);
+            const glm::vec3 w = glm::vec3(transform * glm::vec4(c, 1.0f));
             lo = glm::min(lo, w);
             hi = glm::max(hi, w);
         }
+    };
+    for (const MeshInstance& inst : mInstances) {
+        glm::vec3 mlo, mhi;
+        inst.mesh->bounds(mlo, mhi);
+        add(mlo, mhi, inst.transform);
     }
+    for (const HairInstance& h : mHairs) add(h.lo, h.hi, h.transform);
 }
 
 } // namespace weft
