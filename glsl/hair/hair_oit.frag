@@ -1,7 +1,8 @@
 #version 450
-// Weighted blended OIT accumulation (SPEC §5.4): accum += (C a w, a w) (blend ONE, ONE),
-// revealage *= 1 - a (blend ZERO, ONE_MINUS_SRC_COLOR). Weights eq. 7-10 as in
-// python/weft/reference/hair_oit.py.
+// Weighted blended OIT accumulation (SPEC §5.4). Both targets blend alike (no independent-blend
+// feature needed): colour channels ONE, ONE; alpha ZERO, ONE_MINUS_SRC_ALPHA. Target 0 gets
+// rgb += C a w and its alpha (the revealage) *= 1 - a; target 1 (one channel) gets += a w.
+// Weights eq. 7-10 as in python/weft/reference/hair_oit.py.
 #include "hair_lighting.glsl"
 
 layout(location = 0) in vec3 inWorldPos;
@@ -12,7 +13,7 @@ layout(location = 4) in float inAlpha;
 layout(location = 5) in float inViewDepth;
 
 layout(location = 0) out vec4 outAccum;
-layout(location = 1) out vec4 outReveal;
+layout(location = 1) out vec4 outWeight;
 
 float oitWeight(float z, float a, float zNdc) {
     z = abs(z);
@@ -29,6 +30,6 @@ void main() {
     vec3 c = hairRadiance(inWorldPos, normalize(inTangent), inColor, s, inStrand, vis);
     float a = inAlpha;
     float w = oitWeight(inViewDepth, a, gl_FragCoord.z);
-    outAccum = vec4(c * a * w, a * w);
-    outReveal = vec4(a);
+    outAccum = vec4(c * a * w, a);
+    outWeight = vec4(a * w, 0.0, 0.0, a);
 }

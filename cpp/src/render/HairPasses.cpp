@@ -147,7 +147,7 @@ void HairPasses::ensureImages(const RenderSettings& settings, uint32_t width, ui
         mHeight = height;
         mAccum = makeImage(mCtx, width, height, 1, kOitAccumFormat,
                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-        mReveal = makeImage(mCtx, width, height, 1, kOitRevealFormat,
+        mWeight = makeImage(mCtx, width, height, 1, kOitWeightFormat,
                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
     }
 }
@@ -215,7 +215,7 @@ void HairPasses::writeSets(Slot& slot) {
          dom ? useState(Use::Sampled, true).layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
         {nearest, dom ? mDomOpacity.view() : mDummyDom.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
         {nearest, mOit ? mAccum.view() : mDummyDom.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-        {nearest, mOit ? mReveal.view() : mDummyDom.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+        {nearest, mOit ? mWeight.view() : mDummyDom.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
     write(mZ0Set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[0];
     write(mOpacitySet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[1];
     if (mOit) {
@@ -394,15 +394,15 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
     }
     if (!mOit) return;
     const int rAccum = g.addResource("hair_oit_accum", &mAccum);
-    const int rReveal = g.addResource("hair_oit_reveal", &mReveal);
+    const int rWeight = g.addResource("hair_oit_weight", &mWeight);
     g.addPass({"hair_oit", shadingReads,
-               {{rAccum, Use::ColorWrite}, {rReveal, Use::ColorWrite}, {t.depth, Use::DepthWrite}},
+               {{rAccum, Use::ColorWrite}, {rWeight, Use::ColorWrite}, {t.depth, Use::DepthWrite}},
                [this, t, ribbons](VkCommandBuffer cmd) {
                    VkRenderingAttachmentInfo colors[2] = {
                        attachment(mAccum.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true),
-                       attachment(mReveal.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true)};
-                   colors[0].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
-                   colors[1].clearValue.color = {{1.0f, 0.0f, 0.0f, 0.0f}};
+                       attachment(mWeight.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true)};
+                   colors[0].clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}}; // a: revealage
+                   colors[1].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
                    VkRenderingAttachmentInfo depth = attachment(
                        t.depthImage->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false);
                    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
@@ -416,7 +416,7 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                    drawCamera(cmd, t, mPipes.oit[ribbons], mOpacitySet, true);
                    mCtx.fn().cmdEndRendering(cmd);
                }});
-    g.addPass({"hair_composite", {{rAccum, Use::Sampled}, {rReveal, Use::Sampled}},
+    g.addPass({"hair_composite", {{rAccum, Use::Sampled}, {rWeight, Use::Sampled}},
                {{t.hdr, Use::ColorWrite}}, [this, t](VkCommandBuffer cmd) {
                    VkRenderingAttachmentInfo color = attachment(
                        t.hdrImage->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);

@@ -77,7 +77,7 @@ private:
     HairPipelines mPipes;
     HairGpuCache mCache;
     std::array<Slot, 2> mSlots;
-    vk::Image mDomDepth, mDomOpacity, mDummyDom, mAccum, mReveal;
+    vk::Image mDomDepth, mDomOpacity, mDummyDom, mAccum, mWeight;
     std::vector<HairDraw> mDraws;
     std::vector<Dom> mDoms;
     std::vector<HairDomInfo> mLastDoms; // by scene light, size 0 where none

@@ -53,12 +53,12 @@ HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) {
         debug[ribbons] = vk::createGraphicsPipeline(c, d);
         d.vertexShader = "hair/hair_oit.vert";
         d.fragmentShader = "hair/hair_oit.frag";
-        d.colorFormats = {kOitAccumFormat, kOitRevealFormat};
+        d.colorFormats = {kOitAccumFormat, kOitWeightFormat};
         d.depthWrite = false; // tested against the opaque scene only
-        d.blends = {blend(VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE,
-                          VK_BLEND_FACTOR_ONE),
-                    blend(VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE_MINUS_SRC_COLOR,
-                          VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA)};
+        const VkPipelineColorBlendAttachmentState accumulate =
+            blend(VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ZERO,
+                  VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA);
+        d.blends = {accumulate, accumulate}; // hair_oit.frag: what each channel accumulates
         oit[ribbons] = vk::createGraphicsPipeline(c, d);
     }
 

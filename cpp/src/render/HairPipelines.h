@@ -9,14 +9,14 @@ struct ScenePipelines;
 
 constexpr VkFormat kDomOpacityFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kOitAccumFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-constexpr VkFormat kOitRevealFormat = VK_FORMAT_R32_SFLOAT;
+constexpr VkFormat kOitWeightFormat = VK_FORMAT_R32_SFLOAT;
 
 struct HairPipelines {
     HairPipelines(vk::Context& ctx, const ScenePipelines& scene);
 
     vk::DescriptorSetLayout hairSetLayout; // set 2: vertices, instances, hair frame
     vk::DescriptorSetLayout domSetLayout;  // set 3: a DOM image array
-    vk::DescriptorSetLayout oitSetLayout;  // composite: accumulation, revealage
+    vk::DescriptorSetLayout oitSetLayout;  // composite: accumulation (+ revealage), weight sum
     vk::PipelineLayout layout;             // sets 0-3 + push constants (instance / light view)
     vk::PipelineLayout compositeLayout;
     // [0]: lines, [1]: ribbons
