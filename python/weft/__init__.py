@@ -51,8 +51,10 @@ from weft._core import (
     validation_enabled,
     validation_messages,
 )
+from weft.fur import add_fur
 
 __all__ = [
+    "add_fur",
     "Camera",
     "Cloth",
     "Collider",

@@ -195,3 +195,20 @@ def test_bad_hair_input_raises(small):
     with pytest.raises(ValueError):
         small.hair_dom_map(0)  # no light, no deep opacity map
     assert scene.hair_count == 1
+
+
+def test_add_fur_grows_fur_on_a_mesh_instance(small):
+    scene = weft.Scene()
+    mesh = weft.Mesh.uv_sphere(0.3, 8, 6)
+    move = np.eye(4)
+    move[1, 3] = 0.2
+    scene.add_mesh(mesh, transform=move)
+    hid = weft.add_fur(scene, mesh, weft.HairMaterial("kajiya_kay"), move, segments=4,
+                       length=0.1)
+    assert hid == 0 and scene.hair_count == 1
+    lo, hi = scene.bounds()
+    assert hi[1] > 0.2 + 0.3 + 0.05  # the fur sticks out of the moved sphere
+    small.render(scene, camera_at(2.0, target=(0, 0.2, 0)))
+    assert hair_passes(small) == ["hair"]
+    with pytest.raises(ValueError):
+        weft.add_fur(scene, mesh, segments=0)
