@@ -11,7 +11,9 @@ namespace weft::py_bind {
 
 namespace {
 
-std::string primitiveName(HairPrimitive p) { return p == HairPrimitive::Ribbons ? "ribbons" : "lines"; }
+std::string primitiveName(HairPrimitive p) {
+    return p == HairPrimitive::Ribbons ? "ribbons" : "lines";
+}
 
 HairPrimitive primitiveOf(const std::string& s) {
     if (s == "lines") return HairPrimitive::Lines;
@@ -22,7 +24,8 @@ HairPrimitive primitiveOf(const std::string& s) {
 OitWeight weightOf(const std::string& s) {
     for (int eq = 7; eq <= 10; ++eq)
         if (s == "eq" + std::to_string(eq)) return OitWeight(eq);
-    throw InvalidArgument("hair_oit_weight must be 'eq7', 'eq8', 'eq9' or 'eq10' (got '" + s + "')");
+    throw InvalidArgument("hair_oit_weight must be 'eq7', 'eq8', 'eq9' or 'eq10' (got '" + s +
+                          "')");
 }
 
 template <typename Get, typename Set>
@@ -42,7 +45,8 @@ void bindHairRender(py::module_& m) {
     scene.def("add_hair", [](Scene& s, std::shared_ptr<HairStrands> strands,
                              std::optional<HairMaterial> material, py::object transform,
                              bool castShadows) {
-            const glm::mat4 t = transform.is_none() ? glm::mat4(1.0f) : toMat4(transform, "transform");
+            const glm::mat4 t =
+                transform.is_none() ? glm::mat4(1.0f) : toMat4(transform, "transform");
             return s.addHair(strands, material.value_or(HairMaterial{}), t, castShadows);
         }, py::arg("strands"), py::arg("material") = py::none(), py::arg("transform") = py::none(),
            py::arg("cast_shadows") = true,
@@ -57,7 +61,9 @@ void bindHairRender(py::module_& m) {
     py::class_<Renderer> renderer(m.attr("Renderer"));
     setting(renderer, "hair_primitive",
             [](const RenderSettings& s) { return primitiveName(s.hairPrimitive); },
-            [](RenderSettings& s, py::object v) { s.hairPrimitive = primitiveOf(v.cast<std::string>()); },
+            [](RenderSettings& s, py::object v) {
+                s.hairPrimitive = primitiveOf(v.cast<std::string>());
+            },
             "'lines' (1 pixel) or 'ribbons' (camera-facing, hair_width * thickness wide).");
     setting(renderer, "hair_width", [](const RenderSettings& s) { return s.hairWidth; },
             [](RenderSettings& s, py::object v) { s.hairWidth = v.cast<float>(); },
@@ -66,28 +72,36 @@ void bindHairRender(py::module_& m) {
             [](RenderSettings& s, py::object v) { s.hairDeepOpacity = v.cast<bool>(); },
             "Deep opacity maps for shadow-casting directional lights (else the shadow map).");
     setting(renderer, "hair_dom_spacing",
-            [](const RenderSettings& s) { return std::string(s.hairDomLogSpacing ? "log" : "linear"); },
+            [](const RenderSettings& s) {
+                return std::string(s.hairDomLogSpacing ? "log" : "linear");
+            },
             [](RenderSettings& s, py::object v) {
                 const std::string k = v.cast<std::string>();
                 if (k != "linear" && k != "log")
-                    throw InvalidArgument("hair_dom_spacing must be 'linear' or 'log' (got '" + k + "')");
+                    throw InvalidArgument("hair_dom_spacing must be 'linear' or 'log' (got '" +
+                                          k + "')");
                 s.hairDomLogSpacing = k == "log";
             }, "DOM layer spacing: 'linear' (d, 2d, 3d) or 'log' (d, 3d, 7d).");
-    setting(renderer, "hair_dom_layer_size", [](const RenderSettings& s) { return s.hairDomLayerSize; },
+    setting(renderer, "hair_dom_layer_size",
+            [](const RenderSettings& s) { return s.hairDomLayerSize; },
             [](RenderSettings& s, py::object v) { s.hairDomLayerSize = v.cast<float>(); },
             "DOM layer size d (world units); 0: the hair's depth extent / 3 (log: / 7).");
     setting(renderer, "hair_dom_size", [](const RenderSettings& s) { return s.hairDomSize; },
             [](RenderSettings& s, py::object v) {
                 const int64_t n = v.cast<int64_t>();
-                if (n < 16 || n > 8192) throw InvalidArgument("hair_dom_size must be in [16, 8192]");
+                if (n < 16 || n > 8192)
+                    throw InvalidArgument("hair_dom_size must be in [16, 8192]");
                 s.hairDomSize = uint32_t(n);
             }, "Texels per side of each deep opacity map.");
-    setting(renderer, "hair_transparency", [](const RenderSettings& s) { return s.hairTransparency; },
+    setting(renderer, "hair_transparency",
+            [](const RenderSettings& s) { return s.hairTransparency; },
             [](RenderSettings& s, py::object v) { s.hairTransparency = v.cast<bool>(); },
             "Weighted blended OIT for hair with transparency > 0 (else drawn opaque).");
     setting(renderer, "hair_oit_weight",
             [](const RenderSettings& s) { return "eq" + std::to_string(int(s.hairOitWeight)); },
-            [](RenderSettings& s, py::object v) { s.hairOitWeight = weightOf(v.cast<std::string>()); },
+            [](RenderSettings& s, py::object v) {
+                s.hairOitWeight = weightOf(v.cast<std::string>());
+            },
             "WBOIT weight function: 'eq7', 'eq8', 'eq9' or 'eq10' (SPEC §5.4).");
     renderer.def("hair_dom_map", [](const Renderer& r, int light) {
             const HairDomInfo i = r.hairDeepOpacity(light);

@@ -20,7 +20,9 @@ struct HairInstance {
 };
 
 layout(std430, set = 2, binding = 0) readonly buffer HairVertices { HairVertex hairVertices[]; };
-layout(std430, set = 2, binding = 1) readonly buffer HairInstances { HairInstance hairInstances[]; };
+layout(std430, set = 2, binding = 1) readonly buffer HairInstances {
+    HairInstance hairInstances[];
+};
 layout(set = 2, binding = 2) uniform HairFrameUbo {
     vec4 cameraForward;                 // xyz: view axis; w: ribbon width per unit thickness
     ivec4 params;                       // x: ribbons, y: OIT weight (7..10), z: DOMs, w: log

@@ -18,8 +18,9 @@ layout(location = 1) out vec4 outWeight;
 float oitWeight(float z, float a, float zNdc) {
     z = abs(z);
     int eq = hairFrame.params.y;
-    if (eq == 7) return a * clamp(10.0 / (1e-5 + pow(z / 5.0, 2.0) + pow(z / 200.0, 6.0)), 1e-2, 3e3);
-    if (eq == 8) return a * clamp(10.0 / (1e-5 + pow(z / 10.0, 3.0) + pow(z / 200.0, 6.0)), 1e-2, 3e3);
+    float far6 = pow(z / 200.0, 6.0);
+    if (eq == 7) return a * clamp(10.0 / (1e-5 + pow(z / 5.0, 2.0) + far6), 1e-2, 3e3);
+    if (eq == 8) return a * clamp(10.0 / (1e-5 + pow(z / 10.0, 3.0) + far6), 1e-2, 3e3);
     if (eq == 9) return a * clamp(0.03 / (1e-5 + pow(z / 200.0, 4.0)), 1e-2, 3e3);
     return a * max(1e-2, 3e3 * pow(1.0 - zNdc, 3.0));
 }

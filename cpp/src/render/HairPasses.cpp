@@ -29,7 +29,10 @@ VkRenderingAttachmentInfo attachment(VkImageView view, VkImageLayout layout, boo
     return a;
 }
 
-void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
+constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
+void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes,
+                  VkBufferUsageFlags usage) {
     bytes = std::max<VkDeviceSize>(bytes, 256);
     if (buffer && buffer.size() >= bytes) return;
     buffer = vk::Buffer(&ctx, bytes * 3 / 2, usage, vk::MemoryUsage::Upload);
@@ -210,12 +213,13 @@ void HairPasses::writeSets(Slot& slot) {
     }
     const VkSampler nearest = mScene.nearestSampler;
     const bool dom = !mDoms.empty();
+    const VkImageLayout readOnly = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     const VkDescriptorImageInfo images[] = {
         {nearest, dom ? mDomDepth.view() : mDummyDom.view(),
-         dom ? useState(Use::Sampled, true).layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-        {nearest, dom ? mDomOpacity.view() : mDummyDom.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-        {nearest, mOit ? mAccum.view() : mDummyDom.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-        {nearest, mOit ? mWeight.view() : mDummyDom.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+         dom ? useState(Use::Sampled, true).layout : readOnly},
+        {nearest, dom ? mDomOpacity.view() : mDummyDom.view(), readOnly},
+        {nearest, mOit ? mAccum.view() : mDummyDom.view(), readOnly},
+        {nearest, mOit ? mWeight.view() : mDummyDom.view(), readOnly}};
     write(mZ0Set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[0];
     write(mOpacitySet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[1];
     if (mOit) {
@@ -245,7 +249,8 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
     ensureImages(settings, width, height);
 
     GpuHairFrame f{};
-    f.cameraForward = glm::vec4(glm::normalize(camera.target - camera.position), settings.hairWidth);
+    f.cameraForward =
+        glm::vec4(glm::normalize(camera.target - camera.position), settings.hairWidth);
     f.params = glm::ivec4(mRibbons ? 1 : 0, int(settings.hairOitWeight), int(mDoms.size()),
                           settings.hairDomLogSpacing ? 1 : 0);
     f.domLight = glm::ivec4(-1);
@@ -266,31 +271,21 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
 }
 
 void HairPasses::drawDepth(VkCommandBuffer cmd, const glm::mat4& viewProj) const {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.lightDepth);
-    for (const HairDraw& d : mDraws) {
-        if (!d.castShadows) continue;
-        const glm::mat4 mvp = viewProj * d.model;
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 2, 1, &d.set,
-                                0, nullptr);
-        vkCmdPushConstants(cmd, mPipes.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                           0, sizeof(mvp), &mvp);
-        vkCmdBindIndexBuffer(cmd, d.gpu->lines.get(), 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, d.gpu->lineIndexCount, 1, 0, 0, 0);
-    }
+    drawFromLight(cmd, mPipes.lightDepth, viewProj, glm::vec4(0.0f));
 }
 
-void HairPasses::drawLight(VkCommandBuffer cmd, VkPipeline pipeline, const Dom& dom, int slot) const {
+void HairPasses::drawFromLight(VkCommandBuffer cmd, VkPipeline pipeline, const glm::mat4& viewProj,
+                               const glm::vec4& params) const {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     for (const HairDraw& d : mDraws) {
         if (!d.castShadows) continue;
-        struct {
+        const struct {
             glm::mat4 mvp;
             glm::vec4 params;
-        } push{dom.viewProj * d.model, glm::vec4(float(slot), dom.layerNdc, 0, 0)};
+        } push{viewProj * d.model, params};
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 2, 1, &d.set,
                                 0, nullptr);
-        vkCmdPushConstants(cmd, mPipes.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                           0, sizeof(push), &push);
+        vkCmdPushConstants(cmd, mPipes.layout, kStages, 0, sizeof(push), &push);
         vkCmdBindIndexBuffer(cmd, d.gpu->lines.get(), 0, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, d.gpu->lineIndexCount, 1, 0, 0, 0);
     }
@@ -307,12 +302,12 @@ void HairPasses::drawCamera(VkCommandBuffer cmd, const Targets& t, VkPipeline pi
         if (d.transparent != transparent) continue;
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 2, 1, &d.set,
                                 0, nullptr);
-        vkCmdPushConstants(cmd, mPipes.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                           0, sizeof(uint32_t), &d.instance);
+        vkCmdPushConstants(cmd, mPipes.layout, kStages, 0, sizeof(uint32_t), &d.instance);
         const bool ribbons = mRibbons && d.gpu->ribbons;
         vkCmdBindIndexBuffer(cmd, ribbons ? d.gpu->ribbons.get() : d.gpu->lines.get(), 0,
                              VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, ribbons ? d.gpu->ribbonIndexCount : d.gpu->lineIndexCount, 1, 0, 0, 0);
+        const uint32_t count = ribbons ? d.gpu->ribbonIndexCount : d.gpu->lineIndexCount;
+        vkCmdDrawIndexed(cmd, count, 1, 0, 0, 0);
     }
 }
 
@@ -326,9 +321,9 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
         shadingReads.push_back({rOpacity, Use::Sampled});
         g.addPass({"hair_dom_depth", {}, {{rZ0, Use::DepthWrite}}, [this](VkCommandBuffer cmd) {
                        for (size_t s = 0; s < mDoms.size(); ++s) {
-                           VkRenderingAttachmentInfo depth = attachment(
-                               mDomDepth.layerView(uint32_t(s)), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                               true);
+                           VkRenderingAttachmentInfo depth =
+                               attachment(mDomDepth.layerView(uint32_t(s)),
+                                          VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, true);
                            depth.clearValue.depthStencil = {1.0f, 0};
                            VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
                            info.renderArea = {{0, 0}, {mDomSize, mDomSize}};
@@ -336,7 +331,8 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                            info.pDepthAttachment = &depth;
                            mCtx.fn().cmdBeginRendering(cmd, &info);
                            viewportScissor(cmd, mDomSize, mDomSize);
-                           drawLight(cmd, mPipes.lightDepth, mDoms[s], int(s));
+                           drawFromLight(cmd, mPipes.lightDepth, mDoms[s].viewProj,
+                                         glm::vec4(0.0f));
                            mCtx.fn().cmdEndRendering(cmd);
                        }
                    }});
@@ -354,9 +350,10 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                            info.pColorAttachments = &color;
                            mCtx.fn().cmdBeginRendering(cmd, &info);
                            viewportScissor(cmd, mDomSize, mDomSize);
-                           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout,
-                                                   3, 1, &mZ0Set, 0, nullptr);
-                           drawLight(cmd, mPipes.domOpacity, mDoms[s], int(s));
+                           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                   mPipes.layout, 3, 1, &mZ0Set, 0, nullptr);
+                           drawFromLight(cmd, mPipes.domOpacity, mDoms[s].viewProj,
+                                         glm::vec4(float(s), mDoms[s].layerNdc, 0.0f, 0.0f));
                            mCtx.fn().cmdEndRendering(cmd);
                        }
                        for (const Dom& d : mDoms) mLastDoms[size_t(d.light)] = d.info;
@@ -374,8 +371,8 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                            t.hdrImage->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false)};
                        if (debug)
                            for (vk::Image* im : t.debugImages)
-                               colors.push_back(attachment(im->view(),
-                                                           VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false));
+                               colors.push_back(attachment(
+                                   im->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false));
                        VkRenderingAttachmentInfo depth = attachment(
                            t.depthImage->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false);
                        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
@@ -387,8 +384,9 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                        info.pDepthAttachment = &depth;
                        mCtx.fn().cmdBeginRendering(cmd, &info);
                        viewportScissor(cmd, desc.width, desc.height);
-                       drawCamera(cmd, t, debug ? mPipes.debug[ribbons].get() : mPipes.opaque[ribbons].get(),
-                                  mOpacitySet, false);
+                       const VkPipeline pipeline =
+                           debug ? mPipes.debug[ribbons].get() : mPipes.opaque[ribbons].get();
+                       drawCamera(cmd, t, pipeline, mOpacitySet, false);
                        mCtx.fn().cmdEndRendering(cmd);
                    }});
     }
@@ -428,15 +426,16 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                    mCtx.fn().cmdBeginRendering(cmd, &info);
                    viewportScissor(cmd, mWidth, mHeight);
                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.composite);
-                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.compositeLayout,
-                                           0, 1, &mOitSet, 0, nullptr);
+                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                           mPipes.compositeLayout, 0, 1, &mOitSet, 0, nullptr);
                    vkCmdDraw(cmd, 3, 1, 0, 0);
                    mCtx.fn().cmdEndRendering(cmd);
                }});
 }
 
 HairDomInfo HairPasses::domInfo(int lightIndex) {
-    if (lightIndex < 0 || size_t(lightIndex) >= mLastDoms.size() || mLastDoms[size_t(lightIndex)].size == 0)
+    if (lightIndex < 0 || size_t(lightIndex) >= mLastDoms.size() ||
+        mLastDoms[size_t(lightIndex)].size == 0)
         throw InvalidArgument("light " + std::to_string(lightIndex) +
                               " had no deep opacity map in the last frame");
     HairDomInfo info = mLastDoms[size_t(lightIndex)];

@@ -5,7 +5,6 @@
 // Only what the scene needs is added: no hair, no passes; no transparent hair or OIT off, no
 // OIT passes; no shadow-casting directional light or DOM off, no DOM passes.
 #include <array>
-#include <memory>
 #include <vector>
 
 #include <weft/Renderer.h>
@@ -70,7 +69,9 @@ private:
     void ensureImages(const RenderSettings& settings, uint32_t width, uint32_t height);
     void drawCamera(VkCommandBuffer cmd, const Targets& t, VkPipeline pipeline,
                     VkDescriptorSet domSet, bool transparent) const;
-    void drawLight(VkCommandBuffer cmd, VkPipeline pipeline, const Dom& dom, int slot) const;
+    /// Shadow-casting strands as lines; push constants: light view-projection * model, params.
+    void drawFromLight(VkCommandBuffer cmd, VkPipeline pipeline, const glm::mat4& viewProj,
+                       const glm::vec4& params) const;
 
     vk::Context& mCtx;
     const ScenePipelines& mScene;

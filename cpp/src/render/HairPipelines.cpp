@@ -42,7 +42,8 @@ HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) {
         d.vertexShader = "hair/hair.vert";
         d.fragmentShader = "hair/hair.frag";
         d.vertexLayout = vk::VertexLayout::None;
-        d.topology = ribbons ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST : VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+        d.topology =
+            ribbons ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST : VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
         d.cullMode = VK_CULL_MODE_NONE;
         d.colorFormats = {kHdrFormat};
         d.depthFormat = kDepthFormat;
