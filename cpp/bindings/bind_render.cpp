@@ -1,4 +1,5 @@
 // Bindings of the renderer: offscreen frames as NumPy arrays, statistics, shadow data.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -133,15 +134,23 @@ void bindRender(py::module_& m) {
             d["light_depth"] = floatImage(f.surface, h, w, 4, 1, 2);
             py::array_t<int32_t> instance({h, w});
             for (size_t i = 0; i < size_t(h) * w; ++i)
-                instance.mutable_data()[i] = int32_t(std::lround(f.surface[i * 4 + 3])) - 1;
+                instance.mutable_data()[i] = int32_t(std::max(0L, std::lround(f.surface[i * 4 + 3]))) - 1;
             d["instance"] = instance;
+            py::array_t<int32_t> hair({h, w}); // hair pixels store -(hair id + 1) in surface.w
+            for (size_t i = 0; i < size_t(h) * w; ++i)
+                hair.mutable_data()[i] = f.surface[i * 4 + 3] < -0.5f
+                                             ? -int32_t(std::lround(f.surface[i * 4 + 3])) - 1
+                                             : -1;
+            d["hair"] = hair;
             return d;
         }, py::arg("scene"), py::arg("camera"),
            "One frame's colour, linear radiance and the inputs of its shading (position, mask,\n"
            "normal, shadow visibility of the first shadow-casting light, uv, light_depth,\n"
            "albedo: T = base colour * texture sample (what eq. 2.10 multiplies),\n"
            "specular_map: the green channel of the specular-map sample (1 without a map),\n"
-           "instance: the mesh id drawn at each pixel or -1).")
+           "instance: the mesh id drawn at each pixel or -1; hair: the hair id or -1, where hair\n"
+           "is drawn opaque normal holds its unit tangent, shadow its visibility, uv[..., 0]\n"
+           "its strand index and albedo its diffuse colour).")
         .def_property_readonly("stats", [](const Renderer& r) { return statsDict(r.stats()); },
                                "The last frame: passes run with CPU/GPU ms, culled passes.")
         .def("shadow_map", [](Renderer& r, int light, int view) {

@@ -15,6 +15,7 @@ void bindRender(py::module_& m);
 void bindCloth(py::module_& m);
 void bindHair(py::module_& m);
 void bindBtf(py::module_& m);
+void bindHairRender(py::module_& m);
 } // namespace weft::py_bind
 
 using namespace weft::py_bind;
@@ -181,4 +182,5 @@ PYBIND11_MODULE(_core, m) {
     bindCloth(m);
     bindHair(m);
     bindBtf(m);
+    bindHairRender(m);
 }

@@ -52,10 +52,12 @@ from weft._core import (
     validation_enabled,
     validation_messages,
 )
+from weft.fur import add_fur
 
 __all__ = [
     "BtfMaterial",
     "BtfSamples",
+    "add_fur",
     "Camera",
     "Cloth",
     "Collider",

@@ -29,4 +29,8 @@ def test_bench_hair_quick(tmp_path: Path) -> None:
             assert r["error_p999"] < 1e-4
         if r["part"].startswith("DOM"):
             assert r["error"] < 0.05
+    frames = [r for r in data["results"] if r["part"].startswith("frame")]
+    assert {r["part"] for r in frames} == {"frame B", "frame B+S", "frame B+S+T"}
+    for r in frames:
+        assert r["error"] < 1e-2, r
     assert "Frame times" in (out / "bench.md").read_text()

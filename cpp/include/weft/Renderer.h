@@ -19,6 +19,11 @@ namespace weft {
 
 class Window;
 
+/// How strands are drawn: 1-pixel lines or camera-facing ribbons (width = hairWidth * thickness).
+enum class HairPrimitive { Lines = 0, Ribbons = 1 };
+/// Weighted blended OIT weight functions w(z, alpha) of SPEC §5.4, eq. 7-10.
+enum class OitWeight { Eq7 = 7, Eq8 = 8, Eq9 = 9, Eq10 = 10 };
+
 struct RenderSettings {
     uint32_t shadowMapSize = 2048;  // texels per side of each shadow map
     int pcfRadius = 1;              // PCF kernel (2r+1)^2 taps, r in [0, 7]
@@ -28,6 +33,17 @@ struct RenderSettings {
     float normalOffset = 1.5f;      // receiver offset along n, in shadow-map texels
     /// Keep the shadow maps of the last frame when no shadow view and no shadow caster changed.
     bool reuseShadowMaps = true;
+
+    // Hair (SPEC §5): drawing, deep opacity maps (self-shadowing from directional lights) and
+    // weighted blended order-independent transparency.
+    HairPrimitive hairPrimitive = HairPrimitive::Lines;
+    float hairWidth = 0.001f;       // ribbon width per unit of strand thickness (world units)
+    bool hairDeepOpacity = true;    // DOM for shadow-casting directional lights
+    bool hairDomLogSpacing = false; // layer k twice as thick as layer k-1 (else equal layers)
+    float hairDomLayerSize = 0.0f;  // d in world units; 0: the hair's depth extent / 3 (or / 7)
+    uint32_t hairDomSize = 512;     // texels per side of each deep opacity map
+    bool hairTransparency = true;   // WBOIT for hair with transparency > 0 (else opaque lines)
+    OitWeight hairOitWeight = OitWeight::Eq7;
     /// Throws InvalidArgument for out-of-range values.
     void validate() const;
 };
@@ -69,6 +85,22 @@ struct ShadowInfo {
     RenderSettings settings;
 };
 
+/// A deep opacity map (SPEC §5.3) of the last frame, for tests and tools. The light's view is
+/// orthographic: pixel (x, y) covers local (x, y) in [-extent/2, extent/2]^2 around `center` in
+/// the basis of python/weft/reference/hair_shadow.py's LightGrid for `direction` (the way the
+/// light travels); local depth z maps to stored depth (z - zNear) / (zFar - zNear).
+struct HairDomInfo {
+    glm::vec3 direction{0.0f}, center{0.0f};
+    float extent = 0.0f;
+    float zNear = 0.0f, zFar = 1.0f;
+    float layerSize = 0.0f; // d, world units
+    bool logSpacing = false;
+    uint32_t size = 0;
+    /// size * size * 4 floats, rows as the light pixel y: opacity of layers 0, 1, 2 (each
+    /// including the layers before) and z0 as stored depth (1 where no hair).
+    std::vector<float> texels;
+};
+
 class Renderer {
 public:
     Renderer(uint32_t width, uint32_t height, const RenderSettings& settings = {});
@@ -95,6 +127,8 @@ public:
     /// `view` selects one of a point light's six views.
     std::vector<float> shadowMap(int lightIndex, uint32_t* size = nullptr, int view = 0);
     ShadowInfo shadowInfo(int lightIndex) const;
+    /// The last frame's deep opacity map of directional light `lightIndex`.
+    HairDomInfo hairDeepOpacity(int lightIndex) const;
     std::string deviceName() const;
 
 private:

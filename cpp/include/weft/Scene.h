@@ -8,6 +8,8 @@
 #include <glm/glm.hpp>
 
 #include <weft/Cloth.h>
+#include <weft/HairMaterial.h>
+#include <weft/HairStrands.h>
 #include <weft/Light.h>
 #include <weft/Material.h>
 #include <weft/Camera.h>
@@ -25,6 +27,18 @@ struct MeshInstance {
     bool castShadows = true;
 };
 
+using HairStrandsPtr = std::shared_ptr<const HairStrands>;
+
+/// Hair or fur drawn as strands (SPEC §5). The strands are immutable once added: the renderer
+/// uploads them once, keyed by the object.
+struct HairInstance {
+    HairStrandsPtr strands;
+    HairMaterial material;
+    glm::mat4 transform{1.0f}; // object -> world
+    bool castShadows = true;
+    glm::vec3 lo{0.0f}, hi{0.0f}; // object-space bounds of the points
+};
+
 class Scene {
 public:
     /// Adds an instance and returns its id. The mesh and material are validated here.
@@ -36,6 +50,12 @@ public:
                       bool castShadows = true);
     void setTransform(uint32_t id, const glm::mat4& transform);
     void setMaterial(uint32_t id, const Material& material);
+    /// Adds a hair instance (strands and material validated here) and returns its hair id.
+    uint32_t addHair(HairStrandsPtr strands, const HairMaterial& material = {},
+                     const glm::mat4& transform = glm::mat4(1.0f), bool castShadows = true);
+    void setHairTransform(uint32_t id, const glm::mat4& transform);
+    void setHairMaterial(uint32_t id, const HairMaterial& material);
+    const std::vector<HairInstance>& hairs() const { return mHairs; }
     /// Adds a directional, point or spot light (validated) and returns its id.
     uint32_t addLight(const Light& light);
     void setLight(uint32_t id, const Light& light);
@@ -48,13 +68,14 @@ public:
     const glm::vec3& ambient() const { return mAmbient; }
     const glm::vec3& background() const { return mBackground; }
 
-    /// World-space bounds of all instances (min > max when the scene is empty).
+    /// World-space bounds of all mesh and hair instances (min > max when the scene is empty).
     void bounds(glm::vec3& lo, glm::vec3& hi) const;
     /// Increases whenever anything in the scene changes; the renderer reuses work by it.
     uint64_t version() const { return mVersion; }
 
 private:
     std::vector<MeshInstance> mInstances;
+    std::vector<HairInstance> mHairs;
     std::vector<Light> mLights;
     glm::vec3 mAmbient{0.1f};
     glm::vec3 mBackground{0.0f};

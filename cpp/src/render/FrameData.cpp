@@ -132,6 +132,7 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
         f.instances.push_back(g);
         anyCaster |= inst.castShadows;
     }
+    for (const HairInstance& h : scene.hairs()) anyCaster |= h.castShadows; // drawn by HairPasses
 
     LightBuilder builder{settings, {}, {}, anyCaster, f};
     scene.bounds(builder.lo, builder.hi);

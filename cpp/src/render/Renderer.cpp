@@ -12,6 +12,7 @@
 #include "render/FrameGraph.h"
 #include "render/GpuCache.h"
 #include "render/GpuTypes.h"
+#include "render/HairPasses.h"
 #include "render/RenderTargets.h"
 #include "render/ScenePipelines.h"
 #include "render/ShadowFit.h"
@@ -87,6 +88,7 @@ struct Renderer::Impl {
 
     render::ScenePipelines pipes{*ctx};
     std::unique_ptr<render::GpuCache> cache;
+    std::unique_ptr<render::HairPasses> hair; // created with the first scene that has hair
 
     vk::CommandPool commandPool; // this renderer's; recording never contends with others
     std::array<FrameSlot, kFramesInFlight> slots;
@@ -188,6 +190,7 @@ FrameSlot& Renderer::Impl::beginFrame() {
     finishStats(slot);
     ctx->collectGarbage();
     cache->evictExpired();
+    if (hair) hair->evictExpired();
     return slot;
 }
 
@@ -225,6 +228,12 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     const std::vector<render::GpuShadowLayer>& layers = data.shadowLayers;
     const std::vector<Draw>& draws = data.draws;
     const std::vector<ShadowView>& shadowViews = data.shadowViews;
+    const bool hasHair = !scene.hairs().empty();
+    if (hasHair) {
+        if (!hair) hair = std::make_unique<render::HairPasses>(c, pipes);
+        hair->prepare(uint32_t(frameCounter % kFramesInFlight), scene, camera, settings,
+                      targets.width, targets.height);
+    }
 
     ensureBuffer(c, slot.ubo, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     ensureBuffer(c, slot.instances, instances.size() * sizeof(render::GpuInstance),
@@ -348,6 +357,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                                               VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
                            drawMesh(cmd, *d.mesh);
                        }
+                       if (hasHair) hair->drawDepth(cmd, s.frustum.viewProj);
                        c.fn().cmdEndRendering(cmd);
                    }});
     }
@@ -377,7 +387,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    depth.imageView = targets.depth.view();
                    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
                    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-                   depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+                   depth.storeOp = hasHair ? VK_ATTACHMENT_STORE_OP_STORE
+                                           : VK_ATTACHMENT_STORE_OP_DONT_CARE; // hair tests against it
                    depth.clearValue.depthStencil = {1.0f, 0};
                    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
                    info.renderArea = {{0, 0}, {targets.width, targets.height}};
@@ -405,6 +416,12 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    }
                    c.fn().cmdEndRendering(cmd);
                }});
+
+    if (hasHair)
+        hair->addPasses(g, {rShadow, rDepth, rHdr, debug ? rDebug : nullptr, &targets.hdr,
+                            &targets.depth,
+                            {&targets.position, &targets.normal, &targets.surface, &targets.albedo},
+                            frameSet});
 
     const VkPipeline outPipeline = pipes.outputPipeline(ldr->desc().format);
     g.addPass({"output", {{rHdr, Use::Sampled}}, {{rLdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
@@ -588,6 +605,11 @@ ShadowInfo Renderer::shadowInfo(int lightIndex) const {
         throw InvalidArgument("light index " + std::to_string(lightIndex) +
                               " is not a light of the last rendered scene");
     return mImpl->shadowInfos[size_t(lightIndex)];
+}
+
+HairDomInfo Renderer::hairDeepOpacity(int lightIndex) const {
+    if (!mImpl->hair) throw InvalidArgument("the last rendered scene had no hair");
+    return mImpl->hair->domInfo(lightIndex);
 }
 
 std::vector<float> Renderer::shadowMap(int lightIndex, uint32_t* sizeOut, int view) {

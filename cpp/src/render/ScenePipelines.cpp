@@ -20,6 +20,17 @@ void RenderSettings::validate() const {
     for (float v : {biasConstant, biasSlope, biasMax, normalOffset})
         if (!(std::isfinite(v) && v >= 0.0f))
             throw InvalidArgument("shadow bias and normal offset must be finite and >= 0");
+    if (!(std::isfinite(hairWidth) && hairWidth > 0.0f))
+        throw InvalidArgument("hair_width must be finite and > 0");
+    if (!(std::isfinite(hairDomLayerSize) && hairDomLayerSize >= 0.0f))
+        throw InvalidArgument("hair_dom_layer_size must be finite and >= 0 (0: automatic)");
+    if (hairDomSize < 16 || hairDomSize > 8192)
+        throw InvalidArgument("hair_dom_size must be in [16, 8192] (got " +
+                              std::to_string(hairDomSize) + ")");
+    const int w = int(hairOitWeight);
+    if (w < 7 || w > 10) throw InvalidArgument("hair OIT weight must be eq. 7, 8, 9 or 10");
+    if (hairPrimitive != HairPrimitive::Lines && hairPrimitive != HairPrimitive::Ribbons)
+        throw InvalidArgument("hair primitive must be lines or ribbons");
 }
 
 } // namespace weft

@@ -165,8 +165,17 @@ void Scene::setBackground(const glm::vec3& background) {
 void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
     lo = glm::vec3(1e30f);
     hi = glm::vec3(-1e30f);
+    auto add = [&](const glm::vec3& olo, const glm::vec3& ohi, const glm::mat4& transform) {
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 c((i & 1) ? ohi.x : olo.x, (i & 2) ? ohi.y : olo.y,
+                              (i & 4) ? ohi.z : olo.z);
+            const glm::vec3 w = glm::vec3(transform * glm::vec4(c, 1.0f));
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
+        }
+    };
     for (const MeshInstance& inst : mInstances) {
-        if (inst.cloth) {
+        if (inst.cloth) { // particles are in world space
             const float* p = inst.cloth->particleData(); // x, y, z, w records
             for (int k = 0; k < inst.cloth->particleCount(); ++k) {
                 if (inst.cloth->isHole(k)) continue;
@@ -178,14 +187,9 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
         }
         glm::vec3 mlo, mhi;
         inst.mesh->bounds(mlo, mhi);
-        for (int i = 0; i < 8; ++i) {
-            const glm::vec3 c((i & 1) ? mhi.x : mlo.x, (i & 2) ? mhi.y : mlo.y,
-                              (i & 4) ? mhi.z : mlo.z);
-            const glm::vec3 w = glm::vec3(inst.transform * glm::vec4(c, 1.0f));
-            lo = glm::min(lo, w);
-            hi = glm::max(hi, w);
-        }
+        add(mlo, mhi, inst.transform);
     }
+    for (const HairInstance& h : mHairs) add(h.lo, h.hi, h.transform);
 }
 
 } // namespace weft

@@ -39,7 +39,7 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
     }
     VkPipelineInputAssemblyStateCreateInfo assembly{
         VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    assembly.topology = d.topology;
     VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
     viewport.viewportCount = 1;
     viewport.scissorCount = 1;
@@ -59,8 +59,13 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
     depth.depthTestEnable = d.depthTest;
     depth.depthWriteEnable = d.depthWrite;
     depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
-    std::vector<VkPipelineColorBlendAttachmentState> blends(d.colorFormats.size());
-    for (auto& b : blends) b.colorWriteMask = 0xF;
+    std::vector<VkPipelineColorBlendAttachmentState> blends = d.blends;
+    if (blends.empty()) {
+        blends.resize(d.colorFormats.size());
+        for (auto& b : blends) b.colorWriteMask = 0xF;
+    }
+    if (blends.size() != d.colorFormats.size())
+        throw Error("graphics pipeline: one blend state per colour attachment");
     VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     blend.attachmentCount = uint32_t(blends.size());
     blend.pAttachments = blends.data();

@@ -19,6 +19,9 @@ struct GraphicsPipelineDesc {
     VertexLayout vertexLayout = VertexLayout::PositionNormalUv;
     uint32_t vertexStride = 32;
     std::vector<VkFormat> colorFormats;
+    /// Per colour attachment; empty: blending off, all channels written.
+    std::vector<VkPipelineColorBlendAttachmentState> blends;
+    VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkCullModeFlags cullMode = VK_CULL_MODE_BACK_BIT;
     VkFrontFace frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;

@@ -1,5 +1,4 @@
-"""Hair benchmark (SPEC §5, CPU and compute parts; the frame-time tables B / B+S / B+S+T at
-800 x 800 need the renderer's hair passes and come with them).
+"""Hair benchmark (SPEC §5): CPU and compute parts, and renderer frame times.
 
 Every row is a time and an error against a stated reference, measured in the same run:
 
@@ -16,6 +15,12 @@ Every row is a time and an error against a stated reference, measured in the sam
   map, the exact fragment sum and the analytic exp(-k z) of a uniform slab.
 - weighted blended OIT: mean and max |colour error| of each weight function against exact
   depth-sorted "over" on random 8-layer stacks.
+- frame time at 800 x 800 (SPEC §5.5) for lighting only (B: one directional light, no shadows),
+  + shadows (B+S: shadow map and deep opacity map) and + transparency (B+S+T: strands of
+  transparency 0.6 through weighted blended OIT) for the three hair sizes and the 2.1 M fur
+  (23 M with --frames-23m); error: max |radiance - NumPy hair model| over the hair pixels of a
+  debug frame of the same configuration (drawn opaque for B+S+T; the composite's own error is
+  the WBOIT rows'), with the frame's visibility for B+S.
 """
 
 from __future__ import annotations
@@ -31,7 +36,7 @@ import numpy as np
 from weft.bench import Progress, machine_info, markdown_table, write_report
 
 DESCRIPTION = ("hair and fur: .hair IO, generators, fur, compute shading throughput vs NumPy, "
-               "deep-opacity-map and WBOIT error (renderer frame times come later)")
+               "deep-opacity-map and WBOIT error, renderer frame times B / B+S / B+S+T")
 
 HAIR_SIZES: Tuple[Tuple[int, int], ...] = ((10_000, 160_000), (10_000, 687_532),
                                            (15_000, 1_031_268))
@@ -40,6 +45,8 @@ QUICK_HAIR_SIZES: Tuple[Tuple[int, int], ...] = ((500, 8_000), (500, 34_377))
 FUR_SIZES = (("2.1M", 450, 212, 1), ("23M", 198, 212, 5))
 QUICK_FUR_SIZES = (("quick", 32, 16, 2),)
 SHADE_SAMPLES, QUICK_SHADE_SAMPLES = 262_144, 4_096
+FRAME_SIZE, QUICK_FRAME_SIZE = 800, 96
+FRAME_CONFIGS = ("B", "B+S", "B+S+T")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -50,6 +57,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-23m", dest="fur_23m", action="store_false",
                         help="leave out the 22,977,900-point fur (needs ~0.6 GB of memory)")
     parser.add_argument("--threads", type=int, default=0, help="worker threads (0 = all cores)")
+    parser.add_argument("--frames-23m", dest="frames_23m", action="store_true",
+                        help="also time frames of the 22,977,900-point fur (minutes on lavapipe)")
 
 
 def _timed(fn: Callable[[], Any], repeats: int = 1) -> Tuple[float, Any]:
@@ -140,6 +149,85 @@ def _shadows_and_oit(quick: bool, rows: List[Dict[str, Any]]) -> None:
                          error_max=worst, reference="sorted over, mean abs dC"))
 
 
+def _frame_error(renderer, scene, camera, material, light_dir, radiance) -> float:
+    """Max |radiance - NumPy model| over the hair pixels of a debug frame (visibility included)."""
+    from weft.reference import hair as R
+
+    d = renderer.render_debug(scene, camera)
+    mask = d["hair"] >= 0
+    if not mask.any():
+        return float("nan")
+    p = d["position"][mask].astype(np.float64)
+    v = np.asarray(camera.position) - p
+    v /= np.linalg.norm(v, axis=1, keepdims=True)
+    l = np.broadcast_to(-light_dir / np.linalg.norm(light_dir), p.shape)
+    ids = np.rint(d["uv"][mask][:, 0]).astype(np.uint32)
+    f = R.shade(R.HairParams.from_material(material), d["normal"][mask], l, v, ids)
+    expected = np.asarray(scene.ambient) * d["albedo"][mask] + \
+        d["shadow"][mask][:, None] * radiance * f
+    return float(np.max(np.abs(d["linear"][mask][:, :3] - expected)))
+
+
+def _frames(items, quick: bool, rows: List[Dict[str, Any]]) -> None:
+    """Frame times of hair/fur strands (label, make strands) for B, B+S, B+S+T."""
+    import weft
+
+    size = QUICK_FRAME_SIZE if quick else FRAME_SIZE
+    renderer = weft.Renderer(size, size, shadow_map_size=256 if quick else 2048)
+    renderer.hair_dom_size = 64 if quick else 512
+    material = weft.HairMaterial("sadeghi", diffuse=(0.08, 0.05, 0.03))
+    light_dir = np.array([0.3, -1.0, -0.4])
+    radiance = np.array([1.0, 0.95, 0.9]) * 2.0
+    for label, make in items:
+        strands = make()
+        n = strands.point_count
+        lo, hi = strands.points.min(axis=0), strands.points.max(axis=0)
+        center, radius = (lo + hi) / 2, float(np.linalg.norm(hi - lo)) / 2
+        camera = weft.Camera(tuple(center + np.array([0.0, 0.2, 2.6]) * radius), tuple(center),
+                             (0, 1, 0), 0.8)
+        see_through = weft.HairStrands(strands.points, strands.segments,
+                                       transparency=np.full(n, 0.6, np.float32))
+        for config in FRAME_CONFIGS:
+            scene = weft.Scene()
+            scene.ambient = (0.05, 0.05, 0.05)
+            scene.add_light(weft.DirectionalLight(tuple(light_dir), (1.0, 0.95, 0.9), 2.0,
+                                                  config != "B"))
+            transparent = config == "B+S+T"
+            scene.add_hair(see_through if transparent else strands, material)
+            renderer.hair_transparency = transparent
+            renderer.render_linear(scene, camera)  # upload and warm-up
+            times, gpu = [], []
+            for _ in range(2 if quick or n > 5_000_000 else 3):
+                start = time.perf_counter()
+                renderer.render_linear(scene, camera)
+                times.append(time.perf_counter() - start)
+                gpu.append(renderer.stats["gpu_ms"])
+            passes = {p["name"]: p["gpu_ms"] for p in renderer.stats["passes"]
+                      if p["name"].startswith(("hair", "shadow"))}
+            renderer.hair_transparency = False
+            error = _frame_error(renderer, scene, camera, material, light_dir, radiance)
+            seconds = float(np.median(times))
+            rows.append(dict(part=f"frame {config}", size=f"{label} {n:,} pts, {size}x{size}",
+                             seconds=seconds, rate=1.0 / seconds, unit="fps",
+                             gpu_ms=None if None in gpu else float(np.median(gpu)),
+                             passes=passes, error=error,
+                             reference="NumPy hair model on debug outputs, max abs dL"))
+        del strands, see_through
+
+
+def _frame_items(quick: bool, fur_23m: bool, threads: int):
+    import weft
+
+    hair = QUICK_HAIR_SIZES[:1] if quick else HAIR_SIZES
+    items = [("hair", lambda s=s, p=p: weft.generate_hair(s, p, style="wavy", threads=threads))
+             for s, p in hair]
+    fur = QUICK_FUR_SIZES if quick else FUR_SIZES if fur_23m else FUR_SIZES[:1]
+    items += [(f"fur {label}", lambda g=g, r=r, lv=lv: weft.generate_fur(
+                   weft.Mesh.uv_sphere(0.5, g, r), level=lv, threads=threads))
+              for label, g, r, lv in fur]
+    return items
+
+
 def _markdown(report: Dict[str, Any]) -> str:
     header = ["part", "size", "time (s)", "rate", "error", "reference"]
     body = []
@@ -153,18 +241,21 @@ def _markdown(report: Dict[str, Any]) -> str:
                      f"{r['error_64_vs_analytic']:.2g})")
         elif "error_max" in r:
             extra = f" (max {r['error_max']:.2g})"
+        if r["part"].startswith("frame"):
+            rate = f"{r['rate']:.3g} fps" + \
+                (f", GPU {r['gpu_ms']:.0f} ms" if r.get("gpu_ms") is not None else "")
         body.append([r["part"], r["size"], f"{r['seconds']:.4f}", rate,
                      f"{r['error']:.3g}{extra}", r["reference"]])
     machine = report["machine"]
     device = machine.get("device", {}).get("name", "?")
     return "\n".join([
-        "# Hair benchmark (CPU and compute parts)", "",
+        "# Hair benchmark", "",
         f"- command: `{report['command']}`",
         f"- machine: {machine.get('processor', '?')} ({machine.get('cpu_count')} CPUs), "
         f"Vulkan device {device}", "",
         markdown_table(header, body), "",
-        "Frame times (B / B+S / B+S+T at 800 x 800, SPEC §5.5) need the renderer's hair "
-        "passes and are not measured yet.", ""])
+        "Frame times: B lighting only, B+S + shadow map and deep opacity map, B+S+T + weighted "
+        "blended OIT (SPEC §5.5; the seed's GTX 980 figures are in BENCHMARKS.md).", ""])
 
 
 def run(args: argparse.Namespace) -> int:
@@ -174,7 +265,9 @@ def run(args: argparse.Namespace) -> int:
                  QUICK_HAIR_SIZES if quick else HAIR_SIZES, args.threads, r)),
              ("fur", lambda r: _fur(fur_sizes, args.threads, r)),
              ("shading", lambda r: _shading(QUICK_SHADE_SAMPLES if quick else SHADE_SAMPLES, r)),
-             ("shadows and OIT", lambda r: _shadows_and_oit(quick, r))]
+             ("shadows and OIT", lambda r: _shadows_and_oit(quick, r)),
+             ("frame times", lambda r: _frames(
+                 _frame_items(quick, args.frames_23m, args.threads), quick, r))]
     progress = Progress(len(steps))
     rows: List[Dict[str, Any]] = []
     for label, step in steps:
@@ -183,7 +276,8 @@ def run(args: argparse.Namespace) -> int:
         progress.step(label)
     progress.close()
     command = "python -m weft.bench hair" + (" --quick" if quick else "") + \
-        ("" if args.fur_23m or quick else " --no-23m")
+        ("" if args.fur_23m or quick else " --no-23m") + \
+        (" --frames-23m" if args.frames_23m and not quick else "")
     report = {"benchmark": "hair", "command": command, "machine": machine_info(),
               "results": rows}
     markdown = _markdown(report)

@@ -1,0 +1,460 @@
+#include "render/HairPasses.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "hair/HairShadingGpu.h"
+#include "render/RenderTargets.h"
+#include "render/ScenePipelines.h"
+
+namespace weft::render {
+
+namespace {
+
+void viewportScissor(VkCommandBuffer cmd, uint32_t w, uint32_t h) {
+    VkViewport vp{0, 0, float(w), float(h), 0.0f, 1.0f};
+    VkRect2D sc{{0, 0}, {w, h}};
+    vkCmdSetViewport(cmd, 0, 1, &vp);
+    vkCmdSetScissor(cmd, 0, 1, &sc);
+}
+
+VkRenderingAttachmentInfo attachment(VkImageView view, VkImageLayout layout, bool clear) {
+    VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    a.imageView = view;
+    a.imageLayout = layout;
+    a.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    return a;
+}
+
+constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
+void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes,
+                  VkBufferUsageFlags usage) {
+    bytes = std::max<VkDeviceSize>(bytes, 256);
+    if (buffer && buffer.size() >= bytes) return;
+    buffer = vk::Buffer(&ctx, bytes * 3 / 2, usage, vk::MemoryUsage::Upload);
+}
+
+vk::Image makeImage(vk::Context& ctx, uint32_t w, uint32_t h, uint32_t layers, VkFormat format,
+                    VkImageUsageFlags usage) {
+    vk::ImageDesc d;
+    d.width = w;
+    d.height = h;
+    d.layers = layers;
+    d.format = format;
+    d.usage = usage | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    return vk::Image(&ctx, d);
+}
+
+} // namespace
+
+HairPasses::HairPasses(vk::Context& ctx, const ScenePipelines& scene)
+    : mCtx(ctx), mScene(scene), mPipes(ctx, scene), mCache(ctx) {
+    // Bound as the DOM opacity array when no light has a DOM: two layers (an array view), cleared.
+    mDummyDom = makeImage(ctx, 1, 1, 2, kDomOpacityFormat, VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    ctx.immediate([&](VkCommandBuffer cmd) {
+        vk::transition(ctx, cmd, mDummyDom, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        VkClearColorValue far{{0.0f, 0.0f, 0.0f, 1.0f}};
+        VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 2};
+        vkCmdClearColorImage(cmd, mDummyDom.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &far, 1,
+                             &range);
+        const UseState s = useState(Use::Sampled, false);
+        vk::transition(ctx, cmd, mDummyDom, s.layout, s.stage, s.access);
+    });
+}
+
+HairPasses::~HairPasses() = default;
+
+// An orthographic view per shadow-casting directional light around the shadow-casting hair,
+// in the basis of reference/hair_shadow.py's LightGrid (rows right, up, forward).
+void HairPasses::fitDoms(const Scene& scene, const RenderSettings& settings) {
+    mDoms.clear();
+    mLastDoms.assign(scene.lights().size(), HairDomInfo{});
+    if (!settings.hairDeepOpacity) return;
+    std::vector<glm::vec3> corners;
+    for (const HairInstance& h : scene.hairs()) {
+        if (!h.castShadows) continue;
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 c((i & 1) ? h.hi.x : h.lo.x, (i & 2) ? h.hi.y : h.lo.y,
+                              (i & 4) ? h.hi.z : h.lo.z);
+            corners.push_back(glm::vec3(h.transform * glm::vec4(c, 1.0f)));
+        }
+    }
+    if (corners.empty()) return;
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const glm::vec3& c : corners) {
+        lo = glm::min(lo, c);
+        hi = glm::max(hi, c);
+    }
+    const glm::vec3 center = 0.5f * (lo + hi);
+    for (size_t i = 0; i < scene.lights().size() && mDoms.size() < size_t(kMaxHairDoms); ++i) {
+        const auto* light = std::get_if<DirectionalLight>(&scene.lights()[i]);
+        if (!light || !light->castShadows) continue;
+        const glm::vec3 f = -glm::normalize(light->toLight());
+        const glm::vec3 helper = std::abs(f.y) > 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+        const glm::vec3 r = glm::normalize(glm::cross(helper, f));
+        const glm::vec3 u = glm::cross(f, r);
+        float half = 0.0f, zMin = 1e30f, zMax = -1e30f;
+        for (const glm::vec3& c : corners) {
+            const glm::vec3 q = c - center;
+            half = std::max({half, std::abs(glm::dot(q, r)), std::abs(glm::dot(q, u))});
+            zMin = std::min(zMin, glm::dot(q, f));
+            zMax = std::max(zMax, glm::dot(q, f));
+        }
+        const float depth = std::max(zMax - zMin, 1e-4f);
+        const float extent = 2.0f * half * 1.02f + 1e-4f;
+        const float zNear = zMin - 0.01f * depth - 1e-4f, zFar = zMax + 0.01f * depth + 1e-4f;
+        float d = settings.hairDomLayerSize;
+        if (d <= 0.0f) d = depth / (settings.hairDomLogSpacing ? 7.0f : 3.0f);
+        Dom dom;
+        dom.light = int(i);
+        HairDomInfo& info = dom.info;
+        info.direction = f;
+        info.center = center;
+        info.extent = extent;
+        info.zNear = zNear;
+        info.zFar = zFar;
+        info.layerSize = d;
+        info.logSpacing = settings.hairDomLogSpacing;
+        info.size = settings.hairDomSize;
+        // Rows: x = 2 r.(p - c) / extent, y = 2 u.(p - c) / extent, z = (f.(p - c) - near) / range.
+        glm::mat4 m(0.0f);
+        auto row = [&](int k, const glm::vec3& axis, float scale, float offset) {
+            for (int j = 0; j < 3; ++j) m[j][k] = axis[j] * scale;
+            m[3][k] = -glm::dot(axis, center) * scale + offset;
+        };
+        row(0, r, 2.0f / extent, 0.0f);
+        row(1, u, 2.0f / extent, 0.0f);
+        row(2, f, 1.0f / (zFar - zNear), -zNear / (zFar - zNear));
+        m[3][3] = 1.0f;
+        dom.viewProj = m;
+        dom.layerNdc = d / (zFar - zNear);
+        mDoms.push_back(dom);
+    }
+}
+
+void HairPasses::ensureImages(const RenderSettings& settings, uint32_t width, uint32_t height) {
+    if (!mDoms.empty() && (!mDomDepth || mDomSize != settings.hairDomSize)) {
+        mDomSize = settings.hairDomSize;
+        mDomDepth = makeImage(mCtx, mDomSize, mDomSize, kMaxHairDoms, kDepthFormat,
+                              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+        mDomOpacity = makeImage(mCtx, mDomSize, mDomSize, kMaxHairDoms, kDomOpacityFormat,
+                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+    }
+    if (mOit && (!mAccum || mWidth != width || mHeight != height)) {
+        mWidth = width;
+        mHeight = height;
+        mAccum = makeImage(mCtx, width, height, 1, kOitAccumFormat,
+                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+        mWeight = makeImage(mCtx, width, height, 1, kOitWeightFormat,
+                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+    }
+}
+
+void HairPasses::allocateSets(Slot& slot, uint32_t draws) {
+    const uint32_t sets = draws + 3; // per draw + z0 + opacity + composite
+    if (!slot.pool || slot.poolSets < sets) {
+        slot.poolSets = std::max(sets * 2, 16u);
+        const VkDescriptorPoolSize sizes[] = {
+            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * slot.poolSets},
+            {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slot.poolSets},
+            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4}};
+        VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        info.maxSets = slot.poolSets;
+        info.poolSizeCount = 3;
+        info.pPoolSizes = sizes;
+        VkDescriptorPool p;
+        VK_CHECK(vkCreateDescriptorPool(mCtx.device(), &info, nullptr, &p));
+        slot.pool = vk::DescriptorPool(&mCtx, p, vkDestroyDescriptorPool);
+    } else {
+        VK_CHECK(vkResetDescriptorPool(mCtx.device(), slot.pool, 0));
+    }
+    std::vector<VkDescriptorSetLayout> layouts(draws, mPipes.hairSetLayout);
+    layouts.push_back(mPipes.domSetLayout);
+    layouts.push_back(mPipes.domSetLayout);
+    layouts.push_back(mPipes.oitSetLayout);
+    std::vector<VkDescriptorSet> out(layouts.size());
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = slot.pool;
+    alloc.descriptorSetCount = uint32_t(layouts.size());
+    alloc.pSetLayouts = layouts.data();
+    VK_CHECK(vkAllocateDescriptorSets(mCtx.device(), &alloc, out.data()));
+    for (uint32_t i = 0; i < draws; ++i) mDraws[i].set = out[i];
+    mZ0Set = out[draws];
+    mOpacitySet = out[draws + 1];
+    mOitSet = out[draws + 2];
+}
+
+void HairPasses::writeSets(Slot& slot) {
+    std::vector<VkWriteDescriptorSet> writes;
+    std::vector<VkDescriptorBufferInfo> buffers;
+    buffers.reserve(3 * mDraws.size());
+    auto write = [&](VkDescriptorSet set, uint32_t binding, VkDescriptorType type) {
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = set;
+        w.dstBinding = binding;
+        w.descriptorCount = 1;
+        w.descriptorType = type;
+        writes.push_back(w);
+        return &writes.back();
+    };
+    for (const HairDraw& d : mDraws) {
+        buffers.push_back({d.gpu->vertices.get(), 0, VK_WHOLE_SIZE});
+        buffers.push_back({slot.instances.get(), 0, VK_WHOLE_SIZE});
+        buffers.push_back({slot.frame.get(), 0, sizeof(GpuHairFrame)});
+        const VkDescriptorBufferInfo* b = &buffers[buffers.size() - 3];
+        write(d.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)->pBufferInfo = b;
+        write(d.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)->pBufferInfo = b + 1;
+        write(d.set, 2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)->pBufferInfo = b + 2;
+    }
+    const VkSampler nearest = mScene.nearestSampler;
+    const bool dom = !mDoms.empty();
+    const VkImageLayout readOnly = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    const VkDescriptorImageInfo images[] = {
+        {nearest, dom ? mDomDepth.view() : mDummyDom.view(),
+         dom ? useState(Use::Sampled, true).layout : readOnly},
+        {nearest, dom ? mDomOpacity.view() : mDummyDom.view(), readOnly},
+        {nearest, mOit ? mAccum.view() : mDummyDom.view(), readOnly},
+        {nearest, mOit ? mWeight.view() : mDummyDom.view(), readOnly}};
+    write(mZ0Set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[0];
+    write(mOpacitySet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[1];
+    if (mOit) {
+        write(mOitSet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[2];
+        write(mOitSet, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[3];
+    }
+    vkUpdateDescriptorSets(mCtx.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& camera,
+                         const RenderSettings& settings, uint32_t width, uint32_t height) {
+    mRibbons = settings.hairPrimitive == HairPrimitive::Ribbons;
+    mDraws.clear();
+    std::vector<GpuHairInstance> instances;
+    bool anyTransparent = false;
+    for (const HairInstance& h : scene.hairs()) {
+        HairGpu& gpu = mCache.get(h.strands, mRibbons);
+        if (gpu.lineIndexCount == 0) continue; // single-point strands only: nothing to draw
+        const bool transparent = settings.hairTransparency && gpu.transparent;
+        anyTransparent |= transparent;
+        mDraws.push_back({&gpu, VK_NULL_HANDLE, uint32_t(instances.size()), h.castShadows,
+                          transparent, h.transform});
+        instances.push_back({h.transform, hair::packHairShading(h.material)});
+    }
+    mOit = anyTransparent;
+    fitDoms(scene, settings);
+    ensureImages(settings, width, height);
+
+    GpuHairFrame f{};
+    f.cameraForward =
+        glm::vec4(glm::normalize(camera.target - camera.position), settings.hairWidth);
+    f.params = glm::ivec4(mRibbons ? 1 : 0, int(settings.hairOitWeight), int(mDoms.size()),
+                          settings.hairDomLogSpacing ? 1 : 0);
+    f.domLight = glm::ivec4(-1);
+    for (size_t i = 0; i < mDoms.size(); ++i) {
+        f.domLight[int(i)] = mDoms[i].light;
+        f.domViewProj[i] = mDoms[i].viewProj;
+        f.domLayer[i] = glm::vec4(mDoms[i].layerNdc, 0, 0, 0);
+    }
+    Slot& slot = mSlots[slotIndex % mSlots.size()];
+    ensureBuffer(mCtx, slot.instances, instances.size() * sizeof(GpuHairInstance),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    ensureBuffer(mCtx, slot.frame, sizeof(f), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    if (!instances.empty())
+        slot.instances.write(instances.data(), instances.size() * sizeof(GpuHairInstance));
+    slot.frame.write(&f, sizeof(f));
+    allocateSets(slot, uint32_t(mDraws.size()));
+    writeSets(slot);
+}
+
+void HairPasses::drawDepth(VkCommandBuffer cmd, const glm::mat4& viewProj) const {
+    drawFromLight(cmd, mPipes.lightDepth, viewProj, glm::vec4(0.0f));
+}
+
+void HairPasses::drawFromLight(VkCommandBuffer cmd, VkPipeline pipeline, const glm::mat4& viewProj,
+                               const glm::vec4& params) const {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    for (const HairDraw& d : mDraws) {
+        if (!d.castShadows) continue;
+        const struct {
+            glm::mat4 mvp;
+            glm::vec4 params;
+        } push{viewProj * d.model, params};
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 2, 1, &d.set,
+                                0, nullptr);
+        vkCmdPushConstants(cmd, mPipes.layout, kStages, 0, sizeof(push), &push);
+        vkCmdBindIndexBuffer(cmd, d.gpu->lines.get(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, d.gpu->lineIndexCount, 1, 0, 0, 0);
+    }
+}
+
+void HairPasses::drawCamera(VkCommandBuffer cmd, const Targets& t, VkPipeline pipeline,
+                            VkDescriptorSet domSet, bool transparent) const {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 0, 1, &t.frameSet,
+                            0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 3, 1, &domSet, 0,
+                            nullptr);
+    for (const HairDraw& d : mDraws) {
+        if (d.transparent != transparent) continue;
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 2, 1, &d.set,
+                                0, nullptr);
+        vkCmdPushConstants(cmd, mPipes.layout, kStages, 0, sizeof(uint32_t), &d.instance);
+        const bool ribbons = mRibbons && d.gpu->ribbons;
+        vkCmdBindIndexBuffer(cmd, ribbons ? d.gpu->ribbons.get() : d.gpu->lines.get(), 0,
+                             VK_INDEX_TYPE_UINT32);
+        const uint32_t count = ribbons ? d.gpu->ribbonIndexCount : d.gpu->lineIndexCount;
+        vkCmdDrawIndexed(cmd, count, 1, 0, 0, 0);
+    }
+}
+
+void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
+    if (mDraws.empty()) return;
+    const int ribbons = mRibbons ? 1 : 0;
+    std::vector<ResourceUse> shadingReads = {{t.shadow, Use::Sampled}};
+    if (!mDoms.empty()) {
+        const int rZ0 = g.addResource("hair_dom_depth", &mDomDepth);
+        const int rOpacity = g.addResource("hair_dom_opacity", &mDomOpacity);
+        shadingReads.push_back({rOpacity, Use::Sampled});
+        g.addPass({"hair_dom_depth", {}, {{rZ0, Use::DepthWrite}}, [this](VkCommandBuffer cmd) {
+                       for (size_t s = 0; s < mDoms.size(); ++s) {
+                           VkRenderingAttachmentInfo depth =
+                               attachment(mDomDepth.layerView(uint32_t(s)),
+                                          VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, true);
+                           depth.clearValue.depthStencil = {1.0f, 0};
+                           VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                           info.renderArea = {{0, 0}, {mDomSize, mDomSize}};
+                           info.layerCount = 1;
+                           info.pDepthAttachment = &depth;
+                           mCtx.fn().cmdBeginRendering(cmd, &info);
+                           viewportScissor(cmd, mDomSize, mDomSize);
+                           drawFromLight(cmd, mPipes.lightDepth, mDoms[s].viewProj,
+                                         glm::vec4(0.0f));
+                           mCtx.fn().cmdEndRendering(cmd);
+                       }
+                   }});
+        g.addPass({"hair_dom_opacity", {{rZ0, Use::Sampled}}, {{rOpacity, Use::ColorWrite}},
+                   [this](VkCommandBuffer cmd) {
+                       for (size_t s = 0; s < mDoms.size(); ++s) {
+                           VkRenderingAttachmentInfo color = attachment(
+                               mDomOpacity.layerView(uint32_t(s)),
+                               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true);
+                           color.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
+                           VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                           info.renderArea = {{0, 0}, {mDomSize, mDomSize}};
+                           info.layerCount = 1;
+                           info.colorAttachmentCount = 1;
+                           info.pColorAttachments = &color;
+                           mCtx.fn().cmdBeginRendering(cmd, &info);
+                           viewportScissor(cmd, mDomSize, mDomSize);
+                           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                   mPipes.layout, 3, 1, &mZ0Set, 0, nullptr);
+                           drawFromLight(cmd, mPipes.domOpacity, mDoms[s].viewProj,
+                                         glm::vec4(float(s), mDoms[s].layerNdc, 0.0f, 0.0f));
+                           mCtx.fn().cmdEndRendering(cmd);
+                       }
+                       for (const Dom& d : mDoms) mLastDoms[size_t(d.light)] = d.info;
+                   }});
+    }
+    const bool anyOpaque = std::any_of(mDraws.begin(), mDraws.end(),
+                                       [](const HairDraw& d) { return !d.transparent; });
+    if (anyOpaque) {
+        std::vector<ResourceUse> writes = {{t.hdr, Use::ColorWrite}, {t.depth, Use::DepthWrite}};
+        if (t.debug)
+            for (int i = 0; i < 4; ++i) writes.push_back({t.debug[i], Use::ColorWrite});
+        const bool debug = t.debug != nullptr;
+        g.addPass({"hair", shadingReads, writes, [this, t, debug, ribbons](VkCommandBuffer cmd) {
+                       std::vector<VkRenderingAttachmentInfo> colors = {attachment(
+                           t.hdrImage->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false)};
+                       if (debug)
+                           for (vk::Image* im : t.debugImages)
+                               colors.push_back(attachment(
+                                   im->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false));
+                       VkRenderingAttachmentInfo depth = attachment(
+                           t.depthImage->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false);
+                       VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                       const vk::ImageDesc& desc = t.hdrImage->desc();
+                       info.renderArea = {{0, 0}, {desc.width, desc.height}};
+                       info.layerCount = 1;
+                       info.colorAttachmentCount = uint32_t(colors.size());
+                       info.pColorAttachments = colors.data();
+                       info.pDepthAttachment = &depth;
+                       mCtx.fn().cmdBeginRendering(cmd, &info);
+                       viewportScissor(cmd, desc.width, desc.height);
+                       const VkPipeline pipeline =
+                           debug ? mPipes.debug[ribbons].get() : mPipes.opaque[ribbons].get();
+                       drawCamera(cmd, t, pipeline, mOpacitySet, false);
+                       mCtx.fn().cmdEndRendering(cmd);
+                   }});
+    }
+    if (!mOit) return;
+    const int rAccum = g.addResource("hair_oit_accum", &mAccum);
+    const int rWeight = g.addResource("hair_oit_weight", &mWeight);
+    g.addPass({"hair_oit", shadingReads,
+               {{rAccum, Use::ColorWrite}, {rWeight, Use::ColorWrite}, {t.depth, Use::DepthWrite}},
+               [this, t, ribbons](VkCommandBuffer cmd) {
+                   VkRenderingAttachmentInfo colors[2] = {
+                       attachment(mAccum.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true),
+                       attachment(mWeight.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true)};
+                   colors[0].clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}}; // a: revealage
+                   colors[1].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+                   VkRenderingAttachmentInfo depth = attachment(
+                       t.depthImage->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false);
+                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                   info.renderArea = {{0, 0}, {mWidth, mHeight}};
+                   info.layerCount = 1;
+                   info.colorAttachmentCount = 2;
+                   info.pColorAttachments = colors;
+                   info.pDepthAttachment = &depth;
+                   mCtx.fn().cmdBeginRendering(cmd, &info);
+                   viewportScissor(cmd, mWidth, mHeight);
+                   drawCamera(cmd, t, mPipes.oit[ribbons], mOpacitySet, true);
+                   mCtx.fn().cmdEndRendering(cmd);
+               }});
+    g.addPass({"hair_composite", {{rAccum, Use::Sampled}, {rWeight, Use::Sampled}},
+               {{t.hdr, Use::ColorWrite}}, [this, t](VkCommandBuffer cmd) {
+                   VkRenderingAttachmentInfo color = attachment(
+                       t.hdrImage->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
+                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                   info.renderArea = {{0, 0}, {mWidth, mHeight}};
+                   info.layerCount = 1;
+                   info.colorAttachmentCount = 1;
+                   info.pColorAttachments = &color;
+                   mCtx.fn().cmdBeginRendering(cmd, &info);
+                   viewportScissor(cmd, mWidth, mHeight);
+                   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.composite);
+                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                           mPipes.compositeLayout, 0, 1, &mOitSet, 0, nullptr);
+                   vkCmdDraw(cmd, 3, 1, 0, 0);
+                   mCtx.fn().cmdEndRendering(cmd);
+               }});
+}
+
+HairDomInfo HairPasses::domInfo(int lightIndex) {
+    if (lightIndex < 0 || size_t(lightIndex) >= mLastDoms.size() ||
+        mLastDoms[size_t(lightIndex)].size == 0)
+        throw InvalidArgument("light " + std::to_string(lightIndex) +
+                              " had no deep opacity map in the last frame");
+    HairDomInfo info = mLastDoms[size_t(lightIndex)];
+    int slot = 0;
+    while (mDoms[size_t(slot)].light != lightIndex) ++slot;
+    const uint32_t size = mDomOpacity.desc().width;
+    vk::Buffer buffer(&mCtx, VkDeviceSize(size) * size * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      vk::MemoryUsage::Readback);
+    mCtx.immediate([&](VkCommandBuffer cmd) {
+        const UseState s = useState(Use::TransferRead, false);
+        vk::transition(mCtx, cmd, mDomOpacity, s.layout, s.stage, s.access);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, uint32_t(slot), 1};
+        region.imageExtent = {size, size, 1};
+        vkCmdCopyImageToBuffer(cmd, mDomOpacity.get(), s.layout, buffer.get(), 1, &region);
+    });
+    info.texels.resize(size_t(size) * size * 4);
+    std::memcpy(info.texels.data(), buffer.mapped(), info.texels.size() * sizeof(float));
+    return info;
+}
+
+} // namespace weft::render

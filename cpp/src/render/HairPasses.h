@@ -1,0 +1,91 @@
+#pragma once
+// The renderer's hair passes (SPEC §5): strands in the shadow-map views, deep opacity maps for
+// shadow-casting directional lights (pass 1 depth, pass 2 opacity layers), opaque hair shaded
+// per fragment, and weighted blended OIT (accumulation + composite over the opaque image).
+// Only what the scene needs is added: no hair, no passes; no transparent hair or OIT off, no
+// OIT passes; no shadow-casting directional light or DOM off, no DOM passes.
+#include <array>
+#include <vector>
+
+#include <weft/Renderer.h>
+
+#include "render/FrameGraph.h"
+#include "render/HairGpu.h"
+#include "render/HairGpuTypes.h"
+#include "render/HairPipelines.h"
+
+namespace weft::render {
+
+struct ScenePipelines;
+
+class HairPasses {
+public:
+    HairPasses(vk::Context& ctx, const ScenePipelines& scene);
+    ~HairPasses();
+
+    /// Uploads strands and fills this frame's buffers and descriptor sets (frame slot `slot`).
+    void prepare(uint32_t slot, const Scene& scene, const Camera& camera,
+                 const RenderSettings& settings, uint32_t width, uint32_t height);
+    /// Draws the shadow-casting strands as lines into the bound depth target of a light view.
+    void drawDepth(VkCommandBuffer cmd, const glm::mat4& viewProj) const;
+
+    struct Targets {
+        int shadow, depth, hdr;
+        const int* debug; // 4 debug images, or null
+        vk::Image *hdrImage, *depthImage;
+        std::array<vk::Image*, 4> debugImages;
+        VkDescriptorSet frameSet;
+    };
+    /// Adds the DOM, hair and OIT passes after the forward pass.
+    void addPasses(FrameGraph& graph, const Targets& targets);
+    /// The last frame's deep opacity map of a light (InvalidArgument if it had none).
+    HairDomInfo domInfo(int lightIndex);
+    /// Drops GPU copies of strands no scene holds any more.
+    void evictExpired() { mCache.evictExpired(); }
+
+private:
+    struct HairDraw {
+        HairGpu* gpu;
+        VkDescriptorSet set;
+        uint32_t instance;
+        bool castShadows, transparent;
+        glm::mat4 model;
+    };
+    struct Slot {
+        vk::Buffer instances, frame;
+        vk::DescriptorPool pool;
+        uint32_t poolSets = 0;
+    };
+    struct Dom {
+        int light;
+        HairDomInfo info;
+        glm::mat4 viewProj;
+        float layerNdc;
+    };
+
+    void fitDoms(const Scene& scene, const RenderSettings& settings);
+    void allocateSets(Slot& slot, uint32_t draws);
+    void writeSets(Slot& slot);
+    void ensureImages(const RenderSettings& settings, uint32_t width, uint32_t height);
+    void drawCamera(VkCommandBuffer cmd, const Targets& t, VkPipeline pipeline,
+                    VkDescriptorSet domSet, bool transparent) const;
+    /// Shadow-casting strands as lines; push constants: light view-projection * model, params.
+    void drawFromLight(VkCommandBuffer cmd, VkPipeline pipeline, const glm::mat4& viewProj,
+                       const glm::vec4& params) const;
+
+    vk::Context& mCtx;
+    const ScenePipelines& mScene;
+    HairPipelines mPipes;
+    HairGpuCache mCache;
+    std::array<Slot, 2> mSlots;
+    vk::Image mDomDepth, mDomOpacity, mDummyDom, mAccum, mWeight;
+    std::vector<HairDraw> mDraws;
+    std::vector<Dom> mDoms;
+    std::vector<HairDomInfo> mLastDoms; // by scene light, size 0 where none
+    VkDescriptorSet mZ0Set = VK_NULL_HANDLE, mOpacitySet = VK_NULL_HANDLE;
+    VkDescriptorSet mOitSet = VK_NULL_HANDLE;
+    bool mRibbons = false, mOit = false;
+    uint32_t mWidth = 0, mHeight = 0, mDomSize = 0;
+};
+
+} // namespace weft::render

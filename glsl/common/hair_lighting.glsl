@@ -1,0 +1,55 @@
+// Radiance of a hair fragment: hairShade() for every light of the frame (SPEC §5.2) times the
+// light's incident radiance and visibility - the deep opacity map's exp(-occlusion) for a
+// directional light with a DOM (SPEC §5.3), else the ordinary shadow map.
+#include "shading.glsl"
+#include "hair_frame.glsl"
+
+// exp(-occlusion) of DOM slot `slot` at world point p: occlusion interpolated linearly inside
+// the layer holding p's depth between the opacity at its start and at its end
+// (python/weft/reference/hair_shadow.py occlusion_at).
+float hairDomTransmittance(int slot, vec3 p) {
+    vec4 clip = hairFrame.domViewProj[slot] * vec4(p, 1.0);
+    vec2 uv = clip.xy * 0.5 + 0.5;
+    if (uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0) return 1.0;
+    int size = textureSize(hairDom, 0).x;
+    ivec2 texel = clamp(ivec2(floor(uv * float(size))), ivec2(0), ivec2(size - 1));
+    vec4 o = texelFetch(hairDom, ivec3(texel, slot), 0);
+    float rel = clip.z - o.a;
+    if (rel <= 0.0) return 1.0;
+    vec3 b = hairDomBounds(hairFrame.domLayer[slot].x);
+    int k = hairDomLayer(rel, b);
+    float start = k == 0 ? 0.0 : b[k - 1];
+    float t = clamp((rel - start) / (b[k] - start), 0.0, 1.0);
+    float before = k == 0 ? 0.0 : o[k - 1];
+    return exp(-(before + (o[k] - before) * t));
+}
+
+int hairDomSlot(int light) {
+    for (int s = 0; s < hairFrame.params.z; ++s)
+        if (hairFrame.domLight[s] == light) return s;
+    return -1;
+}
+
+// Ambient * diffuse colour + sum over lights of L * visibility * f(t, l, v). `debugVis` is the
+// visibility of the frame's debug light (frame.counts.w).
+vec3 hairRadiance(vec3 p, vec3 t, vec3 color, HairShading s, uint strand, out float debugVis) {
+    vec3 v = normalize(frame.cameraPos.xyz - p);
+    s.diffuse.rgb *= color;
+    vec3 c = frame.ambient.rgb * s.diffuse.rgb;
+    debugVis = 1.0;
+    for (int i = 0; i < frame.counts.x; ++i) {
+        vec3 l;
+        vec3 L = incidentRadiance(lights[i], p, l);
+        float vis = 1.0;
+        int slot = hairDomSlot(i);
+        if (slot >= 0) {
+            vis = hairDomTransmittance(slot, p);
+        } else if (lights[i].radiance.w >= 0.0) {
+            float depth;
+            vis = shadowVisibility(lights[i], p, l, l, depth); // a fibre has no normal: n = l
+        }
+        if (i == frame.counts.w) debugVis = vis;
+        c += vis * L * hairShade(s, t, l, v, strand);
+    }
+    return c;
+}

@@ -1,0 +1,3 @@
+#version 450
+#define HAIR_OIT
+#include "hair_vertex.glsl"
