@@ -45,8 +45,9 @@ struct FrameSlot {
 };
 
 // Everything the shadow maps' contents depend on: the light views and every caster's geometry,
-// transform and alpha test. Equal keys mean the maps can be reused.
-std::vector<uint64_t> shadowKey(const render::FrameData& data) {
+// transform and alpha test (hair: its strands object, which is immutable, and transform).
+// Equal keys mean the maps can be reused.
+std::vector<uint64_t> shadowKey(const render::FrameData& data, const Scene& scene) {
     std::vector<uint64_t> key;
     auto put = [&](const void* p, size_t bytes) {
         const size_t at = key.size();
@@ -60,6 +61,13 @@ std::vector<uint64_t> shadowKey(const render::FrameData& data) {
         put(&d.model, sizeof(glm::mat4));
         put(&d.alphaCutoff, sizeof(float));
         if (d.alphaCutoff > 0.0f) put(&d.material, sizeof(d.material));
+    }
+    for (const HairInstance& h : scene.hairs()) {
+        if (!h.castShadows) continue;
+        const HairStrands* strands = h.strands.get();
+        put(&strands, sizeof(strands));
+        key.push_back(h.strands->points.size());
+        put(&h.transform, sizeof(glm::mat4));
     }
     return key;
 }
@@ -218,7 +226,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     FrameData data = buildFrameData(scene, camera, settings, aspect, *cache);
     shadowInfos = data.shadowInfos;
     if (!data.shadowViews.empty()) ensureShadowMaps(uint32_t(data.shadowViews.size()));
-    std::vector<uint64_t> key = shadowKey(data);
+    std::vector<uint64_t> key = shadowKey(data, scene);
     const bool reuseShadows = settings.reuseShadowMaps && !data.shadowViews.empty() &&
                               key == shadowSignature;
     shadowSignature = std::move(key);
