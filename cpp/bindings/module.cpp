@@ -13,6 +13,7 @@ namespace weft::py_bind {
 void bindScene(py::module_& m);
 void bindRender(py::module_& m);
 void bindCloth(py::module_& m);
+void bindIbl(py::module_& m);
 } // namespace weft::py_bind
 
 using namespace weft::py_bind;
@@ -133,4 +134,5 @@ PYBIND11_MODULE(_core, m) {
     bindScene(m);
     bindRender(m);
     bindCloth(m);
+    bindIbl(m);
 }
