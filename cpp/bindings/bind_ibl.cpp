@@ -185,9 +185,11 @@ void bindIbl(py::module_& m) {
             auto d = directions(dirs, "directions");
             if (!std::isfinite(lod)) throw InvalidArgument("lod must be finite");
             std::vector<glm::vec3> out(d.size());
-            py::gil_scoped_release release;
-            for (size_t k = 0; k < d.size(); ++k) out[k] = c.sampleLod(d[k], lod);
-            return out;
+            {
+                py::gil_scoped_release release;
+                for (size_t k = 0; k < d.size(); ++k) out[k] = c.sampleLod(d[k], lod);
+            }
+            return vec3Array(out);
         }, py::arg("directions"), py::arg("lod") = 0.0f,
            "Seamless (trilinear) samples at (N, 3) directions -> (N, 3).")
         .def("copy", [](const CubeMap& c) { return CubeMap(c); })

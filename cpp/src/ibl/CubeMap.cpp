@@ -69,7 +69,13 @@ glm::vec3 cubeTexelDirection(int face, int i, int j, int size) {
 
 int cubeTexelIndexWrapped(int face, int i, int j, int size) {
     if (i < 0 || i >= size || j < 0 || j >= size) {
-        const CubeCoord c = cubeCoord(cubeTexelDirection(face, i, j, size));
+        // Step just across the edge at the same position along it: the neighbouring face's edge
+        // texels line up with this face's, so that is the texel next to (i, j).
+        auto across = [size](int k) {
+            const float eps = 1e-3f / float(size);
+            return k < 0 ? -1.0f - eps : k >= size ? 1.0f + eps : 2.0f * (float(k) + 0.5f) / float(size) - 1.0f;
+        };
+        const CubeCoord c = cubeCoord(cubeDirection(face, across(i), across(j)));
         face = c.face;
         i = faceIndexFromCoord(c.u, size);
         j = faceIndexFromCoord(c.v, size);
@@ -146,16 +152,23 @@ glm::vec3 CubeMap::sample(const glm::vec3& dir, int level) const {
     const float y = (c.v + 1.0f) * 0.5f * float(s) - 0.5f;
     const int i0 = int(std::floor(x)), j0 = int(std::floor(y));
     const float fx = x - float(i0), fy = y - float(j0);
-    const float* t00 = texelWrapped(c.face, i0, j0, level);
-    const float* t10 = texelWrapped(c.face, i0 + 1, j0, level);
-    const float* t01 = texelWrapped(c.face, i0, j0 + 1, level);
-    const float* t11 = texelWrapped(c.face, i0 + 1, j0 + 1, level);
-    glm::vec3 out;
-    for (int k = 0; k < 3; ++k) {
-        const float top = t00[k] + fx * (t10[k] - t00[k]);
-        const float bottom = t01[k] + fx * (t11[k] - t01[k]);
-        out[k] = top + fy * (bottom - top);
-    }
+    // A tap off both edges (past a corner, where only three faces meet) is the mean of the
+    // corner texel and its two neighbours across the edges, the same from all three faces.
+    auto tap = [&](int i, int j) {
+        const float* t = texelWrapped(c.face, i, j, level);
+        glm::vec3 v(t[0], t[1], t[2]);
+        const int ci = std::clamp(i, 0, s - 1), cj = std::clamp(j, 0, s - 1);
+        if (ci != i && cj != j) {
+            const float* a = texel(c.face, ci, cj, level);
+            const float* b = texelWrapped(c.face, i, cj, level);
+            const float* d = texelWrapped(c.face, ci, j, level);
+            for (int k = 0; k < 3; ++k) v[k] = (a[k] + b[k] + d[k]) / 3.0f;
+        }
+        return v;
+    };
+    const glm::vec3 top = glm::mix(tap(i0, j0), tap(i0 + 1, j0), fx);
+    const glm::vec3 bottom = glm::mix(tap(i0, j0 + 1), tap(i0 + 1, j0 + 1), fx);
+    const glm::vec3 out = glm::mix(top, bottom, fy);
     return out;
 }
 
