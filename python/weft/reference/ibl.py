@@ -83,8 +83,19 @@ def _texels(faces: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     faces = np.asarray(faces, np.float64)
     s = faces.shape[1]
     d = texel_directions(s).reshape(-1, 3)
-    w = np.broadcast_to(texel_solid_angles(s), (6, s, s)).reshape(-1)
+    w = np.broadcast_to(texel_solid_angles(s, sub=max(8, 128 // s)), (6, s, s)).reshape(-1)
     return d, w, faces.reshape(-1, 3)
+
+
+def reduce_faces(faces: np.ndarray, factor: int) -> np.ndarray:
+    """Solid-angle weighted factor x factor averages of the texels, (6, S/f, S/f, 3)."""
+    faces = np.asarray(faces, np.float64)
+    s = faces.shape[1]
+    w = texel_solid_angles(s, sub=max(2, 64 // s))[None, ..., None]
+    num = (faces * w).reshape(6, s // factor, factor, s // factor, factor, 3).sum(axis=(2, 4))
+    den = np.broadcast_to(w, (6, s, s, 1)).reshape(6, s // factor, factor, s // factor, factor,
+                                                    1).sum(axis=(2, 4))
+    return num / den
 
 
 def project_sh9(faces: np.ndarray) -> np.ndarray:
@@ -111,6 +122,19 @@ def phong(faces: np.ndarray, shininess: float, dirs: np.ndarray) -> np.ndarray:
     d, w, c = _texels(faces)
     lobe = np.maximum(np.asarray(dirs, np.float64) @ d.T, 0.0) ** shininess * w
     return (lobe @ c) / lobe.sum(axis=1, keepdims=True)
+
+
+def ggx_prefilter(faces: np.ndarray, roughness: float, dirs: np.ndarray) -> np.ndarray:
+    """Split-sum prefiltered radiance with N = V = R: integral of L(l) D(h) (n.l) dl over the
+    same integral of D(h) (n.l), h = normalize(l + n), GGX D with alpha = roughness^2, (N, 3)."""
+    d, w, c = _texels(faces)
+    n = np.asarray(dirs, np.float64)
+    alpha2 = max(roughness * roughness, 1e-3) ** 2
+    nl = n @ d.T
+    nh2 = np.maximum(0.5 * (1.0 + nl), 0.0)  # (n.h)^2 for h = normalize(l + n)
+    dd = alpha2 / (np.pi * (nh2 * (alpha2 - 1.0) + 1.0) ** 2)
+    weight = np.where(nl > 0, dd * nl, 0.0) * w
+    return (weight @ c) / weight.sum(axis=1, keepdims=True)
 
 
 def sphere_map_coords(dirs: np.ndarray, world_to_sphere: np.ndarray, wrap: float) -> np.ndarray:
