@@ -14,7 +14,8 @@ namespace weft {
 struct EnvLight {
     glm::vec3 direction{0.0f, 1.0f, 0.0f}; ///< unit, luminance-weighted centroid (world)
     glm::vec3 colour{0.0f};                ///< integrated radiance x solid angle (RGB)
-    float solidAngle = 0.0f;               ///< sr covered by the light's texels
+    float solidAngle = 0.0f;               ///< sr of a uniform disc as bright as the peak
+                                           ///< with the same power (sum L dw / peak L)
     int texels = 0;                        ///< full-resolution texels in the light
 };
 

@@ -70,7 +70,7 @@ std::vector<EnvLight> extractLights(const CubeMap& radiance, const LightExtracti
     std::vector<int> lightOf(nd, -1);
     std::vector<EnvLight> lights;
     std::vector<glm::dvec3> dirSum, colSum;
-    std::vector<double> omegaSum;
+    std::vector<double> lumSum, lumPeak;
     for (int f = 0; f < 6; ++f)
         for (int j = 0; j < s; ++j)
             for (int i = 0; i < s; ++i) {
@@ -84,20 +84,22 @@ std::vector<EnvLight> extractLights(const CubeMap& radiance, const LightExtracti
                     lights.emplace_back();
                     dirSum.emplace_back(0.0);
                     colSum.emplace_back(0.0);
-                    omegaSum.push_back(0.0);
+                    lumSum.push_back(0.0);
+                    lumPeak.push_back(0.0);
                 }
                 const float* c = radiance.texel(f, i, j);
                 const double w = omega[k];
                 dirSum[size_t(id)] += double(lum[k]) * w * glm::dvec3(cubeTexelDirection(f, i, j, s));
                 colSum[size_t(id)] += w * glm::dvec3(c[0], c[1], c[2]);
-                omegaSum[size_t(id)] += w;
+                lumSum[size_t(id)] += double(lum[k]) * w;
+                lumPeak[size_t(id)] = std::max(lumPeak[size_t(id)], double(lum[k]));
                 lights[size_t(id)].texels += 1;
             }
     for (size_t l = 0; l < lights.size(); ++l) {
         const double len = glm::length(dirSum[l]);
         lights[l].direction = len > 0.0 ? glm::vec3(dirSum[l] / len) : glm::vec3(0, 1, 0);
         lights[l].colour = glm::vec3(colSum[l]);
-        lights[l].solidAngle = float(omegaSum[l]);
+        lights[l].solidAngle = float(lumSum[l] / lumPeak[l]);
     }
     std::stable_sort(lights.begin(), lights.end(), [](const EnvLight& a, const EnvLight& b) {
         return luminance(a.colour) > luminance(b.colour);

@@ -21,7 +21,7 @@ class EnvLight:
 
     direction: Tuple[float, float, float]  #: unit vector towards the light (world)
     colour: Tuple[float, float, float]     #: radiance integrated over its solid angle (RGB)
-    solid_angle: float                     #: sr
+    solid_angle: float  #: sr (threshold method: power / peak radiance; median cut: the region's)
     texels: int = 0                        #: cube texels (threshold method) or pixels (median cut)
 
     @property
