@@ -44,7 +44,8 @@ public:
 
     int size() const { return mSize; }
     bool empty() const { return mSize == 0; }
-    /// Number of levels (1 until buildMips()); level l has size max(1, size >> l).
+    /// Number of levels (1 until buildMips()); level l has size max(1, size >> l), each texel the
+    /// solid-angle weighted mean of the finer texels it covers.
     int levels() const { return int(mLevels.size()); }
     int levelSize(int level) const;
     float* data(int level = 0) { return mLevels[size_t(level)].data(); }

@@ -123,11 +123,10 @@ void CubeMap::buildMips() {
         for (int f = 0; f < 6; ++f)
             for (int j = 0; j < s; ++j)
                 for (int i = 0; i < s; ++i) {
+                    // coarse texel (i, j) covers fine texels [i * fine / s, (i + 1) * fine / s)
                     double acc[3] = {0, 0, 0}, wsum = 0.0;
-                    for (int dj = 0; dj < 2; ++dj)
-                        for (int di = 0; di < 2; ++di) {
-                            const int fi = std::min(2 * i + di, fine - 1);
-                            const int fj = std::min(2 * j + dj, fine - 1);
+                    for (int fj = j * fine / s; fj < (j + 1) * fine / s; ++fj)
+                        for (int fi = i * fine / s; fi < (i + 1) * fine / s; ++fi) {
                             const double w = weight[size_t(fj) * fine + fi];
                             const float* c = texel(f, fi, fj, level - 1);
                             for (int k = 0; k < 3; ++k) acc[k] += w * c[k];

@@ -195,7 +195,7 @@ def parse_lights(text: str, name: str = "<lights>") -> LightFile:
                 raise line.fail("colour must be >= 0")
             light: object = DirLight(lid, d, colour, line.number)
         elif key == "PERSPLIGHT":
-            line.expect([10], "'id atx aty atz posx posy posz fov aspect near far'")
+            line.expect([11], "'id atx aty atz posx posy posz fov aspect near far'")
             lid = line.int(1, "light id")
             at, pos = line.vec3(2, "at"), line.vec3(5, "position")
             fov, aspect = line.float(8, "fov"), line.float(9, "aspect")
