@@ -4,6 +4,7 @@
                         [--out PNG] [--screenshot PNG] [--stats JSON]
     python -m weft devices [--json]
     python -m weft render [--width W] [--height H] [--out PNG]
+    python -m weft ibl {convert,irradiance,extract-lights} ...   (see python -m weft ibl --help)
 
 Benchmarks have their own entry point: ``python -m weft.bench --help``.
 """
@@ -82,6 +83,10 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--height", type=_positive_int, default=720, help="height in pixels (720)")
     render.add_argument("--out", default="out/render.png", help="output PNG (out/render.png)")
     render.set_defaults(handler=_cmd_render)
+
+    from weft.ibl.cli import add_ibl_parser
+
+    add_ibl_parser(sub)
     return parser
 
 
