@@ -23,6 +23,7 @@ from typing import Any, Dict, List, Optional, Sequence, TextIO
 SUBSYSTEMS: Dict[str, str] = {
     "render": "weft.bench.render",
     "cloth": "weft.bench.cloth",
+    "ibl": "weft.bench.ibl",
 }
 
 __all__ = ["SUBSYSTEMS", "main", "load_subsystem", "machine_info", "Progress", "write_report",
