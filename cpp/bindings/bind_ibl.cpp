@@ -349,7 +349,7 @@ void bindIbl(py::module_& m) {
        "Split-sum DFG table (roughness rows, n.v columns, [scale, bias]).");
 
     m.def("extract_lights", [](py::handle cube, int downsample, float threshold, float relative,
-                               int maxLights) {
+                               int maxLights, bool withLabels) -> py::object {
         const CubeArg c = toCube(cube, "radiance");
         LightExtractionParams p;
         p.downsample = downsample;
@@ -357,9 +357,10 @@ void bindIbl(py::module_& m) {
         p.relativeThreshold = relative;
         p.maxLights = maxLights;
         std::vector<EnvLight> lights;
+        std::vector<int> labels;
         {
             py::gil_scoped_release release;
-            lights = extractLights(c, p);
+            lights = extractLights(c, p, withLabels ? &labels : nullptr);
         }
         py::list out;
         for (const auto& l : lights) {
@@ -370,10 +371,15 @@ void bindIbl(py::module_& m) {
             d["texels"] = l.texels;
             out.append(d);
         }
-        return out;
+        if (!withLabels) return std::move(out);
+        const py::ssize_t s = c.get().size();
+        py::array_t<int> lab({py::ssize_t(6), s, s});
+        std::memcpy(lab.mutable_data(), labels.data(), labels.size() * sizeof(int));
+        return py::make_tuple(out, lab);
     }, py::arg("radiance"), py::arg("downsample") = 32, py::arg("threshold") = 0.0f,
-       py::arg("relative_threshold") = 8.0f, py::arg("max_lights") = 16,
-       "Threshold + connected components; list of dicts (direction, colour, solid_angle, texels).");
+       py::arg("relative_threshold") = 8.0f, py::arg("max_lights") = 16, py::arg("labels") = false,
+       "Threshold + connected components; list of dicts (direction, colour, solid_angle, texels),\n"
+       "with labels=True also the (6, S, S) int array of light indices (-1: not a light).");
 
     py::class_<ShadowDome>(m, "ShadowDome", "Dome of N shadow lights over +Y (seed eq. 2.21-2.23).")
         .def(py::init([](py::handle cube, int count, const std::string& layout, int sourceSize) {

@@ -161,3 +161,26 @@ def test_light_extraction_rejects_bad_input() -> None:
         ibl.extract_lights(good, relative_threshold=0.0)
     with pytest.raises(weft.InvalidArgument, match="finite"):
         ibl.ShadowDome(bad, 16)
+
+
+def test_sun_split_off_makes_sh9_accurate_for_a_strong_sun() -> None:
+    sun = np.array([0.35, 0.8, -0.45]) / np.linalg.norm([0.35, 0.8, -0.45])
+    env = envs.sun_disc(sun, np.radians(2.0), 5000.0, envs.sky_gradient())
+    faces = envs.to_faces(env, 64, 2)
+    normals = ref.texel_directions(8).reshape(-1, 3)
+    exact = ref.irradiance(faces, normals) @ np.array([0.2126, 0.7152, 0.0722])
+    lights, residual = ibl.split_lights(ibl.CubeMap(faces))
+    assert len(lights) == 1
+    sky_only = envs.to_faces(envs.sky_gradient(), 64, 2)
+    assert np.asarray(residual.faces).max() < 2.0 * sky_only.max()  # the sun is gone
+    sh_only = ibl.sh_irradiance(ibl.project_sh9(faces), normals.astype(np.float32))
+    split = ibl.sh_irradiance(ibl.project_sh9(residual), normals.astype(np.float32)) + sum(
+        np.outer(np.maximum(normals @ np.asarray(l.direction), 0.0), l.colour) for l in lights)
+
+    def norm_err(e: np.ndarray) -> float:
+        lum = e @ np.array([0.2126, 0.7152, 0.0722])
+        return float(np.abs(lum - exact).mean() / exact.mean())
+
+    print(f"sun 5000x sky: SH9 alone {norm_err(sh_only):.4f}, SH9 of residual + sun "
+          f"{norm_err(split):.4f}")
+    assert norm_err(split) < 0.02 < norm_err(sh_only)

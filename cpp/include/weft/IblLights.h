@@ -30,7 +30,10 @@ struct LightExtractionParams {
 inline float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 /// Lights sorted by luminous power (strongest first). Within each component the light is made
-/// of the full-resolution texels above the threshold.
-std::vector<EnvLight> extractLights(const CubeMap& radiance, const LightExtractionParams& params);
+/// of the full-resolution texels above the threshold. When `labels` is given it receives, per
+/// level-0 texel (face-major, row-major), the index of the light it belongs to or -1: fill those
+/// texels (fillUnseen with labels < 0 as the mask) for the environment without its lights.
+std::vector<EnvLight> extractLights(const CubeMap& radiance, const LightExtractionParams& params,
+                                    std::vector<int>* labels = nullptr);
 
 } // namespace weft

@@ -23,7 +23,8 @@ int findRoot(std::vector<int>& parent, int x) {
 
 } // namespace
 
-std::vector<EnvLight> extractLights(const CubeMap& radiance, const LightExtractionParams& p) {
+std::vector<EnvLight> extractLights(const CubeMap& radiance, const LightExtractionParams& p,
+                                    std::vector<int>* labels) {
     requireCube(radiance, "radiance cube map");
     requireCount(p.downsample, 1024, "downsample size");
     requireCount(p.maxLights, 1 << 16, "maximum light count");
@@ -68,6 +69,7 @@ std::vector<EnvLight> extractLights(const CubeMap& radiance, const LightExtracti
                 }
             }
     std::vector<int> lightOf(nd, -1);
+    std::vector<int> texelLight(n, -1);
     std::vector<EnvLight> lights;
     std::vector<glm::dvec3> dirSum, colSum;
     std::vector<double> lumSum, lumPeak;
@@ -94,6 +96,7 @@ std::vector<EnvLight> extractLights(const CubeMap& radiance, const LightExtracti
                 lumSum[size_t(id)] += double(lum[k]) * w;
                 lumPeak[size_t(id)] = std::max(lumPeak[size_t(id)], double(lum[k]));
                 lights[size_t(id)].texels += 1;
+                texelLight[k] = id;
             }
     for (size_t l = 0; l < lights.size(); ++l) {
         const double len = glm::length(dirSum[l]);
@@ -101,10 +104,24 @@ std::vector<EnvLight> extractLights(const CubeMap& radiance, const LightExtracti
         lights[l].colour = glm::vec3(colSum[l]);
         lights[l].solidAngle = float(lumSum[l] / lumPeak[l]);
     }
-    std::stable_sort(lights.begin(), lights.end(), [](const EnvLight& a, const EnvLight& b) {
-        return luminance(a.colour) > luminance(b.colour);
+    std::vector<int> order(lights.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        return luminance(lights[size_t(a)].colour) > luminance(lights[size_t(b)].colour);
     });
-    if (int(lights.size()) > p.maxLights) lights.resize(size_t(p.maxLights));
+    const size_t kept = std::min(lights.size(), size_t(p.maxLights));
+    std::vector<int> rank(lights.size(), -1);
+    std::vector<EnvLight> sorted;
+    for (size_t r = 0; r < kept; ++r) {
+        rank[size_t(order[r])] = int(r);
+        sorted.push_back(lights[size_t(order[r])]);
+    }
+    if (labels) {
+        labels->assign(n, -1);
+        for (size_t k = 0; k < n; ++k)
+            if (texelLight[k] >= 0) (*labels)[k] = rank[size_t(texelLight[k])];
+    }
+    lights.swap(sorted);
     return lights;
 }
 

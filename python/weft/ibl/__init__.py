@@ -49,7 +49,7 @@ from weft.ibl.capture import (
     srgb_to_linear,
     to_cube,
 )
-from weft.ibl.lights import EnvLight, extract_lights, median_cut
+from weft.ibl.lights import EnvLight, extract_lights, median_cut, split_lights
 
 __all__ = [
     "CubeMap", "Environment", "ShadowDome", "EnvLight",
@@ -59,5 +59,5 @@ __all__ = [
     "phong_exact", "phong_sampled", "prefilter_ggx", "project_sh9", "sh_irradiance",
     "sphere_to_cube", "cross_to_cube", "cube_to_cross", "cut_out_sphere",
     "environments_from_frames", "load_environment", "save_environment", "sphere_rect",
-    "srgb_to_linear", "to_cube", "extract_lights", "median_cut",
+    "srgb_to_linear", "to_cube", "extract_lights", "median_cut", "split_lights",
 ]
