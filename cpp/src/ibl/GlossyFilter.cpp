@@ -22,11 +22,12 @@ void requireShininess(float s) {
     if (!(s >= 0.0f && s <= 1e6f)) throw InvalidArgument("shininess must be in [0, 1e6]");
 }
 
-// Mip level whose texel solid angle matches a sample's, 1 / (n pdf) (+1 to smooth, Colbert &
-// Krivanek 2007); `texelSolidAngle` is the level-0 texel solid angle.
+// Mip level whose texel solid angle matches a sample's, 1 / (n pdf) (Colbert & Krivanek 2007,
+// without their +1 bias: 3-4x lower error on smooth environments in the benchmark, and a tiny
+// sun still stays bounded); `texelSolidAngle` is the level-0 texel solid angle.
 float sampleLod(float pdf, int samples, float texelSolidAngle) {
     const float omegaS = 1.0f / (float(samples) * std::max(pdf, 1e-12f));
-    return std::max(0.0f, 0.5f * std::log2(omegaS / texelSolidAngle) + 1.0f);
+    return std::max(0.0f, 0.5f * std::log2(omegaS / texelSolidAngle));
 }
 
 template <class Fn> void fillLevel(CubeMap& out, int level, Fn fn) {

@@ -193,6 +193,7 @@ void fillUnseen(CubeMap& cube, const std::vector<uint8_t>& valid) {
         throw InvalidArgument("validity mask must have 6 * size * size entries");
     // Push: premultiplied colour sums and coverage per level.
     std::vector<std::vector<float>> colour(1), weight(1);
+    std::vector<int> sizes{s0};
     colour[0].resize(size_t(6) * s0 * s0 * 3);
     weight[0].resize(size_t(6) * s0 * s0);
     double seen = 0.0;
@@ -219,6 +220,7 @@ void fillUnseen(CubeMap& cube, const std::vector<uint8_t>& valid) {
                 }
         colour.push_back(std::move(nc));
         weight.push_back(std::move(nw));
+        sizes.push_back(c);
     }
     // Top (1x1 per face): faces that saw nothing take the coverage-weighted mean of the others.
     CubeMap coarse(1);
@@ -238,7 +240,7 @@ void fillUnseen(CubeMap& cube, const std::vector<uint8_t>& valid) {
     }
     // Pull: blend each level's own average with the seamless upsampled coarser level.
     for (int level = int(colour.size()) - 2; level >= 0; --level) {
-        const int s = level == 0 ? s0 : int(std::sqrt(double(weight[size_t(level)].size() / 6)));
+        const int s = sizes[size_t(level)];
         CubeMap fine(s);
         for (int f = 0; f < 6; ++f)
             for (int j = 0; j < s; ++j)
