@@ -22,7 +22,7 @@ void requireShininess(float s) {
     if (!(s >= 0.0f && s <= 1e6f)) throw InvalidArgument("shininess must be in [0, 1e6]");
 }
 
-// Mip level whose texel solid angle matches a sample's, 1 / (n pdf) (Colbert & Krivanek 2007,
+// Mip level whose texel solid angle matches a sample's, 1 / (n pdf) (Krivanek & Colbert 2008,
 // without their +1 bias: 3-4x lower error on smooth environments in the benchmark, and a tiny
 // sun still stays bounded); `texelSolidAngle` is the level-0 texel solid angle.
 float sampleLod(float pdf, int samples, float texelSolidAngle) {

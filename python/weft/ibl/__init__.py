@@ -5,7 +5,9 @@ The numeric work is in C++ (``weft._core``); this package re-exports it and adds
 
 - :mod:`weft.ibl.capture`: sRGB decoding, environment files, cube crosses, the one-camera
   mirror-ball cut-out and frame-by-frame environments from an image sequence;
-- :mod:`weft.ibl.lights`: light extraction as dataclasses and median cut (Debevec 2005);
+- :mod:`weft.ibl.lights`: light extraction as dataclasses, ``split_lights`` (lights + the sky
+  without them) and median cut (Debevec 2005);
+- :mod:`weft.ibl.cli`: ``python -m weft ibl ...``;
 - :mod:`weft.ibl.files`: importers for the seed's scene / renderer / light text files.
 
 Conventions: cube faces +X, -X, +Y, -Y, +Z, -Z with the Vulkan/OpenGL orientation (see
