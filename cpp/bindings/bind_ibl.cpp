@@ -336,6 +336,17 @@ void bindIbl(py::module_& m) {
         return prefilterGgx(c, size, levels, samples);
     }, py::arg("radiance"), py::arg("size") = 128, py::arg("levels") = 5, py::arg("samples") = 64,
        "GGX split-sum chain: mip m holds roughness m / (levels - 1).");
+    m.def("prefilter_ggx_gpu", [](py::handle cube, int size, int levels, int samples) {
+        const CubeArg c = toCube(cube, "radiance");
+        double ms = 0.0;
+        CubeMap out;
+        {
+            py::gil_scoped_release release;
+            out = prefilterGgxGpu(c, size, levels, samples, &ms);
+        }
+        return py::make_tuple(std::move(out), ms);
+    }, py::arg("radiance"), py::arg("size") = 128, py::arg("levels") = 5, py::arg("samples") = 64,
+       "prefilter_ggx as a Vulkan compute shader: (CubeMap, dispatch wall ms).");
     m.def("dfg_lut", [](int size, int samples) {
         std::vector<float> lut;
         {

@@ -27,6 +27,8 @@ def test_bench_ibl_quick(tmp_path: Path) -> None:
         assert r["ms"] > 0 and math.isfinite(r["mean_err"])
     sky_sh = next(r for r in rows if r["env"] == "sky" and r["method"].startswith("SH9"))
     assert sky_sh["mean_err"] < 0.03
+    for r in data["glossy"]["ggx_chain"]:
+        assert r["cpu_s"] > 0 and 0 < r["gpu_dispatch_s"] <= r["gpu_total_s"]
     threshold = data["lights"][0]
     assert threshold["dir_err_deg"] < 2.0 and threshold["power_err"] < 0.05
     dome = data["dome"]

@@ -52,6 +52,12 @@ CubeMap phongSampled(const CubeMap& radiance, float shininess, int size, int sam
 /// perceptual roughness m / (levels - 1) (alpha = roughness^2); level 0 is the source resampled.
 /// Filtered importance sampling as in phongSampled.
 CubeMap prefilterGgx(const CubeMap& radiance, int size, int levels = 5, int samples = 64);
+/// prefilterGgx as a Vulkan compute shader on the shared device (a GPU, or lavapipe): the same
+/// algorithm, equal to the CPU result up to float rounding. `dispatchMs` (optional) receives the
+/// wall time of the recorded dispatches (upload of the source chain and pipeline creation
+/// excluded). Throws weft::Error when no Vulkan device is usable.
+CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels = 5, int samples = 64,
+                        double* dispatchMs = nullptr);
 /// Split-sum DFG table, `size` x `size` x 2 floats (scale, bias to F0): row j has perceptual
 /// roughness (j + 0.5) / size, column i has n.v = (i + 0.5) / size; Smith-Schlick G, k = a / 2.
 std::vector<float> dfgLut(int size = 32, int samples = 256);
