@@ -89,7 +89,8 @@ vec3 fetch(int offset, int index) {
 vec3 tap(int offset, int s, int face, int i, int j) {
     int ci = clamp(i, 0, s - 1), cj = clamp(j, 0, s - 1);
     if (ci != i && cj != j)
-        return (fetch(offset, (face * s + cj) * s + ci) + fetch(offset, indexWrapped(face, i, cj, s)) +
+        return (fetch(offset, (face * s + cj) * s + ci) +
+                fetch(offset, indexWrapped(face, i, cj, s)) +
                 fetch(offset, indexWrapped(face, ci, j, s))) / 3.0;
     return fetch(offset, indexWrapped(face, i, j, s));
 }

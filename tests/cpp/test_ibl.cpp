@@ -71,7 +71,8 @@ TEST(IblCube, SamplingAConstantIsExactEverywhere) {
 }
 
 TEST(IblFilter, Sh9OfAConstantAndALinearEnvironment) {
-    // L = 1: only L00 = sqrt(4 pi); E = pi.  L = 1 + y: adds L1-1 = sqrt(4 pi / 3), E(+Y) = pi + 2 pi / 3
+    // L = 1: only L00 = sqrt(4 pi); E = pi.
+    // L = 1 + y: adds L1-1 = sqrt(4 pi / 3), E(+Y) = pi + 2 pi / 3
     weft::CubeMap cube = constantCube(32, {1, 1, 1});
     const int s = cube.size();
     for (int f = 0; f < 6; ++f)
@@ -120,5 +121,6 @@ TEST(IblLights, DomeRoundRobinVisitsEveryLightOnce) {
         for (int i : dome.refreshSet(frame, 4)) seen.insert(i);
     EXPECT_EQ(seen.size(), 16u);
     EXPECT_EQ(std::set<int>(seen.begin(), seen.end()).size(), 16u);
-    EXPECT_THROW(weft::ShadowDome::directions(20, weft::DomeLayout::Fibonacci), weft::InvalidArgument);
+    EXPECT_THROW(weft::ShadowDome::directions(20, weft::DomeLayout::Fibonacci),
+                 weft::InvalidArgument);
 }

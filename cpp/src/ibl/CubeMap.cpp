@@ -56,7 +56,8 @@ glm::vec3 cubeDirection(int face, float u, float v) {
     case 3: d = {u, -1.0f, -v}; break;
     case 4: d = {u, -v, 1.0f}; break;
     case 5: d = {-u, -v, -1.0f}; break;
-    default: throw InvalidArgument("cube face index must be in [0, 5], got " + std::to_string(face));
+    default:
+        throw InvalidArgument("cube face index must be in [0, 5], got " + std::to_string(face));
     }
     return glm::normalize(d);
 }
@@ -73,7 +74,9 @@ int cubeTexelIndexWrapped(int face, int i, int j, int size) {
         // texels line up with this face's, so that is the texel next to (i, j).
         auto across = [size](int k) {
             const float eps = 1e-3f / float(size);
-            return k < 0 ? -1.0f - eps : k >= size ? 1.0f + eps : 2.0f * (float(k) + 0.5f) / float(size) - 1.0f;
+            if (k < 0) return -1.0f - eps;
+            if (k >= size) return 1.0f + eps;
+            return 2.0f * (float(k) + 0.5f) / float(size) - 1.0f;
         };
         const CubeCoord c = cubeCoord(cubeDirection(face, across(i), across(j)));
         face = c.face;
@@ -119,7 +122,8 @@ void CubeMap::buildMips() {
         mLevels.emplace_back(size_t(6) * s * s * 3, 0.0f);
         std::vector<double> weight(size_t(fine) * fine);
         for (int j = 0; j < fine; ++j)
-            for (int i = 0; i < fine; ++i) weight[size_t(j) * fine + i] = cubeTexelSolidAngle(i, j, fine);
+            for (int i = 0; i < fine; ++i)
+                weight[size_t(j) * fine + i] = cubeTexelSolidAngle(i, j, fine);
         for (int f = 0; f < 6; ++f)
             for (int j = 0; j < s; ++j)
                 for (int i = 0; i < s; ++i) {

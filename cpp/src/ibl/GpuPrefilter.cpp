@@ -48,8 +48,9 @@ vk::PipelineLayout pipelineLayout(vk::Context& ctx, VkDescriptorSetLayout set) {
     return vk::PipelineLayout(&ctx, layout, vkDestroyPipelineLayout);
 }
 
-VkDescriptorSet bindBuffers(vk::Context& ctx, vk::DescriptorPool& pool, VkDescriptorSetLayout layout,
-                            const vk::Buffer& src, const vk::Buffer& dst) {
+VkDescriptorSet bindBuffers(vk::Context& ctx, vk::DescriptorPool& pool,
+                            VkDescriptorSetLayout layout, const vk::Buffer& src,
+                            const vk::Buffer& dst) {
     VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
     VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     info.maxSets = 1;
@@ -64,7 +65,8 @@ VkDescriptorSet bindBuffers(vk::Context& ctx, vk::DescriptorPool& pool, VkDescri
     alloc.pSetLayouts = &layout;
     VkDescriptorSet set;
     VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &alloc, &set));
-    VkDescriptorBufferInfo buffers[2] = {{src.get(), 0, VK_WHOLE_SIZE}, {dst.get(), 0, VK_WHOLE_SIZE}};
+    VkDescriptorBufferInfo buffers[2] = {{src.get(), 0, VK_WHOLE_SIZE},
+                                         {dst.get(), 0, VK_WHOLE_SIZE}};
     VkWriteDescriptorSet writes[2];
     for (uint32_t k = 0; k < 2; ++k) {
         writes[k] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -117,7 +119,8 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
     const auto start = std::chrono::steady_clock::now();
     ctx.immediate([&](VkCommandBuffer cmd) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0,
+                                nullptr);
         int32_t dstOffset = 0;
         for (int m = 0; m < levels; ++m) {
             const int s = out.levelSize(m);
@@ -136,8 +139,10 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                              0, 1, &barrier, 0, nullptr, 0, nullptr);
     });
-    if (dispatchMs)
-        *dispatchMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (dispatchMs) {
+        const auto elapsed = std::chrono::steady_clock::now() - start;
+        *dispatchMs = std::chrono::duration<double, std::milli>(elapsed).count();
+    }
     offset = 0;
     for (int m = 0; m < levels; ++m) {
         std::memcpy(out.data(m), static_cast<const float*>(dst.mapped()) + offset,

@@ -50,8 +50,10 @@ void fillCube(CubeMap& cube, int ss, Fn fn, Seen seen, std::vector<uint8_t>* val
                 glm::vec3 acc(0.0f);
                 for (int b = 0; b < ss; ++b)
                     for (int a = 0; a < ss; ++a) {
-                        const float u = 2.0f * (float(i) + (float(a) + 0.5f) / float(ss)) / float(s) - 1.0f;
-                        const float v = 2.0f * (float(j) + (float(b) + 0.5f) / float(ss)) / float(s) - 1.0f;
+                        const float fi = float(i) + (float(a) + 0.5f) / float(ss);
+                        const float fj = float(j) + (float(b) + 0.5f) / float(ss);
+                        const float u = 2.0f * fi / float(s) - 1.0f;
+                        const float v = 2.0f * fj / float(s) - 1.0f;
                         acc += fn(cubeDirection(f, u, v));
                     }
                 acc /= float(ss * ss);
@@ -59,7 +61,8 @@ void fillCube(CubeMap& cube, int ss, Fn fn, Seen seen, std::vector<uint8_t>* val
                 out[0] = acc.x;
                 out[1] = acc.y;
                 out[2] = acc.z;
-                if (valid) (*valid)[(size_t(f) * s + j) * s + i] = seen(cubeTexelDirection(f, i, j, s));
+                if (valid)
+                    (*valid)[(size_t(f) * s + j) * s + i] = seen(cubeTexelDirection(f, i, j, s));
             }
         }
     });

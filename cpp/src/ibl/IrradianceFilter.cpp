@@ -115,7 +115,8 @@ Sh9 projectSh9(const CubeMap& radiance) {
         if (!std::isfinite(v)) requireCube(radiance, "radiance cube map"); // names the problem
     Sh9 sh;
     for (int k = 0; k < 9; ++k)
-        sh.coeffs[size_t(k)] = glm::vec3(float(total[k]), float(total[9 + k]), float(total[18 + k]));
+        sh.coeffs[size_t(k)] =
+            glm::vec3(float(total[k]), float(total[9 + k]), float(total[18 + k]));
     return sh;
 }
 
@@ -130,7 +131,8 @@ glm::vec3 shIrradiance(const Sh9& sh, const glm::vec3& n) {
 
 CubeMap irradianceFromSh(const Sh9& sh, int size) {
     for (const auto& c : sh.coeffs)
-        if (!std::isfinite(c.x + c.y + c.z)) throw InvalidArgument("SH coefficients must be finite");
+        if (!std::isfinite(c.x + c.y + c.z))
+            throw InvalidArgument("SH coefficients must be finite");
     return mapTexels(size, [&](const glm::vec3& d) { return shIrradiance(sh, d); });
 }
 
@@ -157,7 +159,8 @@ CubeMap irradianceBoxBlur(const CubeMap& radiance, int size, int sphereSize, int
     requireCube(radiance, "radiance cube map");
     requireCount(size, 1024, "output size");
     requireCount(sphereSize, 4096, "sphere map size");
-    if (radius < 0 || radius >= sphereSize) throw InvalidArgument("blur radius must be in [0, sphere size)");
+    if (radius < 0 || radius >= sphereSize)
+        throw InvalidArgument("blur radius must be in [0, sphere size)");
     if (passes < 0 || passes > 16) throw InvalidArgument("blur passes must be in [0, 16]");
     const glm::mat4 identity(1.0f);
     std::vector<float> img = cubeToSphere(radiance, sphereSize, identity, 1.0f);
@@ -187,12 +190,14 @@ CubeMap irradianceRotationalBlur(const CubeMap& radiance, int size, float halfAn
     requireCube(radiance, "radiance cube map");
     requireCount(size, 1024, "output size");
     requireCount(steps, 1024, "rotation steps");
-    if (!(halfAngle >= 0.0f && halfAngle <= kPi)) throw InvalidArgument("half angle must be in [0, pi]");
+    if (!(halfAngle >= 0.0f && halfAngle <= kPi))
+        throw InvalidArgument("half angle must be in [0, pi]");
     CubeMap current = reducedCube(radiance, size);
     for (int axis : {0, 2, 1}) {
         std::vector<glm::mat3> rotations;
         for (int k = 0; k < steps; ++k) {
-            const float a = steps == 1 ? 0.0f : halfAngle * (2.0f * float(k) / float(steps - 1) - 1.0f);
+            const float t = steps == 1 ? 0.5f : float(k) / float(steps - 1);
+            const float a = halfAngle * (2.0f * t - 1.0f);
             rotations.push_back(axisRotation(axis, a));
         }
         current = mapTexels(size, [&](const glm::vec3& d) {

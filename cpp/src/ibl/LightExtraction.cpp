@@ -46,7 +46,9 @@ std::vector<EnvLight> extractLights(const CubeMap& radiance, const LightExtracti
             }
     const float threshold =
         p.threshold > 0.0f ? p.threshold : p.relativeThreshold * float(total / (4.0 * M_PI));
-    auto lowIndex = [&](int f, int i, int j) { return (size_t(f) * d + size_t(j) * d / s) * d + size_t(i) * d / s; };
+    auto lowIndex = [&](int f, int i, int j) {
+        return (size_t(f) * d + size_t(j) * d / s) * d + size_t(i) * d / s;
+    };
     std::vector<float> maxLum(nd, 0.0f);
     for (int f = 0; f < 6; ++f)
         for (int j = 0; j < s; ++j)
@@ -91,7 +93,8 @@ std::vector<EnvLight> extractLights(const CubeMap& radiance, const LightExtracti
                 }
                 const float* c = radiance.texel(f, i, j);
                 const double w = omega[k];
-                dirSum[size_t(id)] += double(lum[k]) * w * glm::dvec3(cubeTexelDirection(f, i, j, s));
+                const glm::dvec3 dir(cubeTexelDirection(f, i, j, s));
+                dirSum[size_t(id)] += double(lum[k]) * w * dir;
                 colSum[size_t(id)] += w * glm::dvec3(c[0], c[1], c[2]);
                 lumSum[size_t(id)] += double(lum[k]) * w;
                 lumPeak[size_t(id)] = std::max(lumPeak[size_t(id)], double(lum[k]));

@@ -20,7 +20,8 @@ glm::vec3 shade(const std::vector<DomeLight>& lights, const glm::vec3& normal,
                 const std::vector<uint8_t>& visible, bool wantVisible) {
     if (visible.size() != lights.size())
         throw InvalidArgument("visibility must have one entry per dome light (" +
-                              std::to_string(lights.size()) + "), got " + std::to_string(visible.size()));
+                              std::to_string(lights.size()) + "), got " +
+                              std::to_string(visible.size()));
     requireFinite(normal, "normal");
     const glm::vec3 n = glm::normalize(normal);
     glm::vec3 sum(0.0f);
@@ -41,7 +42,8 @@ std::vector<glm::vec3> ShadowDome::directions(int count, DomeLayout layout) {
         const double golden = kPi * (3.0 - std::sqrt(5.0));
         for (int k = 0; k < count; ++k) {
             const double y = 1.0 - (k + 0.5) / count, r = std::sqrt(1.0 - y * y);
-            dirs.emplace_back(float(r * std::cos(k * golden)), float(y), float(r * std::sin(k * golden)));
+            dirs.emplace_back(float(r * std::cos(k * golden)), float(y),
+                              float(r * std::sin(k * golden)));
         }
     } else {
         const int rings = count / 8;
@@ -87,7 +89,8 @@ ShadowDome::ShadowDome(const CubeMap& radiance, int count, DomeLayout layout, in
         mLights.push_back({dirs[size_t(i)], glm::vec3(sum[size_t(i)]), float(omega[size_t(i)])});
 }
 
-glm::vec3 ShadowDome::diffuseVisible(const glm::vec3& normal, const std::vector<uint8_t>& visible) const {
+glm::vec3 ShadowDome::diffuseVisible(const glm::vec3& normal,
+                                     const std::vector<uint8_t>& visible) const {
     return shade(mLights, normal, visible, true);
 }
 

@@ -2,7 +2,8 @@
 
 namespace weft::vk {
 
-Pipeline createComputePipeline(Context& ctx, const char* embeddedShaderName, VkPipelineLayout layout) {
+Pipeline createComputePipeline(Context& ctx, const char* embeddedShaderName,
+                               VkPipelineLayout layout) {
     ShaderModule module = createShaderModule(ctx, embeddedShaderName);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};

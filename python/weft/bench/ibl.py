@@ -7,8 +7,9 @@ so every error has an independent reference:
   against the analytic environment at the texel centres), push-pull fill;
 - irradiance: exact cosine convolution, SH9 (alone, and of the sky with the extracted sun added
   back as a directional light) and the seed's blurs at several input cube sizes, on the sky alone
-  and with the sun (per-texel relative errors are large on the sun's dark side), error against the exact convolution of the 64^2 source at 32^2 output (the reference), and
-  the SH9 projection alone (target <= 5 ms for 6 x 256^2 on 2 CPU cores);
+  and with the sun (per-texel relative errors are large on the sun's dark side), error against
+  the exact convolution of the 64^2 source at 32^2 output (the reference), and the SH9
+  projection alone (target <= 5 ms for 6 x 256^2 on 2 CPU cores);
 - glossy: Phong lobe by filtered importance sampling (samples x output size) against the exact
   Phong convolution, and the 5-level GGX chain: time at 256^2 on the CPU and as a Vulkan compute
   shader on the selected device (target 0.5 s for the compute version on lavapipe; the dispatch
@@ -133,8 +134,8 @@ def bench_conversion(sizes: Sequence[int]) -> List[Dict[str, Any]]:
                          mean_err=rel_error(np.asarray(cube.faces).reshape(-1, 3)[seen],
                                             truth[seen])[0]))
         ms, filled = timed(lambda: ibl.fill_unseen(cube, valid))
-        rows.append(dict(step="fill unseen (push-pull)", input=f"{100 * (1 - seen.mean()):.1f}% unseen",
-                         size=size, ms=ms,
+        rows.append(dict(step="fill unseen (push-pull)",
+                         input=f"{100 * (1 - seen.mean()):.1f}% unseen", size=size, ms=ms,
                          mean_err=rel_error(np.asarray(filled.faces).reshape(-1, 3)[~seen],
                                             truth[~seen])[0] if (~seen).any() else 0.0))
     return rows
@@ -318,13 +319,15 @@ def to_markdown(r: Dict[str, Any]) -> str:
           f3(x["gpu_total_s"]), ", ".join(pct(e) for e in x["level_mean_err_32"])]
          for x in g["ggx_chain"]]))
     lines += ["", "## Light extraction (planted 2 degree sun)", ""]
-    lines.append(markdown_table(["method", "cube", "ms", "lights", "direction error", "power error"],
+    lines.append(markdown_table(["method", "cube", "ms", "lights", "direction error",
+                                 "power error"],
                                 [[x["method"], x["cube"], f3(x["ms"]), x["lights"],
                                   f"{x['dir_err_deg']:.2f} deg", pct(x["power_err"])]
                                  for x in r["lights"]]))
     lines += ["", "## Shadow-light dome (visibility-weighted irradiance vs ray-cast reference)", ""]
     lines.append(markdown_table(["lights", "build ms", "mean rel. error"],
-                                [[x["lights"], f3(x["build_ms"]), pct(x["err"])] for x in r["dome"]]))
+                                [[x["lights"], f3(x["build_ms"]), pct(x["err"])]
+                                 for x in r["dome"]]))
     lines += ["", "Frame times with 0 / 16 / 64 shadow lights need the renderer's IBL passes "
               "(not integrated yet) and are not measured here."]
     return "\n".join(lines) + "\n"
@@ -340,8 +343,8 @@ def run(args: argparse.Namespace) -> int:
         samples, gsizes, chain, chain_samples = (8, 32, 128), (16, 32), 256, (16, 64)
         light_sizes, dome_counts, dome_size = (128, 256), (16, 64, 256), 32
     progress = Progress(6, enabled=args.progress)
-    report: Dict[str, Any] = {"benchmark": "ibl",
-                              "command": "python -m weft.bench ibl" + (" --quick" if args.quick else "")}
+    command = "python -m weft.bench ibl" + (" --quick" if args.quick else "")
+    report: Dict[str, Any] = {"benchmark": "ibl", "command": command}
     progress.update("conversion")
     report["conversion"] = bench_conversion(conv)
     progress.step("irradiance")

@@ -113,7 +113,8 @@ def cross_to_cube(image: np.ndarray, layout: str = "auto") -> CubeMap:
     s = w // 4 if layout == "horizontal" else w // 3
     expected = (3 * s, 4 * s) if layout == "horizontal" else (4 * s, 3 * s)
     if s < 1 or (h, w) != expected:
-        raise InvalidArgument(f"{layout} cross must be {expected[1]} x {expected[0]}, got {w} x {h}")
+        raise InvalidArgument(f"{layout} cross must be {expected[1]} x {expected[0]}, "
+                              f"got {w} x {h}")
     cells = _HORIZONTAL if layout == "horizontal" else _VERTICAL
     faces = np.empty((6, s, s, 3), np.float32)
     for f, (r, c) in enumerate(cells):
@@ -171,7 +172,8 @@ def resize_cube(cube: CubeMap, size: int) -> CubeMap:
 
 
 def sphere_rect(marker_to_camera: np.ndarray, centre: Sequence[float], radius: float,
-                projection: np.ndarray, width: int, height: int) -> Tuple[float, float, float, float]:
+                projection: np.ndarray, width: int,
+                height: int) -> Tuple[float, float, float, float]:
     """The one-camera setup (seed §3.3.1): bounding rectangle of the mirror ball in pixels,
     ``(x0, y0, x1, y1)`` with y down. ``c_eye = M c``; corners ``c_eye -+ (r, r, 0)`` are
     projected by ``P`` to OpenGL-style NDC (y up) and mapped to the image."""

@@ -62,11 +62,13 @@ def split_lights(radiance, downsample: int = 32, threshold: float = 0.0,
 
 def median_cut(radiance, count: int = 16, width: int = 0) -> List[EnvLight]:
     """Median cut: the equirectangular image (``width`` x ``width / 2``, default 8 x cube size) is
-    split ``log2(count)`` times (single pixels stay whole), each region along its longer side (measured on the sphere) where
-    its solid-angle weighted luminance is halved; each region becomes a light at its luminance
-    centroid carrying the region's integrated radiance. ``count`` must be a power of two."""
+    split ``log2(count)`` times (single pixels stay whole), each region along its longer side
+    (measured on the sphere) where its solid-angle weighted luminance is halved; each region
+    becomes a light at its luminance centroid carrying the region's integrated radiance.
+    ``count`` must be a power of two."""
     if count < 1 or count > 4096 or count & (count - 1):
-        raise InvalidArgument(f"median cut light count must be a power of two in [1, 4096], got {count}")
+        raise InvalidArgument("median cut light count must be a power of two in [1, 4096], "
+                              f"got {count}")
     cube = radiance if isinstance(radiance, CubeMap) else CubeMap(np.asarray(radiance, np.float32))
     width = width or 8 * cube.size
     if width < 2:
