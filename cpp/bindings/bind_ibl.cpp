@@ -455,6 +455,11 @@ void bindIbl(py::module_& m) {
              py::call_guard<py::gil_scoped_release>())
         .def("specular_chain", &Environment::specularChain, py::arg("size") = 128,
              py::arg("levels") = 5, py::arg("samples") = 64, py::call_guard<py::gil_scoped_release>())
+        .def("shadow_dome", [](Environment& e, int count, const std::string& layout) {
+            const DomeLayout l = domeLayout(layout);
+            py::gil_scoped_release release;
+            return e.shadowDome(count, l);
+        }, py::arg("count"), py::arg("layout") = "fibonacci")
         .def_property_readonly("stats", [](const Environment& e) {
             const EnvironmentStats s = e.stats();
             py::dict d;

@@ -193,10 +193,14 @@ def test_environment_refilters_only_when_its_radiance_changes() -> None:
     env.specular_chain(8, 3, 16)
     env.specular_chain(8, 3, 16)
     assert env.stats["filter_runs"] == 3 and env.stats["cache_hits"] == 4
+    dome = env.shadow_dome(16)
+    np.testing.assert_array_equal(env.shadow_dome(16).intensities, dome.intensities)
+    assert env.stats["filter_runs"] == 4 and env.stats["cache_hits"] == 5
     env.set_radiance(ibl.CubeMap(envs.to_faces(envs.constant((1, 1, 1)), 16)))
     assert env.version == 2
     c = env.irradiance_sh()
     assert env.stats["last_refiltered"] and not np.allclose(a, c)
+    assert not np.allclose(env.shadow_dome(16).intensities, dome.intensities)
 
 
 def test_filters_reject_bad_input() -> None:

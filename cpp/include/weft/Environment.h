@@ -1,7 +1,7 @@
 #pragma once
-// A captured environment that filters only when it changes: irradiance SH9, irradiance maps and
-// GGX chains are cached against a content version that setRadiance() bumps (SPEC §6: static
-// environment -> no re-filtering). Thread-safe.
+// A captured environment that filters only when it changes: irradiance SH9, irradiance maps, GGX
+// chains and shadow-light domes are cached against a content version that setRadiance() bumps
+// (SPEC §6: static environment -> no re-filtering). Thread-safe.
 #include <cstdint>
 #include <map>
 #include <mutex>
@@ -9,6 +9,7 @@
 
 #include <weft/CubeMap.h>
 #include <weft/IblFilter.h>
+#include <weft/ShadowDome.h>
 
 namespace weft {
 
@@ -33,6 +34,8 @@ public:
     CubeMap irradianceMap(int size);
     /// GGX prefiltered chain (see prefilterGgx).
     CubeMap specularChain(int size, int levels, int samples);
+    /// Dome of `count` shadow lights with intensities from this environment (see ShadowDome).
+    ShadowDome shadowDome(int count, DomeLayout layout = DomeLayout::Fibonacci);
     EnvironmentStats stats() const;
 
 private:
@@ -46,6 +49,7 @@ private:
     Sh9 mSh;
     std::map<int, CubeMap> mIrradiance;
     std::map<std::tuple<int, int, int>, CubeMap> mSpecular;
+    std::map<std::pair<int, int>, ShadowDome> mDomes;
     EnvironmentStats mStats;
 };
 

@@ -22,6 +22,7 @@ void Environment::invalidate() {
     mHaveSh = false;
     mIrradiance.clear();
     mSpecular.clear();
+    mDomes.clear();
     mStats.version = mVersion;
 }
 
@@ -74,6 +75,21 @@ CubeMap Environment::specularChain(int size, int levels, int samples) {
     ++mStats.filterRuns;
     mStats.lastRefiltered = true;
     return mSpecular.emplace(key, std::move(chain)).first->second;
+}
+
+ShadowDome Environment::shadowDome(int count, DomeLayout layout) {
+    std::lock_guard<std::mutex> lock(mMutex);
+    const auto key = std::make_pair(count, int(layout));
+    auto it = mDomes.find(key);
+    if (it != mDomes.end()) {
+        ++mStats.cacheHits;
+        mStats.lastRefiltered = false;
+        return it->second;
+    }
+    ShadowDome dome(mRadiance, count, layout);
+    ++mStats.filterRuns;
+    mStats.lastRefiltered = true;
+    return mDomes.emplace(key, std::move(dome)).first->second;
 }
 
 EnvironmentStats Environment::stats() const {
