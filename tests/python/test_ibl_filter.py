@@ -223,6 +223,10 @@ def test_filters_reject_bad_input() -> None:
         ibl.phong_sampled(good, 10.0, 8, 0)
     with pytest.raises(weft.InvalidArgument, match="size"):
         ibl.irradiance_exact(good, 0)
+    with pytest.raises(weft.InvalidArgument, match="too expensive"):
+        ibl.irradiance_exact(good, 1024, 1024)
+    with pytest.raises(weft.InvalidArgument, match="too expensive"):
+        ibl.prefilter_ggx(good, 4096, 5, 1 << 20)
     with pytest.raises(weft.InvalidArgument, match=r"\(9, 3\)"):
         ibl.irradiance_from_sh(np.ones((4, 3), np.float32), 8)
     with pytest.raises(weft.InvalidArgument, match="6, S, S, 3"):

@@ -78,6 +78,7 @@ CubeMap phongExact(const CubeMap& radiance, float shininess, int size, int sourc
     requireShininess(shininess);
     requireCount(size, 1024, "output size");
     requireCount(sourceSize, 1024, "source size");
+    requireAffordable(36.0 * size * size * sourceSize * sourceSize, "exact Phong convolution");
     const CubeTexels t = cubeTexels(reducedCube(radiance, sourceSize));
     const float cosMin = shininess > 0.0f ? std::pow(1e-6f, 1.0f / shininess) : 0.0f;
     CubeMap out(size);
@@ -102,6 +103,7 @@ CubeMap phongSampled(const CubeMap& radiance, float shininess, int size, int sam
     requireShininess(shininess);
     requireCount(size, 1024, "output size");
     requireCount(samples, 1 << 20, "sample count");
+    requireAffordable(6.0 * size * size * samples * 16.0, "sampled Phong convolution");
     const CubeMap chain = withMips(radiance);
     const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
     std::vector<glm::vec3> local(static_cast<size_t>(samples));
@@ -138,6 +140,7 @@ CubeMap prefilterGgx(const CubeMap& radiance, int size, int levels, int samples)
     if (levels < 1 || levels > maxLevels)
         throw InvalidArgument("levels must be in [1, " + std::to_string(maxLevels) + "] for size " +
                               std::to_string(size));
+    requireAffordable(8.0 * size * size * samples * 16.0, "GGX prefilter");
     const CubeMap chain = withMips(radiance);
     const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
     CubeMap out(size);
@@ -179,6 +182,7 @@ CubeMap prefilterGgx(const CubeMap& radiance, int size, int levels, int samples)
 std::vector<float> dfgLut(int size, int samples) {
     requireCount(size, 1024, "DFG table size");
     requireCount(samples, 1 << 20, "sample count");
+    requireAffordable(double(size) * size * samples * 10.0, "DFG table");
     std::vector<float> out(size_t(size) * size * 2);
     iblParallelFor(size, [&](int begin, int end) {
         for (int j = begin; j < end; ++j) {

@@ -34,4 +34,10 @@ void requireCount(int n, int maxValue, const char* what) {
                               "], got " + std::to_string(n));
 }
 
+void requireAffordable(double steps, const char* what) {
+    if (steps > 4e10)
+        throw InvalidArgument(std::string(what) + ": about " + std::to_string(steps) +
+                              " steps is too expensive; reduce the sizes or sample counts");
+}
+
 } // namespace weft

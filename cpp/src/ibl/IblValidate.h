@@ -15,5 +15,7 @@ void requireRgb(RgbView image, const char* what);
 void requireCube(const CubeMap& cube, const char* what);
 /// 1 <= n <= maxValue.
 void requireCount(int n, int maxValue, const char* what);
+/// Refuses jobs of more than 4e10 elementary steps (minutes of CPU) instead of hanging.
+void requireAffordable(double steps, const char* what);
 
 } // namespace weft

@@ -140,6 +140,7 @@ CubeMap irradianceExact(const CubeMap& radiance, int size, int sourceSize) {
     requireCube(radiance, "radiance cube map");
     requireCount(size, 1024, "output size");
     requireCount(sourceSize, 1024, "source size");
+    requireAffordable(36.0 * size * size * sourceSize * sourceSize, "exact irradiance");
     const CubeTexels t = cubeTexels(reducedCube(radiance, sourceSize));
     const size_t n = t.size();
     return mapTexels(size, [&](const glm::vec3& d) {
@@ -162,6 +163,7 @@ CubeMap irradianceBoxBlur(const CubeMap& radiance, int size, int sphereSize, int
     if (radius < 0 || radius >= sphereSize)
         throw InvalidArgument("blur radius must be in [0, sphere size)");
     if (passes < 0 || passes > 16) throw InvalidArgument("blur passes must be in [0, 16]");
+    requireAffordable(6.0 * passes * (2 * radius + 1) * sphereSize * sphereSize, "box blur");
     const glm::mat4 identity(1.0f);
     std::vector<float> img = cubeToSphere(radiance, sphereSize, identity, 1.0f);
     std::vector<float> tmp(img.size());
@@ -190,6 +192,7 @@ CubeMap irradianceRotationalBlur(const CubeMap& radiance, int size, float halfAn
     requireCube(radiance, "radiance cube map");
     requireCount(size, 1024, "output size");
     requireCount(steps, 1024, "rotation steps");
+    requireAffordable(18.0 * size * size * steps, "rotational blur");
     if (!(halfAngle >= 0.0f && halfAngle <= kPi))
         throw InvalidArgument("half angle must be in [0, pi]");
     CubeMap current = reducedCube(radiance, size);

@@ -62,6 +62,7 @@ ShadowDome::ShadowDome(const CubeMap& radiance, int count, DomeLayout layout, in
     requireCube(radiance, "radiance cube map");
     requireCount(sourceSize, 1024, "source size");
     const auto dirs = directions(count, layout);
+    requireAffordable(6.0 * sourceSize * sourceSize * count, "dome intensities");
     const CubeTexels t = cubeTexels(reducedCube(radiance, sourceSize));
     std::vector<int> owner(t.size(), -1);
     iblParallelFor(int(t.size()), [&](int begin, int end) {
