@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Installs what weft needs on a Debian machine, only when missing: system packages from Debian
-# (Vulkan loader + lavapipe + validation layers, glslc, GLFW, GLM, libpng, GoogleTest, Xvfb)
+# (Vulkan loader + lavapipe + validation layers, glslc, GLFW, GLM, libpng, OpenEXR, GoogleTest, Xvfb)
 # and Python build/test packages from PyPI.
 set -euo pipefail
 
 packages=(g++ pkg-config ccache libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc
-          libglfw3-dev libglm-dev libpng-dev libgtest-dev xvfb xauth)
+          libglfw3-dev libglm-dev libpng-dev libopenexr-dev libgtest-dev xvfb xauth
+          libjpeg62-turbo-dev libzip-dev libceres-dev)
 command -v cmake >/dev/null || packages+=(cmake)
 command -v ninja >/dev/null || packages+=(ninja-build)
 

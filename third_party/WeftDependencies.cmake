@@ -2,11 +2,19 @@
 #   Vulkan  : libvulkan-dev (+ mesa-vulkan-drivers for lavapipe, vulkan-validationlayers)
 #   glslc   : glslc (shaders -> SPIR-V at build time)
 #   glfw3   : libglfw3-dev      glm : libglm-dev      PNG : libpng-dev
+#   OpenEXR : libopenexr-dev (float images)
 #   GTest   : libgtest-dev (tests only)               Ceres: libceres-dev (optional)
+#   JPEG    : libjpeg62-turbo-dev                     libzip: libzip-dev (BTF datasets)
 find_package(Vulkan REQUIRED)
 find_package(glfw3 3.3 REQUIRED)
 find_package(glm REQUIRED)
 find_package(PNG REQUIRED)
+find_package(OpenEXR CONFIG REQUIRED)
+find_package(JPEG REQUIRED)
+# libzip by path: Debian's libzip CMake package refers to tools of libzip-tools and fails without
+# them; a plain library path also travels into the installed weft package unchanged.
+find_path(WEFT_LIBZIP_INCLUDE_DIR zip.h REQUIRED)
+find_library(WEFT_LIBZIP_LIBRARY zip REQUIRED)
 find_package(Threads REQUIRED)
 
 find_program(WEFT_GLSLC glslc REQUIRED)

@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 
 #include <weft/Error.h>
+#include <weft/Image.h>
 
 namespace weft::py_bind {
 
@@ -18,5 +19,10 @@ glm::vec3 toVec3(py::handle obj, const std::string& name);
 glm::mat4 toMat4(py::handle obj, const std::string& name);
 py::array_t<float> fromMat4(const glm::mat4& m);
 py::tuple fromVec3(const glm::vec3& v);
+/// Images <-> (H, W, C) arrays (defined in module.cpp); float input must be finite.
+py::array_t<uint8_t> toNumpy(const ImageU8& img);
+ImageU8 fromNumpy(py::handle obj);
+py::array_t<float> toNumpy(const ImageF& img);
+ImageF fromNumpyF(py::handle obj);
 
 } // namespace weft::py_bind

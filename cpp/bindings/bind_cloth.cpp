@@ -192,7 +192,7 @@ void bindCloth(py::module_& m) {
             return std::string("<weft.Collider ") + names[int(c.kind)] + ">";
         });
 
-    py::class_<Cloth>(m, "Cloth",
+    py::class_<Cloth, std::shared_ptr<Cloth>>(m, "Cloth",
         "Grid cloth simulated with position-based dynamics (SPEC §2): Verlet + XPBD distance\n"
         "constraints over a graph-coloured parallel Gauss-Seidel, colliders, wind, grabbing,\n"
         "holes, tearing, self-collision, sleeping. Particle p = j * nx + i.")

@@ -46,6 +46,8 @@ py::dict statsDict(const FrameStats& s) {
     }
     d["passes"] = passes;
     d["culled"] = s.culled;
+    d["mesh_uploads"] = s.meshUploads;
+    d["upload_bytes"] = s.uploadBytes;
     return d;
 }
 
@@ -123,6 +125,7 @@ void bindRender(py::module_& m) {
             d["shadow"] = floatImage(f.normal, h, w, 4, 1, 3);
             d["uv"] = floatImage(f.surface, h, w, 4, 2, 0);
             d["albedo"] = floatImage(f.albedo, h, w, 4, 3, 0);
+            d["specular_map"] = floatImage(f.albedo, h, w, 4, 1, 3);
             d["light_depth"] = floatImage(f.surface, h, w, 4, 1, 2);
             py::array_t<int32_t> instance({h, w});
             for (size_t i = 0; i < size_t(h) * w; ++i)
@@ -133,16 +136,19 @@ void bindRender(py::module_& m) {
            "One frame's colour, linear radiance and the inputs of its shading (position, mask,\n"
            "normal, shadow visibility of the first shadow-casting light, uv, light_depth,\n"
            "albedo: T = base colour * texture sample (what eq. 2.10 multiplies),\n"
+           "specular_map: the green channel of the specular-map sample (1 without a map),\n"
            "instance: the mesh id drawn at each pixel or -1).")
         .def_property_readonly("stats", [](const Renderer& r) { return statsDict(r.stats()); },
                                "The last frame: passes run with CPU/GPU ms, culled passes.")
-        .def("shadow_map", [](Renderer& r, int light) {
+        .def("shadow_map", [](Renderer& r, int light, int view) {
             uint32_t size = 0;
-            std::vector<float> data = r.shadowMap(light, &size);
+            std::vector<float> data = r.shadowMap(light, &size, view);
             py::array_t<float> out({py::ssize_t(size), py::ssize_t(size)});
             std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
             return out;
-        }, py::arg("light_index") = 0, "Depth in [0,1] of the last frame's shadow map of a light.")
+        }, py::arg("light_index") = 0, py::arg("view") = 0,
+           "Depth in [0,1] of the last frame's shadow map of a light (`view`: one of a point\n"
+           "light's six views +X, -X, +Y, -Y, +Z, -Z).")
         .def("shadow_info", [](const Renderer& r, int light) {
             const ShadowInfo i = r.shadowInfo(light);
             py::dict d;
@@ -150,6 +156,13 @@ void bindRender(py::module_& m) {
             d["size"] = i.size;
             d["view_proj"] = fromMat4(i.viewProj);
             d["normal_offset_world"] = i.normalOffsetWorld;
+            d["layer"] = i.layer;
+            d["perspective"] = i.perspective;
+            d["near"] = i.zNear;
+            d["far"] = i.zFar;
+            py::list views;
+            for (const glm::mat4& v : i.views) views.append(fromMat4(v));
+            d["views"] = views;
             d["bias_constant"] = i.settings.biasConstant;
             d["bias_slope"] = i.settings.biasSlope;
             d["bias_max"] = i.settings.biasMax;

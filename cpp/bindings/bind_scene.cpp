@@ -1,4 +1,4 @@
-// Bindings of the scene description: Mesh, Texture, Material, DirectionalLight, Camera, Scene.
+// Bindings of the scene description: Mesh, Texture, Material, lights, Camera, Scene.
 #include <cstring>
 #include <sstream>
 
@@ -9,9 +9,6 @@
 #include "Convert.h"
 
 namespace weft::py_bind {
-
-py::array_t<uint8_t> toNumpy(const ImageU8& img);
-ImageU8 fromNumpy(py::handle obj);
 
 namespace {
 
@@ -101,6 +98,10 @@ void bindScene(py::module_& m) {
                 std::memcpy(out.mutable_data(), x.indices.data(), x.indices.size() * 4);
             return out;
         })
+        .def_property_readonly("tangents", [](const Mesh& x) {
+            return toRows<glm::vec4, 4>(computeTangents(x));
+        }, "(N, 4) tangents the renderer uses for normal mapping: xyz along +u, w = handedness\n"
+           "(bitangent w (n x t) points towards decreasing v, up the image).")
         .def_property_readonly("vertex_count", &Mesh::vertexCount)
         .def_property_readonly("triangle_count", &Mesh::triangleCount)
         .def("bounds", [](const Mesh& x) {
@@ -144,9 +145,14 @@ void bindScene(py::module_& m) {
         });
 
     py::class_<Material>(m, "Material",
-        "Blinn-Phong material: P = (I_A K_A + I_D K_D a) T + I_S K_S a (SPEC eq. 2.10).")
+        "Blinn-Phong material: P = (I_A K_A + I_D K_D a) T + I_S K_S a (SPEC eq. 2.10).\n"
+        "normal_map: tangent-space normal map (a linear Texture; x right, y up in the image,\n"
+        "(128, 128, 255) flat); specular_map: its RGB multiplies ks; alpha_cutoff > 0 discards\n"
+        "fragments whose base-texture alpha is below it, in the image and the shadow maps.")
         .def(py::init([](py::handle ka, py::handle kd, py::handle ks, float shininess,
-                         py::handle baseColor, std::shared_ptr<Texture> texture) {
+                         py::handle baseColor, std::shared_ptr<Texture> texture,
+                         std::shared_ptr<Texture> normalMap, std::shared_ptr<Texture> specularMap,
+                         float alphaCutoff) {
             Material mat;
             mat.ka = toVec3(ka, "ka");
             mat.kd = toVec3(kd, "kd");
@@ -154,11 +160,16 @@ void bindScene(py::module_& m) {
             mat.shininess = shininess;
             mat.baseColor = toVec3(baseColor, "base_color");
             mat.texture = texture;
+            mat.normalMap = normalMap;
+            mat.specularMap = specularMap;
+            mat.alphaCutoff = alphaCutoff;
             mat.validate();
             return mat;
         }), py::arg("ka") = py::make_tuple(1, 1, 1), py::arg("kd") = py::make_tuple(1, 1, 1),
            py::arg("ks") = py::make_tuple(0, 0, 0), py::arg("shininess") = 32.0f,
-           py::arg("base_color") = py::make_tuple(1, 1, 1), py::arg("texture") = nullptr)
+           py::arg("base_color") = py::make_tuple(1, 1, 1), py::arg("texture") = nullptr,
+           py::arg("normal_map") = nullptr, py::arg("specular_map") = nullptr,
+           py::arg("alpha_cutoff") = 0.0f)
         .WEFT_VEC3_PROPERTY(Material, "ka", ka)
         .WEFT_VEC3_PROPERTY(Material, "kd", kd)
         .WEFT_VEC3_PROPERTY(Material, "ks", ks)
@@ -168,6 +179,18 @@ void bindScene(py::module_& m) {
         .def_property("texture",
                       [](const Material& x) { return std::const_pointer_cast<Texture>(x.texture); },
                       [](Material& x, std::shared_ptr<Texture> t) { x.texture = t; })
+        .def_property("normal_map",
+                      [](const Material& x) { return std::const_pointer_cast<Texture>(x.normalMap); },
+                      [](Material& x, std::shared_ptr<Texture> t) {
+                          setChecked(x, [&](Material& y) { y.normalMap = t; });
+                      })
+        .def_property("specular_map",
+                      [](const Material& x) { return std::const_pointer_cast<Texture>(x.specularMap); },
+                      [](Material& x, std::shared_ptr<Texture> t) { x.specularMap = t; })
+        .def_readwrite("two_sided", &Material::twoSided,
+                       "Draw both faces; the back face uses the flipped normal (cloth: always).")
+        .def_property("alpha_cutoff", [](const Material& x) { return x.alphaCutoff; },
+                      [](Material& x, float v) { setChecked(x, [&](Material& y) { y.alphaCutoff = v; }); })
         .def("__repr__", [](const Material& x) {
             return "<weft.Material kd=" + vecRepr(x.kd) + " ks=" + vecRepr(x.ks) +
                    " shininess=" + std::to_string(x.shininess) +
@@ -196,6 +219,113 @@ void bindScene(py::module_& m) {
         .def("__repr__", [](const DirectionalLight& l) {
             return "<weft.DirectionalLight direction=" + vecRepr(l.direction) +
                    " color=" + vecRepr(l.color) + " intensity=" + std::to_string(l.intensity) +
+                   (l.castShadows ? " shadows>" : ">");
+        });
+
+    auto attenuationOf = [](py::handle terms, float radius) {
+        Attenuation a;
+        auto t = numericArray(terms, "attenuation");
+        if (t.ndim() != 1 || t.shape(0) != 3)
+            throw InvalidArgument("attenuation must be (k_c, k_l, k_q)");
+        a.constant = float(t.at(0));
+        a.linear = float(t.at(1));
+        a.quadratic = float(t.at(2));
+        a.radius = radius;
+        return a;
+    };
+    auto terms = [](const Attenuation& a) { return py::make_tuple(a.constant, a.linear, a.quadratic); };
+
+    py::class_<PointLight>(m, "PointLight",
+        "Light from a point in all directions. Attenuation a(d) = 1 / (k_c + k_l d + k_q d^2)\n"
+        "(eq. 2.3), or max(0, 1 - d^2 / radius^2) (eq. 2.4) when radius > 0. Shadows use six\n"
+        "perspective views.")
+        .def(py::init([=](py::handle position, py::handle color, float intensity,
+                          py::handle attenuation, float radius, bool shadows, float shadowNear) {
+            PointLight l;
+            l.position = toVec3(position, "position");
+            l.color = toVec3(color, "color");
+            l.intensity = intensity;
+            l.attenuation = attenuationOf(attenuation, radius);
+            l.castShadows = shadows;
+            l.shadowNear = shadowNear;
+            l.validate();
+            return l;
+        }), py::arg("position") = py::make_tuple(0, 2, 0), py::arg("color") = py::make_tuple(1, 1, 1),
+           py::arg("intensity") = 1.0f, py::arg("attenuation") = py::make_tuple(1, 0, 0),
+           py::arg("radius") = 0.0f, py::arg("cast_shadows") = true, py::arg("shadow_near") = 0.05f)
+        .WEFT_VEC3_PROPERTY(PointLight, "position", position)
+        .WEFT_VEC3_PROPERTY(PointLight, "color", color)
+        .def_property("intensity", [](const PointLight& l) { return l.intensity; },
+                      [](PointLight& l, float v) { setChecked(l, [&](PointLight& x) { x.intensity = v; }); })
+        .def_property("attenuation", [=](const PointLight& l) { return terms(l.attenuation); },
+                      [=](PointLight& l, py::handle v) {
+                          const Attenuation a = attenuationOf(v, l.attenuation.radius);
+                          setChecked(l, [&](PointLight& x) { x.attenuation = a; });
+                      })
+        .def_property("radius", [](const PointLight& l) { return l.attenuation.radius; },
+                      [](PointLight& l, float v) { setChecked(l, [&](PointLight& x) { x.attenuation.radius = v; }); })
+        .def_readwrite("cast_shadows", &PointLight::castShadows)
+        .def_property("shadow_near", [](const PointLight& l) { return l.shadowNear; },
+                      [](PointLight& l, float v) { setChecked(l, [&](PointLight& x) { x.shadowNear = v; }); })
+        .def("attenuation_at", [](const PointLight& l, float d) { return l.attenuation(d); },
+             py::arg("distance"), "a(d) at a distance from the light.")
+        .def("__repr__", [](const PointLight& l) {
+            return "<weft.PointLight position=" + vecRepr(l.position) + " color=" + vecRepr(l.color) +
+                   " intensity=" + std::to_string(l.intensity) + (l.castShadows ? " shadows>" : ">");
+        });
+
+    py::class_<SpotLight>(m, "SpotLight",
+        "Light into a cone around `direction`: full intensity within inner_angle of the axis,\n"
+        "smooth falloff to zero at outer_angle (half-angles, radians), distance attenuation as\n"
+        "PointLight, an optional `cookie` texture projected over the cone (RGB modulates).")
+        .def(py::init([=](py::handle position, py::handle direction, py::handle color,
+                          float intensity, float inner, float outer, py::handle attenuation,
+                          float radius, std::shared_ptr<Texture> cookie, bool shadows,
+                          float shadowNear) {
+            SpotLight l;
+            l.position = toVec3(position, "position");
+            l.direction = toVec3(direction, "direction");
+            l.color = toVec3(color, "color");
+            l.intensity = intensity;
+            l.innerAngle = inner;
+            l.outerAngle = outer;
+            l.attenuation = attenuationOf(attenuation, radius);
+            l.cookie = cookie;
+            l.castShadows = shadows;
+            l.shadowNear = shadowNear;
+            l.validate();
+            return l;
+        }), py::arg("position") = py::make_tuple(0, 2, 0), py::arg("direction") = py::make_tuple(0, -1, 0),
+           py::arg("color") = py::make_tuple(1, 1, 1), py::arg("intensity") = 1.0f,
+           py::arg("inner_angle") = 0.35f, py::arg("outer_angle") = 0.5f,
+           py::arg("attenuation") = py::make_tuple(1, 0, 0), py::arg("radius") = 0.0f,
+           py::arg("cookie") = nullptr, py::arg("cast_shadows") = true, py::arg("shadow_near") = 0.05f)
+        .WEFT_VEC3_PROPERTY(SpotLight, "position", position)
+        .WEFT_VEC3_PROPERTY(SpotLight, "direction", direction)
+        .WEFT_VEC3_PROPERTY(SpotLight, "color", color)
+        .def_property("intensity", [](const SpotLight& l) { return l.intensity; },
+                      [](SpotLight& l, float v) { setChecked(l, [&](SpotLight& x) { x.intensity = v; }); })
+        .def_property("inner_angle", [](const SpotLight& l) { return l.innerAngle; },
+                      [](SpotLight& l, float v) { setChecked(l, [&](SpotLight& x) { x.innerAngle = v; }); })
+        .def_property("outer_angle", [](const SpotLight& l) { return l.outerAngle; },
+                      [](SpotLight& l, float v) { setChecked(l, [&](SpotLight& x) { x.outerAngle = v; }); })
+        .def_property("attenuation", [=](const SpotLight& l) { return terms(l.attenuation); },
+                      [=](SpotLight& l, py::handle v) {
+                          const Attenuation a = attenuationOf(v, l.attenuation.radius);
+                          setChecked(l, [&](SpotLight& x) { x.attenuation = a; });
+                      })
+        .def_property("radius", [](const SpotLight& l) { return l.attenuation.radius; },
+                      [](SpotLight& l, float v) { setChecked(l, [&](SpotLight& x) { x.attenuation.radius = v; }); })
+        .def_property("cookie",
+                      [](const SpotLight& l) { return std::const_pointer_cast<Texture>(l.cookie); },
+                      [](SpotLight& l, std::shared_ptr<Texture> t) { l.cookie = t; })
+        .def_readwrite("cast_shadows", &SpotLight::castShadows)
+        .def_property("shadow_near", [](const SpotLight& l) { return l.shadowNear; },
+                      [](SpotLight& l, float v) { setChecked(l, [&](SpotLight& x) { x.shadowNear = v; }); })
+        .def("__repr__", [](const SpotLight& l) {
+            return "<weft.SpotLight position=" + vecRepr(l.position) + " direction=" +
+                   vecRepr(l.direction) + " color=" + vecRepr(l.color) + " intensity=" +
+                   std::to_string(l.intensity) + (l.cookie ? " cookie" : "") +
                    (l.castShadows ? " shadows>" : ">");
         });
 
@@ -240,6 +370,12 @@ void bindScene(py::module_& m) {
             return s.addMesh(mesh, material.value_or(Material{}), t, castShadows);
         }, py::arg("mesh"), py::arg("material") = py::none(), py::arg("transform") = py::none(),
            py::arg("cast_shadows") = true, "Adds a mesh instance; returns its id.")
+        .def("add_cloth", [](Scene& s, std::shared_ptr<Cloth> cloth, std::optional<Material> material,
+                             bool castShadows) {
+            return s.addCloth(cloth, material.value_or(Material{}), castShadows);
+        }, py::arg("cloth"), py::arg("material") = py::none(), py::arg("cast_shadows") = true,
+           "Adds a weft.Cloth, drawn two-sided from its state at each render (its mesh is\n"
+           "uploaded only when it changed). Do not step it while a render runs. Returns its id.")
         .def("set_transform", [](Scene& s, uint32_t id, py::handle t) {
             s.setTransform(id, toMat4(t, "transform"));
         })
@@ -252,8 +388,9 @@ void bindScene(py::module_& m) {
             if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
             return fromMat4(s.instances()[id].transform);
         }, py::arg("id"), "An instance's object -> world matrix (4x4).")
-        .def("add_light", &Scene::addLight, py::arg("light"))
-        .def("set_light", &Scene::setLight)
+        .def("add_light", &Scene::addLight, py::arg("light"),
+             "Adds a DirectionalLight, PointLight or SpotLight; returns its id.")
+        .def("set_light", &Scene::setLight, py::arg("id"), py::arg("light"))
         .def_property("ambient", [](const Scene& s) { return fromVec3(s.ambient()); },
                       [](Scene& s, py::handle v) { s.setAmbient(toVec3(v, "ambient")); })
         .def_property("background", [](const Scene& s) { return fromVec3(s.background()); },

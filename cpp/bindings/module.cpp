@@ -13,6 +13,8 @@ namespace weft::py_bind {
 void bindScene(py::module_& m);
 void bindRender(py::module_& m);
 void bindCloth(py::module_& m);
+void bindHair(py::module_& m);
+void bindBtf(py::module_& m);
 void bindIbl(py::module_& m);
 } // namespace weft::py_bind
 
@@ -51,9 +53,33 @@ weft::ImageU8 arrayToImage(py::handle obj) {
     return img;
 }
 
+py::array_t<float> imageFToArray(const weft::ImageF& img) {
+    py::array_t<float> out({img.height, img.width, img.channels});
+    std::memcpy(out.mutable_data(), img.pixels.data(), img.pixels.size() * sizeof(float));
+    return out;
+}
+
+weft::ImageF arrayToImageF(py::handle obj) {
+    py::array a = py::array::ensure(obj);
+    if (!a) throw py::type_error("image must be a NumPy array");
+    if (a.dtype().kind() != 'f' && a.dtype().kind() != 'u' && a.dtype().kind() != 'i')
+        throw py::type_error("float image must be numeric, got dtype " + std::string(py::str(a.dtype())));
+    if (a.ndim() != 2 && a.ndim() != 3) throw weft::InvalidArgument("image must be (H, W) or (H, W, C)");
+    const int c = a.ndim() == 3 ? int(a.shape(2)) : 1;
+    if (c < 1 || c > 4) throw weft::InvalidArgument("image must have 1 to 4 channels");
+    if (a.shape(0) == 0 || a.shape(1) == 0) throw weft::InvalidArgument("image must not be empty");
+    weft::ImageF img(int(a.shape(1)), int(a.shape(0)), c);
+    auto contiguous = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
+    std::memcpy(img.pixels.data(), contiguous.data(), img.pixels.size() * sizeof(float));
+    img.requireFinite("image");
+    return img;
+}
+
 } // namespace
 
 namespace weft::py_bind {
+py::array_t<float> toNumpy(const ImageF& img) { return imageFToArray(img); }
+ImageF fromNumpyF(py::handle obj) { return arrayToImageF(obj); }
 py::array_t<uint8_t> toNumpy(const ImageU8& img) { return imageToArray(img); }
 ImageU8 fromNumpy(py::handle obj) { return arrayToImage(obj); }
 } // namespace weft::py_bind
@@ -112,9 +138,27 @@ PYBIND11_MODULE(_core, m) {
         weft::savePng(path, arrayToImage(image));
     }, py::arg("path"), py::arg("image"), "Writes a uint8 array (H, W) or (H, W, 1-4) as PNG.");
 
+    m.def("load_exr", [](const std::string& path) { return imageFToArray(weft::loadExr(path)); },
+          py::arg("path"), "Reads an OpenEXR file into a float32 array (H, W, C): R, G, B [, A] "
+          "or Y [, A].");
+    m.def("save_exr", [](const std::string& path, py::handle image) {
+        weft::saveExr(path, arrayToImageF(image));
+    }, py::arg("path"), py::arg("image"),
+       "Writes a float array (H, W) or (H, W, 1-4) as 32-bit float OpenEXR (ZIP compression).");
+    m.def("load_hdr", [](const std::string& path) { return imageFToArray(weft::loadHdr(path)); },
+          py::arg("path"), "Reads a Radiance RGBE .hdr file into a float32 array (H, W, 3).");
+    m.def("save_hdr", [](const std::string& path, py::handle image) {
+        weft::saveHdr(path, arrayToImageF(image));
+    }, py::arg("path"), py::arg("image"),
+       "Writes a float array (H, W), (H, W, 3) or (H, W, 4, alpha dropped) as Radiance RGBE "
+       "(run-length encoded). Values must be finite and >= 0.");
+    m.def("load_image_float", [](const std::string& path) {
+        return imageFToArray(weft::loadImageF(path));
+    }, py::arg("path"), "Reads .exr, .hdr or .png (values / 255) into a float32 (H, W, C) array.");
+
     m.def("run_demo", [](int width, int height, int frames, bool headless, bool vsync,
                          const std::string& out, const std::string& screenshot,
-                         const std::string& statsJson) {
+                         const std::string& statsJson, const std::string& script) {
         weft::DemoOptions o;
         o.width = width;
         o.height = height;
@@ -124,15 +168,19 @@ PYBIND11_MODULE(_core, m) {
         o.out = out;
         o.screenshot = screenshot;
         o.statsJson = statsJson;
+        o.script = script;
         py::gil_scoped_release release;
         return weft::runDemo(o);
     }, py::arg("width") = 1280, py::arg("height") = 720, py::arg("frames") = 0,
        py::arg("headless") = false, py::arg("vsync") = true, py::arg("out") = "out/demo.png",
-       py::arg("screenshot") = "", py::arg("stats_json") = "",
-       "Runs the demo: a window when a display exists, else a headless render to `out`.");
+       py::arg("screenshot") = "", py::arg("stats_json") = "", py::arg("script") = "",
+       "Runs the demo (the seed's cloth environment): a window when a display exists, else\n"
+       "headless to `out` (see `weft-demo --help` for frames, scripts and output folders).");
 
     bindScene(m);
     bindRender(m);
     bindCloth(m);
+    bindHair(m);
+    bindBtf(m);
     bindIbl(m);
 }

@@ -1,18 +1,29 @@
 // Per-frame data shared by the scene passes. Must match render/GpuTypes.h.
 #extension GL_GOOGLE_include_directive : require
 
-const int MAX_SHADOW_LIGHTS = 4;
+const int MAX_COOKIES = 4;
+const int LIGHT_DIRECTIONAL = 0;
+const int LIGHT_POINT = 1;
+const int LIGHT_SPOT = 2;
 
 struct Light {
-    vec4 toLight;  // xyz: unit vector towards the light
-    vec4 radiance; // rgb: colour * intensity; w: shadow-map layer or -1
+    vec4 position;    // xyz: position (point, spot); w: type
+    vec4 direction;   // directional: unit vector towards the light; spot: unit axis; w: cookie
+    vec4 radiance;    // rgb: colour * intensity; w: first shadow layer or -1
+    vec4 attenuation; // k_c, k_l, k_q, radius (> 0: eq. 2.4)
+    vec4 cone;        // cos(inner), cos(outer), tan(outer), 0
+};
+
+struct ShadowLayer {
+    mat4 viewProj;
+    vec4 params; // x: normal offset (perspective: per metre), y: perspective, z: near, w: far
 };
 
 struct Instance {
     mat4 model;
     mat4 normalMatrix; // inverse transpose of the model matrix (upper 3x3 used)
-    vec4 ka;
-    vec4 kd;
+    vec4 ka;        // w: alpha cutoff (0: opaque)
+    vec4 kd;        // w: 1 with a normal map
     vec4 ks;        // w: shininess
     vec4 baseColor;
 };
@@ -22,14 +33,14 @@ layout(set = 0, binding = 0) uniform FrameUbo {
     vec4 cameraPos;
     vec4 ambient;
     vec4 background;
-    mat4 lightViewProj[MAX_SHADOW_LIGHTS];
-    vec4 normalOffset[MAX_SHADOW_LIGHTS]; // x: receiver offset along n in world units
-    vec4 bias;    // x: constant, y: slope, z: max
-    ivec4 counts; // x: lights, y: PCF radius, z: shadow-map size, w: debug shadow layer or -1
+    vec4 bias;    // x: constant, y: slope, z: max (units of the light's depth range)
+    ivec4 counts; // x: lights, y: PCF radius, z: shadow-map size, w: debug light or -1
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Lights { Light lights[]; };
 layout(set = 0, binding = 3) uniform sampler2DArray shadowMaps;
+layout(std430, set = 0, binding = 4) readonly buffer ShadowLayers { ShadowLayer shadowLayers[]; };
+layout(set = 0, binding = 5) uniform sampler2D cookies[MAX_COOKIES];
 
 layout(push_constant) uniform Push { uint instance; } push;

@@ -1,20 +1,50 @@
-// Blinn-Phong shading with shadow-mapped directional lights (SPEC §1.3, eq. 2.5, 2.8-2.10;
-// §1.5). python/weft/reference/shading.py implements the same equations in NumPy.
+// Blinn-Phong shading with directional, point and spot lights and their shadow maps
+// (SPEC §1.2, §1.3 eq. 2.3-2.5, 2.8-2.10; §1.5). python/weft/reference/shading.py and
+// shadow.py implement the same equations in NumPy.
 #include "frame.glsl"
 
 layout(set = 1, binding = 0) uniform sampler2D baseTexture;
+layout(set = 1, binding = 1) uniform sampler2D normalMap;   // linear, tangent space
+layout(set = 1, binding = 2) uniform sampler2D specularMap; // linear, multiplies K_S
 
-// Fraction of PCF taps that see the light. `lightDepth` returns the receiver's depth.
-float shadowVisibility(int layer, vec3 p, vec3 n, float ndl, out float lightDepth) {
-    float c = clamp(ndl, -1.0, 1.0);
+// Depth of a perspective shadow map's NDC depth d as distance along the view axis.
+float linearShadowDepth(float d, float zNear, float zFar) {
+    return zNear * zFar / (zFar - d * (zFar - zNear));
+}
+
+// Layer of a point light's six views (+X, -X, +Y, -Y, +Z, -Z) that sees direction d.
+int cubeFace(vec3 d) {
+    vec3 a = abs(d);
+    if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0 ? 0 : 1;
+    if (a.y >= a.z) return d.y >= 0.0 ? 2 : 3;
+    return d.z >= 0.0 ? 4 : 5;
+}
+
+// Fraction of PCF taps of light `li` that see the light from p. `lightDepth` returns the
+// receiver's NDC depth in the layer used.
+float shadowVisibility(Light L, vec3 p, vec3 n, vec3 l, out float lightDepth) {
+    int type = int(L.position.w);
+    int layer = int(L.radiance.w);
+    float c = clamp(dot(n, l), -1.0, 1.0);
     float sinTheta = sqrt(max(0.0, 1.0 - c * c));
-    vec3 offsetPos = p + n * (frame.normalOffset[layer].x * sinTheta);
-    vec4 clip = frame.lightViewProj[layer] * vec4(offsetPos, 1.0);
+    ShadowLayer s = shadowLayers[layer];
+    bool perspective = s.params.y > 0.5;
+    float offset = perspective ? s.params.x * length(L.position.xyz - p) : s.params.x;
+    vec3 q = p + n * (offset * sinTheta);
+    if (type == LIGHT_POINT) {
+        layer += cubeFace(q - L.position.xyz);
+        s = shadowLayers[layer];
+    }
+    vec4 clip = s.viewProj * vec4(q, 1.0);
     vec3 ndc = clip.xyz / clip.w;
     lightDepth = ndc.z;
     vec2 uv = ndc.xy * 0.5 + 0.5;
-    if (uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0 || ndc.z > 1.0) return 1.0;
+    if (clip.w <= 0.0 || uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0 || ndc.z > 1.0)
+        return 1.0;
     float bias = min(frame.bias.x + frame.bias.y * sinTheta / max(c, 1e-4), frame.bias.z);
+    float receiver = perspective ? linearShadowDepth(ndc.z, s.params.z, s.params.w) -
+                                       bias * (s.params.w - s.params.z)
+                                 : ndc.z - bias;
     int size = frame.counts.z;
     int r = frame.counts.y;
     ivec2 texel = ivec2(floor(uv * float(size)));
@@ -23,31 +53,109 @@ float shadowVisibility(int layer, vec3 p, vec3 n, float ndl, out float lightDept
         for (int dx = -r; dx <= r; ++dx) {
             ivec2 t = clamp(texel + ivec2(dx, dy), ivec2(0), ivec2(size - 1));
             float stored = texelFetch(shadowMaps, ivec3(t, layer), 0).r;
-            lit += (ndc.z - bias <= stored) ? 1.0 : 0.0;
+            if (perspective) stored = linearShadowDepth(stored, s.params.z, s.params.w);
+            lit += (receiver <= stored) ? 1.0 : 0.0;
         }
     }
     return lit / float((2 * r + 1) * (2 * r + 1));
 }
 
+// The cookie frame of a spot light: `right` and `up` span its texture.
+void spotBasis(vec3 axis, out vec3 right, out vec3 up) {
+    vec3 ref = abs(axis.y) > 0.99 ? vec3(0.0, 0.0, 1.0) : vec3(0.0, 1.0, 0.0);
+    right = normalize(cross(axis, ref));
+    up = cross(right, axis);
+}
+
+// Cookie slot `slot` at uv (bilinear, level 0). Constant indices only: lavapipe's LLVM
+// miscompiles (crashes on) a sampler array indexed in a loop.
+vec3 cookieSample(int slot, vec2 uv) {
+    if (slot == 0) return textureLod(cookies[0], uv, 0.0).rgb;
+    if (slot == 1) return textureLod(cookies[1], uv, 0.0).rgb;
+    if (slot == 2) return textureLod(cookies[2], uv, 0.0).rgb;
+    return textureLod(cookies[3], uv, 0.0).rgb;
+}
+
+// Unit vector l towards light L from p, and the radiance arriving there: colour * intensity
+// times the distance attenuation a (eq. 2.3 / 2.4), the spot cone and the cookie.
+vec3 incidentRadiance(Light L, vec3 p, out vec3 l) {
+    int type = int(L.position.w);
+    if (type == LIGHT_DIRECTIONAL) {
+        l = L.direction.xyz;
+        return L.radiance.rgb;
+    }
+    vec3 d = L.position.xyz - p;
+    float dist = length(d);
+    l = d / max(dist, 1e-20);
+    vec4 k = L.attenuation;
+    float a = k.w > 0.0 ? max(0.0, 1.0 - dist * dist / (k.w * k.w))
+                        : 1.0 / (k.x + k.y * dist + k.z * dist * dist);
+    vec3 radiance = L.radiance.rgb * a;
+    if (type == LIGHT_SPOT) {
+        vec3 axis = L.direction.xyz;
+        float cosAngle = dot(-l, axis);
+        radiance *= smoothstep(L.cone.y, L.cone.x, cosAngle);
+        int cookie = int(L.direction.w);
+        if (cookie >= 0 && cosAngle > 0.0) {
+            vec3 right, up;
+            spotBasis(axis, right, up);
+            vec3 q = p - L.position.xyz;
+            float z = dot(q, axis) * L.cone.z;
+            vec2 uv = 0.5 + 0.5 * vec2(dot(q, right), -dot(q, up)) / z;
+            radiance *= cookieSample(cookie, uv);
+        }
+    }
+    return radiance;
+}
+
 // T of eq. 2.10: the material's base colour times its texture.
 vec3 albedo(vec2 uv, Instance ins) { return ins.baseColor.rgb * texture(baseTexture, uv).rgb; }
 
-// Eq. 2.10 summed over lights. `debugVis`/`debugDepth` report the debug shadow light.
-vec3 shade(vec3 p, vec3 n, vec3 T, Instance ins, out float debugVis, out float debugDepth) {
+// Alpha test (SPEC §1.5): true when the fragment is a hole.
+bool alphaDiscarded(vec2 uv, Instance ins) {
+    return ins.ka.w > 0.0 && texture(baseTexture, uv).a < ins.ka.w;
+}
+
+// The shading normal: the interpolated vertex normal, perturbed by the tangent-space normal
+// map (eq. 2.11: m = texel * 2 - 1; eq. 2.12: the frame t, b = w (n x t), n).
+vec3 shadingNormal(vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins, bool frontFacing) {
+    vec3 n = normalize(vertexNormal);
+    // Two-sided (bit 0 of baseColor.w): the back face is shaded with the flipped normal; a
+    // mirroring transform (bit 1) reverses which side the rasteriser calls front.
+    int flags = int(ins.baseColor.w);
+    if ((flags & 1) != 0 && frontFacing == ((flags & 2) != 0)) {
+        n = -n;
+        tangent.w = -tangent.w;
+    }
+    if (ins.kd.w < 0.5) return n;
+    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
+    float tl = length(t);
+    if (tl < 1e-12) return n;
+    t /= tl;
+    vec3 b = tangent.w * cross(n, t);
+    vec3 m = texture(normalMap, uv).rgb * 2.0 - 1.0;
+    return normalize(t * m.x + b * m.y + n * m.z);
+}
+
+// K_S at uv: the material's coefficient times its specular map.
+vec3 specular(vec2 uv, Instance ins) { return ins.ks.rgb * texture(specularMap, uv).rgb; }
+
+// Eq. 2.10 summed over lights. `debugVis`/`debugDepth` report the debug light's shadow test.
+vec3 shade(vec3 p, vec3 n, vec3 T, vec3 ks, Instance ins, out float debugVis,
+           out float debugDepth) {
     vec3 v = normalize(frame.cameraPos.xyz - p);
     vec3 color = frame.ambient.rgb * ins.ka.rgb * T;
     debugVis = 1.0;
     debugDepth = 0.0;
     for (int i = 0; i < frame.counts.x; ++i) {
-        vec3 l = lights[i].toLight.xyz;
-        vec3 L = lights[i].radiance.rgb;
-        int layer = int(lights[i].radiance.w);
+        vec3 l;
+        vec3 L = incidentRadiance(lights[i], p, l);
         float ndl = dot(n, l);
         float vis = 1.0;
-        if (layer >= 0) {
+        if (lights[i].radiance.w >= 0.0) {
             float depth;
-            vis = shadowVisibility(layer, p, n, ndl, depth);
-            if (layer == frame.counts.w) {
+            vis = shadowVisibility(lights[i], p, n, l, depth);
+            if (i == frame.counts.w) {
                 debugVis = vis;
                 debugDepth = depth;
             }
@@ -55,7 +163,7 @@ vec3 shade(vec3 p, vec3 n, vec3 T, Instance ins, out float debugVis, out float d
         if (ndl > 0.0) {
             vec3 h = normalize(l + v);
             float s = pow(max(dot(n, h), 0.0), ins.ks.w);
-            color += vis * (ndl * L * ins.kd.rgb * T + s * L * ins.ks.rgb);
+            color += vis * (ndl * L * ins.kd.rgb * T + s * L * ks);
         }
     }
     return color;

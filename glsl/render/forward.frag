@@ -4,12 +4,15 @@
 layout(location = 0) in vec3 inWorldPos;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec4 inTangent;
 
 layout(location = 0) out vec4 outColor;
 
 void main() {
-    float vis, depth;
-    vec3 n = normalize(inNormal);
     Instance ins = instances[push.instance];
-    outColor = vec4(shade(inWorldPos, n, albedo(inUv, ins), ins, vis, depth), 1.0);
+    if (alphaDiscarded(inUv, ins)) discard;
+    float vis, depth;
+    vec3 n = shadingNormal(inNormal, inTangent, inUv, ins, gl_FrontFacing);
+    outColor = vec4(shade(inWorldPos, n, albedo(inUv, ins), specular(inUv, ins), ins, vis, depth),
+                    1.0);
 }

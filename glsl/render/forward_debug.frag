@@ -5,20 +5,23 @@
 layout(location = 0) in vec3 inWorldPos;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec4 inTangent;
 
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outPosition; // world xyz, 1 = covered
 layout(location = 2) out vec4 outNormal;   // shading normal, shadow visibility
 layout(location = 3) out vec4 outSurface;  // uv, light-space depth, instance + 1
-layout(location = 4) out vec4 outAlbedo;   // T: base colour * sampled texture
+layout(location = 4) out vec4 outAlbedo;   // T: base colour * sampled texture; K_S (grey) map
 
 void main() {
-    float vis, depth;
-    vec3 n = normalize(inNormal);
     Instance ins = instances[push.instance];
+    if (alphaDiscarded(inUv, ins)) discard;
+    float vis, depth;
+    vec3 n = shadingNormal(inNormal, inTangent, inUv, ins, gl_FrontFacing);
     vec3 T = albedo(inUv, ins);
-    outColor = vec4(shade(inWorldPos, n, T, ins, vis, depth), 1.0);
-    outAlbedo = vec4(T, 1.0);
+    vec3 ks = specular(inUv, ins);
+    outColor = vec4(shade(inWorldPos, n, T, ks, ins, vis, depth), 1.0);
+    outAlbedo = vec4(T, texture(specularMap, inUv).g);
     outPosition = vec4(inWorldPos, 1.0);
     outNormal = vec4(n, vis);
     outSurface = vec4(inUv, depth, float(push.instance + 1u));

@@ -4,6 +4,7 @@
                         [--out PNG] [--screenshot PNG] [--stats JSON]
     python -m weft devices [--json]
     python -m weft render [--width W] [--height H] [--out PNG]
+    python -m weft btf {synth PRESET OUT, fit PATH --out DIR} ...   (see weft.btf.cli)
     python -m weft ibl {convert,irradiance,extract-lights} ...   (see python -m weft ibl --help)
 
 Benchmarks have their own entry point: ``python -m weft.bench --help``.
@@ -52,18 +53,28 @@ def build_parser() -> argparse.ArgumentParser:
 
     demo = sub.add_parser(
         "demo", help="run the demo (window if a display exists, else a headless PNG)",
-        description="Runs the demo scene: a GLFW window when a display exists (and --headless "
-                    "is not given), otherwise one offscreen frame written to --out.")
+        description="Runs the seed's cloth environment (terrain, sphere, a cloth held at one "
+                    "edge in the wind, sun and moon): a GLFW window when a display exists (and "
+                    "--headless is not given), otherwise offscreen to --out. Window controls: "
+                    "left-drag grabs the cloth, arrows orbit, 1/2 wind, R wind direction, L "
+                    "light, T day-night, N normal map, S shadows, P PCF, H holes, C reset, "
+                    "Space pause, Esc quit.")
     demo.add_argument("--width", type=_positive_int, default=1280, help="width in pixels (1280)")
     demo.add_argument("--height", type=_positive_int, default=720, help="height in pixels (720)")
     demo.add_argument("--frames", type=_non_negative_int, default=0,
-                      help="window mode: stop after this many frames (0 = until closed)")
+                      help="stop after N frames, one fixed 60 Hz simulation step each "
+                           "(reproducible); 0 = a window runs until closed, headless renders "
+                           "one frame after the cloth settled")
     demo.add_argument("--headless", action="store_true",
                       help="render offscreen even when a display is available")
     demo.add_argument("--no-vsync", dest="vsync", action="store_false",
                       help="present without waiting for vertical sync")
     demo.add_argument("--out", default="out/demo.png",
-                      help="headless output PNG (default out/demo.png)")
+                      help="headless output: a PNG (default out/demo.png), or with --frames a "
+                           "directory for frame_NNNN.png and stats.json")
+    demo.add_argument("--script", default="", metavar="FILE",
+                      help="scripted input: lines '<frame> key <K>', '<frame> grab <x> <y>', "
+                           "'<frame> drag <x> <y>', '<frame> release'")
     demo.add_argument("--screenshot", default="",
                       help="window mode: save the last presented frame to this PNG")
     demo.add_argument("--stats", default="", metavar="JSON",
@@ -84,6 +95,10 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--out", default="out/render.png", help="output PNG (out/render.png)")
     render.set_defaults(handler=_cmd_render)
 
+    from weft.btf import cli as btf_cli
+
+    btf_cli.add_parsers(sub)
+
     from weft.ibl.cli import add_ibl_parser
 
     add_ibl_parser(sub)
@@ -95,7 +110,8 @@ def _cmd_demo(args: argparse.Namespace) -> int:
 
     return int(weft.run_demo(width=args.width, height=args.height, frames=args.frames,
                              headless=args.headless, vsync=args.vsync, out=args.out,
-                             screenshot=args.screenshot, stats_json=args.stats))
+                             screenshot=args.screenshot, stats_json=args.stats,
+                             script=args.script))
 
 
 def format_table(rows: List[Dict[str, Any]], columns: Sequence[str]) -> str:

@@ -124,3 +124,14 @@ TEST(IblLights, DomeRoundRobinVisitsEveryLightOnce) {
     EXPECT_THROW(weft::ShadowDome::directions(20, weft::DomeLayout::Fibonacci),
                  weft::InvalidArgument);
 }
+
+TEST(IblConvert, RgbViewOfAFloatImage) {
+    weft::ImageF img(8, 4, 3);
+    img.at(2, 1)[0] = 5.0f;
+    const weft::RgbView v = weft::rgbView(img);
+    EXPECT_EQ(v.width, 8);
+    EXPECT_EQ(v.height, 4);
+    EXPECT_EQ(v.pixels[(1 * 8 + 2) * 3], 5.0f);
+    EXPECT_EQ(weft::equirectToCube(v, 4).size(), 4);
+    EXPECT_THROW(weft::rgbView(weft::ImageF(8, 4, 4)), weft::InvalidArgument);
+}

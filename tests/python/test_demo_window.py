@@ -126,15 +126,31 @@ def xvfb_display() -> Iterator[str]:
             proc.stderr.close()
 
 
-def test_window_screenshot_matches_headless(xvfb_display: str, tmp_path: Path) -> None:
+DRAG_SCRIPT = """# frame 12: grab the falling cloth's front edge and pull it up and to the left
+12 grab 110 76
+14 drag 100 60
+16 drag 80 45
+18 drag 60 35
+25 key 2
+"""
+
+
+def window_env(display: str) -> Dict[str, str]:
     env = dict(os.environ)
-    env["DISPLAY"] = xvfb_display
+    env["DISPLAY"] = display
     env["WEFT_VALIDATION"] = "1"
     env.pop("WAYLAND_DISPLAY", None)
+    return env
+
+
+def test_window_screenshot_matches_headless(xvfb_display: str, tmp_path: Path) -> None:
+    """30 frames in a real window (one fixed simulation step per frame) show exactly what 30
+    headless frames show."""
+    env = window_env(xvfb_display)
     screenshot = tmp_path / "window.png"
     headless = tmp_path / "headless.png"
-    size = ["--width", "320", "--height", "240"]
-    run_demo_process(size + ["--frames", "30", "--screenshot", str(screenshot)], env)
+    size = ["--width", "320", "--height", "240", "--frames", "30"]
+    run_demo_process(size + ["--screenshot", str(screenshot)], env)
     run_demo_process(size + ["--headless", "--out", str(headless)], env)
     assert screenshot.is_file(), "the windowed demo wrote no screenshot"
     assert headless.is_file(), "the headless demo wrote no image"
@@ -145,3 +161,53 @@ def test_window_screenshot_matches_headless(xvfb_display: str, tmp_path: Path) -
     assert_not_uniform(window_img)
     value = psnr(window_img[..., :3], headless_img[..., :3])
     assert value >= MIN_PSNR_DB, f"PSNR(window, headless) = {value:.2f} dB < {MIN_PSNR_DB} dB"
+
+
+def test_scripted_drag_moves_the_cloth_in_the_window(xvfb_display: str, tmp_path: Path) -> None:
+    """A scripted grab and drag in the window pulls the cloth away: its screenshot matches the
+    headless run of the same script and differs clearly from the run without it."""
+    env = window_env(xvfb_display)
+    script = tmp_path / "drag.txt"
+    script.write_text(DRAG_SCRIPT)
+    size = ["--width", "320", "--height", "240", "--frames", "40"]
+    win = tmp_path / "window.png"
+    proc = run_demo_process(size + ["--script", str(script), "--screenshot", str(win)], env)
+    assert "took the cloth" in proc.stdout, proc.stdout
+    dragged = tmp_path / "dragged.png"
+    run_demo_process(size + ["--headless", "--script", str(script), "--out", str(dragged)], env)
+    plain = tmp_path / "plain.png"
+    run_demo_process(size + ["--headless", "--out", str(plain)], env)
+    a, b, c = (weft.load_png(str(p))[..., :3] for p in (win, dragged, plain))
+    assert psnr(a, b) >= MIN_PSNR_DB, f"window vs headless with the script: {psnr(a, b):.1f} dB"
+    assert psnr(b, c) < 25.0, "the drag did not change the picture"
+    # the grabbed corner is up in the sky (top left) after the drag
+    sky = np.array([0.45, 0.62, 0.86]) ** (1 / 2.2) * 255
+    top_left = b[20:60, 40:120].reshape(-1, 3).astype(float)
+    assert np.mean(np.abs(top_left - sky).max(axis=1) > 40) > 0.05, "no cloth in the top left"
+
+
+def test_headless_frame_sequence(tmp_path: Path) -> None:
+    out = tmp_path / "frames"
+    proc = run_demo_process(["--headless", "--width", "64", "--height", "48", "--frames", "3",
+                             "--out", str(out)], dict(os.environ, WEFT_VALIDATION="1"))
+    assert str(out) in proc.stdout
+    frames = sorted(out.glob("frame_*.png"))
+    assert [f.name for f in frames] == ["frame_0000.png", "frame_0001.png", "frame_0002.png"]
+    stats = json.loads((out / "stats.json").read_text())
+    assert len(stats) == 3 and all(any(p["name"] == "forward" for p in s["passes"]) for s in stats)
+    images = [weft.load_png(str(f)) for f in frames]
+    assert not np.array_equal(images[0], images[2]), "the cloth did not move between frames"
+
+
+@pytest.mark.parametrize("text,message", [("5 jump 1 2\n", "unknown action"),
+                                          ("5 key F13\n", "unknown key"),
+                                          ("9 release\n3 release\n", "not decrease"),
+                                          ("x\n", "expected")])
+def test_bad_script_is_reported(tmp_path: Path, text: str, message: str) -> None:
+    script = tmp_path / "bad.txt"
+    script.write_text(text)
+    cmd = demo_command() + ["--headless", "--width", "32", "--height", "32", "--frames", "2",
+                            "--script", str(script), "--out", str(tmp_path / "x.png")]
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=DEMO_TIMEOUT_S)
+    assert proc.returncode != 0
+    assert message in proc.stderr and "bad.txt" in proc.stderr, proc.stderr

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import ibl_envs as envs
+import weft
 import weft.ibl as ibl
 from weft.__main__ import main
 
@@ -52,3 +53,40 @@ def test_cli_errors_are_reported(tmp_path: Path, capsys: pytest.CaptureFixture) 
     np.save(odd, np.ones((10, 30, 3), np.float32))
     assert main(["ibl", "irradiance", str(odd)]) == 1
     assert "--source" in capsys.readouterr().err
+
+
+def test_hdr_and_exr_environments(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    eq = equirect_of(envs.sun_disc((0.2, 0.9, 0.3), np.radians(5), 50.0, envs.sky_gradient()), 128)
+    hdr = tmp_path / "env.hdr"
+    weft.save_hdr(str(hdr), eq)
+    source = ibl.load_environment(str(hdr))  # RGBE-quantised
+    assert source.shape == (64, 128, 3) and source.dtype == np.float32
+    np.testing.assert_allclose(source, eq, rtol=0.01, atol=1e-3)
+    out = tmp_path / "cube.exr"
+    assert main(["ibl", "convert", str(hdr), str(out), "--cube-size", "16"]) == 0
+    cross = ibl.load_environment(str(out))
+    np.testing.assert_allclose(np.asarray(ibl.cross_to_cube(cross).faces),
+                               np.asarray(ibl.equirect_to_cube(source, 16).faces), rtol=1e-6)
+    capsys.readouterr()
+
+
+def test_truncated_and_corrupt_files_raise_io_errors(tmp_path: Path,
+                                                     capsys: pytest.CaptureFixture) -> None:
+    eq = np.ones((16, 32, 3), np.float32)
+    good = tmp_path / "good.hdr"
+    weft.save_hdr(str(good), eq)
+    data = good.read_bytes()
+    truncated = tmp_path / "truncated.hdr"
+    truncated.write_bytes(data[: len(data) // 2])
+    corrupt = tmp_path / "corrupt.exr"
+    corrupt.write_bytes(b"v/1\x01" + b"\x00garbage" * 10)
+    for path in (truncated, corrupt):
+        with pytest.raises(weft.IoError, match=path.name):
+            ibl.load_environment(str(path))
+        assert main(["ibl", "irradiance", str(path)]) == 1
+        assert path.name in capsys.readouterr().err
+    with pytest.raises(weft.InvalidArgument, match="cannot write"):
+        ibl.save_environment(str(tmp_path / "x.tiff"), eq)
+    (tmp_path / "x.tiff").write_bytes(b"II*\x00")
+    with pytest.raises(weft.InvalidArgument, match="unsupported"):
+        ibl.load_environment(str(tmp_path / "x.tiff"))

@@ -1,4 +1,4 @@
-// weft-demo: the default scene in a window, or rendered headless to a PNG without a display.
+// weft-demo: the seed's cloth environment in a window, or rendered headless without a display.
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -11,21 +11,31 @@ namespace {
 
 const char* kUsage = R"(usage: weft-demo [options]
 
-Shows weft's default scene (textured ground, sphere, box, shadow-casting sun) in a window when a
-display exists; otherwise renders it offscreen and writes a PNG.
+Shows the seed's interactive cloth environment: a terrain from a height map, a sphere, a
+32x32 cloth held at one edge in the wind that collides with both, and a sun and a moon in a
+day-night cycle. A window when a display exists; otherwise renders offscreen to PNG files.
 
 options:
   --width N          image/window width in pixels (default 1280)
   --height N         image/window height in pixels (default 720)
-  --frames N         window: stop after N frames (default: run until closed)
+  --frames N         stop after N frames, one fixed 60 Hz simulation step each (reproducible);
+                     default: a window runs in real time until closed, headless renders one
+                     frame after the cloth settled for 1.5 s
   --headless         render offscreen even when a display exists
-  --out PATH         headless output image (default out/demo.png)
+  --out PATH         headless output: a .png (default out/demo.png; with --frames the last
+                     frame), or with --frames a directory for frame_NNNN.png + stats.json
+  --script PATH      scripted input, one event per line: "<frame> key <K>",
+                     "<frame> grab <x> <y>", "<frame> drag <x> <y>", "<frame> release"
+                     (pixels from the top left; keys as below, or SPACE/LEFT/RIGHT/UP/DOWN)
   --screenshot PATH  window: save the last presented frame to PATH
   --stats PATH       write the last frame's statistics (passes, CPU/GPU ms) as JSON
   --no-vsync         present without waiting for vertical sync
   -h, --help         show this help
 
-keys (window): arrows orbit the camera, Esc or Q quits.
+controls (window): left-drag grabs and moves the cloth; arrows orbit the camera; 1/2 weaker/
+stronger wind, R turns the wind, L orbits the light, T starts/stops the day-night cycle,
+N normal mapping, S shadows, P PCF kernel size, H holes, C resets the cloth, Space pauses the
+simulation, Esc or Q quits. The title bar shows fps, simulation steps/s and pass times.
 )";
 
 int parseInt(const char* flag, const char* value) {
@@ -57,6 +67,7 @@ int main(int argc, char** argv) {
             else if (a == "--out") o.out = next();
             else if (a == "--screenshot") o.screenshot = next();
             else if (a == "--stats") o.statsJson = next();
+            else if (a == "--script") o.script = next();
             else throw weft::InvalidArgument("unknown option '" + a + "' (see --help)");
         }
         return weft::runDemo(o);

@@ -150,6 +150,9 @@ public:
     bool sleeping() const;
     void wake();
     uint64_t stepCount() const;
+    /// Changes whenever the renderable surface may have changed (a step that ran, new
+    /// positions, holes, tears, reset); a renderer re-uploads the mesh only then.
+    uint64_t meshVersion() const;
 
     ClothMesh mesh() const;
 

@@ -8,16 +8,21 @@ namespace weft {
 struct DemoOptions {
     int width = 1280;
     int height = 720;
-    int frames = 0;             // windowed: stop after this many frames (0 = until closed)
+    /// Stop after this many frames, each one fixed 60 Hz simulation step (reproducible);
+    /// 0: a window runs until closed in real time, headless renders one settled frame.
+    int frames = 0;
     bool headless = false;      // force the offscreen path even when a display exists
     bool vsync = true;
-    std::string out = "out/demo.png"; // headless output image
+    /// Headless output: a .png path (the last frame), or with frames > 0 a directory that gets
+    /// frame_NNNN.png for every frame and stats.json.
+    std::string out = "out/demo.png";
+    std::string script;         // scripted input: "<frame> key K | grab x y | drag x y | release"
     std::string screenshot;     // windowed: save the last presented frame here
     std::string statsJson;      // optional: write the last frame's statistics as JSON
 };
 
-/// Runs the demo: a window when a display exists (and !headless), otherwise one offscreen
-/// frame written to `out`. Returns a process exit code (3 when validation is enabled and the
+/// Runs the seed's cloth environment (terrain, sphere, cloth held at one edge in the wind,
+/// sun and moon): a window when a display exists (and !headless), otherwise offscreen to `out`. Returns a process exit code (3 when validation is enabled and the
 /// layers reported anything); prints what it wrote.
 int runDemo(const DemoOptions& options);
 

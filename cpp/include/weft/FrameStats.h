@@ -18,6 +18,8 @@ struct FrameStats {
     std::vector<std::string> culled; // passes the frame graph removed because nobody read them
     double cpuMs = 0.0;            // whole frame on the CPU (record + submit + wait + readback)
     double gpuMs = -1.0;           // sum of the passes' GPU times, negative if unmeasured
+    int meshUploads = 0;           // dynamic meshes (cloth) re-uploaded for this frame
+    uint64_t uploadBytes = 0;      // bytes they took
 };
 
 } // namespace weft

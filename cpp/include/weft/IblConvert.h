@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include <weft/CubeMap.h>
+#include <weft/Image.h>
 
 namespace weft {
 
@@ -27,6 +28,10 @@ struct RgbView {
     int width = 0;
     int height = 0;
 };
+
+/// The view of a 3-channel ImageF (e.g. from loadHdr / loadExr); throws InvalidArgument for
+/// other channel counts.
+RgbView rgbView(const ImageF& image);
 
 /// A cube map and which texels the capture saw (6 * S * S bytes, 1 = seen).
 struct CaptureCube {

@@ -1,5 +1,5 @@
 #pragma once
-// 8-bit images in memory and their PNG file IO.
+// Images in memory: 8-bit (PNG file IO) and float (OpenEXR and Radiance .hdr file IO).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -35,5 +35,43 @@ ImageU8 loadPng(const std::string& path);
 /// Writes a PNG; creates no directories. Throws InvalidArgument when image.validate() fails
 /// and IoError when the file cannot be written (a partly written file is removed).
 void savePng(const std::string& path, const ImageU8& image);
+
+/// Interleaved float image (linear values, HDR), rows top to bottom, `channels` in {1, 2, 3, 4}.
+struct ImageF {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    std::vector<float> pixels; // width * height * channels floats
+
+    ImageF() = default;
+    /// Throws InvalidArgument unless w, h in [1, 65536] and c in [1, 4]; pixels are zero.
+    ImageF(int w, int h, int c);
+    float* at(int x, int y) { return pixels.data() + (size_t(y) * width + x) * channels; }
+    const float* at(int x, int y) const {
+        return pixels.data() + (size_t(y) * width + x) * channels;
+    }
+    /// Throws InvalidArgument unless sizes are positive and pixels.size() matches.
+    void validate() const;
+    /// Throws InvalidArgument naming `what` when any value is NaN or infinite.
+    void requireFinite(const std::string& what) const;
+};
+
+/// Reads an OpenEXR file (scanline or tiled, any compression, half/float/uint channels).
+/// Channels: R, G, B, A when present (grey files: Y [+ A]); others are ignored. Throws IoError
+/// naming the file when it is missing, truncated or corrupt.
+ImageF loadExr(const std::string& path);
+/// Writes 32-bit float channels (1: Y, 2: Y A, 3: R G B, 4: R G B A), ZIP compression.
+void saveExr(const std::string& path, const ImageF& image);
+
+/// Reads a Radiance RGBE .hdr/.pic file (flat or run-length encoded scanlines, -Y +X order;
+/// other orientations are rejected). Returns 3 channels. Throws IoError when corrupt.
+ImageF loadHdr(const std::string& path);
+/// Writes a Radiance RGBE file with run-length encoded scanlines (flat when width is outside
+/// [8, 32767]). Only channels 1 (grey) and 3/4 (alpha dropped) are accepted; values must be
+/// finite and >= 0.
+void saveHdr(const std::string& path, const ImageF& image);
+
+/// Loads .exr, .hdr or .png by extension (PNG values are divided by 255, no decoding).
+ImageF loadImageF(const std::string& path);
 
 } // namespace weft

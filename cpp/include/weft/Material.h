@@ -13,6 +13,16 @@ struct Material {
     float shininess = 32.0f;    // Blinn-Phong exponent n, > 0
     glm::vec3 baseColor{1.0f};  // multiplies the texture: T = baseColor * texture(uv)
     TexturePtr texture;         // base-colour texture (sRGB), none = white
+    /// Tangent-space normal map (linear, not sRGB): n = texel / 255 * 2 - 1 (eq. 2.11) in the
+    /// frame of computeTangents(); none = the interpolated vertex normal.
+    TexturePtr normalMap;
+    /// Specular map: its RGB (linear) multiplies K_S per texel; none = 1.
+    TexturePtr specularMap;
+    /// Alpha test: fragments whose base-texture alpha is below this are discarded, also from
+    /// shadow maps (holes cast holes). 0 = opaque.
+    float alphaCutoff = 0.0f;
+    /// Both faces are drawn; the back face is shaded with the flipped normal (cloth).
+    bool twoSided = false;
 
     /// Throws InvalidArgument for negative or non-finite coefficients or shininess <= 0.
     void validate() const;

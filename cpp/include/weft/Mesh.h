@@ -37,7 +37,21 @@ struct Mesh {
     /// face's UVs spanning [0,1] upright seen from outside (+Y/-Y faces: u along +X).
     /// Sizes must be positive and finite (else InvalidArgument).
     static Mesh box(const glm::vec3& size = glm::vec3(1.0f));
+    /// Terrain over a rows x cols grid of heights (row-major, rows along +Z) spanning
+    /// [origin.x, origin.x + size.x] x [origin.z, origin.z + size.y] at height origin.y + h: the
+    /// surface a cloth Collider::HeightField with the same data collides with (there bilinear,
+    /// here two triangles per cell). Normals from central differences; UVs span [0, uvScale].
+    static Mesh heightField(const std::vector<float>& heights, int rows, int cols,
+                            const glm::vec3& origin, const glm::vec2& size, float uvScale = 1.0f);
 };
+
+/// Per-vertex tangents for normal mapping (SPEC §1.4): xyz = the unit direction of increasing u
+/// in the surface (area-weighted over the triangles, orthogonalised against the normal),
+/// w = +1 or -1 so that the bitangent b = w * (n x t) points towards decreasing v (up the
+/// image, since v = 0 is the top row). Tangent-space normal maps therefore use x right and
+/// y up in the image, z out of the surface ("OpenGL" convention); (128, 128, 255) is flat.
+/// Vertices without a usable UV gradient get any unit tangent orthogonal to n.
+std::vector<glm::vec4> computeTangents(const Mesh& mesh);
 
 /// Loads a Wavefront OBJ: v, vt, vn, f (triangles and convex polygons, fan-triangulated;
 /// v, v/t, v//n, v/t/n; negative indices). Missing normals are computed (area-weighted),

@@ -50,12 +50,20 @@ struct Frame {
 };
 
 /// Everything needed to redo the shadow test of light `lightIndex` outside the renderer.
+/// Directional lights have one orthographic view, spot lights one perspective view, point
+/// lights six perspective views (+X, -X, +Y, -Y, +Z, -Z; a receiver uses the view of its
+/// direction from the light's largest component).
 struct ShadowInfo {
     bool active = false;           // the light cast shadows in the last frame
-    int layer = -1;                // shadow-map layer
+    int layer = -1;                // first shadow-map layer
     uint32_t size = 0;             // texels per side
     glm::mat4 viewProj{1.0f};      // world -> light clip space (x, y in [-1,1], depth [0,1])
-    float normalOffsetWorld = 0.f; // receiver offset along the normal in world units
+    std::vector<glm::mat4> views;  // viewProj of every view (1 or 6)
+    bool perspective = false;      // depth compared as distance: near * far / (far - d (far - near))
+    float zNear = 0.0f, zFar = 1.0f;
+    /// Receiver offset along the normal: world units (orthographic) or world units per metre of
+    /// distance to the light (perspective).
+    float normalOffsetWorld = 0.f;
     RenderSettings settings;
 };
 
@@ -81,8 +89,9 @@ public:
 
     /// Statistics of the last frame.
     const FrameStats& stats() const;
-    /// The last frame's shadow map of `lightIndex` (depth in [0,1], rows top to bottom).
-    std::vector<float> shadowMap(int lightIndex, uint32_t* size = nullptr);
+    /// The last frame's shadow map of `lightIndex` (depth in [0,1], rows top to bottom);
+    /// `view` selects one of a point light's six views.
+    std::vector<float> shadowMap(int lightIndex, uint32_t* size = nullptr, int view = 0);
     ShadowInfo shadowInfo(int lightIndex) const;
     std::string deviceName() const;
 

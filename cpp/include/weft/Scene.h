@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include <weft/Cloth.h>
 #include <weft/Light.h>
 #include <weft/Material.h>
 #include <weft/Camera.h>
@@ -17,9 +18,10 @@ namespace weft {
 using MeshPtr = std::shared_ptr<const Mesh>;
 
 struct MeshInstance {
-    MeshPtr mesh;
+    MeshPtr mesh;                       // null for a cloth instance
+    std::shared_ptr<const Cloth> cloth; // drawn from its current state (positions are world)
     Material material;
-    glm::mat4 transform{1.0f}; // object -> world
+    glm::mat4 transform{1.0f}; // object -> world (identity for cloth)
     bool castShadows = true;
 };
 
@@ -28,13 +30,18 @@ public:
     /// Adds an instance and returns its id. The mesh and material are validated here.
     uint32_t addMesh(MeshPtr mesh, const Material& material = {},
                      const glm::mat4& transform = glm::mat4(1.0f), bool castShadows = true);
+    /// Adds a simulated cloth, drawn two-sided from its state at render time (the renderer
+    /// uploads its mesh only when Cloth::meshVersion() changed). Returns its instance id.
+    uint32_t addCloth(std::shared_ptr<const Cloth> cloth, const Material& material = {},
+                      bool castShadows = true);
     void setTransform(uint32_t id, const glm::mat4& transform);
     void setMaterial(uint32_t id, const Material& material);
-    uint32_t addLight(const DirectionalLight& light);
-    void setLight(uint32_t id, const DirectionalLight& light);
+    /// Adds a directional, point or spot light (validated) and returns its id.
+    uint32_t addLight(const Light& light);
+    void setLight(uint32_t id, const Light& light);
 
     const std::vector<MeshInstance>& instances() const { return mInstances; }
-    const std::vector<DirectionalLight>& lights() const { return mLights; }
+    const std::vector<Light>& lights() const { return mLights; }
 
     void setAmbient(const glm::vec3& ambient);      // I_A
     void setBackground(const glm::vec3& background); // linear colour behind everything
@@ -48,7 +55,7 @@ public:
 
 private:
     std::vector<MeshInstance> mInstances;
-    std::vector<DirectionalLight> mLights;
+    std::vector<Light> mLights;
     glm::vec3 mAmbient{0.1f};
     glm::vec3 mBackground{0.0f};
     uint64_t mVersion = 1;

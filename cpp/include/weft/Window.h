@@ -27,6 +27,10 @@ public:
     bool vsync() const { return mVsync; }
     /// Key callback: (GLFW key code, action) with action 1 = press, 0 = release, 2 = repeat.
     void onKey(std::function<void(int, int)> callback);
+    /// Mouse button callback: (GLFW button, action 1 press / 0 release, cursor x, y in pixels).
+    void onMouseButton(std::function<void(int, int, double, double)> callback);
+    /// Cursor movement callback: (x, y) in pixels from the top-left corner.
+    void onCursor(std::function<void(double, double)> callback);
 
     struct Native; // GLFW window + Vulkan surface/swapchain, owned here, used by the renderer
     Native& native() { return *mNative; }

@@ -1,11 +1,14 @@
 #include <weft/Demo.h>
 
+#include <cctype>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include <GLFW/glfw3.h>
@@ -14,6 +17,7 @@
 #include <weft/Renderer.h>
 #include <weft/Window.h>
 
+#include "app/DemoScene.h"
 #include "app/StatsJson.h"
 
 namespace weft {
@@ -45,50 +49,185 @@ void orbit(Camera& camera, float dAzimuth, float dElevation) {
                                                     std::cos(el) * std::cos(az));
 }
 
-int runHeadless(const DemoOptions& o, const Scene& scene, const Camera& camera) {
+// A scripted input event: at frame `frame`, press a key or grab / drag / release at a pixel.
+struct ScriptEvent {
+    int frame = 0;
+    std::string action; // key, grab, drag, release
+    int key = 0;
+    double x = 0, y = 0;
+};
+
+int keyCode(const std::string& name, const std::string& where) {
+    static const std::map<std::string, int> named = {
+        {"SPACE", GLFW_KEY_SPACE}, {"LEFT", GLFW_KEY_LEFT}, {"RIGHT", GLFW_KEY_RIGHT},
+        {"UP", GLFW_KEY_UP},       {"DOWN", GLFW_KEY_DOWN}, {"ESCAPE", GLFW_KEY_ESCAPE}};
+    std::string upper = name;
+    for (char& c : upper) c = char(std::toupper((unsigned char)c));
+    if (auto it = named.find(upper); it != named.end()) return it->second;
+    if (upper.size() == 1 && ((upper[0] >= 'A' && upper[0] <= 'Z') || (upper[0] >= '0' && upper[0] <= '9')))
+        return upper[0]; // GLFW codes of letters and digits are their ASCII codes
+    throw InvalidArgument(where + ": unknown key '" + name + "'");
+}
+
+// Lines "<frame> key <K>", "<frame> grab <x> <y>", "<frame> drag <x> <y>", "<frame> release";
+// '#' starts a comment. Frames must not decrease.
+std::vector<ScriptEvent> loadScript(const std::string& path) {
+    std::vector<ScriptEvent> events;
+    if (path.empty()) return events;
+    std::ifstream in(path);
+    if (!in) throw IoError("cannot open script '" + path + "'");
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+        line = line.substr(0, line.find('#'));
+        std::istringstream words(line);
+        ScriptEvent e;
+        if (!(words >> e.frame)) {
+            if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+            throw IoError(path + ":" + std::to_string(n) + ": expected '<frame> <action> ...'");
+        }
+        const std::string where = path + ":" + std::to_string(n);
+        if (!(words >> e.action)) throw IoError(where + ": missing action");
+        if (e.action == "key") {
+            std::string k;
+            if (!(words >> k)) throw IoError(where + ": key needs a name");
+            e.key = keyCode(k, where);
+        } else if (e.action == "grab" || e.action == "drag") {
+            if (!(words >> e.x >> e.y)) throw IoError(where + ": " + e.action + " needs x y");
+        } else if (e.action != "release") {
+            throw IoError(where + ": unknown action '" + e.action + "' (key, grab, drag, release)");
+        }
+        if (e.frame < 0 || (!events.empty() && e.frame < events.back().frame))
+            throw IoError(where + ": frames must be >= 0 and not decrease");
+        events.push_back(e);
+    }
+    return events;
+}
+
+// Applies a key to the scene and the camera; returns what changed (or "").
+std::string applyKey(app::DemoScene& demo, int key) {
+    const float step = 0.08f;
+    if (key == GLFW_KEY_LEFT) orbit(demo.camera(), -step, 0);
+    if (key == GLFW_KEY_RIGHT) orbit(demo.camera(), step, 0);
+    if (key == GLFW_KEY_UP) orbit(demo.camera(), 0, step);
+    if (key == GLFW_KEY_DOWN) orbit(demo.camera(), 0, -step);
+    return demo.key(key);
+}
+
+void applyScript(app::DemoScene& demo, const std::vector<ScriptEvent>& script, size_t& next,
+                 int frame, int w, int h) {
+    for (; next < script.size() && script[next].frame <= frame; ++next) {
+        const ScriptEvent& e = script[next];
+        if (e.action == "key") {
+            const std::string what = applyKey(demo, e.key);
+            if (!what.empty()) std::cout << "weft-demo: frame " << frame << ": " << what << "\n";
+        } else if (e.action == "grab") {
+            const bool hit = demo.grab(e.x, e.y, w, h);
+            std::cout << "weft-demo: frame " << frame << ": grab at (" << e.x << ", " << e.y << ") "
+                      << (hit ? "took the cloth" : "missed the cloth") << "\n";
+        } else if (e.action == "drag") {
+            demo.drag(e.x, e.y, w, h);
+        } else {
+            demo.release();
+        }
+    }
+}
+
+bool isPng(const std::string& path) {
+    return path.size() >= 4 && path.compare(path.size() - 4, 4, ".png") == 0;
+}
+
+// Headless: with --frames N, N frames at one fixed 60 Hz step each, written as DIR/frame_NNNN.png
+// (or only the last one when --out names a .png) plus DIR/stats.json; without, the cloth
+// settles for 1.5 s and one frame is written to --out.
+int runHeadless(const DemoOptions& o, app::DemoScene& demo) {
     Renderer renderer(uint32_t(o.width), uint32_t(o.height));
-    const Frame frame = renderer.render(scene, camera, OutputColor);
-    writeImage(o.out, frame.color);
+    const std::vector<ScriptEvent> script = loadScript(o.script);
+    size_t next = 0;
+    const bool sequence = o.frames > 0 && !isPng(o.out);
+    if (o.frames == 0)
+        for (int i = 0; i < 90; ++i) demo.update(1.0f / 60.0f);
+    const int frames = std::max(o.frames, 1);
+    std::ostringstream all;
+    all << "[";
+    std::string last;
+    for (int f = 0; f < frames; ++f) {
+        applyScript(demo, script, next, f, o.width, o.height);
+        if (o.frames > 0) demo.update(1.0f / 60.0f);
+        demo.applySettings(renderer);
+        const Frame frame = renderer.render(demo.scene(), demo.camera(), OutputColor);
+        const bool write = sequence || f + 1 == frames;
+        if (write) {
+            char name[32];
+            std::snprintf(name, sizeof name, "frame_%04d.png", f);
+            last = sequence ? (std::filesystem::path(o.out) / name).string() : o.out;
+            writeImage(last, frame.color);
+        }
+        all << (f ? ",\n" : "\n") << statsToJson(renderer.stats(), renderer.deviceName());
+    }
+    all << "\n]\n";
+    if (sequence) {
+        std::ofstream stats(std::filesystem::path(o.out) / "stats.json");
+        if (!stats) throw IoError("cannot write " + (std::filesystem::path(o.out) / "stats.json").string());
+        stats << all.str();
+    }
     writeStats(o.statsJson, renderer.stats(), renderer.deviceName());
     std::cout << "weft-demo: headless render (" << o.width << "x" << o.height << ", "
-              << renderer.deviceName() << ") written to "
-              << std::filesystem::absolute(o.out).string() << std::endl;
+              << renderer.deviceName() << ", " << demo.status() << ") written to "
+              << std::filesystem::absolute(sequence ? o.out : last).string() << std::endl;
     return 0;
 }
 
-int runWindow(const DemoOptions& o, const Scene& scene, Camera camera) {
+int runWindow(const DemoOptions& o, app::DemoScene& demo) {
     Window window(o.width, o.height, "weft demo", o.vsync);
     Renderer renderer(uint32_t(o.width), uint32_t(o.height));
+    std::cout << "weft-demo: " << app::DemoScene::controls() << std::endl;
     window.onKey([&](int key, int action) {
         if (action == 0) return; // release
-        const float step = 0.08f;
         if (key == GLFW_KEY_ESCAPE || key == GLFW_KEY_Q) window.requestClose();
-        if (key == GLFW_KEY_LEFT) orbit(camera, -step, 0);
-        if (key == GLFW_KEY_RIGHT) orbit(camera, step, 0);
-        if (key == GLFW_KEY_UP) orbit(camera, 0, step);
-        if (key == GLFW_KEY_DOWN) orbit(camera, 0, -step);
+        const std::string what = applyKey(demo, key);
+        if (!what.empty()) std::cout << "weft-demo: " << what << std::endl;
     });
+    int fbw = o.width, fbh = o.height;
+    window.onMouseButton([&](int button, int action, double x, double y) {
+        if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+        if (action == 1) demo.grab(x, y, fbw, fbh);
+        else demo.release();
+    });
+    window.onCursor([&](double x, double y) { demo.drag(x, y, fbw, fbh); });
+    const std::vector<ScriptEvent> script = loadScript(o.script);
+    size_t next = 0;
     using Clock = std::chrono::steady_clock;
-    auto lastTitle = Clock::now();
-    int frame = 0, framesSinceTitle = 0;
+    auto lastTitle = Clock::now(), lastFrame = Clock::now();
+    int frame = 0, framesSinceTitle = 0, stepsSinceTitle = 0;
     ImageU8 shot;
     while (!window.shouldClose()) {
         window.pollEvents();
+        window.framebufferSize(fbw, fbh);
+        applyScript(demo, script, next, frame, fbw, fbh);
+        // With --frames the run is reproducible: one fixed step per frame, as headless.
+        const auto now = Clock::now();
+        const float dt = std::min(std::chrono::duration<float>(now - lastFrame).count(), 0.1f);
+        lastFrame = now;
+        stepsSinceTitle += demo.update(o.frames > 0 ? 1.0f / 60.0f : dt);
+        demo.applySettings(renderer);
         const bool last = o.frames > 0 && frame + 1 >= o.frames;
-        ImageU8 image = renderer.present(window, scene, camera, last && !o.screenshot.empty());
+        ImageU8 image = renderer.present(window, demo.scene(), demo.camera(),
+                                         last && !o.screenshot.empty());
         if (last) shot = std::move(image);
         ++frame;
         ++framesSinceTitle;
         const double elapsed = std::chrono::duration<double>(Clock::now() - lastTitle).count();
         if (elapsed > 0.5) {
             std::ostringstream title;
-            title << "weft demo - " << std::lround(framesSinceTitle / elapsed) << " fps";
+            title << "weft demo - " << std::lround(framesSinceTitle / elapsed) << " fps, "
+                  << std::lround(stepsSinceTitle / elapsed) << " sim steps/s";
             for (const PassStats& p : renderer.stats().passes)
                 title << " | " << p.name << " " << std::fixed << std::setprecision(2)
                       << (p.gpuMs >= 0 ? p.gpuMs : p.cpuMs) << " ms";
+            title << " | " << demo.status();
             window.setTitle(title.str());
             lastTitle = Clock::now();
-            framesSinceTitle = 0;
+            framesSinceTitle = stepsSinceTitle = 0;
         }
         if (last) break;
     }
@@ -109,11 +248,9 @@ int runDemo(const DemoOptions& o) {
         throw InvalidArgument("demo size must be in [1, 16384] (got " + std::to_string(o.width) +
                               "x" + std::to_string(o.height) + ")");
     if (o.frames < 0) throw InvalidArgument("frames must be >= 0");
-    Scene scene;
-    Camera camera;
-    makeDefaultScene(scene, camera);
-    const int rc = !o.headless && Window::displayAvailable() ? runWindow(o, scene, camera)
-                                                             : runHeadless(o, scene, camera);
+    app::DemoScene demo;
+    const int rc = !o.headless && Window::displayAvailable() ? runWindow(o, demo)
+                                                             : runHeadless(o, demo);
     // With validation on, any message the layers reported makes the run fail visibly.
     const auto messages = validationMessages();
     for (const std::string& m : messages) std::cerr << "weft-demo: validation " << m << "\n";

@@ -24,30 +24,6 @@ struct PrefilterPush {
     float alpha, lod0, texelOmega;
 };
 
-vk::DescriptorSetLayout storageLayout(vk::Context& ctx) {
-    VkDescriptorSetLayoutBinding b[2] = {
-        {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
-    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    info.bindingCount = 2;
-    info.pBindings = b;
-    VkDescriptorSetLayout layout;
-    VK_CHECK(vkCreateDescriptorSetLayout(ctx.device(), &info, nullptr, &layout));
-    return vk::DescriptorSetLayout(&ctx, layout, vkDestroyDescriptorSetLayout);
-}
-
-vk::PipelineLayout pipelineLayout(vk::Context& ctx, VkDescriptorSetLayout set) {
-    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(PrefilterPush)};
-    VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    info.setLayoutCount = 1;
-    info.pSetLayouts = &set;
-    info.pushConstantRangeCount = 1;
-    info.pPushConstantRanges = &range;
-    VkPipelineLayout layout;
-    VK_CHECK(vkCreatePipelineLayout(ctx.device(), &info, nullptr, &layout));
-    return vk::PipelineLayout(&ctx, layout, vkDestroyPipelineLayout);
-}
-
 VkDescriptorSet bindBuffers(vk::Context& ctx, vk::DescriptorPool& pool,
                             VkDescriptorSetLayout layout, const vk::Buffer& src,
                             const vk::Buffer& dst) {
@@ -112,8 +88,10 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
         src.write(chain.data(l), chain.floatCount(l) * sizeof(float), offset * sizeof(float));
         offset += chain.floatCount(l);
     }
-    vk::DescriptorSetLayout setLayout = storageLayout(ctx);
-    vk::PipelineLayout layout = pipelineLayout(ctx, setLayout);
+    vk::DescriptorSetLayout setLayout = vk::createComputeSetLayout(
+        ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+    vk::PipelineLayout layout = vk::createComputePipelineLayout(ctx, {setLayout},
+                                                                sizeof(PrefilterPush));
     vk::Pipeline pipeline = vk::createComputePipeline(ctx, "ibl/prefilter_ggx.comp", layout);
     vk::DescriptorPool pool;
     const VkDescriptorSet set = bindBuffers(ctx, pool, setLayout, src, dst);

@@ -82,6 +82,14 @@ void requireSupersample(int ss) {
 
 } // namespace
 
+RgbView rgbView(const ImageF& image) {
+    image.validate();
+    if (image.channels != 3)
+        throw InvalidArgument("environment images must have 3 channels, got " +
+                              std::to_string(image.channels));
+    return {image.pixels.data(), image.width, image.height};
+}
+
 CaptureCube sphereToCube(RgbView sphere, const glm::mat4& worldToSphere, float wrap, int size,
                          int supersample) {
     requireRgb(sphere, "sphere map");

@@ -1,43 +1,146 @@
 #include "render/FrameData.h"
 
+#include <cmath>
+#include <string>
+
 namespace weft::render {
+
+namespace {
+
+glm::vec4 attenuationOf(const Attenuation& a) {
+    return glm::vec4(a.constant, a.linear, a.quadratic, a.radius);
+}
+
+// Slot of a cookie texture in this frame (added on first use), or -1 without one.
+int cookieSlot(const TexturePtr& cookie, std::vector<TexturePtr>& cookies) {
+    if (!cookie) return -1;
+    for (size_t i = 0; i < cookies.size(); ++i)
+        if (cookies[i]->id() == cookie->id()) return int(i);
+    if (cookies.size() >= size_t(kMaxCookies))
+        throw InvalidArgument("a scene may use at most " + std::to_string(kMaxCookies) +
+                              " different spot-light cookie textures");
+    cookies.push_back(cookie);
+    return int(cookies.size() - 1);
+}
+
+struct LightBuilder {
+    const RenderSettings& settings;
+    glm::vec3 lo, hi;
+    bool anyCaster;
+    FrameData& f;
+
+    // Adds shadow views for light `index`; returns its first layer or -1.
+    int addViews(int index, const ShadowFrustum* views, int count) {
+        if (!anyCaster || int(f.shadowViews.size()) + count > kMaxShadowLayers) return -1;
+        const int first = int(f.shadowViews.size());
+        ShadowInfo& info = f.shadowInfos[size_t(index)];
+        info.active = true;
+        info.layer = first;
+        info.size = settings.shadowMapSize;
+        info.viewProj = views[0].viewProj;
+        info.perspective = views[0].perspective;
+        info.zNear = views[0].zNear;
+        info.zFar = views[0].zFar;
+        info.normalOffsetWorld = settings.normalOffset * views[0].texelWorld;
+        info.settings = settings;
+        for (int i = 0; i < count; ++i) {
+            f.shadowViews.push_back({index, first + i, views[i]});
+            info.views.push_back(views[i].viewProj);
+            f.shadowLayers.push_back({views[i].viewProj,
+                                      glm::vec4(info.normalOffsetWorld, views[i].perspective ? 1 : 0,
+                                                views[i].zNear, views[i].zFar)});
+        }
+        return first;
+    }
+
+    GpuLight operator()(int index, const DirectionalLight& l) {
+        int layer = -1;
+        if (l.castShadows) {
+            const ShadowFrustum view = fitDirectionalShadow(l.toLight(), lo, hi, settings.shadowMapSize);
+            layer = addViews(index, &view, 1);
+        }
+        GpuLight g{};
+        g.position = glm::vec4(0, 0, 0, kLightDirectional);
+        g.direction = glm::vec4(l.toLight(), -1);
+        g.radiance = glm::vec4(l.radiance(), float(layer));
+        return g;
+    }
+
+    GpuLight operator()(int index, const PointLight& l) {
+        int layer = -1;
+        if (l.castShadows) {
+            ShadowFrustum views[6];
+            pointShadowFaces(l.position, l.shadowNear, lo, hi, settings.shadowMapSize, views);
+            layer = addViews(index, views, 6);
+        }
+        GpuLight g{};
+        g.position = glm::vec4(l.position, kLightPoint);
+        g.direction = glm::vec4(0, 0, 0, -1);
+        g.radiance = glm::vec4(l.radiance(), float(layer));
+        g.attenuation = attenuationOf(l.attenuation);
+        return g;
+    }
+
+    GpuLight operator()(int index, const SpotLight& l) {
+        const glm::vec3 axis = glm::normalize(l.direction);
+        int layer = -1;
+        if (l.castShadows) {
+            glm::vec3 right, up;
+            spotBasis(axis, right, up);
+            const ShadowFrustum view = fitPerspectiveShadow(l.position, axis, up, 2.0f * l.outerAngle,
+                                                            l.shadowNear, lo, hi, settings.shadowMapSize);
+            layer = addViews(index, &view, 1);
+        }
+        GpuLight g{};
+        g.position = glm::vec4(l.position, kLightSpot);
+        g.direction = glm::vec4(axis, float(cookieSlot(l.cookie, f.cookies)));
+        g.radiance = glm::vec4(l.radiance(), float(layer));
+        g.attenuation = attenuationOf(l.attenuation);
+        g.cone = glm::vec4(std::cos(l.innerAngle), std::cos(l.outerAngle), std::tan(l.outerAngle), 0);
+        return g;
+    }
+};
+
+} // namespace
 
 FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                          float aspect, GpuCache& cache) {
     FrameData f;
+    bool anyCaster = false;
     for (const MeshInstance& inst : scene.instances()) {
         GpuInstance g;
         g.model = inst.transform;
         g.normalMatrix = glm::transpose(glm::inverse(inst.transform));
-        g.ka = glm::vec4(inst.material.ka, 0);
-        g.kd = glm::vec4(inst.material.kd, 0);
+        g.ka = glm::vec4(inst.material.ka, inst.material.alphaCutoff);
+        g.kd = glm::vec4(inst.material.kd, inst.material.normalMap ? 1.0f : 0.0f);
         g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
-        g.baseColor = glm::vec4(inst.material.baseColor, 1);
-        f.draws.push_back({&cache.mesh(inst.mesh), cache.texture(inst.material.texture),
-                           uint32_t(f.instances.size()), inst.castShadows, inst.transform});
+        const bool mirrored = glm::determinant(glm::mat3(inst.transform)) < 0.0f;
+        // baseColor.w: bit 0 two-sided, bit 1 mirrored (for the back-face test)
+        g.baseColor = glm::vec4(inst.material.baseColor,
+                                float((inst.material.twoSided ? 1 : 0) | (mirrored ? 2 : 0)));
+        const MeshGpu* mesh = nullptr;
+        if (inst.cloth) {
+            const uint64_t before = f.uploadBytes;
+            mesh = &cache.cloth(inst.cloth, f.uploadBytes);
+            f.meshUploads += f.uploadBytes != before ? 1 : 0;
+        } else {
+            mesh = &cache.mesh(inst.mesh);
+        }
+        f.draws.push_back({mesh, cache.materialSet(inst.material), uint32_t(f.instances.size()),
+                           inst.castShadows, inst.transform, inst.material.alphaCutoff, mirrored,
+                           inst.material.twoSided});
         f.instances.push_back(g);
+        anyCaster |= inst.castShadows;
     }
 
-    glm::vec3 lo, hi;
-    scene.bounds(lo, hi);
+    LightBuilder builder{settings, {}, {}, anyCaster, f};
+    scene.bounds(builder.lo, builder.hi);
     f.shadowInfos.assign(scene.lights().size(), ShadowInfo{});
+    int debugLight = -1;
     for (size_t i = 0; i < scene.lights().size(); ++i) {
-        const DirectionalLight& l = scene.lights()[i];
-        int layer = -1;
-        if (l.castShadows && !f.draws.empty() && int(f.shadowLights.size()) < kMaxShadowLights) {
-            layer = int(f.shadowLights.size());
-            const ShadowFrustum frustum =
-                fitDirectionalShadow(l.toLight(), lo, hi, settings.shadowMapSize);
-            f.shadowLights.push_back({int(i), layer, frustum});
-            ShadowInfo& info = f.shadowInfos[i];
-            info.active = true;
-            info.layer = layer;
-            info.size = settings.shadowMapSize;
-            info.viewProj = frustum.viewProj;
-            info.normalOffsetWorld = settings.normalOffset * frustum.texelWorld;
-            info.settings = settings;
-        }
-        f.lights.push_back({glm::vec4(l.toLight(), 0), glm::vec4(l.radiance(), float(layer))});
+        f.lights.push_back(std::visit([&](const auto& l) { return builder(int(i), l); },
+                                      scene.lights()[i]));
+        if (debugLight < 0 && f.shadowInfos[i].active) debugLight = int(i);
     }
 
     GpuFrame& g = f.frame;
@@ -45,14 +148,10 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
     g.cameraPos = glm::vec4(camera.position, 1);
     g.ambient = glm::vec4(scene.ambient(), 0);
     g.background = glm::vec4(scene.background(), 1);
-    for (const ShadowLight& s : f.shadowLights) {
-        g.lightViewProj[s.layer] = s.frustum.viewProj;
-        g.normalOffset[s.layer].x = f.shadowInfos[size_t(s.lightIndex)].normalOffsetWorld;
-    }
     g.bias = glm::vec4(settings.biasConstant, settings.biasSlope, settings.biasMax, 0);
-    // The debug shadow channel reports the first shadow map (layer 0) when there is one.
+    // The debug shadow channel reports the first light with a shadow map.
     g.counts = glm::ivec4(int(f.lights.size()), settings.pcfRadius, int(settings.shadowMapSize),
-                          f.shadowLights.empty() ? -1 : 0);
+                          debugLight);
     return f;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // The CPU side of a frame: what the scene becomes on the GPU (instances, lights, shadow
-// frusta, the per-frame uniform block), computed from Scene + Camera + settings.
+// views, cookie textures, the per-frame uniform block), computed from Scene + Camera + settings.
 #include <vector>
 
 #include <weft/Renderer.h>
@@ -17,9 +17,13 @@ struct Draw {
     uint32_t instance; // index into `instances`, also the scene's mesh id
     bool castShadows;
     glm::mat4 model;
+    float alphaCutoff; // > 0: alpha-tested (also in shadow maps)
+    bool mirrored;     // det(model) < 0: the triangles' winding is reversed
+    bool twoSided;     // no culling; back faces shaded with the flipped normal
 };
 
-struct ShadowLight {
+/// One shadow-map layer to render: a view of a shadow-casting light.
+struct ShadowView {
     int lightIndex; // in the scene
     int layer;      // in the shadow-map array
     ShadowFrustum frustum;
@@ -29,13 +33,18 @@ struct FrameData {
     std::vector<GpuInstance> instances;
     std::vector<Draw> draws;
     std::vector<GpuLight> lights;
-    std::vector<ShadowLight> shadowLights; // at most kMaxShadowLights
+    std::vector<ShadowView> shadowViews;   // at most kMaxShadowLayers
+    std::vector<GpuShadowLayer> shadowLayers;
     std::vector<ShadowInfo> shadowInfos;   // one per scene light
+    std::vector<TexturePtr> cookies;       // by cookie slot, at most kMaxCookies
     GpuFrame frame{};
+    int meshUploads = 0;
+    uint64_t uploadBytes = 0;
 };
 
 /// Uploads meshes/textures the scene needs (through `cache`) and fills the frame's GPU data.
-/// The first kMaxShadowLights shadow-casting lights get shadow maps.
+/// Shadow-casting lights get shadow-map layers in scene order while kMaxShadowLayers last
+/// (directional and spot lights one, point lights six); later ones are unshadowed.
 FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                          float aspect, GpuCache& cache);
 

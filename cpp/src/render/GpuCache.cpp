@@ -11,11 +11,14 @@ GpuCache::GpuCache(vk::Context& ctx, VkDescriptorSetLayout materialLayout, VkSam
     ImageU8 white(1, 1, 4);
     std::fill(white.pixels.begin(), white.pixels.end(), uint8_t(255));
     mWhite = makeTexture(white, true, false);
+    ImageU8 flat(1, 1, 4);
+    const uint8_t up[4] = {128, 128, 255, 255};
+    std::copy(up, up + 4, flat.pixels.begin());
+    mFlatNormal = makeTexture(flat, false, false);
 }
 
 GpuCache::~GpuCache() {
-    for (auto& [id, t] : mTextures) freeSet(t.set, t.pool);
-    freeSet(mWhite.set, mWhite.pool);
+    for (auto& [key, m] : mMaterialSets) freeSet(m.set, m.pool);
 }
 
 void GpuCache::upload(const vk::Buffer& dst, const void* data, VkDeviceSize bytes) {
@@ -27,18 +30,56 @@ void GpuCache::upload(const vk::Buffer& dst, const void* data, VkDeviceSize byte
     });
 }
 
+namespace {
+
+// Interleaves a mesh's vertices in the kVertexStride layout.
+std::vector<float> packVertices(const Mesh& mesh) {
+    const std::vector<glm::vec4> tangents = computeTangents(mesh);
+    constexpr size_t kFloats = kVertexStride / sizeof(float);
+    std::vector<float> vertices(mesh.vertexCount() * kFloats);
+    for (size_t i = 0; i < mesh.vertexCount(); ++i) {
+        float* v = &vertices[i * kFloats];
+        std::memcpy(v, &mesh.positions[i], 12);
+        std::memcpy(v + 3, &mesh.normals[i], 12);
+        std::memcpy(v + 6, &mesh.uvs[i], 8);
+        std::memcpy(v + 8, &tangents[i], 16);
+    }
+    return vertices;
+}
+
+} // namespace
+
+const MeshGpu& GpuCache::cloth(const std::shared_ptr<const Cloth>& cloth, uint64_t& uploadedBytes) {
+    ClothGpu& slot = mCloths[cloth.get()];
+    if (slot.source.lock() == cloth && slot.version == cloth->meshVersion()) return slot.mesh;
+    ClothMesh cm = cloth->mesh();
+    Mesh mesh;
+    mesh.positions = std::move(cm.positions);
+    mesh.normals = std::move(cm.normals);
+    mesh.uvs = std::move(cm.uvs);
+    mesh.indices = std::move(cm.indices);
+    const std::vector<float> vertices = packVertices(mesh);
+    const VkDeviceSize vbytes = vertices.size() * sizeof(float);
+    const VkDeviceSize ibytes = std::max<size_t>(mesh.indices.size(), 1) * sizeof(uint32_t);
+    MeshGpu gpu;
+    gpu.vertices = vk::Buffer(&mCtx, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vk::MemoryUsage::Upload);
+    gpu.indices = vk::Buffer(&mCtx, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, vk::MemoryUsage::Upload);
+    gpu.vertices.write(vertices.data(), vbytes);
+    if (!mesh.indices.empty()) gpu.indices.write(mesh.indices.data(), mesh.indices.size() * 4);
+    gpu.indexCount = uint32_t(mesh.indices.size());
+    uploadedBytes += vbytes + mesh.indices.size() * 4;
+    slot.source = cloth;
+    slot.version = cloth->meshVersion();
+    slot.mesh = std::move(gpu);
+    return slot.mesh;
+}
+
 const MeshGpu& GpuCache::mesh(const MeshPtr& mesh) {
     auto it = mMeshes.find(mesh.get());
     if (it != mMeshes.end() && !it->second.source.expired() &&
         it->second.source.lock() == mesh)
         return it->second;
-    std::vector<float> vertices(mesh->vertexCount() * 8);
-    for (size_t i = 0; i < mesh->vertexCount(); ++i) {
-        float* v = &vertices[i * 8];
-        std::memcpy(v, &mesh->positions[i], 12);
-        std::memcpy(v + 3, &mesh->normals[i], 12);
-        std::memcpy(v + 6, &mesh->uvs[i], 8);
-    }
+    const std::vector<float> vertices = packVertices(*mesh);
     MeshGpu gpu;
     gpu.source = mesh;
     const VkDeviceSize vbytes = vertices.size() * sizeof(float);
@@ -174,38 +215,65 @@ TextureGpu GpuCache::makeTexture(const ImageU8& rgba, bool srgb, bool mipmaps) {
     t.image.stage = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
     t.image.access = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
 
-    t.set = allocateSet(t.pool);
-    VkDescriptorImageInfo info{mSampler, t.image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    write.dstSet = t.set;
-    write.dstBinding = 0;
-    write.descriptorCount = 1;
-    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    write.pImageInfo = &info;
-    vkUpdateDescriptorSets(mCtx.device(), 1, &write, 0, nullptr);
     return t;
 }
 
-VkDescriptorSet GpuCache::texture(const TexturePtr& texture) {
-    if (!texture) return mWhite.set;
+TextureGpu& GpuCache::entry(const TexturePtr& texture, const TextureGpu& fallback) {
+    if (!texture) return const_cast<TextureGpu&>(fallback);
     auto it = mTextures.find(texture->id());
-    if (it != mTextures.end()) return it->second.set;
+    if (it != mTextures.end()) return it->second;
     TextureGpu t = makeTexture(texture->image(), texture->srgb(), texture->mipmaps());
     t.source = texture;
-    return mTextures.emplace(texture->id(), std::move(t)).first->second.set;
+    return mTextures.emplace(texture->id(), std::move(t)).first->second;
+}
+
+VkDescriptorSet GpuCache::materialSet(const Material& material) {
+    const TexturePtr textures[3] = {material.texture, material.normalMap, material.specularMap};
+    const TextureGpu* fallbacks[3] = {&mWhite, &mFlatNormal, &mWhite};
+    std::array<uint64_t, 3> key{};
+    for (int i = 0; i < 3; ++i) key[size_t(i)] = textures[i] ? textures[i]->id() : 0;
+    auto it = mMaterialSets.find(key);
+    if (it != mMaterialSets.end()) return it->second.set;
+    MaterialSetGpu m;
+    m.set = allocateSet(m.pool);
+    VkDescriptorImageInfo infos[3];
+    VkWriteDescriptorSet writes[3];
+    for (int i = 0; i < 3; ++i) {
+        m.sources[i] = textures[i];
+        m.used[i] = textures[i] != nullptr;
+        infos[i] = {mSampler, entry(textures[i], *fallbacks[i]).image.view(),
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[i].dstSet = m.set;
+        writes[i].dstBinding = uint32_t(i);
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        writes[i].pImageInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(mCtx.device(), 3, writes, 0, nullptr);
+    return mMaterialSets.emplace(key, m).first->second.set;
 }
 
 void GpuCache::evictExpired() {
     for (auto it = mMeshes.begin(); it != mMeshes.end();)
         it = it->second.source.expired() ? mMeshes.erase(it) : std::next(it);
-    for (auto it = mTextures.begin(); it != mTextures.end();) {
-        if (it->second.source.expired()) {
-            freeSet(it->second.set, it->second.pool);
-            it = mTextures.erase(it);
+    for (auto it = mCloths.begin(); it != mCloths.end();)
+        it = it->second.source.expired() ? mCloths.erase(it) : std::next(it);
+    for (auto it = mMaterialSets.begin(); it != mMaterialSets.end();) {
+        const MaterialSetGpu& m = it->second;
+        const bool expired = (m.used[0] && m.sources[0].expired()) ||
+                             (m.used[1] && m.sources[1].expired()) ||
+                             (m.used[2] && m.sources[2].expired());
+        if (expired) {
+            freeSet(m.set, m.pool);
+            it = mMaterialSets.erase(it);
         } else {
             ++it;
         }
     }
+    // Images are retired by their RAII wrappers after the frames that may still sample them.
+    for (auto it = mTextures.begin(); it != mTextures.end();)
+        it = it->second.source.expired() ? mTextures.erase(it) : std::next(it);
 }
 
 } // namespace weft::render

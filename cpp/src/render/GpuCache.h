@@ -2,6 +2,8 @@
 // GPU copies of scene meshes and textures, uploaded once and kept while their CPU objects live.
 #include <cstdint>
 #include <memory>
+#include <array>
+#include <map>
 #include <unordered_map>
 #include <vector>
 
@@ -11,9 +13,12 @@
 
 namespace weft::render {
 
+/// Interleaved vertex: position, normal, uv, tangent (xyz + handedness w), 48 bytes.
+constexpr uint32_t kVertexStride = 48;
+
 struct MeshGpu {
     std::weak_ptr<const Mesh> source;
-    vk::Buffer vertices; // interleaved position, normal, uv (32 bytes)
+    vk::Buffer vertices; // kVertexStride bytes per vertex
     vk::Buffer indices;  // uint32
     uint32_t indexCount = 0;
 };
@@ -21,6 +26,19 @@ struct MeshGpu {
 struct TextureGpu {
     std::weak_ptr<const Texture> source;
     vk::Image image;
+};
+
+/// A cloth's surface as last uploaded.
+struct ClothGpu {
+    std::weak_ptr<const Cloth> source;
+    uint64_t version = 0;
+    MeshGpu mesh;
+};
+
+/// The descriptor set (set 1) of a material's textures: base colour, normal map, specular map.
+struct MaterialSetGpu {
+    std::weak_ptr<const Texture> sources[3]; // empty where the material has none
+    bool used[3] = {false, false, false};
     VkDescriptorSet set = VK_NULL_HANDLE;
     size_t pool = 0;
 };
@@ -31,8 +49,16 @@ public:
     ~GpuCache();
 
     const MeshGpu& mesh(const MeshPtr& mesh);
-    /// Material descriptor set (set 1) for a base-colour texture; null gives white.
-    VkDescriptorSet texture(const TexturePtr& texture);
+    /// A cloth's current surface (positions, normals, UVs, tangents, the triangles left by holes
+    /// and tears). Rebuilt into new host-visible buffers (the old ones are retired after the
+    /// frames that use them) only when Cloth::meshVersion() changed; `uploadedBytes` grows by
+    /// what was written.
+    const MeshGpu& cloth(const std::shared_ptr<const Cloth>& cloth, uint64_t& uploadedBytes);
+    /// Material descriptor set (set 1): base colour (none: white), normal map (none: flat),
+    /// specular map (none: white).
+    VkDescriptorSet materialSet(const Material& material);
+    /// The image view of a texture (uploaded on first use); null gives white.
+    VkImageView textureView(const TexturePtr& texture) { return entry(texture, mWhite).image.view(); }
     /// Drops GPU copies whose CPU objects are gone (deferred until the GPU is done).
     void evictExpired();
 
@@ -42,6 +68,7 @@ public:
 private:
     void upload(const vk::Buffer& dst, const void* data, VkDeviceSize bytes);
     TextureGpu makeTexture(const ImageU8& rgba, bool srgb, bool mipmaps);
+    TextureGpu& entry(const TexturePtr& texture, const TextureGpu& fallback);
     VkDescriptorSet allocateSet(size_t& poolIndex);
     void freeSet(VkDescriptorSet set, size_t pool);
 
@@ -50,8 +77,10 @@ private:
     VkSampler mSampler;
     std::vector<vk::DescriptorPool> mPools;
     std::unordered_map<const Mesh*, MeshGpu> mMeshes;
+    std::unordered_map<const Cloth*, ClothGpu> mCloths;
     std::unordered_map<uint64_t, TextureGpu> mTextures;
-    TextureGpu mWhite;
+    std::map<std::array<uint64_t, 3>, MaterialSetGpu> mMaterialSets; // by texture ids (0: none)
+    TextureGpu mWhite, mFlatNormal;
 };
 
 } // namespace weft::render

@@ -4,18 +4,32 @@
 
 namespace weft::render {
 
-constexpr int kMaxShadowLights = 4;
+constexpr int kMaxShadowLayers = 32; // shadow-map layers per frame (a point light takes 6)
+constexpr int kMaxCookies = 4;       // distinct spot-light cookie textures per frame
+
+enum GpuLightType : int { kLightDirectional = 0, kLightPoint = 1, kLightSpot = 2 };
 
 struct GpuLight {
-    glm::vec4 toLight;
-    glm::vec4 radiance; // w: shadow layer or -1
+    glm::vec4 position;    // xyz: position (point, spot); w: GpuLightType
+    glm::vec4 direction;   // directional: unit vector towards the light; spot: unit axis into
+                           // the scene; w: cookie slot or -1
+    glm::vec4 radiance;    // rgb: colour * intensity; w: first shadow layer or -1
+    glm::vec4 attenuation; // k_c, k_l, k_q, radius (> 0: eq. 2.4)
+    glm::vec4 cone;        // cos(inner), cos(outer), tan(outer), 0
+};
+
+/// One layer of the shadow-map array: the light view it was rendered from.
+struct GpuShadowLayer {
+    glm::mat4 viewProj;
+    glm::vec4 params; // x: normal offset (world units; perspective: per metre of distance),
+                      // y: 1 perspective / 0 orthographic, z: near, w: far
 };
 
 struct GpuInstance {
     glm::mat4 model;
     glm::mat4 normalMatrix;
-    glm::vec4 ka;
-    glm::vec4 kd;
+    glm::vec4 ka; // w: alpha cutoff (0: opaque)
+    glm::vec4 kd; // w: 1 with a normal map
     glm::vec4 ks; // w: shininess
     glm::vec4 baseColor;
 };
@@ -25,13 +39,13 @@ struct GpuFrame {
     glm::vec4 cameraPos;
     glm::vec4 ambient;
     glm::vec4 background;
-    glm::mat4 lightViewProj[kMaxShadowLights];
-    glm::vec4 normalOffset[kMaxShadowLights];
-    glm::vec4 bias;
-    glm::ivec4 counts;
+    glm::vec4 bias;     // x: constant, y: slope, z: max (units of the light's depth range)
+    glm::ivec4 counts;  // x: lights, y: PCF radius, z: shadow-map size, w: debug light or -1
 };
 
+static_assert(sizeof(GpuLight) == 80, "GpuLight must match frame.glsl");
+static_assert(sizeof(GpuShadowLayer) == 80, "GpuShadowLayer must match frame.glsl");
 static_assert(sizeof(GpuInstance) == 192, "GpuInstance must match frame.glsl");
-static_assert(sizeof(GpuFrame) == 64 + 48 + 4 * 64 + 4 * 16 + 32, "GpuFrame must match frame.glsl");
+static_assert(sizeof(GpuFrame) == 64 + 48 + 32, "GpuFrame must match frame.glsl");
 
 } // namespace weft::render

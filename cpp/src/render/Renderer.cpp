@@ -23,19 +23,19 @@ namespace weft {
 using render::Draw;
 using render::FrameData;
 using render::FrameGraph;
-using render::ShadowLight;
+using render::ShadowView;
 using render::ResourceUse;
 using render::Use;
 
 namespace {
 
 constexpr uint32_t kFramesInFlight = 2;
-constexpr uint32_t kMaxPasses = 16;
+constexpr uint32_t kMaxPasses = 64; // timestamp pairs: shadow views + forward + output + readback
 
 struct FrameSlot {
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     uint64_t serial = 0;
-    vk::Buffer ubo, instances, lights;
+    vk::Buffer ubo, instances, lights, shadowLayers;
     vk::DescriptorPool pool;
     std::unique_ptr<render::Timestamps> timestamps;
     vk::Semaphore acquired;
@@ -111,9 +111,10 @@ void Renderer::Impl::createSlots() {
         alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
         alloc.commandBufferCount = 1;
         VK_CHECK(vkAllocateCommandBuffers(ctx->device(), &alloc, &s.cmd));
-        const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2},
-                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}};
+        const VkDescriptorPoolSize sizes[] = {
+            {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
+            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + uint32_t(render::kMaxCookies)}};
         VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pool.maxSets = 2;
         pool.poolSizeCount = 3;
@@ -191,12 +192,13 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
 
     FrameData data = buildFrameData(scene, camera, settings, aspect, *cache);
     shadowInfos = data.shadowInfos;
-    if (!data.shadowLights.empty()) ensureShadowMaps(uint32_t(data.shadowLights.size()));
+    if (!data.shadowViews.empty()) ensureShadowMaps(uint32_t(data.shadowViews.size()));
     const render::GpuFrame& frame = data.frame;
     const std::vector<render::GpuInstance>& instances = data.instances;
     const std::vector<render::GpuLight>& lights = data.lights;
+    const std::vector<render::GpuShadowLayer>& layers = data.shadowLayers;
     const std::vector<Draw>& draws = data.draws;
-    const std::vector<ShadowLight>& shadowLights = data.shadowLights;
+    const std::vector<ShadowView>& shadowViews = data.shadowViews;
 
     ensureBuffer(c, slot.ubo, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     ensureBuffer(c, slot.instances, instances.size() * sizeof(render::GpuInstance),
@@ -207,6 +209,10 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     if (!instances.empty())
         slot.instances.write(instances.data(), instances.size() * sizeof(render::GpuInstance));
     if (!lights.empty()) slot.lights.write(lights.data(), lights.size() * sizeof(render::GpuLight));
+    ensureBuffer(c, slot.shadowLayers, layers.size() * sizeof(render::GpuShadowLayer),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!layers.empty())
+        slot.shadowLayers.write(layers.data(), layers.size() * sizeof(render::GpuShadowLayer));
 
     // ---- descriptors ----------------------------------------------------------------------
     VK_CHECK(vkResetDescriptorPool(c.device(), slot.pool, 0));
@@ -218,7 +224,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     VkDescriptorSet sets[2];
     VK_CHECK(vkAllocateDescriptorSets(c.device(), &alloc, sets));
     const VkDescriptorSet frameSet = sets[0], outputSet = sets[1];
-    vk::Image& shadowImage = shadowLights.empty() ? dummyShadow : shadowMaps;
+    vk::Image& shadowImage = shadowViews.empty() ? dummyShadow : shadowMaps;
     VkDescriptorBufferInfo uboInfo{slot.ubo.get(), 0, sizeof(frame)};
     VkDescriptorBufferInfo instInfo{slot.instances.get(), 0, VK_WHOLE_SIZE};
     VkDescriptorBufferInfo lightInfo{slot.lights.get(), 0, VK_WHOLE_SIZE};
@@ -226,7 +232,14 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                                      render::useState(Use::Sampled, true).layout};
     VkDescriptorImageInfo hdrInfo{pipes.nearestSampler, targets.hdr.view(),
                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet writes[5];
+    VkDescriptorBufferInfo layerInfo{slot.shadowLayers.get(), 0, VK_WHOLE_SIZE};
+    VkDescriptorImageInfo cookieInfos[render::kMaxCookies];
+    for (int i = 0; i < render::kMaxCookies; ++i) // unused slots hold white
+        cookieInfos[i] = {pipes.cookieSampler,
+                          cache->textureView(size_t(i) < data.cookies.size() ? data.cookies[size_t(i)]
+                                                                              : TexturePtr()),
+                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet writes[7];
     for (auto& w : writes) w = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     auto setWrite = [&](int i, VkDescriptorSet set, uint32_t binding, VkDescriptorType type) {
         writes[i].dstSet = set;
@@ -244,7 +257,12 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     writes[3].pImageInfo = &shadowInfo;
     setWrite(4, outputSet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     writes[4].pImageInfo = &hdrInfo;
-    vkUpdateDescriptorSets(c.device(), 5, writes, 0, nullptr);
+    setWrite(5, frameSet, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    writes[5].pBufferInfo = &layerInfo;
+    setWrite(6, frameSet, 5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    writes[6].descriptorCount = render::kMaxCookies;
+    writes[6].pImageInfo = cookieInfos;
+    vkUpdateDescriptorSets(c.device(), 7, writes, 0, nullptr);
 
     // ---- frame graph ----------------------------------------------------------------------
     FrameGraph g;
@@ -266,8 +284,11 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
         vkCmdSetScissor(cmd, 0, 1, &sc);
     };
 
-    for (const ShadowLight& s : shadowLights) {
-        g.addPass({"shadow[" + std::to_string(s.lightIndex) + "]", {}, {{rShadow, Use::DepthWrite}},
+    for (const ShadowView& s : shadowViews) {
+        std::string name = "shadow[" + std::to_string(s.lightIndex) + "]";
+        if (scene.lights()[size_t(s.lightIndex)].index() == 1) // a point light's six views
+            name += "." + std::to_string(s.layer - shadowInfos[size_t(s.lightIndex)].layer);
+        g.addPass({name, {}, {{rShadow, Use::DepthWrite}},
                    [&, s](VkCommandBuffer cmd) {
                        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
                        depth.imageView = shadowMaps.layerView(uint32_t(s.layer));
@@ -282,12 +303,18 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                        info.pDepthAttachment = &depth;
                        c.fn().cmdBeginRendering(cmd, &info);
                        viewportScissor(cmd, size, size);
-                       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.shadow);
+                       VkPipeline bound = VK_NULL_HANDLE;
                        for (const Draw& d : draws) {
-                           if (!d.castShadows) continue;
-                           const glm::mat4 mvp = s.frustum.viewProj * d.model;
+                           if (!d.castShadows || d.mesh->indexCount == 0) continue;
+                           const VkPipeline p = d.alphaCutoff > 0.0f ? pipes.shadowAlpha.get()
+                                                                     : pipes.shadow.get();
+                           if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+                           if (d.alphaCutoff > 0.0f)
+                               vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                       pipes.shadowLayout, 0, 1, &d.material, 0, nullptr);
+                           const render::ShadowPush push{s.frustum.viewProj * d.model, d.alphaCutoff};
                            vkCmdPushConstants(cmd, pipes.shadowLayout, VK_SHADER_STAGE_VERTEX_BIT |
-                                              VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(mvp), &mvp);
+                                              VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
                            drawMesh(cmd, *d.mesh);
                        }
                        c.fn().cmdEndRendering(cmd);
@@ -329,11 +356,15 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    info.pDepthAttachment = &depth;
                    c.fn().cmdBeginRendering(cmd, &info);
                    viewportScissor(cmd, targets.width, targets.height);
-                   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                     debug ? pipes.forwardDebug.get() : pipes.forward.get());
-                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.sceneLayout, 0, 1,
-                                           &frameSet, 0, nullptr);
+                   VkPipeline bound = VK_NULL_HANDLE;
                    for (const Draw& d : draws) {
+                       if (d.mesh->indexCount == 0) continue; // e.g. a cloth torn to pieces
+                       const VkPipeline p = pipes.forwardFor(debug, d.mirrored, d.twoSided);
+                       if (p != bound) {
+                           vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+                           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                   pipes.sceneLayout, 0, 1, &frameSet, 0, nullptr);
+                       }
                        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.sceneLayout, 1,
                                                1, &d.material, 0, nullptr);
                        vkCmdPushConstants(cmd, pipes.sceneLayout,
@@ -398,6 +429,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     slot.timestamps->reset(slot.cmd);
     slot.stats = FrameStats{};
     slot.stats.frameIndex = frameCounter;
+    slot.stats.meshUploads = data.meshUploads;
+    slot.stats.uploadBytes = data.uploadBytes;
     g.execute(c, slot.cmd, slot.timestamps.get(), slot.stats);
     // The present pseudo-pass only transitions; it is not a pass users should time.
     if (present && !slot.stats.passes.empty() && slot.stats.passes.back().name == "present")
@@ -525,9 +558,13 @@ ShadowInfo Renderer::shadowInfo(int lightIndex) const {
     return mImpl->shadowInfos[size_t(lightIndex)];
 }
 
-std::vector<float> Renderer::shadowMap(int lightIndex, uint32_t* sizeOut) {
+std::vector<float> Renderer::shadowMap(int lightIndex, uint32_t* sizeOut, int view) {
     const ShadowInfo info = shadowInfo(lightIndex);
     if (!info.active) throw InvalidArgument("light " + std::to_string(lightIndex) + " cast no shadow in the last frame");
+    if (view < 0 || size_t(view) >= info.views.size())
+        throw InvalidArgument("light " + std::to_string(lightIndex) + " has " +
+                              std::to_string(info.views.size()) + " shadow view(s), not view " +
+                              std::to_string(view));
     Impl& m = *mImpl;
     const uint32_t size = m.shadowMaps.desc().width;
     vk::Buffer buffer(m.ctx.get(), VkDeviceSize(size) * size * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -536,7 +573,7 @@ std::vector<float> Renderer::shadowMap(int lightIndex, uint32_t* sizeOut) {
         const render::UseState s = render::useState(Use::TransferRead, true);
         vk::transition(*m.ctx, cmd, m.shadowMaps, s.layout, s.stage, s.access);
         VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, uint32_t(info.layer), 1};
+        region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, uint32_t(info.layer + view), 1};
         region.imageExtent = {size, size, 1};
         vkCmdCopyImageToBuffer(cmd, m.shadowMaps.get(), s.layout, buffer.get(), 1, &region);
     });

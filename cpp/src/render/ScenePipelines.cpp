@@ -5,6 +5,8 @@
 
 #include <weft/Renderer.h>
 
+#include "render/GpuCache.h"
+#include "render/GpuTypes.h"
 #include "render/RenderTargets.h"
 
 namespace weft {
@@ -39,35 +41,56 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     s.maxLod = 0.0f;
     VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
     nearestSampler = vk::Sampler(&c, sampler, vkDestroySampler);
+    s.magFilter = s.minFilter = VK_FILTER_LINEAR;
+    VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
+    cookieSampler = vk::Sampler(&c, sampler, vkDestroySampler);
 
     frameSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                                              {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                              {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                             {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
-    materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                             {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                             {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                              uint32_t(kMaxCookies)}});
+    materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     outputSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     sceneLayout = vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));
-    shadowLayout = vk::createPipelineLayout(c, {}, sizeof(glm::mat4));
+    shadowLayout = vk::createPipelineLayout(c, {materialSetLayout}, sizeof(ShadowPush));
     outputLayout = vk::createPipelineLayout(c, {outputSetLayout}, 0);
 
     vk::GraphicsPipelineDesc d;
+    d.vertexStride = kVertexStride;
     d.vertexShader = "render/forward.vert";
     d.fragmentShader = "render/forward.frag";
     d.colorFormats = {kHdrFormat};
     d.depthFormat = kDepthFormat;
     d.layout = sceneLayout;
-    forward = vk::createGraphicsPipeline(c, d);
-    d.fragmentShader = "render/forward_debug.frag";
-    d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat, kDebugFormat, kDebugFormat};
-    forwardDebug = vk::createGraphicsPipeline(c, d);
+    for (int debug = 0; debug < 2; ++debug) {
+        if (debug) {
+            d.fragmentShader = "render/forward_debug.frag";
+            d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat, kDebugFormat, kDebugFormat};
+        }
+        for (int facing = 0; facing < 3; ++facing) {
+            d.cullMode = facing == 2 ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+            d.frontFace = facing == 1 ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+            forward[debug][facing] = vk::createGraphicsPipeline(c, d);
+        }
+    }
 
     vk::GraphicsPipelineDesc sd;
     sd.vertexShader = "render/shadow.vert";
     sd.vertexLayout = vk::VertexLayout::Position;
+    sd.vertexStride = kVertexStride;
     sd.depthFormat = kDepthFormat;
     sd.cullMode = VK_CULL_MODE_NONE; // open meshes (planes, cloth) must cast from both sides
     sd.layout = shadowLayout;
     shadow = vk::createGraphicsPipeline(c, sd);
+    sd.vertexShader = "render/shadow_alpha.vert";
+    sd.fragmentShader = "render/shadow_alpha.frag"; // discards texels below the alpha cutoff
+    sd.vertexLayout = vk::VertexLayout::PositionUv;
+    shadowAlpha = vk::createGraphicsPipeline(c, sd);
 }
 
 VkPipeline ScenePipelines::outputPipeline(VkFormat format) {

@@ -2,6 +2,7 @@
 #include <weft/Error.h>
 #include <weft/Mesh.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -186,6 +187,78 @@ Mesh Mesh::box(const glm::vec3& size) {
                             {base, base + 1, base + 2, base, base + 2, base + 3});
     }
     return mesh;
+}
+
+Mesh Mesh::heightField(const std::vector<float>& heights, int rows, int cols,
+                       const glm::vec3& origin, const glm::vec2& size, float uvScale) {
+    checkSegments("heightField", "rows", rows, 2);
+    checkSegments("heightField", "cols", cols, 2);
+    checkSize("heightField", "size x", size.x);
+    checkSize("heightField", "size z", size.y);
+    checkSize("heightField", "uv scale", uvScale);
+    if (!isFinite(origin)) throw InvalidArgument("heightField: origin must be finite");
+    if (heights.size() != size_t(rows) * size_t(cols))
+        throw InvalidArgument("heightField: expected rows * cols = " +
+                              std::to_string(size_t(rows) * size_t(cols)) + " heights, got " +
+                              std::to_string(heights.size()));
+    for (float h : heights)
+        if (!std::isfinite(h)) throw InvalidArgument("heightField: heights must be finite");
+    Mesh m;
+    const float dx = size.x / float(cols - 1), dz = size.y / float(rows - 1);
+    auto h = [&](int i, int j) {
+        return heights[size_t(std::clamp(j, 0, rows - 1)) * size_t(cols) + size_t(std::clamp(i, 0, cols - 1))];
+    };
+    for (int j = 0; j < rows; ++j) {
+        for (int i = 0; i < cols; ++i) {
+            m.positions.push_back(origin + glm::vec3(float(i) * dx, h(i, j), float(j) * dz));
+            const float dhdx = (h(i + 1, j) - h(i - 1, j)) / (float(std::min(i + 1, cols - 1) - std::max(i - 1, 0)) * dx);
+            const float dhdz = (h(i, j + 1) - h(i, j - 1)) / (float(std::min(j + 1, rows - 1) - std::max(j - 1, 0)) * dz);
+            m.normals.push_back(glm::normalize(glm::vec3(-dhdx, 1.0f, -dhdz)));
+            m.uvs.push_back(glm::vec2(float(i) / float(cols - 1), float(j) / float(rows - 1)) * uvScale);
+        }
+    }
+    for (int j = 0; j + 1 < rows; ++j) {
+        for (int i = 0; i + 1 < cols; ++i) {
+            const uint32_t a = uint32_t(j * cols + i), b = a + 1, c = a + uint32_t(cols), d = c + 1;
+            m.indices.insert(m.indices.end(), {a, c, b, b, c, d}); // counter-clockwise from +Y
+        }
+    }
+    return m;
+}
+
+std::vector<glm::vec4> computeTangents(const Mesh& mesh) {
+    const size_t n = mesh.vertexCount();
+    std::vector<glm::vec3> tan(n, glm::vec3(0.0f)), bit(n, glm::vec3(0.0f));
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const uint32_t i0 = mesh.indices[t], i1 = mesh.indices[t + 1], i2 = mesh.indices[t + 2];
+        const glm::vec3 e1 = mesh.positions[i1] - mesh.positions[i0];
+        const glm::vec3 e2 = mesh.positions[i2] - mesh.positions[i0];
+        const glm::vec2 d1 = mesh.uvs[i1] - mesh.uvs[i0];
+        const glm::vec2 d2 = mesh.uvs[i2] - mesh.uvs[i0];
+        const float det = d1.x * d2.y - d2.x * d1.y;
+        if (std::abs(det) < 1e-20f) continue;
+        // dP/du and dP/dv scaled by the triangle's UV area (|det|): area weighting for free.
+        const float sign = det > 0.0f ? 1.0f : -1.0f;
+        const glm::vec3 dPdu = (e1 * d2.y - e2 * d1.y) * sign;
+        const glm::vec3 dPdv = (e2 * d1.x - e1 * d2.x) * sign;
+        for (uint32_t i : {i0, i1, i2}) {
+            tan[i] += dPdu;
+            bit[i] += dPdv;
+        }
+    }
+    std::vector<glm::vec4> out(n);
+    for (size_t i = 0; i < n; ++i) {
+        const glm::vec3 nrm = mesh.normals[i];
+        glm::vec3 t = tan[i] - nrm * glm::dot(nrm, tan[i]);
+        if (glm::dot(t, t) < 1e-24f) { // no UV gradient: any tangent orthogonal to n
+            const glm::vec3 ref = std::abs(nrm.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+            t = glm::cross(ref, nrm);
+        }
+        t = glm::normalize(t);
+        const float w = glm::dot(glm::cross(nrm, t), -bit[i]) < 0.0f ? -1.0f : 1.0f;
+        out[i] = glm::vec4(t, w);
+    }
+    return out;
 }
 
 } // namespace weft

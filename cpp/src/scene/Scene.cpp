@@ -1,5 +1,7 @@
 #include <weft/Scene.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/Validate.h"
@@ -12,6 +14,11 @@ void Material::validate() const {
     requireNonNegative(ks, "Material.ks");
     requireNonNegative(baseColor, "Material.base_color");
     requirePositive(shininess, "Material.shininess");
+    requireFinite(alphaCutoff, "Material.alpha_cutoff");
+    if (alphaCutoff < 0.0f || alphaCutoff > 1.0f)
+        throw InvalidArgument("Material.alpha_cutoff must be in [0, 1]");
+    if (normalMap && normalMap->srgb())
+        throw InvalidArgument("Material.normal_map must be a linear texture (Texture(..., srgb=False))");
 }
 
 void DirectionalLight::validate() const {
@@ -21,6 +28,66 @@ void DirectionalLight::validate() const {
     requireNonNegative(color, "DirectionalLight.color");
     requireFinite(intensity, "DirectionalLight.intensity");
     if (intensity < 0) throw InvalidArgument("DirectionalLight.intensity must not be negative");
+}
+
+void Attenuation::validate() const {
+    for (float v : {constant, linear, quadratic, radius}) {
+        requireFinite(v, "Attenuation");
+        if (v < 0.0f) throw InvalidArgument("attenuation terms and radius must not be negative");
+    }
+    if (radius == 0.0f && constant == 0.0f && linear == 0.0f && quadratic == 0.0f)
+        throw InvalidArgument("attenuation needs k_c, k_l or k_q > 0 (or a radius): "
+                              "1 / (k_c + k_l d + k_q d^2) is infinite");
+}
+
+float Attenuation::operator()(float d) const {
+    if (radius > 0.0f) return std::max(0.0f, 1.0f - d * d / (radius * radius));
+    return 1.0f / (constant + linear * d + quadratic * d * d);
+}
+
+namespace {
+void validateEmitter(const glm::vec3& color, float intensity, const char* what) {
+    requireNonNegative(color, what);
+    requireFinite(intensity, what);
+    if (intensity < 0) throw InvalidArgument(std::string(what) + ": intensity must not be negative");
+}
+} // namespace
+
+void PointLight::validate() const {
+    requireFinite(position, "PointLight.position");
+    validateEmitter(color, intensity, "PointLight");
+    attenuation.validate();
+    requirePositive(shadowNear, "PointLight.shadow_near");
+}
+
+void SpotLight::validate() const {
+    requireFinite(position, "SpotLight.position");
+    requireFinite(direction, "SpotLight.direction");
+    if (glm::length(direction) < 1e-12f) throw InvalidArgument("SpotLight.direction must not be zero");
+    validateEmitter(color, intensity, "SpotLight");
+    attenuation.validate();
+    requirePositive(shadowNear, "SpotLight.shadow_near");
+    requireFinite(innerAngle, "SpotLight.inner_angle");
+    requireFinite(outerAngle, "SpotLight.outer_angle");
+    if (!(innerAngle >= 0.0f && innerAngle < outerAngle && outerAngle < 1.5607964f))
+        throw InvalidArgument("SpotLight angles must satisfy 0 <= inner_angle < outer_angle < "
+                              "pi/2 - 0.01 (got " + std::to_string(innerAngle) + ", " +
+                              std::to_string(outerAngle) + ")");
+}
+
+void validateLight(const Light& light) {
+    std::visit([](const auto& l) { l.validate(); }, light);
+}
+
+bool castsShadows(const Light& light) {
+    return std::visit([](const auto& l) { return l.castShadows; }, light);
+}
+
+void spotBasis(const glm::vec3& axis, glm::vec3& right, glm::vec3& up) {
+    const glm::vec3 a = glm::normalize(axis);
+    const glm::vec3 ref = std::abs(a.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    right = glm::normalize(glm::cross(a, ref));
+    up = glm::cross(right, a);
 }
 
 namespace {
@@ -37,13 +104,25 @@ uint32_t Scene::addMesh(MeshPtr mesh, const Material& material, const glm::mat4&
     mesh->validate();
     material.validate();
     requireInvertible(transform, "mesh transform");
-    mInstances.push_back({std::move(mesh), material, transform, castShadows});
+    mInstances.push_back({std::move(mesh), nullptr, material, transform, castShadows});
+    ++mVersion;
+    return uint32_t(mInstances.size() - 1);
+}
+
+uint32_t Scene::addCloth(std::shared_ptr<const Cloth> cloth, const Material& material,
+                         bool castShadows) {
+    if (!cloth) throw InvalidArgument("Scene.add_cloth: cloth is null");
+    material.validate();
+    Material m = material;
+    m.twoSided = true;
+    mInstances.push_back({nullptr, std::move(cloth), m, glm::mat4(1.0f), castShadows});
     ++mVersion;
     return uint32_t(mInstances.size() - 1);
 }
 
 void Scene::setTransform(uint32_t id, const glm::mat4& transform) {
     checkId(id, mInstances.size(), "mesh");
+    if (mInstances[id].cloth) throw InvalidArgument("a cloth's particles are in world space; it has no transform");
     requireInvertible(transform, "mesh transform");
     mInstances[id].transform = transform;
     ++mVersion;
@@ -53,19 +132,20 @@ void Scene::setMaterial(uint32_t id, const Material& material) {
     checkId(id, mInstances.size(), "mesh");
     material.validate();
     mInstances[id].material = material;
+    if (mInstances[id].cloth) mInstances[id].material.twoSided = true;
     ++mVersion;
 }
 
-uint32_t Scene::addLight(const DirectionalLight& light) {
-    light.validate();
+uint32_t Scene::addLight(const Light& light) {
+    validateLight(light);
     mLights.push_back(light);
     ++mVersion;
     return uint32_t(mLights.size() - 1);
 }
 
-void Scene::setLight(uint32_t id, const DirectionalLight& light) {
+void Scene::setLight(uint32_t id, const Light& light) {
     checkId(id, mLights.size(), "light");
-    light.validate();
+    validateLight(light);
     mLights[id] = light;
     ++mVersion;
 }
@@ -86,6 +166,16 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
     lo = glm::vec3(1e30f);
     hi = glm::vec3(-1e30f);
     for (const MeshInstance& inst : mInstances) {
+        if (inst.cloth) {
+            const float* p = inst.cloth->particleData(); // x, y, z, w records
+            for (int k = 0; k < inst.cloth->particleCount(); ++k) {
+                if (inst.cloth->isHole(k)) continue;
+                const glm::vec3 x(p[4 * k], p[4 * k + 1], p[4 * k + 2]);
+                lo = glm::min(lo, x);
+                hi = glm::max(hi, x);
+            }
+            continue;
+        }
         glm::vec3 mlo, mhi;
         inst.mesh->bounds(mlo, mhi);
         for (int i = 0; i < 8; ++i) {

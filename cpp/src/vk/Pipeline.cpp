@@ -22,9 +22,12 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
     std::vector<VkVertexInputAttributeDescription> attributes;
     if (d.vertexLayout != VertexLayout::None)
         attributes.push_back({0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0});
+    if (d.vertexLayout == VertexLayout::PositionUv)
+        attributes.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, 24});
     if (d.vertexLayout == VertexLayout::PositionNormalUv) {
         attributes.push_back({1, 0, VK_FORMAT_R32G32B32_SFLOAT, 12});
         attributes.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, 24});
+        if (d.vertexStride >= 48) attributes.push_back({3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 32});
     }
     VkPipelineVertexInputStateCreateInfo vertexInput{
         VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
@@ -46,7 +49,7 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
     raster.cullMode = d.cullMode;
     // Projections flip Y for Vulkan's clip space, which turns counter-clockwise object winding
     // into counter-clockwise framebuffer winding.
-    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.frontFace = d.frontFace;
     raster.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo multisample{
         VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
@@ -89,13 +92,12 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
     return Pipeline(&ctx, pipeline, vkDestroyPipeline);
 }
 
-DescriptorSetLayout createSetLayout(Context& ctx,
-                                    const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings,
+DescriptorSetLayout createSetLayout(Context& ctx, const std::vector<SetBinding>& bindings,
                                     VkDescriptorSetLayoutCreateFlags flags) {
     std::vector<VkDescriptorSetLayoutBinding> b;
-    for (auto [binding, type] : bindings)
-        b.push_back({binding, type, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                     nullptr});
+    for (const SetBinding& s : bindings)
+        b.push_back({s.binding, s.type, s.count,
+                     VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     info.flags = flags;
     info.bindingCount = uint32_t(b.size());

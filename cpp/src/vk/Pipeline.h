@@ -9,7 +9,8 @@ namespace weft::vk {
 enum class VertexLayout {
     None,          // no vertex buffer (full-screen triangle)
     Position,      // vec3 position, stride of the full vertex
-    PositionNormalUv,
+    PositionUv,       // vec3 position (location 0), vec2 uv at offset 24 (location 2)
+    PositionNormalUv, // + tangent (vec4 at offset 32) when the stride is at least 48
 };
 
 struct GraphicsPipelineDesc {
@@ -20,6 +21,7 @@ struct GraphicsPipelineDesc {
     std::vector<VkFormat> colorFormats;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkCullModeFlags cullMode = VK_CULL_MODE_BACK_BIT;
+    VkFrontFace frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     bool depthTest = true;
     bool depthWrite = true;
     VkPipelineLayout layout = VK_NULL_HANDLE;
@@ -27,9 +29,14 @@ struct GraphicsPipelineDesc {
 
 Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);
 
-/// Descriptor set layout from (binding, type) pairs, visible to vertex and fragment stages.
-DescriptorSetLayout createSetLayout(Context& ctx,
-                                    const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings,
+struct SetBinding {
+    uint32_t binding;
+    VkDescriptorType type;
+    uint32_t count = 1; // array size
+};
+
+/// Descriptor set layout from {binding, type[, count]}, visible to vertex and fragment stages.
+DescriptorSetLayout createSetLayout(Context& ctx, const std::vector<SetBinding>& bindings,
                                     VkDescriptorSetLayoutCreateFlags flags = 0);
 PipelineLayout createPipelineLayout(Context& ctx, const std::vector<VkDescriptorSetLayout>& sets,
                                     uint32_t pushConstantBytes);

@@ -70,6 +70,16 @@ Window::Window(int width, int height, const std::string& title, bool vsync)
         auto* native = static_cast<Native*>(glfwGetWindowUserPointer(w));
         if (native->keyCallback) native->keyCallback(key, action);
     });
+    glfwSetMouseButtonCallback(n.window, [](GLFWwindow* w, int button, int action, int) {
+        auto* native = static_cast<Native*>(glfwGetWindowUserPointer(w));
+        double x = 0, y = 0;
+        glfwGetCursorPos(w, &x, &y);
+        if (native->mouseButtonCallback) native->mouseButtonCallback(button, action, x, y);
+    });
+    glfwSetCursorPosCallback(n.window, [](GLFWwindow* w, double x, double y) {
+        auto* native = static_cast<Native*>(glfwGetWindowUserPointer(w));
+        if (native->cursorCallback) native->cursorCallback(x, y);
+    });
     glfwSetFramebufferSizeCallback(n.window, [](GLFWwindow* w, int, int) {
         static_cast<Native*>(glfwGetWindowUserPointer(w))->outOfDate = true;
     });
@@ -252,5 +262,11 @@ void Window::framebufferSize(int& width, int& height) const {
     glfwGetFramebufferSize(mNative->window, &width, &height);
 }
 void Window::onKey(std::function<void(int, int)> callback) { mNative->keyCallback = std::move(callback); }
+void Window::onMouseButton(std::function<void(int, int, double, double)> callback) {
+    mNative->mouseButtonCallback = std::move(callback);
+}
+void Window::onCursor(std::function<void(double, double)> callback) {
+    mNative->cursorCallback = std::move(callback);
+}
 
 } // namespace weft

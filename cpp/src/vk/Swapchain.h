@@ -26,6 +26,8 @@ struct Window::Native {
     std::vector<vk::Image> images;          // non-owning wrappers with tracked state
     std::vector<vk::Semaphore> renderDone;  // one per swapchain image
     std::function<void(int, int)> keyCallback;
+    std::function<void(int, int, double, double)> mouseButtonCallback;
+    std::function<void(double, double)> cursorCallback;
 
     /// (Re)creates the swapchain for the current framebuffer size; false while minimised.
     bool recreate();

@@ -23,6 +23,8 @@ from typing import Any, Dict, List, Optional, Sequence, TextIO
 SUBSYSTEMS: Dict[str, str] = {
     "render": "weft.bench.render",
     "cloth": "weft.bench.cloth",
+    "hair": "weft.bench.hair",
+    "btf": "weft.bench.btf",
     "ibl": "weft.bench.ibl",
 }
 

@@ -57,8 +57,9 @@ def _float_image(image: np.ndarray, name: str) -> np.ndarray:
 
 
 def load_environment(path: str) -> np.ndarray:
-    """Reads an environment image as linear float32 (H, W, 3): ``.hdr`` / ``.exr`` (when weft
-    has float-image IO), ``.npy`` (float, or cube faces (6, S, S, 3)) or ``.png`` (sRGB decoded)."""
+    """Reads an environment image as linear float32 (H, W, 3): ``.hdr`` / ``.exr``, ``.npy``
+    (float, or cube faces (6, S, S, 3)) or ``.png`` (sRGB decoded). Missing, truncated or corrupt
+    files raise weft.IoError."""
     import weft
 
     ext = os.path.splitext(path)[1].lower()
@@ -72,18 +73,17 @@ def load_environment(path: str) -> np.ndarray:
         except (ValueError, OSError) as exc:
             raise IoError(f"{path}: not a readable .npy file ({exc})") from None
         return a if a.ndim == 4 else _float_image(a, path)
-    loader = {".hdr": "load_hdr", ".exr": "load_exr"}.get(ext)
-    if loader is None:
-        raise InvalidArgument(f"{path}: unsupported environment format {ext!r} "
-                              "(use .hdr, .exr, .npy or .png)")
-    if not hasattr(weft, loader):
-        raise InvalidArgument(f"{path}: this weft build has no {loader}")
-    return _float_image(getattr(weft, loader)(path), path)
+    if ext == ".hdr":
+        return _float_image(weft.load_hdr(path), path)
+    if ext == ".exr":
+        return _float_image(weft.load_exr(path), path)
+    raise InvalidArgument(f"{path}: unsupported environment format {ext!r} "
+                          "(use .hdr, .exr, .npy or .png)")
 
 
 def save_environment(path: str, image: np.ndarray) -> None:
-    """Writes a float image (H, W, 3): ``.npy``, ``.hdr`` / ``.exr`` (when available) or
-    ``.png`` (sRGB encoded, clipped)."""
+    """Writes a float image (H, W, 3): ``.npy``, ``.hdr`` / ``.exr`` or ``.png`` (sRGB encoded,
+    clipped)."""
     import weft
 
     ext = os.path.splitext(path)[1].lower()
@@ -94,8 +94,10 @@ def save_environment(path: str, image: np.ndarray) -> None:
         x = np.clip(a, 0.0, 1.0)
         srgb = np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
         weft.save_png(path, np.rint(srgb * 255.0).astype(np.uint8))
-    elif ext in (".hdr", ".exr") and hasattr(weft, "save_" + ext[1:]):
-        getattr(weft, "save_" + ext[1:])(path, a)
+    elif ext == ".hdr":
+        weft.save_hdr(path, a)
+    elif ext == ".exr":
+        weft.save_exr(path, a)
     else:
         raise InvalidArgument(f"{path}: cannot write {ext!r} (use .npy, .hdr, .exr or .png)")
 

@@ -1,7 +1,7 @@
 """``python -m weft ibl {convert,irradiance,extract-lights}``: the IBL tools on files.
 
-Inputs: ``.hdr`` / ``.exr`` (when weft has float-image IO), ``.npy`` (float image, or cube faces
-(6, S, S, 3)) and ``.png`` (sRGB decoded). The kind of image is guessed from its shape unless
+Inputs: ``.hdr`` / ``.exr``, ``.npy`` (float image, or cube faces (6, S, S, 3)) and ``.png``
+(sRGB decoded). The kind of image is guessed from its shape unless
 ``--source`` says it: 2:1 equirectangular, 4:3 / 3:4 cube cross, 1:1 mirror-ball sphere map.
 Cube outputs are written as a cross (``--as cross``, default), equirectangular (``--as equirect``)
 or raw faces (``--as faces``, ``.npy`` only).

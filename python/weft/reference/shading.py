@@ -9,7 +9,12 @@ Shading (SPEC §1.3, eq. 2.5, 2.8, 2.9 and 2.10), per pixel with position p, uni
 camera position c, ``v = normalize(c - p)`` and ``T = base_color * texture(uv)``::
 
     colour = I_A * K_A * T
-    for each directional light (l = -normalize(direction), L = color * intensity):
+    for each light, l and L from :func:`incident` (SPEC §1.2):
+        directional: l = -normalize(direction), L = color * intensity
+        point:       l = normalize(x_L - p), L = color * intensity * a(|x_L - p|) with
+                     a(d) = 1 / (k_c + k_l d + k_q d^2) (eq. 2.3) or max(0, 1 - d^2/r^2) (eq. 2.4)
+        spot:        as point, times smoothstep(cos outer, cos inner, -l . axis) and the cookie
+                     texture (bilinear, clamped, level 0) at the point's projection on the cone
         if n.l > 0:
             h = normalize(l + v)                             # eq. 2.8
             I_D = (n.l) L                                    # eq. 2.5
@@ -38,8 +43,9 @@ from weft.reference.texture import (build_mip_chain, encode_u8, sample_bilinear_
 ArrayLike = Union[np.ndarray, Sequence[float], float]
 Vec3 = Tuple[float, float, float]
 
-__all__ = ["LightDesc", "SurfaceMaterial", "as_light", "first_shadow_light", "material_maps",
-           "blinn_phong", "shade_debug_frame", "OracleErrors", "compare_frame"]
+__all__ = ["LightDesc", "SurfaceMaterial", "as_light", "attenuation", "incident", "spot_basis",
+           "first_shadow_light", "material_maps", "blinn_phong", "shade_debug_frame",
+           "OracleErrors", "compare_frame"]
 
 
 # --------------------------------------------------------------------------------------------
@@ -57,16 +63,29 @@ def _vec3(value: Any, name: str) -> np.ndarray:
 
 @dataclass(frozen=True)
 class LightDesc:
-    """A directional light as the oracle needs it (SPEC §1.2).
+    """A light as the oracle needs it (SPEC §1.2): ``kind`` is "directional", "point" or
+    "spot".
 
-    ``direction`` points from the light into the scene; the vector towards the light is
-    ``l = -normalize(direction)`` and the radiance is ``L = color * intensity``.
+    ``direction`` points from the light into the scene (directional: the vector towards the
+    light is ``l = -normalize(direction)``; spot: the cone's axis); the radiance is
+    ``L = color * intensity`` times the attenuation of point and spot lights
+    (``attenuation`` = (k_c, k_l, k_q), or the radius form when ``radius > 0``), the spot cone
+    (``inner_angle``/``outer_angle``, half-angles in radians) and the spot's ``cookie`` (an
+    image as ``weft.Texture`` takes it; ``cookie_srgb`` says whether uint8 texels are sRGB).
     """
 
     direction: Vec3 = (0.0, -1.0, 0.0)
     color: Vec3 = (1.0, 1.0, 1.0)
     intensity: float = 1.0
     cast_shadows: bool = True
+    kind: str = "directional"
+    position: Vec3 = (0.0, 0.0, 0.0)
+    attenuation: Vec3 = (1.0, 0.0, 0.0)
+    radius: float = 0.0
+    inner_angle: float = 0.35
+    outer_angle: float = 0.5
+    cookie: Optional[np.ndarray] = field(default=None, compare=False)
+    cookie_srgb: bool = True
 
     def to_light(self) -> np.ndarray:
         """Unit vector from the surface towards the light, ``l``."""
@@ -82,21 +101,113 @@ class LightDesc:
 
 
 def as_light(light: Any) -> LightDesc:
-    """Accepts a :class:`LightDesc`, a ``weft.DirectionalLight`` (or any object with
-    ``direction``/``color``/``intensity``/``cast_shadows`` attributes) or a dict with those keys."""
+    """Accepts a :class:`LightDesc`, a ``weft.DirectionalLight``/``PointLight``/``SpotLight``
+    (or any object with their attributes) or a dict with those keys (``kind`` defaults to
+    the class name, else "directional")."""
     if isinstance(light, LightDesc):
         return light
     if isinstance(light, Mapping):
         get = light.get
+        kind = str(get("kind", "directional"))
     else:
         def get(key: str, default: Any = None) -> Any:
             return getattr(light, key, default)
+        name = type(light).__name__
+        kind = {"PointLight": "point", "SpotLight": "spot"}.get(name, get("kind", "directional"))
+    if kind not in ("directional", "point", "spot"):
+        raise ValueError(f"unknown light kind {kind!r}")
+    cookie = get("cookie", None)
+    cookie_srgb = bool(getattr(cookie, "srgb", True))
+    if cookie is not None and not isinstance(cookie, np.ndarray):
+        cookie = np.asarray(cookie.image)  # a weft.Texture
     return LightDesc(
         direction=tuple(_vec3(get("direction", (0.0, -1.0, 0.0)), "direction")),
         color=tuple(_vec3(get("color", (1.0, 1.0, 1.0)), "color")),
         intensity=float(get("intensity", 1.0)),
         cast_shadows=bool(get("cast_shadows", True)),
+        kind=kind,
+        position=tuple(_vec3(get("position", (0.0, 0.0, 0.0)), "position")),
+        attenuation=tuple(_vec3(get("attenuation", (1.0, 0.0, 0.0)), "attenuation")),
+        radius=float(get("radius", 0.0)),
+        inner_angle=float(get("inner_angle", 0.35)),
+        outer_angle=float(get("outer_angle", 0.5)),
+        cookie=cookie,
+        cookie_srgb=bool(get("cookie_srgb", cookie_srgb)),
     )
+
+
+def attenuation(light: LightDesc, distance: ArrayLike) -> np.ndarray:
+    """a(d) of a point or spot light: eq. 2.4 when ``radius > 0``, else eq. 2.3."""
+    d = np.asarray(distance, dtype=np.float64)
+    if light.radius > 0.0:
+        return np.maximum(0.0, 1.0 - d * d / (light.radius * light.radius))
+    kc, kl, kq = light.attenuation
+    return 1.0 / (kc + kl * d + kq * d * d)
+
+
+def spot_basis(axis: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
+    """The (right, up) vectors spanning a spot light's cookie, from its unit axis."""
+    a = _vec3(axis, "axis")
+    a = a / np.linalg.norm(a)
+    ref = np.array([0.0, 0.0, 1.0]) if abs(a[1]) > 0.99 else np.array([0.0, 1.0, 0.0])
+    right = np.cross(a, ref)
+    right /= np.linalg.norm(right)
+    return right, np.cross(right, a)
+
+
+def _smoothstep(e0: float, e1: float, x: np.ndarray) -> np.ndarray:
+    t = np.clip((x - e0) / (e1 - e0), 0.0, 1.0)
+    return t * t * (3.0 - 2.0 * t)
+
+
+def _sample_bilinear_clamp(image: np.ndarray, uv: np.ndarray) -> np.ndarray:
+    """Bilinear lookup with clamp-to-edge addressing (texel centres at (i + 0.5) / size)."""
+    h, w = image.shape[:2]
+    x = uv[..., 0] * w - 0.5
+    y = uv[..., 1] * h - 0.5
+    x0 = np.floor(x)
+    y0 = np.floor(y)
+    fx = (x - x0)[..., None]
+    fy = (y - y0)[..., None]
+    x0 = x0.astype(np.int64)
+    y0 = y0.astype(np.int64)
+    def at(yy: np.ndarray, xx: np.ndarray) -> np.ndarray:
+        return image[np.clip(yy, 0, h - 1), np.clip(xx, 0, w - 1)]
+    return ((1 - fy) * ((1 - fx) * at(y0, x0) + fx * at(y0, x0 + 1))
+            + fy * ((1 - fx) * at(y0 + 1, x0) + fx * at(y0 + 1, x0 + 1)))
+
+
+def incident(light: Any, position: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """Unit vectors ``l`` towards the light and the radiance ``L`` arriving at ``position``
+    (..., 3), both (..., 3): colour * intensity times attenuation, spot cone and cookie."""
+    lt = as_light(light)
+    p = np.asarray(position, dtype=np.float64)
+    base = lt.radiance()
+    if lt.kind == "directional":
+        return np.broadcast_to(lt.to_light(), p.shape).copy(), np.broadcast_to(base, p.shape).copy()
+    d = _vec3(lt.position, "position") - p
+    dist = np.linalg.norm(d, axis=-1)
+    l = d / np.maximum(dist, 1e-20)[..., None]
+    radiance = base * attenuation(lt, dist)[..., None]
+    if lt.kind == "spot":
+        axis = _vec3(lt.direction, "direction")
+        axis = axis / np.linalg.norm(axis)
+        cos_angle = -np.einsum("...k,k->...", l, axis)
+        radiance = radiance * _smoothstep(np.cos(lt.outer_angle), np.cos(lt.inner_angle),
+                                          cos_angle)[..., None]
+        if lt.cookie is not None:
+            right, up = spot_basis(axis)
+            q = p - _vec3(lt.position, "position")
+            with np.errstate(divide="ignore", invalid="ignore"):
+                z = np.einsum("...k,k->...", q, axis) * np.tan(lt.outer_angle)
+                uv = 0.5 + 0.5 * np.stack([np.einsum("...k,k->...", q, right),
+                                           -np.einsum("...k,k->...", q, up)], axis=-1) / z[..., None]
+            front = cos_angle > 0.0
+            uv = np.where(front[..., None], uv, 0.5)
+            cookie = texture_to_linear(lt.cookie, lt.cookie_srgb)[:, :, :3]
+            radiance = np.where(front[..., None], radiance * _sample_bilinear_clamp(cookie, uv),
+                                radiance)
+    return l, radiance
 
 
 def first_shadow_light(lights: Iterable[Any]) -> Optional[int]:
@@ -234,7 +345,8 @@ def blinn_phong(position: np.ndarray, normal: np.ndarray, camera_position: Array
                 ka: ArrayLike = 1.0, kd: ArrayLike = 1.0, ks: ArrayLike = 0.0,
                 shininess: ArrayLike = 32.0,
                 shadow: Union[None, ArrayLike, Mapping[int, ArrayLike]] = None) -> np.ndarray:
-    """Blinn-Phong radiance of SPEC §1.3 (eq. 2.5, 2.8, 2.9, 2.10) for directional lights.
+    """Blinn-Phong radiance of SPEC §1.3 (eq. 2.5, 2.8, 2.9, 2.10) for directional, point and
+    spot lights (see :func:`incident`).
 
     Parameters
     ----------
@@ -282,10 +394,8 @@ def blinn_phong(position: np.ndarray, normal: np.ndarray, camera_position: Array
         visibility = {} if first is None else {
             first: np.asarray(shadow, dtype=np.float64)[..., None]}
     for index, raw in enumerate(lights):
-        light = as_light(raw)
-        l = light.to_light()
-        radiance = light.radiance()
-        ndl = np.einsum("...k,k->...", n, l)
+        l, radiance = incident(raw, p)
+        ndl = np.einsum("...k,...k->...", n, l)
         lit = ndl > 0.0
         h = _normalize(l + v)
         ndh = np.maximum(np.einsum("...k,...k->...", n, h), 0.0)

@@ -74,6 +74,7 @@ void Cloth::step(float dt) {
     m.computeNormals();
     m.afterStep(dt);
     ++m.steps;
+    ++m.meshVersion;
 }
 
 int Cloth::advance(float realDt, float rate, int maxSteps) {
@@ -99,11 +100,13 @@ void Cloth::projectConstraints() {
     Impl& m = *mImpl;
     std::fill(m.lambda.begin(), m.lambda.end(), 0.0f);
     m.relax(1.0f / 60.0f);
+    ++m.meshVersion;
 }
 
 void Cloth::setPositions(const std::vector<glm::vec3>& positions, bool keepVelocity) {
     Impl& m = *mImpl;
     checkPoints(positions, size_t(m.n), "positions");
+    ++m.meshVersion;
     for (int k = 0; k < m.n; ++k) {
         const glm::vec3 v = m.particles[size_t(k)].x - m.previous[size_t(k)];
         m.particles[size_t(k)].x = positions[size_t(k)];
@@ -141,6 +144,7 @@ void Cloth::reset() {
     m.grabTargets.clear();
     m.hasPendingVelocity = false;
     m.accumulator = 0.0;
+    ++m.meshVersion;
     m.applyInverseMasses();
     wake();
 }
@@ -209,6 +213,7 @@ void Cloth::setHoles(const std::vector<uint8_t>& mask) {
     if (mask.size() != size_t(m.n))
         throw InvalidArgument("hole mask must have ny x nx = " + std::to_string(m.n) + " entries");
     for (int k = 0; k < m.n; ++k) m.hole[size_t(k)] = mask[size_t(k)] ? 1 : 0;
+    ++m.meshVersion;
     // Constraints come back only where both ends are cloth again (torn ones stay torn).
     for (size_t c = 0; c < m.constraints.size(); ++c)
         if (!m.hole[size_t(m.constraints[c].a)] && !m.hole[size_t(m.constraints[c].b)] &&
@@ -308,5 +313,6 @@ void Cloth::wake() {
 }
 
 uint64_t Cloth::stepCount() const { return mImpl->steps; }
+uint64_t Cloth::meshVersion() const { return mImpl->meshVersion; }
 
 } // namespace weft

@@ -20,10 +20,17 @@ struct Constraint {
     float rest;
 };
 
-/// Constraints that share no particle: projected in any order, or in parallel.
+/// Constraints that share no particle: projected in any order, or in parallel. They are all of
+/// one grid offset (dx >= 0, dy) and one colour, stored row by row: row `rows[r]` holds
+/// constraints [begin + r * perRow, begin + (r + 1) * perRow), so the solver walks the grid
+/// instead of loading particle indices.
 struct Batch {
     ConstraintFamily family;
     int begin, end; // range in the constraint arrays
+    int dx, dy;     // particle b = a + (dx, dy)
+    int parity;     // colour: (i / dx) % 2 when dx > 0 (rows then hold every valid j)
+    int perRow;
+    std::vector<int> rows;
 };
 
 /// Long-range attachment: |x_particle - x_anchor| <= length (the rest distance), one-sided.
@@ -50,6 +57,7 @@ struct Cloth::Impl {
     bool hasPendingVelocity = false;
 
     std::vector<cloth::Constraint> constraints; // ordered by batch
+    std::vector<float> restLength;              // constraints[c].rest, contiguous
     std::vector<uint8_t> family, active;
     std::vector<float> lambda;
     std::vector<cloth::Batch> batches;
@@ -63,6 +71,7 @@ struct Cloth::Impl {
 
     double accumulator = 0.0;
     uint64_t steps = 0;
+    uint64_t meshVersion = 1;
     int quietSteps = 0;
     bool asleep = false;
     float lastH = 1.0f / 60.0f;

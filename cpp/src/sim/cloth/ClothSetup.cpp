@@ -82,8 +82,9 @@ void Cloth::Impl::build() {
     batches.clear();
     for (const Offset& o : offsets) {
         for (int parity = 0; parity < 2; ++parity) {
-            const int begin = int(constraints.size());
+            cloth::Batch batch{o.family, int(constraints.size()), 0, o.dx, o.dy, parity, 0, {}};
             for (int j = 0; j < p.ny; ++j) {
+                const int rowBegin = int(constraints.size());
                 for (int i = 0; i < p.nx; ++i) {
                     const int i2 = i + o.dx, j2 = j + o.dy;
                     if (i2 < 0 || i2 >= p.nx || j2 < 0 || j2 >= p.ny) continue;
@@ -93,11 +94,17 @@ void Cloth::Impl::build() {
                     constraints.push_back({a, b, glm::length(rest[size_t(b)] - rest[size_t(a)])});
                     family.push_back(uint8_t(o.family));
                 }
+                const int count = int(constraints.size()) - rowBegin;
+                if (count == 0) continue;
+                batch.perRow = count; // equal for every row of a batch
+                batch.rows.push_back(j);
             }
-            if (int(constraints.size()) > begin)
-                batches.push_back({o.family, begin, int(constraints.size())});
+            batch.end = int(constraints.size());
+            if (batch.end > batch.begin) batches.push_back(std::move(batch));
         }
     }
+    restLength.resize(constraints.size());
+    for (size_t c = 0; c < constraints.size(); ++c) restLength[c] = constraints[c].rest;
     active.assign(constraints.size(), 1);
     lambda.assign(constraints.size(), 0.0f);
 }

@@ -1,0 +1,378 @@
+// Bindings of the BTF subsystem (private; the Python API is the weft.btf package):
+// BtfSamples, Bonn-layout IO, synthetic rendering, linear/specular/Blinn-Phong fits, errors.
+// Material maps cross as dicts of NumPy arrays (H, W, 3) float32 (see weft.btf.BtfMaterial).
+#include <cmath>
+#include <cstring>
+
+#include <pybind11/stl.h>
+
+#include <weft/BtfIo.h>
+#include <weft/BtfNonlinear.h>
+#include <weft/BtfSynth.h>
+
+#include "Convert.h"
+
+namespace weft::py_bind {
+
+namespace {
+
+std::vector<float> floatArray(py::handle obj, const std::string& name,
+                              const std::vector<py::ssize_t>& shape) {
+    auto a = numericArray(obj, name);
+    std::string want = "(";
+    for (size_t i = 0; i < shape.size(); ++i) want += (i ? ", " : "") + std::to_string(shape[i]);
+    want += ")";
+    bool ok = a.ndim() == py::ssize_t(shape.size());
+    for (size_t i = 0; ok && i < shape.size(); ++i) ok = a.shape(py::ssize_t(i)) == shape[i];
+    if (!ok) throw InvalidArgument(name + " must have shape " + want);
+    std::vector<float> out(size_t(a.size()));
+    const double* d = a.data();
+    for (size_t i = 0; i < out.size(); ++i) {
+        if (!std::isfinite(d[i])) throw InvalidArgument(name + " must be finite (got NaN or inf)");
+        out[i] = float(d[i]);
+    }
+    return out;
+}
+
+py::array_t<float> toArray(const std::vector<float>& v, std::vector<py::ssize_t> shape) {
+    py::array_t<float> out(shape);
+    if (!v.empty()) std::memcpy(out.mutable_data(), v.data(), v.size() * sizeof(float));
+    return out;
+}
+
+BtfGamma gammaFrom(const std::string& s) {
+    if (s == "raw") return BtfGamma::Raw;
+    if (s == "linear") return BtfGamma::Linear;
+    throw InvalidArgument("gamma must be 'raw' or 'linear', got '" + s + "'");
+}
+
+std::vector<BtfAngles> anglesFrom(py::handle obj) {
+    auto a = numericArray(obj, "angles");
+    if (a.ndim() != 2 || a.shape(1) != 4 || a.shape(0) < 1)
+        throw InvalidArgument("angles must have shape (S, 4): θ_l, φ_l, θ_v, φ_v in degrees");
+    std::vector<BtfAngles> out;
+    auto r = a.unchecked<2>();
+    for (py::ssize_t s = 0; s < a.shape(0); ++s)
+        out.push_back({float(r(s, 0)), float(r(s, 1)), float(r(s, 2)), float(r(s, 3))});
+    return out;
+}
+
+BtfMaterialMaps mapsFrom(const BtfSamples& samples, py::dict d) {
+    const py::ssize_t h = samples.height(), w = samples.width();
+    BtfMaterialMaps m;
+    m.width = samples.width();
+    m.height = samples.height();
+    m.normal = floatArray(d["normal"], "normal", {h, w, 3});
+    m.albedo = floatArray(d["albedo"], "albedo", {h, w, 3});
+    m.ambient = floatArray(d["ambient"], "ambient", {h, w, 3});
+    if (d.contains("specular") && !d["specular"].is_none())
+        m.specular = floatArray(d["specular"], "specular", {h, w, 3});
+    if (d.contains("exponent_map") && !d["exponent_map"].is_none())
+        m.exponentMap = floatArray(d["exponent_map"], "exponent_map", {h, w});
+    m.exponent = d.contains("exponent") ? d["exponent"].cast<float>() : 1.0f;
+    m.flatSpecularNormal =
+        d.contains("flat_specular_normal") && d["flat_specular_normal"].cast<bool>();
+    m.clampDiffuse = d.contains("clamp_diffuse") && d["clamp_diffuse"].cast<bool>();
+    for (size_t i = 0; i < m.normal.size(); i += 3) {
+        const float len = std::sqrt(m.normal[i] * m.normal[i] + m.normal[i + 1] * m.normal[i + 1] +
+                                    m.normal[i + 2] * m.normal[i + 2]);
+        if (std::fabs(len - 1.0f) > 1e-3f) throw InvalidArgument("normals must have unit length");
+    }
+    m.validate();
+    return m;
+}
+
+py::dict mapsTo(const BtfMaterialMaps& m) {
+    const py::ssize_t h = m.height, w = m.width;
+    py::dict d;
+    d["normal"] = toArray(m.normal, {h, w, 3});
+    d["albedo"] = toArray(m.albedo, {h, w, 3});
+    d["ambient"] = toArray(m.ambient, {h, w, 3});
+    d["specular"] = m.specular.empty() ? py::object(py::none()) : toArray(m.specular, {h, w, 3});
+    d["exponent"] = m.exponent;
+    d["exponent_map"] =
+        m.exponentMap.empty() ? py::object(py::none()) : toArray(m.exponentMap, {h, w});
+    d["flat_specular_normal"] = m.flatSpecularNormal;
+    d["clamp_diffuse"] = m.clampDiffuse;
+    return d;
+}
+
+py::dict linearTo(const BtfLinearFit& f) {
+    const py::ssize_t h = f.height, w = f.width;
+    py::dict d;
+    d["texture"] = toArray(f.texture, {h, w, 3});
+    d["normal"] = toArray(f.normal, {h, w, 3});
+    d["ambient"] = toArray(f.ambient, {h, w, 3});
+    py::array_t<bool> dark({h, w});
+    for (size_t i = 0; i < f.dark.size(); ++i) dark.mutable_data()[i] = f.dark[i] != 0;
+    d["dark"] = dark;
+    d["dark_texels"] = f.darkTexels;
+    d["dark_channels"] = f.darkChannels;
+    return d;
+}
+
+BtfLinearFit linearFrom(const BtfSamples& samples, py::dict d) {
+    const py::ssize_t h = samples.height(), w = samples.width();
+    BtfLinearFit f;
+    f.width = samples.width();
+    f.height = samples.height();
+    f.texture = floatArray(d["texture"], "texture", {h, w, 3});
+    f.normal = floatArray(d["normal"], "normal", {h, w, 3});
+    f.ambient = floatArray(d["ambient"], "ambient", {h, w, 3});
+    return f;
+}
+
+BtfLinearOptions linearOptions(bool robust, int iterations, float dark, int threads) {
+    BtfLinearOptions o;
+    o.robust = robust;
+    o.robustIterations = iterations;
+    o.darkThreshold = dark;
+    o.threads = threads;
+    return o;
+}
+
+BtfSolver solverFrom(const std::string& s) {
+    if (s == "auto") return BtfSolver::Auto;
+    if (s == "builtin") return BtfSolver::Builtin;
+    if (s == "ceres") return BtfSolver::Ceres;
+    throw InvalidArgument("solver must be 'auto', 'builtin' or 'ceres', got '" + s + "'");
+}
+
+} // namespace
+
+void bindBtf(py::module_& m) {
+    py::class_<BtfSamples>(m, "BtfSamples",
+                           "BTF measurements: per sample (light, view) an RGB image; values "
+                           "float32 (S, 3, H, W), angles (S, 4) degrees θ_l, φ_l, θ_v, φ_v.")
+        .def(py::init([](py::handle values, py::handle angles) {
+            auto ang = anglesFrom(angles);
+            auto a = numericArray(values, "values");
+            if (a.ndim() != 4 || a.shape(0) != py::ssize_t(ang.size()) || a.shape(1) != 3)
+                throw InvalidArgument("values must have shape (S, 3, H, W) with S = len(angles)");
+            BtfSamples s(int(a.shape(3)), int(a.shape(2)), ang);
+            const double* d = a.data();
+            for (size_t i = 0; i < s.values().size(); ++i) s.values()[i] = float(d[i]);
+            s.requireFinite();
+            return s;
+        }), py::arg("values"), py::arg("angles"))
+        .def_property_readonly("width", &BtfSamples::width)
+        .def_property_readonly("height", &BtfSamples::height)
+        .def_property_readonly("count", &BtfSamples::count)
+        .def_property_readonly("values", [](const BtfSamples& s) {
+            return toArray(s.values(), {s.count(), 3, s.height(), s.width()});
+        }, "A copy of the samples, float32 (S, 3, H, W).")
+        .def_property_readonly("angles", [](const BtfSamples& s) {
+            py::array_t<float> out({s.count(), 4});
+            for (int i = 0; i < s.count(); ++i) {
+                const BtfAngles& a = s.angles()[size_t(i)];
+                const float v[4] = {a.thetaLight, a.phiLight, a.thetaView, a.phiView};
+                std::memcpy(out.mutable_data() + i * 4, v, sizeof v);
+            }
+            return out;
+        })
+        .def_property_readonly("light_dirs", [](const BtfSamples& s) {
+            py::array_t<float> out({s.count(), 3});
+            for (int i = 0; i < s.count(); ++i)
+                for (int k = 0; k < 3; ++k) out.mutable_data()[i * 3 + k] = s.light(i)[k];
+            return out;
+        })
+        .def_property_readonly("view_dirs", [](const BtfSamples& s) {
+            py::array_t<float> out({s.count(), 3});
+            for (int i = 0; i < s.count(); ++i)
+                for (int k = 0; k < 3; ++k) out.mutable_data()[i * 3 + k] = s.view(i)[k];
+            return out;
+        })
+        .def("__repr__", [](const BtfSamples& s) {
+            return "<weft.BtfSamples " + std::to_string(s.count()) + " samples of " +
+                   std::to_string(s.width()) + "x" + std::to_string(s.height()) + " RGB>";
+        });
+
+    m.def("btf_standard_directions", [] {
+        const auto& d = btfStandardDirections();
+        py::array_t<float> out({py::ssize_t(d.size()), py::ssize_t(2)});
+        for (size_t i = 0; i < d.size(); ++i) {
+            out.mutable_data()[i * 2] = d[i].x;
+            out.mutable_data()[i * 2 + 1] = d[i].y;
+        }
+        return out;
+    });
+    m.def("btf_parse_file_name", [](const std::string& name) -> py::object {
+        BtfAngles a;
+        if (!parseBtfFileName(name, a)) return py::none();
+        return py::make_tuple(a.thetaLight, a.phiLight, a.thetaView, a.phiView);
+    }, py::arg("name"));
+    m.def("btf_load", [](const std::string& path, py::object views, const std::string& gamma,
+                         int threads) {
+        BtfLoadOptions o;
+        o.gamma = gammaFrom(gamma);
+        o.threads = threads;
+        if (views.is_none()) {
+            o.views.clear();
+        } else {
+            auto a = numericArray(views, "views");
+            if (a.ndim() != 2 || a.shape(1) != 2 || a.shape(0) < 1)
+                throw InvalidArgument("views must have shape (V, 2): θ_v, φ_v in degrees");
+            o.views.clear();
+            for (py::ssize_t i = 0; i < a.shape(0); ++i)
+                o.views.emplace_back(float(a.data()[i * 2]), float(a.data()[i * 2 + 1]));
+        }
+        py::gil_scoped_release release;
+        return loadBtf(path, o);
+    }, py::arg("path"), py::arg("views"), py::arg("gamma") = "raw", py::arg("threads") = 0);
+    m.def("btf_write", [](const std::string& path, const BtfSamples& samples,
+                          const std::string& format, int quality, bool zip,
+                          const std::string& gamma, const std::string& prefix) {
+        BtfWriteOptions o;
+        if (format == "jpg" || format == "jpeg") o.format = BtfImageFormat::Jpeg;
+        else if (format == "png") o.format = BtfImageFormat::Png;
+        else throw InvalidArgument("format must be 'jpg' or 'png', got '" + format + "'");
+        o.jpegQuality = quality;
+        o.zip = zip;
+        o.gamma = gammaFrom(gamma);
+        o.prefix = prefix;
+        py::gil_scoped_release release;
+        writeBtf(path, samples, o);
+    }, py::arg("path"), py::arg("samples"), py::arg("format") = "jpg", py::arg("quality") = 95,
+       py::arg("zip") = false, py::arg("gamma") = "raw", py::arg("prefix") = "");
+    m.def("btf_render", [](py::dict maps, py::handle angles, py::object height, bool wrap,
+                           int threads) {
+        auto ang = anglesFrom(angles);
+        auto n = numericArray(maps["normal"], "normal");
+        if (n.ndim() != 3) throw InvalidArgument("normal must have shape (H, W, 3)");
+        BtfSamples shape(int(n.shape(1)), int(n.shape(0)), {ang[0]});
+        BtfMaterialMaps mm = mapsFrom(shape, maps);
+        BtfShadowing sh;
+        sh.wrap = wrap;
+        if (!height.is_none())
+            sh.height = floatArray(height, "height", {n.shape(0), n.shape(1)});
+        py::gil_scoped_release release;
+        return renderBtf(mm, ang, sh, threads);
+    }, py::arg("maps"), py::arg("angles"), py::arg("height") = py::none(),
+       py::arg("wrap") = true, py::arg("threads") = 0);
+    m.def("btf_fit_linear", [](const BtfSamples& s, bool robust, int iterations, float dark,
+                               int threads) {
+        BtfLinearFit f;
+        {
+            py::gil_scoped_release release;
+            f = fitBtfLinear(s, linearOptions(robust, iterations, dark, threads));
+        }
+        return linearTo(f);
+    }, py::arg("samples"), py::arg("robust") = false, py::arg("robust_iterations") = 4,
+       py::arg("dark_threshold") = 1e-4f, py::arg("threads") = 0);
+    m.def("btf_solve_linear", [](const BtfSamples& s, py::handle texture, int threads) {
+        auto t = floatArray(texture, "texture", {s.height(), s.width(), 3});
+        BtfLinearFit f;
+        {
+            py::gil_scoped_release release;
+            f = solveBtfLinear(s, t, linearOptions(false, 4, 0.0f, threads));
+        }
+        return linearTo(f);
+    }, py::arg("samples"), py::arg("texture"), py::arg("threads") = 0);
+    m.def("btf_material_from_linear", [](const BtfSamples& s, py::dict linear) {
+        return mapsTo(btfMaterialFromLinear(linearFrom(s, linear)));
+    }, py::arg("samples"), py::arg("linear"));
+    m.def("btf_fit_specular", [](const BtfSamples& s, py::dict linear, bool flat, int maxExponent,
+                                 bool perTexel, int threads) {
+        const BtfLinearFit f = linearFrom(s, linear);
+        BtfSpecularOptions o;
+        o.flatSpecularNormal = flat;
+        o.maxExponent = maxExponent;
+        o.perTexel = perTexel;
+        o.threads = threads;
+        BtfSpecularFit r;
+        {
+            py::gil_scoped_release release;
+            r = fitBtfSpecular(s, f, o);
+        }
+        py::dict d;
+        d["maps"] = mapsTo(r.maps);
+        py::array_t<double> curve(py::ssize_t(r.curve.size()));
+        std::memcpy(curve.mutable_data(), r.curve.data(), r.curve.size() * sizeof(double));
+        d["curve"] = curve;
+        d["specular_sample"] = r.specularSample;
+        return d;
+    }, py::arg("samples"), py::arg("linear"), py::arg("flat_specular_normal") = true,
+       py::arg("max_exponent") = 4096, py::arg("per_texel") = false, py::arg("threads") = 0);
+    m.def("btf_sample_errors", [](const BtfSamples& s, py::dict maps, bool reconstruct,
+                                  int threads) -> py::object {
+        const BtfMaterialMaps mm = mapsFrom(s, maps);
+        std::vector<float> recon;
+        std::vector<double> errors;
+        {
+            py::gil_scoped_release release;
+            errors = btfSampleErrors(s, mm, reconstruct ? &recon : nullptr, threads);
+        }
+        py::array_t<double> e(py::ssize_t(errors.size()));
+        std::memcpy(e.mutable_data(), errors.data(), errors.size() * sizeof(double));
+        if (!reconstruct) return e;
+        return py::make_tuple(e, toArray(recon, {s.count(), 3, s.height(), s.width()}));
+    }, py::arg("samples"), py::arg("maps"), py::arg("reconstruct") = false,
+       py::arg("threads") = 0);
+    m.def("btf_fit_lafortune", [](const BtfSamples& s, py::dict seed, int lobes,
+                                  int maxIterations, int threads) {
+        const BtfMaterialMaps mm = mapsFrom(s, seed);
+        BtfLafortuneFit f;
+        {
+            py::gil_scoped_release release;
+            f = fitBtfLafortune(s, mm, lobes, maxIterations, threads);
+        }
+        const py::ssize_t h = f.height, w = f.width, l = f.lobes;
+        py::dict d;
+        d["normal"] = toArray(f.normal, {h, w, 3});
+        d["diffuse"] = toArray(f.diffuse, {h, w, 3});
+        d["ambient"] = toArray(f.ambient, {h, w, 3});
+        d["lobe_albedo"] = toArray(f.lobeAlbedo, {h, w, l, 3});
+        d["lobe_shape"] = toArray(f.lobeShape, {h, w, l, 4});
+        d["mean_iterations"] = f.meanIterations;
+        return d;
+    }, py::arg("samples"), py::arg("seed"), py::arg("lobes") = 1,
+       py::arg("max_iterations") = 30, py::arg("threads") = 0);
+    m.def("btf_lafortune_errors", [](const BtfSamples& s, py::dict fit, int threads) {
+        const py::ssize_t h = s.height(), w = s.width();
+        BtfLafortuneFit f;
+        f.width = s.width();
+        f.height = s.height();
+        auto shape = numericArray(fit["lobe_shape"], "lobe_shape");
+        if (shape.ndim() != 4) throw InvalidArgument("lobe_shape must be (H, W, lobes, 4)");
+        f.lobes = int(shape.shape(2));
+        f.normal = floatArray(fit["normal"], "normal", {h, w, 3});
+        f.diffuse = floatArray(fit["diffuse"], "diffuse", {h, w, 3});
+        f.ambient = floatArray(fit["ambient"], "ambient", {h, w, 3});
+        f.lobeAlbedo = floatArray(fit["lobe_albedo"], "lobe_albedo", {h, w, f.lobes, 3});
+        f.lobeShape = floatArray(fit["lobe_shape"], "lobe_shape", {h, w, f.lobes, 4});
+        std::vector<double> errors;
+        {
+            py::gil_scoped_release release;
+            errors = btfLafortuneErrors(s, f, nullptr, threads);
+        }
+        py::array_t<double> e(py::ssize_t(errors.size()));
+        std::memcpy(e.mutable_data(), errors.data(), errors.size() * sizeof(double));
+        return e;
+    }, py::arg("samples"), py::arg("fit"), py::arg("threads") = 0);
+    m.def("btf_have_ceres", &btfHaveCeres);
+    m.def("btf_fit_blinn_phong", [](const BtfSamples& s, py::dict seed, const std::string& solver,
+                                    int maxIterations, float minExponent, float maxExponent,
+                                    int threads) {
+        const BtfMaterialMaps mm = mapsFrom(s, seed);
+        BtfNonlinearOptions o;
+        o.solver = solverFrom(solver);
+        o.maxIterations = maxIterations;
+        o.minExponent = minExponent;
+        o.maxExponent = maxExponent;
+        o.threads = threads;
+        BtfNonlinearFit r;
+        {
+            py::gil_scoped_release release;
+            r = fitBtfBlinnPhong(s, mm, o);
+        }
+        py::dict d;
+        d["maps"] = mapsTo(r.maps);
+        d["mean_iterations"] = r.meanIterations;
+        d["solver"] = r.solver;
+        return d;
+    }, py::arg("samples"), py::arg("seed"), py::arg("solver") = "auto",
+       py::arg("max_iterations") = 30, py::arg("min_exponent") = 1.0f,
+       py::arg("max_exponent") = 4096.0f, py::arg("threads") = 0);
+}
+
+} // namespace weft::py_bind

@@ -1,0 +1,61 @@
+#pragma once
+// Per-texel nonlinear Blinn-Phong fit seeded by the linear fit (SPEC §3.5):
+// P_c = m_c max(n·l, 0) + b_c + k_c max(n·h, 0)^e, unknowns n (2 dof), m, b, k (RGB), e.
+// Built-in: Levenberg-Marquardt over (n, log e) with m, b, k eliminated by variable projection
+// (Kaufman's Jacobian). Ceres (when built with it): the full 12-parameter problem, autodiff.
+#include <string>
+
+#include <weft/BtfFit.h>
+
+namespace weft {
+
+enum class BtfSolver { Auto, Builtin, Ceres };
+
+struct BtfNonlinearOptions {
+    BtfSolver solver = BtfSolver::Auto; ///< Auto: Ceres when built with it, else built-in
+    int maxIterations = 30;
+    float minExponent = 1.0f, maxExponent = 4096.0f;
+    int threads = 0;
+};
+
+struct BtfNonlinearFit {
+    BtfMaterialMaps maps; ///< clamped diffuse, n_s = n, per-texel exponent
+    double meanIterations = 0;
+    std::string solver;   ///< "builtin" or "ceres"
+};
+
+/// True when weft was built with Ceres Solver.
+bool btfHaveCeres();
+
+/// Seeds from `seed` (normal, ρ, a, k, exponent of the linear + specular pipeline).
+BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMaps& seed,
+                                 const BtfNonlinearOptions& options = {});
+
+} // namespace weft
+
+namespace weft {
+
+/// Per-texel diffuse term plus Lafortune lobes (seed eq. 4.10/4.11):
+/// P_c = m_c max(n·l, 0) + b_c + Σ_j ρ_jc max(C_xj l_x v_x + C_yj l_y v_y + C_zj l_z v_z, 0)^e_j
+/// with C_zj = 1 (its scale is absorbed by ρ_jc). Built-in LM by variable projection (the
+/// linear m, b, ρ eliminated), seeded by the normal and exponent of `seed`. With the frontal
+/// view only, C_x and C_y have no effect (v_x = v_y = 0) and keep their start values (-1).
+struct BtfLafortuneFit {
+    int width = 0, height = 0, lobes = 1;
+    std::vector<float> normal;  ///< (H, W, 3) unit
+    std::vector<float> diffuse; ///< m (H, W, 3)
+    std::vector<float> ambient; ///< b (H, W, 3), additive
+    std::vector<float> lobeAlbedo; ///< ρ (H, W, lobes, 3)
+    std::vector<float> lobeShape;  ///< (C_x, C_y, C_z, e) (H, W, lobes, 4)
+    double meanIterations = 0;
+};
+
+BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps& seed, int lobes,
+                                int maxIterations = 30, int threads = 0);
+
+/// Per-sample mean squared error of a Lafortune fit (and the reconstruction when asked).
+std::vector<double> btfLafortuneErrors(const BtfSamples& samples, const BtfLafortuneFit& fit,
+                                       std::vector<float>* reconstruction = nullptr,
+                                       int threads = 0);
+
+} // namespace weft

@@ -1,0 +1,63 @@
+#pragma once
+// BTF measurements of one material: per sample (light direction, view direction) an RGB image,
+// stored planar as float32 [sample][channel][texel] so one pass streams over the samples.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace weft {
+
+/// A measurement direction in the Bonn convention: polar angle θ from the surface normal (+z)
+/// and azimuth φ, both in whole or fractional degrees (the file names use degrees).
+struct BtfAngles {
+    float thetaLight = 0, phiLight = 0, thetaView = 0, phiView = 0;
+};
+
+/// (sin θ cos φ, sin θ sin φ, cos θ) for angles in degrees (SPEC eq. 4.28).
+glm::vec3 btfDirection(float thetaDeg, float phiDeg);
+
+/// The 81 directions shared by light and view in the Bonn database, ring by ring
+/// (θ = 0, 15, ..., 75 degrees), each ring by increasing φ. Elements are (θ, φ) in degrees.
+const std::vector<glm::vec2>& btfStandardDirections();
+
+/// How 8-bit file values become sample values in [0, 1].
+enum class BtfGamma {
+    Raw,   ///< value / 255, as the seed fitted the JPEG values (gamma-encoded)
+    Linear ///< (value / 255)^2.2: linearised with the usual display gamma
+};
+
+class BtfSamples {
+public:
+    BtfSamples() = default;
+    /// Zero-filled samples; throws InvalidArgument for non-positive sizes or mismatched angles.
+    BtfSamples(int width, int height, std::vector<BtfAngles> angles);
+
+    int width() const { return mWidth; }
+    int height() const { return mHeight; }
+    size_t texels() const { return size_t(mWidth) * size_t(mHeight); }
+    int count() const { return int(mAngles.size()); }
+    const std::vector<BtfAngles>& angles() const { return mAngles; }
+    glm::vec3 light(int s) const { return mLights[size_t(s)]; }
+    glm::vec3 view(int s) const { return mViews[size_t(s)]; }
+
+    /// Channel c (0..2) of sample s: texels() floats, rows top to bottom.
+    float* plane(int s, int c) { return mValues.data() + (size_t(s) * 3 + size_t(c)) * texels(); }
+    const float* plane(int s, int c) const {
+        return mValues.data() + (size_t(s) * 3 + size_t(c)) * texels();
+    }
+    std::vector<float>& values() { return mValues; }
+    const std::vector<float>& values() const { return mValues; }
+
+    /// Throws InvalidArgument when a value is NaN/inf.
+    void requireFinite() const;
+
+private:
+    int mWidth = 0, mHeight = 0;
+    std::vector<BtfAngles> mAngles;
+    std::vector<glm::vec3> mLights, mViews;
+    std::vector<float> mValues;
+};
+
+} // namespace weft

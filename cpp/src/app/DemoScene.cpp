@@ -1,0 +1,321 @@
+#include "app/DemoScene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <GLFW/glfw3.h>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace weft::app {
+
+namespace {
+
+constexpr int kClothN = 32; // the seed's 32 x 32 particles
+constexpr float kTerrainSize = 16.0f;
+constexpr int kTerrainCells = 96;
+const glm::vec3 kSphereCenter(0.0f, 0.6f, 0.0f);
+constexpr float kSphereRadius = 0.6f;
+
+float smoothstep(float e0, float e1, float x) {
+    const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+// Rolling hills that flatten towards the middle, where the sphere and the cloth are.
+float terrainHeight(float x, float z) {
+    const float hills = 0.45f * std::sin(0.45f * x + 0.3f) * std::cos(0.35f * z) +
+                        0.25f * std::sin(0.9f * x - 0.7f * z) + 0.08f * std::cos(1.7f * x + 1.1f * z);
+    return hills * smoothstep(2.0f, 5.0f, std::sqrt(x * x + z * z));
+}
+
+// Grass-like ground: green noise from a few octaves of hashed values.
+TexturePtr grassTexture(int size) {
+    ImageU8 img(size, size, 4);
+    auto hash = [](int x, int y) {
+        uint32_t h = uint32_t(x) * 374761393u + uint32_t(y) * 668265263u;
+        h = (h ^ (h >> 13)) * 1274126177u;
+        return float(h & 0xffff) / 65535.0f;
+    };
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const float n = 0.5f * hash(x, y) + 0.3f * hash(x / 4, y / 4) + 0.2f * hash(x / 16, y / 16);
+            const glm::vec3 c = glm::mix(glm::vec3(0.18f, 0.32f, 0.10f), glm::vec3(0.42f, 0.55f, 0.22f), n);
+            uint8_t* p = img.at(x, y);
+            for (int k = 0; k < 3; ++k) p[k] = uint8_t(std::lround(255.0f * c[k]));
+            p[3] = 255;
+        }
+    return std::make_shared<Texture>(std::move(img), true, true);
+}
+
+// Woven cloth: alternating warp and weft threads.
+TexturePtr weaveTexture(int size, int threads) {
+    ImageU8 img(size, size, 4);
+    const int cell = size / threads;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const bool warp = ((x / cell) + (y / cell)) % 2 == 0;
+            const float f = float(warp ? x % cell : y % cell) / float(cell);
+            const float shade = 0.75f + 0.25f * std::sin(glm::pi<float>() * f);
+            const glm::vec3 c = (warp ? glm::vec3(0.72f, 0.16f, 0.12f) : glm::vec3(0.85f, 0.72f, 0.45f)) * shade;
+            uint8_t* p = img.at(x, y);
+            for (int k = 0; k < 3; ++k) p[k] = uint8_t(std::lround(255.0f * c[k]));
+            p[3] = 255;
+        }
+    return std::make_shared<Texture>(std::move(img), true, true);
+}
+
+// The weave's tangent-space normals: each thread is a half cylinder across its width.
+TexturePtr weaveNormals(int size, int threads) {
+    ImageU8 img(size, size, 4);
+    const int cell = size / threads;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const bool warp = ((x / cell) + (y / cell)) % 2 == 0;
+            const float f = (float(warp ? x % cell : y % cell) + 0.5f) / float(cell) * 2.0f - 1.0f;
+            const float slope = 0.8f * f;
+            glm::vec3 n = warp ? glm::vec3(slope, 0.0f, 1.0f) : glm::vec3(0.0f, -slope, 1.0f);
+            n = glm::normalize(n) * 0.5f + 0.5f;
+            uint8_t* p = img.at(x, y);
+            for (int k = 0; k < 3; ++k) p[k] = uint8_t(std::lround(255.0f * n[k]));
+            p[3] = 255;
+        }
+    return std::make_shared<Texture>(std::move(img), false, true);
+}
+
+} // namespace
+
+DemoScene::DemoScene() {
+    buildTerrain();
+
+    Material sphere;
+    sphere.baseColor = glm::vec3(0.55f, 0.58f, 0.62f);
+    sphere.ks = glm::vec3(0.6f);
+    sphere.shininess = 64.0f;
+    mScene.addMesh(std::make_shared<Mesh>(Mesh::uvSphere(kSphereRadius - 0.01f, 48, 24)), sphere,
+                   glm::translate(glm::mat4(1.0f), kSphereCenter));
+
+    ClothParams p;
+    p.nx = p.ny = kClothN;
+    p.size = glm::vec2(1.8f, 1.8f);
+    p.origin = glm::vec3(-0.9f, 1.75f, -0.5f); // held above the back of the sphere
+    p.axisU = glm::vec3(1, 0, 0);
+    p.axisV = glm::vec3(0, 0, 1);
+    p.iterations = 4;
+    p.substeps = 2;
+    p.tethers = true;
+    p.thickness = 0.015f;
+    mCloth = std::make_shared<Cloth>(p);
+    std::vector<int> edge;
+    for (int i = 0; i < kClothN; ++i) edge.push_back(i); // held at one edge (row j = 0)
+    mCloth->pin(edge);
+    Collider ball;
+    ball.kind = Collider::Kind::Sphere;
+    ball.center = kSphereCenter;
+    ball.radius = kSphereRadius;
+    ball.friction = 0.3f;
+    mCloth->addCollider(ball);
+    Collider ground;
+    ground.kind = Collider::Kind::HeightField;
+    ground.rows = ground.cols = kTerrainCells + 1;
+    ground.origin = glm::vec3(-0.5f * kTerrainSize, 0.0f, -0.5f * kTerrainSize);
+    ground.size = glm::vec2(kTerrainSize);
+    for (int j = 0; j <= kTerrainCells; ++j)
+        for (int i = 0; i <= kTerrainCells; ++i)
+            ground.heights.push_back(terrainHeight(ground.origin.x + kTerrainSize * float(i) / kTerrainCells,
+                                                   ground.origin.z + kTerrainSize * float(j) / kTerrainCells));
+    ground.friction = 0.5f;
+    mCloth->addCollider(ground);
+    mCloth->setWind(Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
+
+    mWeaveNormals = weaveNormals(256, 16);
+    mClothMaterial.texture = weaveTexture(256, 16);
+    mClothMaterial.normalMap = mWeaveNormals;
+    mClothMaterial.ks = glm::vec3(0.15f);
+    mClothMaterial.shininess = 20.0f;
+    mClothId = mScene.addCloth(mCloth, mClothMaterial);
+
+    mSunId = mScene.addLight(DirectionalLight{});
+    mMoonId = mScene.addLight(DirectionalLight{});
+    updateSky();
+
+    mCamera.position = glm::vec3(2.6f, 2.3f, 3.6f);
+    mCamera.target = glm::vec3(0.0f, 0.7f, -0.2f);
+    mCamera.fovY = 0.8f;
+}
+
+void DemoScene::buildTerrain() {
+    std::vector<float> heights;
+    const glm::vec3 origin(-0.5f * kTerrainSize, 0.0f, -0.5f * kTerrainSize);
+    for (int j = 0; j <= kTerrainCells; ++j)
+        for (int i = 0; i <= kTerrainCells; ++i)
+            heights.push_back(terrainHeight(origin.x + kTerrainSize * float(i) / kTerrainCells,
+                                            origin.z + kTerrainSize * float(j) / kTerrainCells));
+    Material ground;
+    ground.texture = grassTexture(256);
+    ground.ks = glm::vec3(0.03f);
+    ground.shininess = 8.0f;
+    mScene.addMesh(std::make_shared<Mesh>(Mesh::heightField(heights, kTerrainCells + 1, kTerrainCells + 1,
+                                                            origin, glm::vec2(kTerrainSize), 12.0f)),
+                   ground);
+}
+
+void DemoScene::updateSky() {
+    // The sun circles in a tilted plane; the moon is opposite. Whichever is up casts shadows.
+    const float angle = glm::two_pi<float>() * (mTimeOfDay - 0.25f);
+    const float height = std::sin(angle);
+    const glm::vec3 toSun = glm::normalize(glm::vec3(std::cos(angle) * std::cos(mSunAzimuth), 0.9f * height + 0.05f,
+                                                     std::cos(angle) * std::sin(mSunAzimuth)));
+    const float day = smoothstep(-0.05f, 0.25f, height);
+    DirectionalLight sun;
+    sun.direction = -toSun;
+    sun.color = glm::mix(glm::vec3(1.0f, 0.55f, 0.3f), glm::vec3(1.0f, 0.96f, 0.88f), smoothstep(0.0f, 0.5f, height));
+    sun.intensity = 0.95f * day;
+    sun.castShadows = mShadows && day > 0.0f;
+    DirectionalLight moon;
+    moon.direction = toSun;
+    moon.color = glm::vec3(0.55f, 0.65f, 1.0f);
+    moon.intensity = 0.25f * (1.0f - day);
+    moon.castShadows = mShadows && day <= 0.0f;
+    mScene.setLight(mSunId, sun);
+    mScene.setLight(mMoonId, moon);
+    mScene.setAmbient(glm::mix(glm::vec3(0.03f, 0.04f, 0.08f), glm::vec3(0.2f, 0.22f, 0.27f), day));
+    mScene.setBackground(glm::mix(glm::vec3(0.01f, 0.015f, 0.04f), glm::vec3(0.45f, 0.62f, 0.86f), day));
+}
+
+void DemoScene::applySettings(Renderer& renderer) const {
+    RenderSettings s = renderer.settings();
+    if (s.pcfRadius != mPcf) {
+        s.pcfRadius = mPcf;
+        renderer.setSettings(s);
+    }
+}
+
+int DemoScene::update(float realDt) {
+    if (mDayNight) {
+        mTimeOfDay = std::fmod(mTimeOfDay + realDt / 60.0f, 1.0f); // one day per minute
+        updateSky();
+    }
+    if (mPaused) return 0;
+    return mCloth->advance(realDt, 60.0f, 8);
+}
+
+std::string DemoScene::key(int k) {
+    std::ostringstream what;
+    switch (k) {
+    case GLFW_KEY_1:
+    case GLFW_KEY_2:
+        mWindStrength = std::clamp(mWindStrength + (k == GLFW_KEY_2 ? 1.0f : -1.0f), 0.0f, 30.0f);
+        mCloth->setWind(Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
+        what << "wind strength " << mWindStrength;
+        break;
+    case GLFW_KEY_R:
+        mWindAngle += glm::radians(30.0f);
+        mCloth->setWind(Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
+        what << "wind direction " << std::lround(glm::degrees(std::fmod(mWindAngle, glm::two_pi<float>()))) << " deg";
+        break;
+    case GLFW_KEY_L:
+        mSunAzimuth += glm::radians(15.0f);
+        updateSky();
+        what << "light azimuth " << std::lround(glm::degrees(std::fmod(mSunAzimuth, glm::two_pi<float>()))) << " deg";
+        break;
+    case GLFW_KEY_T:
+        mDayNight = !mDayNight;
+        what << "day-night cycle " << (mDayNight ? "on" : "off");
+        break;
+    case GLFW_KEY_N:
+        mNormalMap = !mNormalMap;
+        mClothMaterial.normalMap = mNormalMap ? mWeaveNormals : nullptr;
+        mScene.setMaterial(mClothId, mClothMaterial);
+        what << "normal mapping " << (mNormalMap ? "on" : "off");
+        break;
+    case GLFW_KEY_S:
+        mShadows = !mShadows;
+        updateSky();
+        what << "shadows " << (mShadows ? "on" : "off");
+        break;
+    case GLFW_KEY_P:
+        mPcf = (mPcf + 1) % 4;
+        what << "PCF " << 2 * mPcf + 1 << "x" << 2 * mPcf + 1;
+        break;
+    case GLFW_KEY_H: {
+        mHoles = !mHoles;
+        std::vector<uint8_t> mask(size_t(kClothN * kClothN), 0);
+        if (mHoles)
+            for (int j = 0; j < kClothN; ++j)
+                for (int i = 0; i < kClothN; ++i)
+                    mask[size_t(j * kClothN + i)] = std::hypot(i - 16.0f, j - 18.0f) < 4.5f ||
+                                                    std::hypot(i - 8.0f, j - 9.0f) < 2.5f;
+        mCloth->setHoles(mask);
+        what << "holes " << (mHoles ? "on" : "off");
+        break;
+    }
+    case GLFW_KEY_SPACE:
+        mPaused = !mPaused;
+        what << (mPaused ? "simulation paused" : "simulation running");
+        break;
+    case GLFW_KEY_C:
+        mCloth->reset();
+        what << "cloth reset";
+        break;
+    default:
+        break;
+    }
+    return what.str();
+}
+
+void DemoScene::ray(double x, double y, int w, int h, glm::vec3& origin, glm::vec3& dir) const {
+    const glm::mat4 inv = glm::inverse(mCamera.projection(float(w) / float(h)) * mCamera.view());
+    const float nx = float(2.0 * (x + 0.5) / w - 1.0), ny = float(2.0 * (y + 0.5) / h - 1.0);
+    glm::vec4 a = inv * glm::vec4(nx, ny, 0.0f, 1.0f), b = inv * glm::vec4(nx, ny, 1.0f, 1.0f);
+    origin = glm::vec3(a) / a.w;
+    dir = glm::normalize(glm::vec3(b) / b.w - origin);
+}
+
+bool DemoScene::grab(double x, double y, int w, int h) {
+    glm::vec3 o, d;
+    ray(x, y, w, h, o, d);
+    const int k = mCloth->pick(o, d, 0.12f);
+    if (k < 0) return false;
+    const float* p = mCloth->particleData() + 4 * k;
+    const glm::vec3 pos(p[0], p[1], p[2]);
+    mGrabDepth = glm::dot(pos - mCamera.position, glm::normalize(mCamera.target - mCamera.position));
+    mGrabbed = k;
+    mCloth->grab({k}, {pos});
+    return true;
+}
+
+void DemoScene::drag(double x, double y, int w, int h) {
+    if (mGrabbed < 0) return;
+    glm::vec3 o, d;
+    ray(x, y, w, h, o, d);
+    const glm::vec3 forward = glm::normalize(mCamera.target - mCamera.position);
+    const float along = glm::dot(d, forward);
+    if (along < 1e-4f) return;
+    const float t = (mGrabDepth - glm::dot(o - mCamera.position, forward)) / along;
+    mCloth->moveGrab({o + d * t});
+}
+
+void DemoScene::release() {
+    if (mGrabbed < 0) return;
+    mCloth->release();
+    mGrabbed = -1;
+}
+
+const char* DemoScene::controls() {
+    return "left-drag grabs the cloth; arrows orbit the camera; 1/2 wind weaker/stronger, R turns "
+           "the wind, L orbits the light, T day-night cycle, N normal mapping, S shadows, P PCF "
+           "size, H holes, C resets the cloth, Space pauses, Esc/Q quits";
+}
+
+std::string DemoScene::status() const {
+    std::ostringstream s;
+    s << "wind " << mWindStrength << " @ " << std::lround(glm::degrees(std::fmod(mWindAngle, glm::two_pi<float>())))
+      << " deg, time " << std::lround(24.0f * mTimeOfDay) << "h" << (mDayNight ? " (cycling)" : "")
+      << ", PCF " << 2 * mPcf + 1 << (mNormalMap ? ", normal map" : "") << (mHoles ? ", holes" : "")
+      << (mShadows ? "" : ", no shadows") << (mPaused ? ", paused" : "");
+    return s.str();
+}
+
+} // namespace weft::app

@@ -1,0 +1,66 @@
+#pragma once
+// The seed's interactive environment (SPEC §1.6, §2): a terrain from a height map that the
+// cloth collides with, a sphere, a cloth held at one edge in the wind, a sun and a moon in a
+// day-night cycle, and the user's controls (grab and drag the cloth, wind, light, toggles).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <weft/Camera.h>
+#include <weft/Cloth.h>
+#include <weft/Renderer.h>
+#include <weft/Scene.h>
+
+namespace weft::app {
+
+class DemoScene {
+public:
+    DemoScene();
+
+    Scene& scene() { return mScene; }
+    Camera& camera() { return mCamera; }
+    const Cloth& cloth() const { return *mCloth; }
+    /// Renderer settings the controls change (PCF kernel).
+    void applySettings(Renderer& renderer) const;
+
+    /// Advances the simulation by real time (fixed 60 Hz steps, at most 8 per call) and the
+    /// day-night cycle; returns the simulation steps run.
+    int update(float realDt);
+
+    /// A key (GLFW key code) pressed; returns a one-line description of what changed, or "".
+    std::string key(int glfwKey);
+    /// Grabs the cloth particle nearest to the ray through pixel (x, y) of a w x h image.
+    bool grab(double x, double y, int w, int h);
+    /// Moves the grabbed particle along the plane through it facing the camera.
+    void drag(double x, double y, int w, int h);
+    void release();
+    bool grabbing() const { return mGrabbed >= 0; }
+
+    /// One line of the controls for the help text.
+    static const char* controls();
+    /// The state in one line (wind, time of day, toggles) for titles and logs.
+    std::string status() const;
+
+private:
+    void buildTerrain();
+    void updateSky();
+    void ray(double x, double y, int w, int h, glm::vec3& origin, glm::vec3& dir) const;
+
+    Scene mScene;
+    Camera mCamera;
+    std::shared_ptr<Cloth> mCloth;
+    uint32_t mClothId = 0;
+    Material mClothMaterial;
+    TexturePtr mWeaveNormals;
+    uint32_t mSunId = 0, mMoonId = 0;
+    float mSunAzimuth = 0.6f;
+    float mTimeOfDay = 0.35f; // 0..1, 0.25 = sunrise... 0.5 = noon (the sun at its highest)
+    bool mDayNight = false, mPaused = false, mNormalMap = true, mHoles = false;
+    bool mShadows = true;
+    int mPcf = 1;
+    float mWindStrength = 3.0f, mWindAngle = 0.4f;
+    int mGrabbed = -1;
+    float mGrabDepth = 0.0f; // distance of the grab plane along the view direction
+};
+
+} // namespace weft::app

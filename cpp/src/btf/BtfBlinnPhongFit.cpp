@@ -1,0 +1,106 @@
+// Per-texel nonlinear Blinn-Phong fit over all texels (SPEC §3.5), seeded by the linear +
+// specular pipeline: the seed's normal and exponent start the search.
+#include <weft/BtfNonlinear.h>
+#include <weft/Error.h>
+
+#include <cmath>
+
+#include "btf/BlinnPhongTexel.h"
+#include "btf/BtfModel.h"
+#include "btf/BtfParallel.h"
+
+namespace weft {
+
+bool btfHaveCeres() {
+#ifdef WEFT_HAVE_CERES
+    return true;
+#else
+    return false;
+#endif
+}
+
+BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMaps& seed,
+                                 const BtfNonlinearOptions& options) {
+    seed.validate();
+    samples.requireFinite();
+    if (seed.width != samples.width() || seed.height != samples.height())
+        throw InvalidArgument("seed material and samples differ in size");
+    if (!(options.minExponent >= 0.01f) || !(options.maxExponent > options.minExponent) ||
+        !std::isfinite(options.maxExponent) || options.maxExponent > 1e6f)
+        throw InvalidArgument("exponent bounds must satisfy 0.01 <= min < max <= 1e6");
+    if (options.maxIterations < 1 || options.maxIterations > 1000)
+        throw InvalidArgument("maxIterations must be 1..1000");
+    const bool ceres = options.solver == BtfSolver::Ceres ||
+                       (options.solver == BtfSolver::Auto && btfHaveCeres());
+    if (ceres && !btfHaveCeres())
+        throw InvalidArgument("solver 'ceres' asked for, but weft was built without Ceres Solver");
+
+    const int count = samples.count();
+    const size_t texels = samples.texels();
+    std::vector<glm::vec3> lights(static_cast<size_t>(count)), halves(lights.size());
+    for (int s = 0; s < count; ++s) {
+        lights[size_t(s)] = samples.light(s);
+        halves[size_t(s)] = btfHalfVector(samples.light(s), samples.view(s));
+    }
+    const double etaMin = std::log(double(options.minExponent));
+    const double etaMax = std::log(double(options.maxExponent));
+
+    BtfNonlinearFit out;
+    out.solver = ceres ? "ceres" : "builtin";
+    BtfMaterialMaps& maps = out.maps;
+    maps.width = seed.width;
+    maps.height = seed.height;
+    maps.normal.resize(texels * 3);
+    maps.albedo.resize(texels * 3);
+    maps.ambient.resize(texels * 3);
+    maps.specular.resize(texels * 3);
+    maps.exponentMap.resize(texels);
+    maps.clampDiffuse = true;
+    maps.flatSpecularNormal = false;
+    std::vector<double> iterations(texels, 0.0);
+
+    const int blocks = int((texels + 63) / 64);
+    btfParallelFor(blocks, options.threads, [&](int b0, int b1) {
+        BlinnPhongTexel tx;
+        tx.lights = &lights;
+        tx.halves = &halves;
+        tx.values.resize(size_t(count) * 3);
+        for (size_t t = size_t(b0) * 64; t < std::min(texels, size_t(b1) * 64); ++t) {
+            for (int s = 0; s < count; ++s)
+                for (int c = 0; c < 3; ++c)
+                    tx.values[size_t(s) * 3 + size_t(c)] = samples.plane(s, c)[t];
+            tx.updateSquares();
+            tx.setSeedNormal(glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1],
+                                       seed.normal[t * 3 + 2]));
+            const float e0 = seed.exponentMap.empty() ? seed.exponent : seed.exponentMap[t];
+            const double eta0 = std::log(std::max(double(e0), 1e-2));
+            BlinnPhongResult r;
+            if (ceres) {
+                const double theta0[3] = {0.0, 0.0, std::min(std::max(eta0, etaMin), etaMax)};
+                r = blinnPhongCeres(tx, blinnPhongProject(tx, theta0), etaMin, etaMax,
+                                    options.maxIterations);
+            } else {
+                r = blinnPhongBuiltin(tx, eta0, etaMin, etaMax, options.maxIterations);
+            }
+            const glm::dvec3 n = tx.normal(r.theta[0], r.theta[1]);
+            maps.exponentMap[t] = float(std::exp(r.theta[2]));
+            for (int c = 0; c < 3; ++c) {
+                maps.normal[t * 3 + size_t(c)] = float(n[c]);
+                // ρ (a + d) + k g with ρ = m, ρ a = b; keep ρ away from 0 so a stays finite.
+                double m = r.coef[c][0];
+                if (std::fabs(m) < 1e-6) m = m < 0 ? -1e-6 : 1e-6;
+                maps.albedo[t * 3 + size_t(c)] = float(m);
+                maps.ambient[t * 3 + size_t(c)] = float(r.coef[c][1] / m);
+                maps.specular[t * 3 + size_t(c)] = float(r.coef[c][2]);
+            }
+            iterations[t] = r.iterations;
+        }
+    });
+    double sum = 0.0;
+    for (double v : iterations) sum += v;
+    out.meanIterations = sum / double(texels);
+    maps.validate();
+    return out;
+}
+
+} // namespace weft

@@ -1,0 +1,332 @@
+// Per-texel diffuse + Lafortune lobes (seed eq. 4.10/4.11) by variable projection: the model is
+// linear in (m, b, ρ_1.., per channel) and nonlinear in θ = (u, v, C_x1, C_y1, η_1, ...), where
+// n = normalise(n0 + u t1 + v t2) and e_j = exp(η_j). Every θ_k moves one basis function only,
+// so Kaufman's JᵀJ and the gradient come from channel-independent sample sums as in the
+// Blinn-Phong solver.
+#include <weft/BtfNonlinear.h>
+#include <weft/Error.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "btf/BlinnPhongTexel.h"
+#include "btf/BtfParallel.h"
+
+namespace weft {
+
+namespace {
+
+constexpr int kMaxBasis = 4, kMaxTheta = 8;
+
+// Cholesky of a small symmetric matrix (n <= 8) with a relative pivot check.
+struct CholeskyN {
+    int n = 0;
+    double l[kMaxTheta][kMaxTheta] = {};
+    bool factor(const double a[kMaxTheta][kMaxTheta], int size, double relTol) {
+        n = size;
+        double scale = 0.0;
+        for (int i = 0; i < n; ++i) scale = std::max(scale, a[i][i]);
+        if (!(scale > 0.0) || !std::isfinite(scale)) return false;
+        for (int j = 0; j < n; ++j) {
+            double d = a[j][j];
+            for (int k = 0; k < j; ++k) d -= l[j][k] * l[j][k];
+            if (!(d > relTol * scale)) return false;
+            l[j][j] = std::sqrt(d);
+            for (int i = j + 1; i < n; ++i) {
+                double v = a[i][j];
+                for (int k = 0; k < j; ++k) v -= l[i][k] * l[j][k];
+                l[i][j] = v / l[j][j];
+            }
+        }
+        return true;
+    }
+    void solve(const double* b, double* x) const {
+        double y[kMaxTheta];
+        for (int i = 0; i < n; ++i) {
+            double v = b[i];
+            for (int k = 0; k < i; ++k) v -= l[i][k] * y[k];
+            y[i] = v / l[i][i];
+        }
+        for (int i = n - 1; i >= 0; --i) {
+            double v = y[i];
+            for (int k = i + 1; k < n; ++k) v -= l[k][i] * x[k];
+            x[i] = v / l[i][i];
+        }
+    }
+};
+
+struct Texel {
+    const BtfSamples* samples = nullptr;
+    const std::vector<glm::vec3>* views = nullptr;
+    BlinnPhongTexel base; // values, squares, normal frame
+    int lobes = 1;
+    int basis() const { return 2 + lobes; }
+    int params() const { return 2 + 3 * lobes; }
+    static int basisOf(int k) { return k < 2 ? 0 : 2 + (k - 2) / 3; }
+};
+
+struct Eval {
+    double theta[kMaxTheta] = {};
+    double coef[3][kMaxBasis] = {};
+    double cost = 0;
+    double b[3][kMaxBasis] = {};
+    double sdd[kMaxTheta][kMaxTheta] = {}, pd[kMaxBasis][kMaxTheta] = {}, yd[3][kMaxTheta] = {};
+    CholeskyN gram;
+};
+
+void basisAt(const Texel& tx, const double* theta, const glm::dvec3& nrm, const glm::dvec3 dn[2],
+             glm::dvec3 l, glm::dvec3 v, double* phi, double* delta) {
+    const double nl = glm::dot(nrm, l);
+    phi[0] = nl > 0 ? nl : 0.0;
+    phi[1] = 1.0;
+    for (int j = 0; j < 2; ++j) delta[j] = nl > 0 ? glm::dot(l, dn[j]) : 0.0;
+    for (int j = 0; j < tx.lobes; ++j) {
+        const double* t = theta + 2 + 3 * j;
+        const double e = std::exp(t[2]);
+        const double x = t[0] * l.x * v.x + t[1] * l.y * v.y + l.z * v.z;
+        const double lx = x > 0 ? std::log(x) : 0.0;
+        const double g = x > 0 ? std::exp(e * lx) : 0.0;
+        phi[2 + j] = g;
+        delta[2 + 3 * j] = x > 0 ? e * g / x * l.x * v.x : 0.0;
+        delta[3 + 3 * j] = x > 0 ? e * g / x * l.y * v.y : 0.0;
+        delta[4 + 3 * j] = g * e * lx;
+    }
+}
+
+void evaluate(const Texel& tx, const double* theta, bool derivatives, Eval& ev) {
+    const int M = tx.basis(), K = tx.params();
+    ev = Eval();
+    for (int k = 0; k < K; ++k) ev.theta[k] = theta[k];
+    const BlinnPhongTexel& b = tx.base;
+    const glm::dvec3 w = b.n0 + theta[0] * b.t1 + theta[1] * b.t2;
+    const double len = glm::length(w);
+    const glm::dvec3 nrm = w / len;
+    const glm::dvec3 dn[2] = {(b.t1 - nrm * glm::dot(nrm, b.t1)) / len,
+                              (b.t2 - nrm * glm::dot(nrm, b.t2)) / len};
+    double G[kMaxTheta][kMaxTheta] = {};
+    const int count = tx.samples->count();
+    for (int s = 0; s < count; ++s) {
+        double phi[kMaxBasis], delta[kMaxTheta];
+        basisAt(tx, theta, nrm, dn, glm::dvec3(tx.samples->light(s)),
+                glm::dvec3((*tx.views)[size_t(s)]), phi, delta);
+        const float* p = &b.values[size_t(s) * 3];
+        for (int i = 0; i < M; ++i) {
+            for (int j = i; j < M; ++j) G[i][j] += phi[i] * phi[j];
+            for (int c = 0; c < 3; ++c) ev.b[c][i] += phi[i] * p[c];
+        }
+        if (!derivatives) continue;
+        for (int k = 0; k < K; ++k) {
+            if (delta[k] == 0.0) continue;
+            for (int q = 0; q < K; ++q) ev.sdd[k][q] += delta[k] * delta[q];
+            for (int i = 0; i < M; ++i) ev.pd[i][k] += phi[i] * delta[k];
+            for (int c = 0; c < 3; ++c) ev.yd[c][k] += p[c] * delta[k];
+        }
+    }
+    double trace = 0.0;
+    for (int i = 0; i < M; ++i) {
+        trace += G[i][i];
+        for (int j = 0; j < i; ++j) G[i][j] = G[j][i];
+    }
+    if (!ev.gram.factor(G, M, 1e-12)) {
+        for (int i = 0; i < M; ++i) G[i][i] += 1e-9 * trace + 1e-30;
+        ev.gram.factor(G, M, 0.0);
+    }
+    double cost = 0.0;
+    for (int c = 0; c < 3; ++c) {
+        ev.gram.solve(ev.b[c], ev.coef[c]);
+        cost += b.squares[c];
+        for (int i = 0; i < M; ++i) cost -= ev.b[c][i] * ev.coef[c][i];
+    }
+    ev.cost = std::max(cost, 0.0);
+}
+
+int solveTexel(const Texel& tx, double* theta, int maxIterations, double etaMax, Eval& cur) {
+    const int M = tx.basis(), K = tx.params();
+    Eval trial;
+    evaluate(tx, theta, true, cur);
+    double lambda = 1e-3;
+    int done = 0;
+    for (int it = 0; it < maxIterations; ++it) {
+        double jtj[kMaxTheta][kMaxTheta] = {}, grad[kMaxTheta] = {};
+        for (int c = 0; c < 3; ++c) {
+            const double* x = cur.coef[c];
+            double phiD[kMaxBasis][kMaxTheta];
+            for (int i = 0; i < M; ++i)
+                for (int k = 0; k < K; ++k) phiD[i][k] = x[Texel::basisOf(k)] * cur.pd[i][k];
+            for (int k = 0; k < K; ++k) {
+                double rD = x[Texel::basisOf(k)] * cur.yd[c][k];
+                for (int i = 0; i < M; ++i) rD -= x[i] * phiD[i][k];
+                grad[k] -= rD;
+            }
+            double sol[kMaxTheta][kMaxBasis];
+            for (int q = 0; q < K; ++q) {
+                double col[kMaxBasis];
+                for (int i = 0; i < M; ++i) col[i] = phiD[i][q];
+                cur.gram.solve(col, sol[q]);
+            }
+            for (int k = 0; k < K; ++k)
+                for (int q = 0; q < K; ++q) {
+                    double proj = 0.0;
+                    for (int i = 0; i < M; ++i) proj += phiD[i][k] * sol[q][i];
+                    jtj[k][q] += x[Texel::basisOf(k)] * x[Texel::basisOf(q)] * cur.sdd[k][q] - proj;
+                }
+        }
+        bool accepted = false;
+        for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
+            double a[kMaxTheta][kMaxTheta], rhs[kMaxTheta], step[kMaxTheta];
+            for (int i = 0; i < K; ++i) {
+                rhs[i] = -grad[i];
+                for (int j = 0; j < K; ++j)
+                    a[i][j] = jtj[i][j] + (i == j ? lambda * jtj[i][i] + 1e-12 : 0.0);
+            }
+            CholeskyN f;
+            if (!f.factor(a, K, 1e-14)) {
+                lambda *= 10.0;
+                continue;
+            }
+            f.solve(rhs, step);
+            double next[kMaxTheta], size = 0.0;
+            for (int k = 0; k < K; ++k) {
+                next[k] = cur.theta[k] + step[k];
+                size += step[k] * step[k];
+            }
+            for (int j = 0; j < tx.lobes; ++j)
+                next[4 + 3 * j] = std::min(std::max(next[4 + 3 * j], 0.0), etaMax);
+            evaluate(tx, next, true, trial);
+            if (trial.cost < cur.cost) {
+                const double gain = cur.cost - trial.cost;
+                accepted = true;
+                ++done;
+                std::swap(cur, trial);
+                lambda = std::max(lambda / 3.0, 1e-9);
+                if (gain <= 1e-6 * cur.cost + 1e-20 || std::sqrt(size) < 1e-6)
+                    it = maxIterations;
+            } else {
+                lambda *= 4.0;
+            }
+        }
+        if (!accepted) break;
+    }
+    for (int k = 0; k < K; ++k) theta[k] = cur.theta[k];
+    return done;
+}
+
+void evaluateFit(const BtfLafortuneFit& fit, size_t t, glm::vec3 l, glm::vec3 v, float out[3]) {
+    const float* n = &fit.normal[t * 3];
+    const float nl = std::max(n[0] * l.x + n[1] * l.y + n[2] * l.z, 0.0f);
+    for (int c = 0; c < 3; ++c) out[c] = fit.diffuse[t * 3 + c] * nl + fit.ambient[t * 3 + c];
+    for (int j = 0; j < fit.lobes; ++j) {
+        const float* sh = &fit.lobeShape[(t * size_t(fit.lobes) + size_t(j)) * 4];
+        const float x = sh[0] * l.x * v.x + sh[1] * l.y * v.y + sh[2] * l.z * v.z;
+        const float g = x > 0.0f ? std::pow(x, sh[3]) : 0.0f;
+        for (int c = 0; c < 3; ++c)
+            out[c] += fit.lobeAlbedo[(t * size_t(fit.lobes) + size_t(j)) * 3 + size_t(c)] * g;
+    }
+}
+
+} // namespace
+
+BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps& seed, int lobes,
+                                int maxIterations, int threads) {
+    seed.validate();
+    samples.requireFinite();
+    if (seed.width != samples.width() || seed.height != samples.height())
+        throw InvalidArgument("seed material and samples differ in size");
+    if (lobes < 1 || lobes > 2) throw InvalidArgument("Lafortune lobes must be 1 or 2");
+    if (maxIterations < 1 || maxIterations > 1000)
+        throw InvalidArgument("maxIterations must be 1..1000");
+    const size_t texels = samples.texels();
+    const int count = samples.count();
+    std::vector<glm::vec3> views(static_cast<size_t>(count));
+    for (int s = 0; s < count; ++s) views[size_t(s)] = samples.view(s);
+    BtfLafortuneFit fit;
+    fit.width = samples.width();
+    fit.height = samples.height();
+    fit.lobes = lobes;
+    fit.normal.resize(texels * 3);
+    fit.diffuse.resize(texels * 3);
+    fit.ambient.resize(texels * 3);
+    fit.lobeAlbedo.resize(texels * size_t(lobes) * 3);
+    fit.lobeShape.resize(texels * size_t(lobes) * 4);
+    std::vector<int> iterations(texels, 0);
+    const double etaMax = std::log(4096.0);
+    const int blocks = int((texels + 63) / 64);
+    btfParallelFor(blocks, threads, [&](int b0, int b1) {
+        Texel tx;
+        tx.samples = &samples;
+        tx.views = &views;
+        tx.lobes = lobes;
+        tx.base.values.resize(size_t(count) * 3);
+        Eval ev;
+        for (size_t t = size_t(b0) * 64; t < std::min(texels, size_t(b1) * 64); ++t) {
+            for (int s = 0; s < count; ++s)
+                for (int c = 0; c < 3; ++c)
+                    tx.base.values[size_t(s) * 3 + size_t(c)] = samples.plane(s, c)[t];
+            tx.base.updateSquares();
+            tx.base.setSeedNormal(glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1],
+                                            seed.normal[t * 3 + 2]));
+            const float e0 = seed.exponentMap.empty() ? seed.exponent : seed.exponentMap[t];
+            double theta[kMaxTheta] = {0.0, 0.0};
+            for (int j = 0; j < lobes; ++j) {
+                theta[2 + 3 * j] = -1.0; // mirror direction about +z
+                theta[3 + 3 * j] = -1.0;
+                theta[4 + 3 * j] = j == 0 ? std::log(std::min(std::max(double(e0), 1.0), 4096.0))
+                                          : std::log(4.0);
+            }
+            iterations[t] = solveTexel(tx, theta, maxIterations, etaMax, ev);
+            const glm::dvec3 n = tx.base.normal(theta[0], theta[1]);
+            for (int c = 0; c < 3; ++c) {
+                fit.normal[t * 3 + size_t(c)] = float(n[c]);
+                fit.diffuse[t * 3 + size_t(c)] = float(ev.coef[c][0]);
+                fit.ambient[t * 3 + size_t(c)] = float(ev.coef[c][1]);
+                for (int j = 0; j < lobes; ++j)
+                    fit.lobeAlbedo[(t * size_t(lobes) + size_t(j)) * 3 + size_t(c)] =
+                        float(ev.coef[c][2 + j]);
+            }
+            for (int j = 0; j < lobes; ++j) {
+                float* sh = &fit.lobeShape[(t * size_t(lobes) + size_t(j)) * 4];
+                sh[0] = float(theta[2 + 3 * j]);
+                sh[1] = float(theta[3 + 3 * j]);
+                sh[2] = 1.0f;
+                sh[3] = float(std::exp(theta[4 + 3 * j]));
+            }
+        }
+    });
+    double sum = 0.0;
+    for (int v : iterations) sum += v;
+    fit.meanIterations = sum / double(texels);
+    return fit;
+}
+
+std::vector<double> btfLafortuneErrors(const BtfSamples& samples, const BtfLafortuneFit& fit,
+                                       std::vector<float>* reconstruction, int threads) {
+    const size_t texels = samples.texels();
+    if (fit.width != samples.width() || fit.height != samples.height() ||
+        fit.normal.size() != texels * 3 || fit.lobes < 1 || fit.lobes > 2 ||
+        fit.lobeShape.size() != texels * size_t(fit.lobes) * 4 ||
+        fit.lobeAlbedo.size() != texels * size_t(fit.lobes) * 3 ||
+        fit.diffuse.size() != texels * 3 || fit.ambient.size() != texels * 3)
+        throw InvalidArgument("Lafortune fit and samples differ in size");
+    const int count = samples.count();
+    if (reconstruction) reconstruction->assign(texels * 3 * size_t(count), 0.0f);
+    std::vector<double> errors(static_cast<size_t>(count), 0.0);
+    btfParallelFor(count, threads, [&](int s0, int s1) {
+        for (int s = s0; s < s1; ++s) {
+            double sum = 0.0;
+            for (size_t t = 0; t < texels; ++t) {
+                float out[3];
+                evaluateFit(fit, t, samples.light(s), samples.view(s), out);
+                for (int c = 0; c < 3; ++c) {
+                    const double r = double(out[c]) - samples.plane(s, c)[t];
+                    sum += r * r;
+                    if (reconstruction)
+                        (*reconstruction)[(size_t(s) * 3 + size_t(c)) * texels + t] = out[c];
+                }
+            }
+            errors[size_t(s)] = sum / double(texels * 3);
+        }
+    });
+    return errors;
+}
+
+} // namespace weft

@@ -1,0 +1,48 @@
+#pragma once
+// Minimal zip access through libzip: list and read entries, or build an archive from buffers.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+struct zip;
+
+namespace weft {
+
+class ZipReader {
+public:
+    /// Throws IoError when the file is missing or not a zip archive.
+    explicit ZipReader(const std::string& path);
+    ~ZipReader();
+    ZipReader(const ZipReader&) = delete;
+    ZipReader& operator=(const ZipReader&) = delete;
+
+    /// Entry names (directories excluded), by index.
+    const std::vector<std::string>& names() const { return mNames; }
+    /// Whole entry; throws IoError when it cannot be inflated (corrupt, truncated).
+    std::vector<uint8_t> read(size_t index) const;
+
+private:
+    std::string mPath;
+    zip* mArchive = nullptr;
+    std::vector<std::string> mNames;
+    std::vector<uint64_t> mIndex;
+};
+
+class ZipWriter {
+public:
+    explicit ZipWriter(const std::string& path);
+    ~ZipWriter();
+    ZipWriter(const ZipWriter&) = delete;
+    ZipWriter& operator=(const ZipWriter&) = delete;
+
+    /// Stores `data` as `name` (already compressed data such as JPEG is stored, not deflated).
+    void add(const std::string& name, const std::vector<uint8_t>& data, bool deflate);
+    /// Writes the archive; throws IoError on failure (the partial file is removed).
+    void close();
+
+private:
+    std::string mPath;
+    zip* mArchive = nullptr;
+};
+
+} // namespace weft

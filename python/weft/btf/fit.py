@@ -1,0 +1,184 @@
+"""The BTF fitting pipeline (SPEC §3.2-3.5) over the compiled kernels, plus error figures.
+
+    samples = load("UBO_WOOL256.zip")                     # frontal view, raw 8-bit values
+    linear = fit_linear(samples)                          # T, n, I_A (eq. 4.22)
+    spec = fit_specular(samples, linear)                  # specular map + exponent (eq. 4.30)
+    bp = fit_blinn_phong(samples, spec.material)          # per-texel nonlinear Blinn-Phong
+    deviation(samples, sample_errors(samples, spec.material))["total"]   # in %
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Dict, Sequence, Union
+
+import numpy as np
+
+import weft
+from weft import _core
+from weft.btf.material import BtfMaterial
+
+Views = Union[str, Sequence[Sequence[float]]]
+
+
+def load(path: str, views: Views = "frontal", gamma: str = "raw", threads: int = 0) -> Any:
+    """Reads a Bonn-layout folder or zip. ``views``: "frontal" (θ_v = 0, 81 images), "all", or a
+    list of (θ_v, φ_v) degrees. ``gamma``: "raw" (value / 255, as the seed) or "linear"
+    ((value / 255)^2.2). EXR samples are used as stored."""
+    if isinstance(views, str):
+        if views not in ("frontal", "all"):
+            raise weft.InvalidArgument(f"views must be 'frontal', 'all' or a list, got {views!r}")
+        arg = None if views == "all" else np.zeros((1, 2), np.float32)
+    else:
+        arg = np.asarray(views, dtype=np.float64).reshape(-1, 2)
+    return _core.btf_load(str(path), arg, gamma, int(threads))
+
+
+@dataclass
+class LinearFit:
+    """The seed's linear fit: T (texture), n (not normalised), I_A, and the dark texels."""
+
+    texture: np.ndarray
+    normal: np.ndarray
+    ambient: np.ndarray
+    dark: np.ndarray
+    dark_texels: int
+    dark_channels: int
+
+    def core(self) -> Dict[str, Any]:
+        return dict(texture=self.texture, normal=self.normal, ambient=self.ambient)
+
+    def material(self, samples: Any) -> BtfMaterial:
+        """The seed's maps as a material (ρ = T|n|, a = I_A/|n|, unit n; linear diffuse)."""
+        return BtfMaterial.from_core(_core.btf_material_from_linear(samples, self.core()))
+
+    def __repr__(self) -> str:
+        h, w = self.texture.shape[:2]
+        return (f"<weft.btf.LinearFit {w}x{h}, {self.dark_texels} dark texels, "
+                f"{self.dark_channels} dark channels>")
+
+
+def fit_linear(samples: Any, robust: bool = False, robust_iterations: int = 4,
+               dark_threshold: float = 1e-4, threads: int = 0) -> LinearFit:
+    """T = per-texel mean; n, I_A by least squares over all samples. ``robust``: IRLS with
+    Tukey's biweight, samples with n.l <= 0 dropped (for cast shadows and highlights)."""
+    return LinearFit(**_core.btf_fit_linear(samples, robust, int(robust_iterations),
+                                            float(dark_threshold), int(threads)))
+
+
+def solve_linear(samples: Any, texture: np.ndarray, threads: int = 0) -> LinearFit:
+    """The same least squares with a given texture instead of the mean."""
+    return LinearFit(**_core.btf_solve_linear(samples, texture, int(threads)))
+
+
+@dataclass
+class SpecularFit:
+    material: BtfMaterial
+    curve: np.ndarray        # total squared error for exponents 1..max (NaN = not evaluated)
+    specular_sample: int
+
+    @property
+    def exponent(self) -> float:
+        return self.material.exponent
+
+
+def fit_specular(samples: Any, linear: LinearFit, flat_specular_normal: bool = True,
+                 max_exponent: int = 4096, per_texel: bool = False,
+                 threads: int = 0) -> SpecularFit:
+    """Specular map = residual of the θ_l = 0 sample; exponent search over 1..max_exponent.
+    ``flat_specular_normal``: eq. 4.30 (n_s = (0,0,1)), else eq. 4.29 (fitted normal)."""
+    r = _core.btf_fit_specular(samples, linear.core(), bool(flat_specular_normal),
+                               int(max_exponent), bool(per_texel), int(threads))
+    return SpecularFit(BtfMaterial.from_core(r["maps"]), r["curve"], int(r["specular_sample"]))
+
+
+@dataclass
+class NonlinearFit:
+    material: BtfMaterial
+    solver: str
+    mean_iterations: float
+
+
+def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
+                    max_iterations: int = 30, min_exponent: float = 1.0,
+                    max_exponent: float = 4096.0, threads: int = 0) -> NonlinearFit:
+    """Per-texel Blinn-Phong (n, ambient, diffuse, specular RGB, exponent), seeded by ``seed``
+    (normal and exponent). ``solver``: "auto" (Ceres when built with it), "builtin", "ceres"."""
+    r = _core.btf_fit_blinn_phong(samples, seed.core_maps(), solver, int(max_iterations),
+                                  float(min_exponent), float(max_exponent), int(threads))
+    return NonlinearFit(BtfMaterial.from_core(r["maps"]), r["solver"], r["mean_iterations"])
+
+
+@dataclass
+class LafortuneFit:
+    """Diffuse term plus 1-2 Lafortune lobes per texel (seed eq. 4.10/4.11, C_z = 1):
+    P = diffuse max(n.l, 0) + ambient + Σ_j lobe_albedo_j max(C_x l_x v_x + C_y l_y v_y +
+    C_z l_z v_z, 0)^e; ``lobe_shape`` (H, W, lobes, 4) holds (C_x, C_y, C_z, e)."""
+
+    normal: np.ndarray
+    diffuse: np.ndarray
+    ambient: np.ndarray
+    lobe_albedo: np.ndarray
+    lobe_shape: np.ndarray
+    mean_iterations: float
+
+    def errors(self, samples: Any, threads: int = 0) -> np.ndarray:
+        """Per-sample mean squared error (S,)."""
+        fit = dict(normal=self.normal, diffuse=self.diffuse, ambient=self.ambient,
+                   lobe_albedo=self.lobe_albedo, lobe_shape=self.lobe_shape)
+        return _core.btf_lafortune_errors(samples, fit, int(threads))
+
+    def __repr__(self) -> str:
+        h, w, lobes = self.lobe_shape.shape[:3]
+        return f"<weft.btf.LafortuneFit {w}x{h}, {lobes} lobe(s)>"
+
+
+def fit_lafortune(samples: Any, seed: BtfMaterial, lobes: int = 1, max_iterations: int = 30,
+                  threads: int = 0) -> LafortuneFit:
+    """Per-texel diffuse + ``lobes`` Lafortune lobes (built-in LM), seeded by the normal and
+    exponent of ``seed``."""
+    return LafortuneFit(**_core.btf_fit_lafortune(samples, seed.core_maps(), int(lobes),
+                                                  int(max_iterations), int(threads)))
+
+
+def have_ceres() -> bool:
+    """True when weft was built with Ceres Solver."""
+    return bool(_core.btf_have_ceres())
+
+
+def sample_errors(samples: Any, material: BtfMaterial, reconstruct: bool = False,
+                  threads: int = 0) -> Any:
+    """Per-sample mean squared error (S,) of the material; with ``reconstruct`` also the
+    reconstruction (S, 3, H, W)."""
+    return _core.btf_sample_errors(samples, material.core_maps(), bool(reconstruct), int(threads))
+
+
+def deviation(samples: Any, errors: np.ndarray) -> Dict[str, Any]:
+    """SPEC §3.4: total deviation (mean squared difference over samples, texels, channels of
+    [0, 1] values, x 100, in %), per θ_l group and per view."""
+    errors = np.asarray(errors, dtype=np.float64)
+    angles = np.asarray(samples.angles)
+    groups = {f"{int(t)}": float(errors[angles[:, 0] == t].mean() * 100)
+              for t in np.unique(angles[:, 0])}
+    views: Dict[str, float] = {}
+    for tv, pv in np.unique(angles[:, 2:4], axis=0):
+        sel = (angles[:, 2] == tv) & (angles[:, 3] == pv)
+        views[f"tv{int(tv):03d}_pv{int(pv):03d}"] = float(errors[sel].mean() * 100)
+    return {"total": float(errors.mean() * 100), "groups": groups, "views": views}
+
+
+def angular_error_deg(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Angle in degrees between two normal maps (normalised here), per texel."""
+    a = np.asarray(a, np.float64)
+    b = np.asarray(b, np.float64)
+    a = a / np.maximum(np.linalg.norm(a, axis=-1, keepdims=True), 1e-300)
+    b = b / np.maximum(np.linalg.norm(b, axis=-1, keepdims=True), 1e-300)
+    cross = np.linalg.norm(np.cross(a, b), axis=-1)
+    return np.degrees(np.arctan2(cross, np.sum(a * b, axis=-1)))
+
+
+def normal_stats(fitted: np.ndarray, truth: np.ndarray) -> Dict[str, float]:
+    """Mean and 95th percentile angular error (degrees)."""
+    err = angular_error_deg(fitted, truth)
+    return {"mean_deg": float(err.mean()), "p95_deg": float(np.percentile(err, 95))}
+

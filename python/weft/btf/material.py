@@ -1,0 +1,151 @@
+"""BtfMaterial: the fitted per-texel reflectance model the renderer consumes (SPEC §3.5).
+
+``P = albedo * (ambient + d(n.l)) + specular * max(n_s.h, 0)^exponent`` with ``d(x) = x`` (the
+seed's linear model) or ``max(x, 0)`` (``clamp_diffuse``), ``h = normalize(l + v)`` and
+``n_s = n`` or ``(0, 0, 1)`` (``flat_specular_normal``, seed eq. 4.30). Maps are float32
+(H, W, 3); ``exponent_map`` (H, W) overrides the scalar ``exponent`` per texel.
+
+Saved as a folder: ``material.json`` (scalars, map list, value ranges), one EXR per map (exact
+floats) and an 8-bit PNG preview per map (normals encoded ``(n + 1) / 2``, SPEC §1.4).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass
+from typing import Any, Dict, Optional
+
+import numpy as np
+
+import weft
+
+FORMAT = "weft-btf-material"
+VERSION = 1
+_MAPS = ("normal", "albedo", "ambient", "specular", "exponent_map")
+
+
+@dataclass
+class BtfMaterial:
+    normal: np.ndarray
+    albedo: np.ndarray
+    ambient: np.ndarray
+    specular: Optional[np.ndarray] = None
+    exponent: float = 1.0
+    exponent_map: Optional[np.ndarray] = None
+    flat_specular_normal: bool = False
+    clamp_diffuse: bool = False
+
+    def __post_init__(self) -> None:
+        self.validate()
+
+    @property
+    def shape(self) -> tuple:
+        return tuple(self.normal.shape[:2])
+
+    def validate(self) -> None:
+        """Raises weft.InvalidArgument for wrong shapes, NaN/inf, non-unit normals or a bad
+        exponent; converts maps to C-contiguous float32."""
+        h, w = np.shape(self.normal)[:2] if np.ndim(self.normal) == 3 else (0, 0)
+        for name in _MAPS:
+            value = getattr(self, name)
+            if value is None:
+                if name in ("normal", "albedo", "ambient"):
+                    raise weft.InvalidArgument(f"material map {name!r} is required")
+                continue
+            arr = np.ascontiguousarray(value, dtype=np.float32)
+            want = (h, w) if name == "exponent_map" else (h, w, 3)
+            if arr.shape != want or h == 0 or w == 0:
+                raise weft.InvalidArgument(f"material map {name!r} must have shape {want}, "
+                                           f"got {arr.shape}")
+            if not np.all(np.isfinite(arr)):
+                raise weft.InvalidArgument(f"material map {name!r} must be finite")
+            setattr(self, name, arr)
+        lengths = np.linalg.norm(self.normal, axis=-1)
+        if np.any(np.abs(lengths - 1.0) > 1e-3):
+            raise weft.InvalidArgument("material normals must have unit length")
+        exps = [self.exponent] + ([] if self.exponent_map is None else [self.exponent_map])
+        for e in exps:
+            arr = np.asarray(e)
+            if not np.all(np.isfinite(arr)) or np.any(arr < 0) or np.any(arr > 1e6):
+                raise weft.InvalidArgument("specular exponents must lie in [0, 1e6]")
+        self.exponent = float(self.exponent)
+
+    def core_maps(self) -> Dict[str, Any]:
+        """The dict the compiled functions take."""
+        return dict(normal=self.normal, albedo=self.albedo, ambient=self.ambient,
+                    specular=self.specular, exponent=self.exponent,
+                    exponent_map=self.exponent_map,
+                    flat_specular_normal=self.flat_specular_normal,
+                    clamp_diffuse=self.clamp_diffuse)
+
+    @classmethod
+    def from_core(cls, maps: Dict[str, Any]) -> "BtfMaterial":
+        return cls(**maps)
+
+    def __repr__(self) -> str:
+        h, w = self.shape
+        if self.specular is None:
+            spec = "none"
+        elif self.exponent_map is not None:
+            spec = "per-texel exponent"
+        else:
+            spec = f"exponent {self.exponent:g}"
+        ns = "(0,0,1)" if self.flat_specular_normal else "n"
+        return (f"<weft.BtfMaterial {w}x{h} specular {spec}, n_s={ns}, "
+                f"{'clamped' if self.clamp_diffuse else 'linear'} diffuse>")
+
+    def save(self, folder: str) -> None:
+        """Writes the folder (created if needed): material.json, <map>.exr, <map>.png."""
+        os.makedirs(folder, exist_ok=True)
+        meta: Dict[str, Any] = {"format": FORMAT, "version": VERSION,
+                                "width": self.shape[1], "height": self.shape[0],
+                                "exponent": self.exponent,
+                                "flat_specular_normal": self.flat_specular_normal,
+                                "clamp_diffuse": self.clamp_diffuse, "maps": {}}
+        for name in _MAPS:
+            value = getattr(self, name)
+            if value is None:
+                continue
+            weft.save_exr(os.path.join(folder, f"{name}.exr"), value)
+            weft.save_png(os.path.join(folder, f"{name}.png"), preview(name, value))
+            meta["maps"][name] = {"exr": f"{name}.exr", "png": f"{name}.png",
+                                  "min": float(value.min()), "max": float(value.max())}
+        with open(os.path.join(folder, "material.json"), "w", encoding="utf-8") as f:
+            json.dump(meta, f, indent=2)
+
+    @classmethod
+    def load(cls, folder: str) -> "BtfMaterial":
+        """Reads a folder written by :meth:`save`; raises weft.IoError for a missing or malformed
+        folder and weft.InvalidArgument for inconsistent maps."""
+        path = os.path.join(folder, "material.json")
+        try:
+            with open(path, encoding="utf-8") as f:
+                meta = json.load(f)
+        except (OSError, ValueError) as exc:
+            raise weft.IoError(f"cannot read BTF material {path!r}: {exc}") from None
+        if not isinstance(meta, dict) or meta.get("format") != FORMAT or \
+                meta.get("version") != VERSION or not isinstance(meta.get("maps"), dict):
+            raise weft.IoError(f"{path!r} is not a {FORMAT} version {VERSION} file")
+        kwargs: Dict[str, Any] = {}
+        for name, entry in meta["maps"].items():
+            if name not in _MAPS or not isinstance(entry, dict) or "exr" not in entry:
+                raise weft.IoError(f"{path!r}: unknown or malformed map entry {name!r}")
+            image = weft.load_exr(os.path.join(folder, os.path.basename(str(entry["exr"]))))
+            kwargs[name] = image[..., 0] if name == "exponent_map" else image[..., :3]
+        try:
+            return cls(exponent=float(meta.get("exponent", 1.0)),
+                       flat_specular_normal=bool(meta.get("flat_specular_normal", False)),
+                       clamp_diffuse=bool(meta.get("clamp_diffuse", False)), **kwargs)
+        except TypeError as exc:
+            raise weft.IoError(f"{path!r}: {exc}") from None
+
+
+def preview(name: str, value: np.ndarray) -> np.ndarray:
+    """8-bit preview of a map: normals as (n + 1) / 2, others scaled by their maximum."""
+    if name == "normal":
+        img = (value + 1.0) * 0.5
+    else:
+        top = float(np.max(np.abs(value))) or 1.0
+        img = np.clip(value / top, 0.0, 1.0)
+    return np.clip(np.rint(img * 255.0), 0, 255).astype(np.uint8)
