@@ -44,7 +44,8 @@ struct RgbImage {
 
 RgbImage rgbImage(py::handle obj, const std::string& name) {
     FloatArray a = floatArray(obj, name);
-    if (a.ndim() != 2 && a.ndim() != 3) throw InvalidArgument(name + " must have shape (H, W) or (H, W, C)");
+    if (a.ndim() != 2 && a.ndim() != 3)
+        throw InvalidArgument(name + " must have shape (H, W) or (H, W, C)");
     const int c = a.ndim() == 3 ? int(a.shape(2)) : 1;
     if (c < 1 || c > 4) throw InvalidArgument(name + " must have 1 to 4 channels");
     if (a.shape(0) < 1 || a.shape(1) < 1) throw InvalidArgument(name + " must not be empty");
@@ -66,7 +67,8 @@ py::array_t<float> imageArray(const std::vector<float>& pixels, int height, int 
 
 CubeMap cubeFromArray(py::handle obj, const std::string& name) {
     FloatArray a = floatArray(obj, name);
-    if (a.ndim() != 4 || a.shape(0) != 6 || a.shape(1) != a.shape(2) || a.shape(3) != 3 || a.shape(1) < 1)
+    if (a.ndim() != 4 || a.shape(0) != 6 || a.shape(1) != a.shape(2) || a.shape(3) != 3 ||
+        a.shape(1) < 1)
         throw InvalidArgument(name + " must have shape (6, S, S, 3) with S >= 1");
     CubeMap cube(int(a.shape(1)));
     std::memcpy(cube.data(), a.data(), cube.floatCount() * sizeof(float));
@@ -120,7 +122,8 @@ py::array_t<float> vec3Array(const std::vector<glm::vec3>& v) {
 
 Sh9 shFromArray(py::handle obj) {
     FloatArray a = floatArray(obj, "sh");
-    if (a.ndim() != 2 || a.shape(0) != 9 || a.shape(1) != 3) throw InvalidArgument("sh must have shape (9, 3)");
+    if (a.ndim() != 2 || a.shape(0) != 9 || a.shape(1) != 3)
+        throw InvalidArgument("sh must have shape (9, 3)");
     Sh9 sh;
     for (int k = 0; k < 9; ++k)
         sh.coeffs[size_t(k)] = glm::vec3(a.data()[k * 3], a.data()[k * 3 + 1], a.data()[k * 3 + 2]);
@@ -152,6 +155,11 @@ std::vector<uint8_t> maskVector(py::handle obj, const std::string& name, py::ssi
     return std::vector<uint8_t>(b.data(), b.data() + b.size());
 }
 
+void requireCubeSize(int size) {
+    if (size < 1 || size > 8192)
+        throw InvalidArgument("cube map size must be in [1, 8192], got " + std::to_string(size));
+}
+
 DomeLayout domeLayout(const std::string& name) {
     if (name == "fibonacci") return DomeLayout::Fibonacci;
     if (name == "rings") return DomeLayout::Rings;
@@ -170,7 +178,8 @@ void bindIbl(py::module_& m) {
         "RGB float cube map: faces +X, -X, +Y, -Y, +Z, -Z (Vulkan/OpenGL convention), each S x S,\n"
         "NumPy view (6, S, S, 3); optional mip chain. See weft/CubeMap.h for the orientation.")
         .def(py::init<int>(), py::arg("size"))
-        .def(py::init([](py::handle faces) { return cubeFromArray(faces, "faces"); }), py::arg("faces"))
+        .def(py::init([](py::handle faces) { return cubeFromArray(faces, "faces"); }),
+             py::arg("faces"))
         .def_property_readonly("size", &CubeMap::size)
         .def_property_readonly("levels", &CubeMap::levels)
         .def_property_readonly("faces", [](py::object self) {
@@ -211,8 +220,9 @@ void bindIbl(py::module_& m) {
         return py::make_tuple(face, uv);
     }, py::arg("directions"), "Face index (N,) and face coordinates u, v (N, 2) of directions.");
     m.def("cube_texel_directions", [](int size) {
-        CubeMap tmp(size); // validates size
-        py::array_t<float> out({py::ssize_t(6), py::ssize_t(size), py::ssize_t(size), py::ssize_t(3)});
+        requireCubeSize(size);
+        const py::ssize_t s = size;
+        py::array_t<float> out({py::ssize_t(6), s, s, py::ssize_t(3)});
         for (int f = 0; f < 6; ++f)
             for (int j = 0; j < size; ++j)
                 for (int i = 0; i < size; ++i) {
@@ -223,14 +233,17 @@ void bindIbl(py::module_& m) {
         return out;
     }, py::arg("size"), "Unit directions of all texel centres, (6, S, S, 3).");
     m.def("cube_texel_solid_angles", [](int size) {
-        CubeMap tmp(size);
+        requireCubeSize(size);
         py::array_t<double> out({py::ssize_t(size), py::ssize_t(size)});
         for (int j = 0; j < size; ++j)
-            for (int i = 0; i < size; ++i) out.mutable_data()[size_t(j) * size + i] = cubeTexelSolidAngle(i, j, size);
+            for (int i = 0; i < size; ++i)
+                out.mutable_data()[size_t(j) * size + i] = cubeTexelSolidAngle(i, j, size);
         return out;
-    }, py::arg("size"), "Exact texel solid angles of one face, (S, S) float64 (same for all faces).");
+    }, py::arg("size"),
+       "Exact texel solid angles of one face, (S, S) float64 (same for all faces).");
 
-    m.def("sphere_to_cube", [](py::handle image, int size, py::handle worldToSphere, float wrap, int ss) {
+    m.def("sphere_to_cube", [](py::handle image, int size, py::handle worldToSphere, float wrap,
+                               int ss) {
         RgbImage img = rgbImage(image, "sphere map");
         const glm::mat4 mat = optionalMat4(worldToSphere, "world_to_sphere");
         CaptureCube c;
@@ -239,9 +252,11 @@ void bindIbl(py::module_& m) {
             c = sphereToCube(img.view(), mat, wrap, size, ss);
         }
         return captureTuple(std::move(c));
-    }, py::arg("image"), py::arg("size"), py::arg("world_to_sphere") = py::none(), py::arg("wrap") = 1.0f,
-       py::arg("supersample") = 2, "Sphere map -> (CubeMap, valid mask (6, S, S) bool) (SPEC §4.2).");
-    m.def("fisheye_to_cube", [](py::handle image, int size, float fov, py::handle worldToCamera, int ss) {
+    }, py::arg("image"), py::arg("size"), py::arg("world_to_sphere") = py::none(),
+       py::arg("wrap") = 1.0f, py::arg("supersample") = 2,
+       "Sphere map -> (CubeMap, valid mask (6, S, S) bool) (SPEC §4.2).");
+    m.def("fisheye_to_cube", [](py::handle image, int size, float fov, py::handle worldToCamera,
+                                int ss) {
         RgbImage img = rgbImage(image, "fisheye image");
         const glm::mat4 mat = optionalMat4(worldToCamera, "world_to_camera");
         CaptureCube c;
@@ -275,7 +290,8 @@ void bindIbl(py::module_& m) {
             px = cubeToSphere(c, size, mat, wrap);
         }
         return imageArray(px, size, size);
-    }, py::arg("cube"), py::arg("size"), py::arg("world_to_sphere") = py::none(), py::arg("wrap") = 1.0f);
+    }, py::arg("cube"), py::arg("size"), py::arg("world_to_sphere") = py::none(),
+       py::arg("wrap") = 1.0f);
     m.def("fill_unseen", [](py::handle cube, py::handle valid) {
         CubeMap c = toCube(cube, "cube").get();
         const auto mask = maskVector(valid, "valid", py::ssize_t(6) * c.size() * c.size());
@@ -292,7 +308,8 @@ void bindIbl(py::module_& m) {
             sh = projectSh9(c);
         }
         return shArray(sh);
-    }, py::arg("radiance"), "SH9 radiance coefficients (9, 3), see weft/IblFilter.h for the order.");
+    }, py::arg("radiance"),
+       "SH9 radiance coefficients (9, 3), see weft/IblFilter.h for the order.");
     m.def("sh_irradiance", [](py::handle sh, py::handle normals) {
         const Sh9 s = shFromArray(sh);
         auto n = directions(normals, "normals");
@@ -309,22 +326,25 @@ void bindIbl(py::module_& m) {
         py::gil_scoped_release release;
         return irradianceExact(c, size, sourceSize);
     }, py::arg("radiance"), py::arg("size") = 32, py::arg("source_size") = 64);
-    m.def("irradiance_box_blur", [](py::handle cube, int size, int sphereSize, int radius, int passes) {
+    m.def("irradiance_box_blur", [](py::handle cube, int size, int sphereSize, int radius,
+                                    int passes) {
         const CubeArg c = toCube(cube, "radiance");
         py::gil_scoped_release release;
         return irradianceBoxBlur(c, size, sphereSize, radius, passes);
-    }, py::arg("radiance"), py::arg("size") = 32, py::arg("sphere_size") = 64, py::arg("radius") = 12,
-       py::arg("passes") = 2);
+    }, py::arg("radiance"), py::arg("size") = 32, py::arg("sphere_size") = 64,
+       py::arg("radius") = 12, py::arg("passes") = 2);
     m.def("irradiance_rotational_blur", [](py::handle cube, int size, float halfAngle, int steps) {
         const CubeArg c = toCube(cube, "radiance");
         py::gil_scoped_release release;
         return irradianceRotationalBlur(c, size, halfAngle, steps);
-    }, py::arg("radiance"), py::arg("size") = 32, py::arg("half_angle") = 1.0f, py::arg("steps") = 16);
+    }, py::arg("radiance"), py::arg("size") = 32, py::arg("half_angle") = 1.0f,
+       py::arg("steps") = 16);
     m.def("phong_exact", [](py::handle cube, float shininess, int size, int sourceSize) {
         const CubeArg c = toCube(cube, "radiance");
         py::gil_scoped_release release;
         return phongExact(c, shininess, size, sourceSize);
-    }, py::arg("radiance"), py::arg("shininess"), py::arg("size") = 32, py::arg("source_size") = 64);
+    }, py::arg("radiance"), py::arg("shininess"), py::arg("size") = 32,
+       py::arg("source_size") = 64);
     m.def("phong_sampled", [](py::handle cube, float shininess, int size, int samples) {
         const CubeArg c = toCube(cube, "radiance");
         py::gil_scoped_release release;
@@ -416,7 +436,8 @@ void bindIbl(py::module_& m) {
         })
         .def_property_readonly("solid_angles", [](const ShadowDome& d) {
             py::array_t<float> out(py::ssize_t(d.size()));
-            for (int i = 0; i < d.size(); ++i) out.mutable_data()[i] = d.lights()[size_t(i)].solidAngle;
+            for (int i = 0; i < d.size(); ++i)
+                out.mutable_data()[i] = d.lights()[size_t(i)].solidAngle;
             return out;
         })
         .def("diffuse_visible", [](const ShadowDome& d, py::handle normal, py::handle visible) {
@@ -426,7 +447,8 @@ void bindIbl(py::module_& m) {
         .def("diffuse_subtract", [](const ShadowDome& d, py::handle normal, py::handle irradiance,
                                     py::handle visible) {
             const auto mask = maskVector(visible, "visible", d.size());
-            return fromVec3(d.diffuseSubtract(toVec3(normal, "normal"), toVec3(irradiance, "irradiance"), mask));
+            return fromVec3(d.diffuseSubtract(toVec3(normal, "normal"),
+                                              toVec3(irradiance, "irradiance"), mask));
         }, py::arg("normal"), py::arg("irradiance"), py::arg("visible"),
            "Eq. 2.23: irradiance minus the sum over occluded lights.")
         .def("refresh_set", &ShadowDome::refreshSet, py::arg("frame"), py::arg("per_frame"),
@@ -437,9 +459,13 @@ void bindIbl(py::module_& m) {
 
     py::class_<Environment>(m, "Environment",
         "An environment that re-filters only when its radiance changes (cached by version).")
-        .def(py::init([](py::handle cube) { return new Environment(toCube(cube, "radiance").get()); }),
+        .def(py::init([](py::handle cube) {
+            return new Environment(toCube(cube, "radiance").get());
+        }),
              py::arg("radiance"))
-        .def("set_radiance", [](Environment& e, py::handle cube) { e.setRadiance(toCube(cube, "radiance").get()); },
+        .def("set_radiance", [](Environment& e, py::handle cube) {
+            e.setRadiance(toCube(cube, "radiance").get());
+        },
              py::arg("radiance"))
         .def_property_readonly("radiance", [](const Environment& e) { return e.radiance(); })
         .def_property_readonly("version", &Environment::version)
@@ -454,7 +480,8 @@ void bindIbl(py::module_& m) {
         .def("irradiance_map", &Environment::irradianceMap, py::arg("size") = 32,
              py::call_guard<py::gil_scoped_release>())
         .def("specular_chain", &Environment::specularChain, py::arg("size") = 128,
-             py::arg("levels") = 5, py::arg("samples") = 64, py::call_guard<py::gil_scoped_release>())
+             py::arg("levels") = 5, py::arg("samples") = 64,
+             py::call_guard<py::gil_scoped_release>())
         .def("shadow_dome", [](Environment& e, int count, const std::string& layout) {
             const DomeLayout l = domeLayout(layout);
             py::gil_scoped_release release;
