@@ -16,6 +16,7 @@ void bindCloth(py::module_& m);
 void bindHair(py::module_& m);
 void bindBtf(py::module_& m);
 void bindHairRender(py::module_& m);
+void bindIbl(py::module_& m);
 } // namespace weft::py_bind
 
 using namespace weft::py_bind;
@@ -183,4 +184,5 @@ PYBIND11_MODULE(_core, m) {
     bindHair(m);
     bindBtf(m);
     bindHairRender(m);
+    bindIbl(m);
 }

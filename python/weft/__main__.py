@@ -5,6 +5,7 @@
     python -m weft devices [--json]
     python -m weft render [--width W] [--height H] [--out PNG]
     python -m weft btf {synth PRESET OUT, fit PATH --out DIR} ...   (see weft.btf.cli)
+    python -m weft ibl {convert,irradiance,extract-lights} ...   (see python -m weft ibl --help)
 
 Benchmarks have their own entry point: ``python -m weft.bench --help``.
 """
@@ -97,6 +98,10 @@ def build_parser() -> argparse.ArgumentParser:
     from weft.btf import cli as btf_cli
 
     btf_cli.add_parsers(sub)
+
+    from weft.ibl.cli import add_ibl_parser
+
+    add_ibl_parser(sub)
     return parser
 
 

@@ -25,6 +25,7 @@ SUBSYSTEMS: Dict[str, str] = {
     "cloth": "weft.bench.cloth",
     "hair": "weft.bench.hair",
     "btf": "weft.bench.btf",
+    "ibl": "weft.bench.ibl",
 }
 
 __all__ = ["SUBSYSTEMS", "main", "load_subsystem", "machine_info", "Progress", "write_report",

@@ -1,0 +1,216 @@
+// Glossy prefiltering: exact and importance-sampled Phong lobes, the GGX split-sum chain and its
+// DFG table. Sampled filters read each sample from the mip level matching its solid angle.
+#include <weft/IblFilter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <weft/Error.h>
+
+#include "CubeTexels.h"
+#include "IblParallel.h"
+#include "IblValidate.h"
+
+namespace weft {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+void requireShininess(float s) {
+    if (!(s >= 0.0f && s <= 1e6f)) throw InvalidArgument("shininess must be in [0, 1e6]");
+}
+
+// Mip level whose texel solid angle matches a sample's, 1 / (n pdf) (Krivanek & Colbert 2008,
+// without their +1 bias: 3-4x lower error on smooth environments in the benchmark, and a tiny
+// sun still stays bounded); `texelSolidAngle` is the level-0 texel solid angle.
+float sampleLod(float pdf, int samples, float texelSolidAngle) {
+    const float omegaS = 1.0f / (float(samples) * std::max(pdf, 1e-12f));
+    return std::max(0.0f, 0.5f * std::log2(omegaS / texelSolidAngle));
+}
+
+template <class Fn> void fillLevel(CubeMap& out, int level, Fn fn) {
+    const int size = out.levelSize(level);
+    iblParallelFor(6 * size, [&](int begin, int end) {
+        for (int row = begin; row < end; ++row) {
+            const int f = row / size, j = row % size;
+            for (int i = 0; i < size; ++i) {
+                const glm::vec3 c = fn(cubeTexelDirection(f, i, j, size));
+                float* p = out.texel(f, i, j, level);
+                p[0] = c.x;
+                p[1] = c.y;
+                p[2] = c.z;
+            }
+        }
+    });
+}
+
+// GGX half vector around +Z for a uniform point u and alpha.
+glm::vec3 ggxHalf(const glm::vec2& u, float alpha) {
+    const float a2 = alpha * alpha;
+    const float cosT = std::sqrt((1.0f - u.y) / (1.0f + (a2 - 1.0f) * u.y));
+    const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
+    const float phi = 2.0f * kPi * u.x;
+    return {sinT * std::cos(phi), sinT * std::sin(phi), cosT};
+}
+
+float ggxD(float nh, float alpha) {
+    const float a2 = alpha * alpha;
+    const float d = nh * nh * (a2 - 1.0f) + 1.0f;
+    return a2 / (kPi * d * d);
+}
+
+} // namespace
+
+glm::vec2 hammersley(unsigned i, unsigned n) {
+    unsigned bits = i;
+    bits = (bits << 16u) | (bits >> 16u);
+    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+    return {float(i) / float(n), float(bits) * 2.3283064365386963e-10f};
+}
+
+CubeMap phongExact(const CubeMap& radiance, float shininess, int size, int sourceSize) {
+    requireCube(radiance, "radiance cube map");
+    requireShininess(shininess);
+    requireCount(size, 1024, "output size");
+    requireCount(sourceSize, 1024, "source size");
+    requireAffordable(36.0 * size * size * sourceSize * sourceSize, "exact Phong convolution");
+    const CubeTexels t = cubeTexels(reducedCube(radiance, sourceSize));
+    const float cosMin = shininess > 0.0f ? std::pow(1e-6f, 1.0f / shininess) : 0.0f;
+    CubeMap out(size);
+    fillLevel(out, 0, [&](const glm::vec3& d) {
+        double r = 0.0, g = 0.0, b = 0.0, w = 0.0;
+        for (size_t k = 0; k < t.size(); ++k) {
+            const float c = d.x * t.x[k] + d.y * t.y[k] + d.z * t.z[k];
+            if (c <= cosMin || c <= 0.0f) continue;
+            const double lobe = std::pow(double(c), double(shininess));
+            r += lobe * t.r[k];
+            g += lobe * t.g[k];
+            b += lobe * t.b[k];
+            w += lobe * t.dw[k];
+        }
+        return w > 0.0 ? glm::vec3(float(r / w), float(g / w), float(b / w)) : glm::vec3(0.0f);
+    });
+    return out;
+}
+
+CubeMap phongSampled(const CubeMap& radiance, float shininess, int size, int samples) {
+    requireCube(radiance, "radiance cube map");
+    requireShininess(shininess);
+    requireCount(size, 1024, "output size");
+    requireCount(samples, 1 << 20, "sample count");
+    requireAffordable(6.0 * size * size * samples * 16.0, "sampled Phong convolution");
+    const CubeMap chain = withMips(radiance);
+    const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
+    std::vector<glm::vec3> local(static_cast<size_t>(samples));
+    std::vector<float> lods(static_cast<size_t>(samples));
+    for (int k = 0; k < samples; ++k) {
+        const glm::vec2 u = hammersley(unsigned(k), unsigned(samples));
+        const float cosT = std::pow(1.0f - u.y, 1.0f / (shininess + 1.0f));
+        const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
+        const float phi = 2.0f * kPi * u.x;
+        local[size_t(k)] = {sinT * std::cos(phi), sinT * std::sin(phi), cosT};
+        const float pdf = (shininess + 1.0f) / (2.0f * kPi) * std::pow(cosT, shininess);
+        lods[size_t(k)] = sampleLod(pdf, samples, texelOmega);
+    }
+    CubeMap out(size);
+    fillLevel(out, 0, [&](const glm::vec3& n) {
+        glm::vec3 t, b;
+        tangentFrame(n, t, b);
+        glm::vec3 acc(0.0f);
+        for (int k = 0; k < samples; ++k) {
+            const glm::vec3& l = local[size_t(k)];
+            acc += chain.sampleLod(l.x * t + l.y * b + l.z * n, lods[size_t(k)]);
+        }
+        return acc / float(samples);
+    });
+    return out;
+}
+
+CubeMap prefilterGgx(const CubeMap& radiance, int size, int levels, int samples) {
+    requireCube(radiance, "radiance cube map");
+    requireCount(size, 4096, "output size");
+    requireCount(samples, 1 << 20, "sample count");
+    int maxLevels = 1;
+    while ((size >> maxLevels) >= 1) ++maxLevels;
+    if (levels < 1 || levels > maxLevels)
+        throw InvalidArgument("levels must be in [1, " + std::to_string(maxLevels) + "] for size " +
+                              std::to_string(size));
+    requireAffordable(8.0 * size * size * samples * 16.0, "GGX prefilter");
+    const CubeMap chain = withMips(radiance);
+    const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
+    CubeMap out(size);
+    // Level 0: the source at the output size (mirror reflection).
+    const float lod0 = std::max(0.0f, std::log2(float(radiance.size()) / float(size)));
+    fillLevel(out, 0, [&](const glm::vec3& d) { return chain.sampleLod(d, lod0); });
+    out.buildMips(); // allocates the chain; levels 1 .. levels-1 are overwritten below
+    out.keepLevels(levels);
+    for (int m = 1; m < levels; ++m) {
+        const float rough = float(m) / float(levels - 1);
+        const float alpha = std::max(rough * rough, 1e-3f);
+        std::vector<glm::vec3> halves(static_cast<size_t>(samples));
+        std::vector<float> lods(static_cast<size_t>(samples));
+        for (int k = 0; k < samples; ++k) {
+            const glm::vec3 h = ggxHalf(hammersley(unsigned(k), unsigned(samples)), alpha);
+            halves[size_t(k)] = h;
+            lods[size_t(k)] = sampleLod(ggxD(h.z, alpha) * 0.25f, samples, texelOmega);
+        }
+        fillLevel(out, m, [&](const glm::vec3& n) {
+            glm::vec3 t, b;
+            tangentFrame(n, t, b);
+            glm::vec3 acc(0.0f);
+            float wsum = 0.0f;
+            for (int k = 0; k < samples; ++k) {
+                const glm::vec3& hl = halves[size_t(k)];
+                const glm::vec3 h = hl.x * t + hl.y * b + hl.z * n;
+                const glm::vec3 l = 2.0f * hl.z * h - n; // reflect V = N about H
+                const float nl = glm::dot(n, l);
+                if (nl <= 0.0f) continue;
+                acc += nl * chain.sampleLod(l, lods[size_t(k)]);
+                wsum += nl;
+            }
+            return wsum > 0.0f ? acc / wsum : glm::vec3(0.0f);
+        });
+    }
+    return out;
+}
+
+std::vector<float> dfgLut(int size, int samples) {
+    requireCount(size, 1024, "DFG table size");
+    requireCount(samples, 1 << 20, "sample count");
+    requireAffordable(double(size) * size * samples * 10.0, "DFG table");
+    std::vector<float> out(size_t(size) * size * 2);
+    iblParallelFor(size, [&](int begin, int end) {
+        for (int j = begin; j < end; ++j) {
+            const float rough = (float(j) + 0.5f) / float(size);
+            const float alpha = rough * rough;
+            const float k = alpha * 0.5f;
+            for (int i = 0; i < size; ++i) {
+                const float nv = (float(i) + 0.5f) / float(size);
+                const glm::vec3 v(std::sqrt(1.0f - nv * nv), 0.0f, nv);
+                double a = 0.0, bsum = 0.0;
+                for (int s = 0; s < samples; ++s) {
+                    const glm::vec3 h = ggxHalf(hammersley(unsigned(s), unsigned(samples)), alpha);
+                    const float vh = glm::dot(v, h);
+                    const glm::vec3 l = 2.0f * vh * h - v;
+                    const float nl = l.z, nh = h.z;
+                    if (nl <= 0.0f || vh <= 0.0f) continue;
+                    const float g = (nv / (nv * (1.0f - k) + k)) * (nl / (nl * (1.0f - k) + k));
+                    const float gVis = g * vh / (nh * nv);
+                    const float fc = std::pow(1.0f - vh, 5.0f);
+                    a += (1.0f - fc) * gVis;
+                    bsum += fc * gVis;
+                }
+                out[(size_t(j) * size + i) * 2] = float(a / samples);
+                out[(size_t(j) * size + i) * 2 + 1] = float(bsum / samples);
+            }
+        }
+    });
+    return out;
+}
+
+} // namespace weft

@@ -1,0 +1,43 @@
+// Argument checks shared by the IBL tools.
+#include "IblValidate.h"
+
+#include <cmath>
+#include <string>
+
+#include <weft/Error.h>
+
+namespace weft {
+
+void requireImageSize(int width, int height, const char* what) {
+    if (width < 1 || height < 1 || width > 65536 || height > 65536)
+        throw InvalidArgument(std::string(what) + " size must be in [1, 65536], got " +
+                              std::to_string(width) + " x " + std::to_string(height));
+}
+
+void requireRgb(RgbView image, const char* what) {
+    requireImageSize(image.width, image.height, what);
+    if (!image.pixels) throw InvalidArgument(std::string(what) + " has no pixels");
+    const size_t n = size_t(image.width) * image.height * 3;
+    for (size_t k = 0; k < n; ++k)
+        if (!std::isfinite(image.pixels[k]))
+            throw InvalidArgument(std::string(what) + " must be finite (found NaN/inf)");
+}
+
+void requireCube(const CubeMap& cube, const char* what) {
+    if (cube.empty()) throw InvalidArgument(std::string(what) + " is empty");
+    cube.requireFinite(what, true);
+}
+
+void requireCount(int n, int maxValue, const char* what) {
+    if (n < 1 || n > maxValue)
+        throw InvalidArgument(std::string(what) + " must be in [1, " + std::to_string(maxValue) +
+                              "], got " + std::to_string(n));
+}
+
+void requireAffordable(double steps, const char* what) {
+    if (steps > 4e10)
+        throw InvalidArgument(std::string(what) + ": about " + std::to_string(steps) +
+                              " steps is too expensive; reduce the sizes or sample counts");
+}
+
+} // namespace weft

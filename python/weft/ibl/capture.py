@@ -1,0 +1,252 @@
+"""Capture conveniences: LDR decoding, environment files, cube crosses and the one-camera
+mirror-ball setup (SPEC §4.1).
+
+Cube crosses use the cube-map face orientation unchanged (weft/CubeMap.h):
+horizontal (4 x 3 faces): row 0 ``. +Y . .``, row 1 ``-X +Z +X -Z``, row 2 ``. -Y . .``;
+vertical (3 x 4 faces): row 0 ``. +Y .``, row 1 ``-X +Z +X``, row 2 ``. -Y .``, row 3 ``. -Z .``
+with -Z turned by 180 degrees. Neighbouring cells then share their edges.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Iterable, Iterator, Optional, Sequence, Tuple
+
+import numpy as np
+
+from weft._core import (
+    CubeMap, InvalidArgument, IoError, equirect_to_cube, fill_unseen, fisheye_to_cube,
+    sphere_to_cube,
+)
+
+#: (row, column) of each face (+X, -X, +Y, -Y, +Z, -Z) in the crosses, in face units.
+_HORIZONTAL = ((1, 2), (1, 0), (0, 1), (2, 1), (1, 1), (1, 3))
+_VERTICAL = ((1, 2), (1, 0), (0, 1), (2, 1), (1, 1), (3, 1))
+
+
+def srgb_to_linear(image: np.ndarray) -> np.ndarray:
+    """Decodes sRGB: uint8 (0..255) or float (0..1) -> linear float32 (alpha dropped)."""
+    a = np.asarray(image)
+    if a.dtype == np.uint8:
+        x = a.astype(np.float64) / 255.0
+    elif np.issubdtype(a.dtype, np.floating):
+        x = a.astype(np.float64)
+    else:
+        raise InvalidArgument(f"sRGB image must be uint8 or float, got {a.dtype}")
+    if x.ndim == 3 and x.shape[2] in (2, 4):
+        x = x[..., :-1]
+    lin = np.where(x <= 0.04045, x / 12.92, ((x + 0.055) / 1.055) ** 2.4)
+    return lin.astype(np.float32)
+
+
+def _float_image(image: np.ndarray, name: str) -> np.ndarray:
+    a = np.asarray(image)
+    if a.dtype == np.uint8:
+        return srgb_to_linear(a)
+    if not np.issubdtype(a.dtype, np.floating):
+        raise InvalidArgument(f"{name} must be float (linear) or uint8 (sRGB), got {a.dtype}")
+    if a.ndim == 2:
+        a = a[..., None]
+    if a.ndim != 3 or a.shape[2] not in (1, 3, 4):
+        raise InvalidArgument(f"{name} must have shape (H, W), (H, W, 1), (H, W, 3) or (H, W, 4)")
+    if a.shape[2] == 1:
+        a = np.repeat(a, 3, axis=2)
+    if not np.all(np.isfinite(a)):
+        raise InvalidArgument(f"{name} must be finite (found NaN/inf)")
+    return np.ascontiguousarray(a[..., :3], dtype=np.float32)
+
+
+def load_environment(path: str) -> np.ndarray:
+    """Reads an environment image as linear float32 (H, W, 3): ``.hdr`` / ``.exr``, ``.npy``
+    (float, or cube faces (6, S, S, 3)) or ``.png`` (sRGB decoded). Missing, truncated or corrupt
+    files raise weft.IoError."""
+    import weft
+
+    ext = os.path.splitext(path)[1].lower()
+    if not os.path.exists(path):
+        raise IoError(f"{path}: no such file")
+    if ext == ".png":
+        return srgb_to_linear(weft.load_png(path))
+    if ext == ".npy":
+        try:
+            a = np.load(path, allow_pickle=False)
+        except (ValueError, OSError) as exc:
+            raise IoError(f"{path}: not a readable .npy file ({exc})") from None
+        return a if a.ndim == 4 else _float_image(a, path)
+    if ext == ".hdr":
+        return _float_image(weft.load_hdr(path), path)
+    if ext == ".exr":
+        return _float_image(weft.load_exr(path), path)
+    raise InvalidArgument(f"{path}: unsupported environment format {ext!r} "
+                          "(use .hdr, .exr, .npy or .png)")
+
+
+def save_environment(path: str, image: np.ndarray) -> None:
+    """Writes a float image (H, W, 3): ``.npy``, ``.hdr`` / ``.exr`` or ``.png`` (sRGB encoded,
+    clipped)."""
+    import weft
+
+    ext = os.path.splitext(path)[1].lower()
+    a = np.ascontiguousarray(image, dtype=np.float32)
+    if ext == ".npy":
+        np.save(path, a)
+    elif ext == ".png":
+        x = np.clip(a, 0.0, 1.0)
+        srgb = np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
+        weft.save_png(path, np.rint(srgb * 255.0).astype(np.uint8))
+    elif ext == ".hdr":
+        weft.save_hdr(path, a)
+    elif ext == ".exr":
+        weft.save_exr(path, a)
+    else:
+        raise InvalidArgument(f"{path}: cannot write {ext!r} (use .npy, .hdr, .exr or .png)")
+
+
+def cross_to_cube(image: np.ndarray, layout: str = "auto") -> CubeMap:
+    """Cube cross (horizontal 4x3 or vertical 3x4, see the module doc) -> CubeMap."""
+    a = _float_image(image, "cube cross")
+    h, w = a.shape[:2]
+    if layout == "auto":
+        layout = "horizontal" if w * 3 == h * 4 else "vertical" if w * 4 == h * 3 else ""
+        if not layout:
+            raise InvalidArgument(f"a cube cross must be 4:3 or 3:4, got {w} x {h}")
+    if layout not in ("horizontal", "vertical"):
+        raise InvalidArgument(f"cross layout must be 'horizontal', 'vertical' or 'auto'")
+    s = w // 4 if layout == "horizontal" else w // 3
+    expected = (3 * s, 4 * s) if layout == "horizontal" else (4 * s, 3 * s)
+    if s < 1 or (h, w) != expected:
+        raise InvalidArgument(f"{layout} cross must be {expected[1]} x {expected[0]}, "
+                              f"got {w} x {h}")
+    cells = _HORIZONTAL if layout == "horizontal" else _VERTICAL
+    faces = np.empty((6, s, s, 3), np.float32)
+    for f, (r, c) in enumerate(cells):
+        cell = a[r * s:(r + 1) * s, c * s:(c + 1) * s]
+        faces[f] = cell[::-1, ::-1] if (layout == "vertical" and f == 5) else cell
+    return CubeMap(faces)
+
+
+def cube_to_cross(cube, layout: str = "horizontal") -> np.ndarray:
+    """CubeMap or (6, S, S, 3) -> cross image (black outside the faces)."""
+    faces = np.asarray(cube.faces if isinstance(cube, CubeMap) else cube, dtype=np.float32)
+    if faces.ndim != 4 or faces.shape[0] != 6 or faces.shape[1] != faces.shape[2]:
+        raise InvalidArgument("cube must have shape (6, S, S, 3)")
+    s = faces.shape[1]
+    if layout not in ("horizontal", "vertical"):
+        raise InvalidArgument("cross layout must be 'horizontal' or 'vertical'")
+    out = np.zeros((3 * s, 4 * s, 3) if layout == "horizontal" else (4 * s, 3 * s, 3), np.float32)
+    cells = _HORIZONTAL if layout == "horizontal" else _VERTICAL
+    for f, (r, c) in enumerate(cells):
+        face = faces[f][::-1, ::-1] if (layout == "vertical" and f == 5) else faces[f]
+        out[r * s:(r + 1) * s, c * s:(c + 1) * s] = face
+    return out
+
+
+def to_cube(image: np.ndarray, source: str, size: int, wrap: float = 1.0,
+            fov: float = np.pi, matrix: Optional[np.ndarray] = None,
+            fill: bool = True) -> CubeMap:
+    """Any supported capture -> CubeMap. ``source``: 'equirect', 'cross', 'sphere' (mirror ball,
+    with ``wrap`` and the world->sphere ``matrix``) or 'fisheye' (``fov`` radians, world->camera
+    ``matrix``). Unseen regions are filled (push-pull) when ``fill``."""
+    if source == "cross":
+        cube = cross_to_cube(image)
+        return cube if cube.size == size else resize_cube(cube, size)
+    img = _float_image(image, "environment image")
+    if source == "equirect":
+        return equirect_to_cube(img, size)
+    if source == "sphere":
+        cube, valid = sphere_to_cube(img, size, matrix, wrap)
+    elif source == "fisheye":
+        cube, valid = fisheye_to_cube(img, size, fov, matrix)
+    else:
+        raise InvalidArgument(f"unknown source {source!r}: use equirect, cross, sphere or fisheye")
+    return fill_unseen(cube, valid) if fill and not valid.all() else cube
+
+
+def resize_cube(cube: CubeMap, size: int) -> CubeMap:
+    """Resamples a cube map to ``size`` (trilinear from its mip chain, seamless)."""
+    from weft._core import cube_texel_directions
+
+    src = cube.copy()
+    src.build_mips()
+    lod = max(0.0, float(np.log2(src.size / size)))
+    dirs = cube_texel_directions(size).reshape(-1, 3)
+    return CubeMap(np.asarray(src.sample(dirs, lod), np.float32).reshape(6, size, size, 3))
+
+
+def sphere_rect(marker_to_camera: np.ndarray, centre: Sequence[float], radius: float,
+                projection: np.ndarray, width: int,
+                height: int) -> Tuple[float, float, float, float]:
+    """The one-camera setup (seed §3.3.1): bounding rectangle of the mirror ball in pixels,
+    ``(x0, y0, x1, y1)`` with y down. ``c_eye = M c``; corners ``c_eye -+ (r, r, 0)`` are
+    projected by ``P`` to OpenGL-style NDC (y up) and mapped to the image."""
+    m = np.asarray(marker_to_camera, np.float64)
+    p = np.asarray(projection, np.float64)
+    c = np.asarray(centre, np.float64)
+    if m.shape != (4, 4) or p.shape != (4, 4) or c.shape != (3,):
+        raise InvalidArgument("marker_to_camera and projection must be 4x4, centre a 3-vector")
+    if not (np.all(np.isfinite(m)) and np.all(np.isfinite(p)) and np.all(np.isfinite(c))):
+        raise InvalidArgument("camera matrices and centre must be finite")
+    if not (np.isfinite(radius) and radius > 0) or width < 1 or height < 1:
+        raise InvalidArgument("radius must be > 0 and the image size positive")
+    eye = m @ np.append(c, 1.0)
+    corners = []
+    for sign in (-1.0, 1.0):
+        q = p @ (eye + np.array([sign * radius, sign * radius, 0.0, 0.0]))
+        if not abs(q[3]) > 1e-12:
+            raise InvalidArgument("the ball projects to infinity (w = 0)")
+        corners.append(q[:2] / q[3])
+    (lx, ly), (ux, uy) = corners
+    x0, x1 = sorted(((lx * 0.5 + 0.5) * width, (ux * 0.5 + 0.5) * width))
+    y0, y1 = sorted(((0.5 - ly * 0.5) * height, (0.5 - uy * 0.5) * height))
+    return float(x0), float(y0), float(x1), float(y1)
+
+
+def cut_out_sphere(frame: np.ndarray, rect: Tuple[float, float, float, float],
+                   size: int) -> np.ndarray:
+    """Resamples the rectangle ``(x0, y0, x1, y1)`` (pixels, y down) of a frame into a square
+    ``size`` x ``size`` sphere map (bilinear, edges clamped)."""
+    img = _float_image(frame, "frame")
+    x0, y0, x1, y1 = (float(v) for v in rect)
+    if size < 1 or not (np.isfinite([x0, y0, x1, y1]).all() and x1 > x0 and y1 > y0):
+        raise InvalidArgument("rectangle must be finite with x1 > x0, y1 > y0, and size >= 1")
+    h, w = img.shape[:2]
+    t = (np.arange(size) + 0.5) / size
+    px = np.clip(x0 + t * (x1 - x0) - 0.5, 0.0, w - 1.0)
+    py = np.clip(y0 + t * (y1 - y0) - 0.5, 0.0, h - 1.0)
+    ix = np.minimum(np.floor(px).astype(int), w - 2) if w > 1 else np.zeros(size, int)
+    iy = np.minimum(np.floor(py).astype(int), h - 2) if h > 1 else np.zeros(size, int)
+    fx = (px - ix)[None, :, None] if w > 1 else np.zeros((1, size, 1))
+    fy = (py - iy)[:, None, None] if h > 1 else np.zeros((size, 1, 1))
+    ix1 = np.minimum(ix + 1, w - 1)
+    iy1 = np.minimum(iy + 1, h - 1)
+    top = img[iy][:, ix] * (1 - fx) + img[iy][:, ix1] * fx
+    bottom = img[iy1][:, ix] * (1 - fx) + img[iy1][:, ix1] * fx
+    return (top * (1 - fy) + bottom * fy).astype(np.float32)
+
+
+def environments_from_frames(frames: Iterable[np.ndarray], size: int, sphere_size: int = 256,
+                             rect: Optional[Tuple[float, float, float, float]] = None,
+                             marker_to_camera: Optional[Iterable[np.ndarray]] = None,
+                             centre: Sequence[float] = (0.0, 0.0, 0.0), radius: float = 0.05,
+                             projection: Optional[np.ndarray] = None, wrap: float = 0.9,
+                             world_to_sphere: Optional[np.ndarray] = None) -> Iterator[CubeMap]:
+    """Frame by frame: cut the ball out (fixed ``rect`` = two-camera setup, or per-frame
+    ``marker_to_camera`` matrices with ``centre``/``radius``/``projection`` = one-camera setup),
+    convert to a cube map of ``size`` with ``wrap`` and fill what the ball cannot show."""
+    if (rect is None) == (marker_to_camera is None):
+        raise InvalidArgument("give either a fixed rect or per-frame marker_to_camera matrices")
+    if marker_to_camera is not None and projection is None:
+        raise InvalidArgument("the one-camera setup needs the projection matrix")
+    matrices = iter(marker_to_camera) if marker_to_camera is not None else None
+    for frame in frames:
+        img = _float_image(frame, "frame")
+        r = rect
+        if matrices is not None:
+            try:
+                m = next(matrices)
+            except StopIteration:
+                raise InvalidArgument("fewer marker matrices than frames") from None
+            r = sphere_rect(m, centre, radius, projection, img.shape[1], img.shape[0])
+        sphere = cut_out_sphere(img, r, sphere_size)
+        cube, valid = sphere_to_cube(sphere, size, world_to_sphere, wrap)
+        yield fill_unseen(cube, valid) if not valid.all() else cube

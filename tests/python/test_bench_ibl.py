@@ -1,0 +1,38 @@
+"""``python -m weft.bench ibl --quick``: the IBL benchmark's report (time against error)."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+
+def test_bench_ibl_quick(tmp_path: Path) -> None:
+    out = tmp_path / "bench"
+    env = dict(os.environ, WEFT_VALIDATION="1")
+    proc = subprocess.run([sys.executable, "-m", "weft.bench", "ibl", "--quick", "--no-progress",
+                           "--out", str(out)], capture_output=True, text=True, timeout=300, env=env)
+    assert proc.returncode == 0, f"--- stdout\n{proc.stdout}\n--- stderr\n{proc.stderr}"
+    data = json.loads((out / "bench.json").read_text())
+    assert data["benchmark"] == "ibl" and "--quick" in data["command"]
+    for key in ("conversion", "irradiance", "glossy", "lights", "dome", "machine", "summary"):
+        assert key in data, key
+    rows = data["irradiance"]["rows"]
+    assert {r["method"] for r in rows} >= {"SH9 (project + evaluate)", "seed box blur (sphere map)",
+                                           "seed 3-axis rotational blur"}
+    for r in rows + data["glossy"]["phong"] + data["conversion"]:
+        assert r["ms"] > 0 and math.isfinite(r["mean_err"])
+    sky_sh = next(r for r in rows if r["env"] == "sky" and r["method"].startswith("SH9"))
+    assert sky_sh["mean_err"] < 0.03
+    for r in data["glossy"]["ggx_chain"]:
+        assert r["cpu_s"] > 0 and 0 < r["gpu_dispatch_s"] <= r["gpu_total_s"]
+    threshold = data["lights"][0]
+    assert threshold["dir_err_deg"] < 2.0 and threshold["power_err"] < 0.05
+    dome = data["dome"]
+    assert dome[0]["err"] > dome[-1]["err"]
+    assert "renderer" in data["summary"]["shadow_light_frame_times"]
+    md = (out / "bench.md").read_text()
+    assert "## Irradiance" in md and "## Shadow-light dome" in md
