@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(g++ pkg-config ccache libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc
           libglfw3-dev libglm-dev libpng-dev libopenexr-dev libgtest-dev xvfb xauth
-          libjpeg62-turbo-dev libzip-dev libceres-dev)
+          libjpeg62-turbo-dev libzip-dev libceres-dev libshaderc-dev glslang-dev spirv-tools)
 command -v cmake >/dev/null || packages+=(cmake)
 command -v ninja >/dev/null || packages+=(ninja-build)
 

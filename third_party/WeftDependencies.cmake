@@ -19,10 +19,25 @@ find_package(Threads REQUIRED)
 
 find_program(WEFT_GLSLC glslc REQUIRED)
 
-# shaderc (runtime shader compilation for hot reload) is optional.
-find_package(PkgConfig QUIET)
-if(PkgConfig_FOUND)
-    pkg_check_modules(WEFT_SHADERC QUIET IMPORTED_TARGET shaderc)
+# libshaderc (runtime shader compilation for hot reload) is optional: libshaderc-dev. Linked by
+# path, which also travels into the installed CMake package unchanged.
+# Debian's libshaderc.so carries its own partial glslang that clashes with the static glslang,
+# so weft links shaderc_combined.a with the static glslang (glslang-dev) and SPIRV-Tools
+# libraries it was built against, in dependency order.
+find_path(WEFT_SHADERC_INCLUDE_DIR shaderc/shaderc.h)
+find_library(WEFT_SHADERC_LIBRARY NAMES libshaderc_combined.a shaderc_combined)
+set(WEFT_SHADERC_LIBRARIES ${WEFT_SHADERC_LIBRARY})
+foreach(lib glslang SPIRV MachineIndependent OSDependent GenericCodeGen OGLCompiler HLSL
+            glslang-default-resource-limits SPIRV-Tools-opt SPIRV-Tools)
+    find_library(WEFT_SHADERC_DEP_${lib} NAMES ${lib})
+    if(WEFT_SHADERC_DEP_${lib})
+        list(APPEND WEFT_SHADERC_LIBRARIES ${WEFT_SHADERC_DEP_${lib}})
+    endif()
+endforeach()
+if(WEFT_HOT_RELOAD AND WEFT_SHADERC_INCLUDE_DIR AND WEFT_SHADERC_LIBRARY)
+    set(WEFT_HAVE_SHADERC 1)
+else()
+    set(WEFT_HAVE_SHADERC 0)
 endif()
 
 # Ceres is optional; the BTF fitter falls back to its own Levenberg-Marquardt without it.

@@ -6,6 +6,7 @@
 #include <weft/Demo.h>
 #include <weft/Device.h>
 #include <weft/Image.h>
+#include <weft/ShaderReload.h>
 
 #include "Convert.h"
 
@@ -157,9 +158,25 @@ PYBIND11_MODULE(_core, m) {
         return imageFToArray(weft::loadImageF(path));
     }, py::arg("path"), "Reads .exr, .hdr or .png (values / 255) into a float32 (H, W, C) array.");
 
+    m.def("shader_hot_reload_available", &weft::shaderHotReloadAvailable,
+          "True when weft was built with libshaderc (shader hot reload).");
+    m.def("set_shader_directory", [](const std::string& dir) { weft::setShaderDirectory(dir); },
+          py::arg("directory"),
+          "Development: watch a directory laid out like glsl/; shaders changed there are\n"
+          "recompiled (libshaderc) and replace the built-in ones at the next frame. '' stops.");
+    m.def("shader_directory", &weft::shaderDirectory);
+    m.def("poll_shader_changes", [] {
+        py::gil_scoped_release release;
+        return weft::pollShaderChanges();
+    }, "Recompiles changed shaders now (renderers also do it every frame); returns how many.");
+    m.def("shader_errors", &weft::shaderErrors,
+          "Compile errors of reloaded shaders since the last clear (name: file:line: message).");
+    m.def("clear_shader_errors", &weft::clearShaderErrors);
+
     m.def("run_demo", [](int width, int height, int frames, bool headless, bool vsync,
                          const std::string& out, const std::string& screenshot,
-                         const std::string& statsJson, const std::string& script) {
+                         const std::string& statsJson, const std::string& script,
+                         const std::string& shaderDir) {
         weft::DemoOptions o;
         o.width = width;
         o.height = height;
@@ -170,11 +187,13 @@ PYBIND11_MODULE(_core, m) {
         o.screenshot = screenshot;
         o.statsJson = statsJson;
         o.script = script;
+        o.shaderDir = shaderDir;
         py::gil_scoped_release release;
         return weft::runDemo(o);
     }, py::arg("width") = 1280, py::arg("height") = 720, py::arg("frames") = 0,
        py::arg("headless") = false, py::arg("vsync") = true, py::arg("out") = "out/demo.png",
        py::arg("screenshot") = "", py::arg("stats_json") = "", py::arg("script") = "",
+       py::arg("shader_dir") = "",
        "Runs the demo (the seed's cloth environment): a window when a display exists, else\n"
        "headless to `out` (see `weft-demo --help` for frames, scripts and output folders).");
 

@@ -72,6 +72,11 @@ def build_parser() -> argparse.ArgumentParser:
     demo.add_argument("--out", default="out/demo.png",
                       help="headless output: a PNG (default out/demo.png), or with --frames a "
                            "directory for frame_NNNN.png and stats.json")
+    demo.add_argument("--shader-dir", default=os.environ.get("WEFT_SHADER_DIR", ""),
+                      metavar="DIR",
+                      help="shader hot reload: watch DIR (laid out like glsl/); edited shaders "
+                           "are recompiled and used from the next frame (default "
+                           "$WEFT_SHADER_DIR)")
     demo.add_argument("--script", default="", metavar="FILE",
                       help="scripted input: lines '<frame> key <K>', '<frame> grab <x> <y>', "
                            "'<frame> drag <x> <y>', '<frame> release'")
@@ -111,7 +116,7 @@ def _cmd_demo(args: argparse.Namespace) -> int:
     return int(weft.run_demo(width=args.width, height=args.height, frames=args.frames,
                              headless=args.headless, vsync=args.vsync, out=args.out,
                              screenshot=args.screenshot, stats_json=args.stats,
-                             script=args.script))
+                             script=args.script, shader_dir=args.shader_dir))
 
 
 def format_table(rows: List[Dict[str, Any]], columns: Sequence[str]) -> str:

@@ -1,11 +1,13 @@
 // weft-demo: the seed's cloth environment in a window, or rendered headless without a display.
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
 #include <weft/Demo.h>
 #include <weft/Error.h>
+#include <weft/ShaderReload.h>
 
 namespace {
 
@@ -30,6 +32,10 @@ options:
   --screenshot PATH  window: save the last presented frame to PATH
   --stats PATH       write the last frame's statistics (passes, CPU/GPU ms) as JSON
   --no-vsync         present without waiting for vertical sync
+  --shader-dir PATH  hot reload: watch PATH (laid out like glsl/); an edited shader is recompiled
+                     and used from the next frame on, a broken one reported and ignored
+                     (default: $WEFT_SHADER_DIR, else the source tree's glsl/ when present)
+  --no-hot-reload    do not watch any shader directory
   -h, --help         show this help
 
 controls (window): left-drag grabs and moves the cloth; arrows orbit the camera; 1/2 weaker/
@@ -49,6 +55,11 @@ int parseInt(const char* flag, const char* value) {
 
 int main(int argc, char** argv) {
     weft::DemoOptions o;
+    bool hotReload = weft::shaderHotReloadAvailable();
+    if (const char* env = std::getenv("WEFT_SHADER_DIR")) o.shaderDir = env;
+#ifdef WEFT_SOURCE_SHADER_DIR
+    else if (std::filesystem::is_directory(WEFT_SOURCE_SHADER_DIR)) o.shaderDir = WEFT_SOURCE_SHADER_DIR;
+#endif
     try {
         for (int i = 1; i < argc; ++i) {
             const std::string a = argv[i];
@@ -68,8 +79,11 @@ int main(int argc, char** argv) {
             else if (a == "--screenshot") o.screenshot = next();
             else if (a == "--stats") o.statsJson = next();
             else if (a == "--script") o.script = next();
+            else if (a == "--shader-dir") o.shaderDir = next();
+            else if (a == "--no-hot-reload") hotReload = false;
             else throw weft::InvalidArgument("unknown option '" + a + "' (see --help)");
         }
+        if (!hotReload) o.shaderDir.clear();
         return weft::runDemo(o);
     } catch (const std::exception& e) {
         std::cerr << "weft-demo: error: " << e.what() << std::endl;

@@ -15,6 +15,7 @@
 
 #include <weft/Device.h>
 #include <weft/Renderer.h>
+#include <weft/ShaderReload.h>
 #include <weft/Window.h>
 
 #include "app/DemoScene.h"
@@ -248,6 +249,10 @@ int runDemo(const DemoOptions& o) {
         throw InvalidArgument("demo size must be in [1, 16384] (got " + std::to_string(o.width) +
                               "x" + std::to_string(o.height) + ")");
     if (o.frames < 0) throw InvalidArgument("frames must be >= 0");
+    if (!o.shaderDir.empty()) {
+        setShaderDirectory(o.shaderDir);
+        std::cout << "weft-demo: shader hot reload: watching " << o.shaderDir << std::endl;
+    }
     app::DemoScene demo;
     const int rc = !o.headless && Window::displayAvailable() ? runWindow(o, demo)
                                                              : runHeadless(o, demo);

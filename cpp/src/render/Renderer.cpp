@@ -1,6 +1,7 @@
 // Renderer: turns a Scene + Camera into a frame graph of passes (shadow maps, forward shading,
 // sRGB output, readback/present) and runs it on the shared Vulkan context.
 #include <weft/Renderer.h>
+#include <weft/ShaderReload.h>
 
 #include <array>
 #include <chrono>
@@ -104,6 +105,7 @@ struct Renderer::Impl {
     render::RenderTargets targets;
     vk::Image shadowMaps;
     std::vector<uint64_t> shadowSignature; // what the shadow maps hold (see shadowKey)
+    uint64_t shaderGenerationBuilt = shaderGeneration(); // hot reload: shaders the pipes use
     vk::Image dummyShadow;
     std::vector<ShadowInfo> shadowInfos;
     FrameStats stats;
@@ -193,6 +195,13 @@ void Renderer::Impl::ensureShadowMaps(uint32_t layers) {
 }
 
 FrameSlot& Renderer::Impl::beginFrame() {
+    // Development: shaders edited in a watched directory replace the pipelines built from them.
+    pollShaderChanges();
+    if (const uint64_t generation = shaderGeneration(); generation != shaderGenerationBuilt) {
+        pipes.createPipelines();
+        hair.reset();
+        shaderGenerationBuilt = generation;
+    }
     FrameSlot& slot = slots[frameCounter % kFramesInFlight];
     ctx->waitFor(slot.serial); // the frame that last used this slot is done
     finishStats(slot);

@@ -70,7 +70,11 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     sceneLayout = vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));
     shadowLayout = vk::createPipelineLayout(c, {materialSetLayout}, sizeof(ShadowPush));
     outputLayout = vk::createPipelineLayout(c, {outputSetLayout}, 0);
+    createPipelines();
+}
 
+void ScenePipelines::createPipelines() {
+    vk::Context& c = mCtx;
     vk::GraphicsPipelineDesc d;
     d.vertexStride = kVertexStride;
     d.vertexShader = "render/forward.vert";
@@ -102,6 +106,7 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     sd.fragmentShader = "render/shadow_alpha.frag"; // discards texels below the alpha cutoff
     sd.vertexLayout = vk::VertexLayout::PositionUv;
     shadowAlpha = vk::createGraphicsPipeline(c, sd);
+    mOutput.clear(); // created again on first use
 }
 
 VkPipeline ScenePipelines::outputPipeline(VkFormat format) {

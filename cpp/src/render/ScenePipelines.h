@@ -32,6 +32,10 @@ struct ScenePipelines {
         return forward[debug ? 1 : 0][twoSided ? 2 : mirrored ? 1 : 0];
     }
 
+    /// Builds every pipeline again from the current shaders (hot reload); layouts and samplers
+    /// stay, so descriptor sets made for them stay valid. Old pipelines are retired.
+    void createPipelines();
+
     /// The sRGB output pipeline for a colour format (offscreen RGBA8 or a swapchain's format).
     VkPipeline outputPipeline(VkFormat format);
 

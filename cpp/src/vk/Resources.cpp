@@ -4,6 +4,7 @@
 #include <string>
 
 #include "vk/EmbeddedShaders.h"
+#include "vk/ShaderSource.h"
 
 namespace weft::vk {
 
@@ -208,10 +209,10 @@ void transition(Context& ctx, VkCommandBuffer cmd, Image& image, VkImageLayout l
 }
 
 ShaderModule createShaderModule(Context& ctx, const char* name) {
-    const EmbeddedShader& s = embeddedShader(name);
+    const std::vector<uint32_t> words = shaderWords(name); // hot-reloaded or embedded
     VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    info.codeSize = s.wordCount * sizeof(uint32_t);
-    info.pCode = s.words;
+    info.codeSize = words.size() * sizeof(uint32_t);
+    info.pCode = words.data();
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(ctx.device(), &info, nullptr, &module));
     return ShaderModule(&ctx, module, vkDestroyShaderModule);
