@@ -148,11 +148,14 @@ void bindScene(py::module_& m) {
         "Blinn-Phong material: P = (I_A K_A + I_D K_D a) T + I_S K_S a (SPEC eq. 2.10).\n"
         "normal_map: tangent-space normal map (a linear Texture; x right, y up in the image,\n"
         "(128, 128, 255) flat); specular_map: its RGB multiplies ks; alpha_cutoff > 0 discards\n"
-        "fragments whose base-texture alpha is below it, in the image and the shadow maps.")
+        "fragments whose base-texture alpha is below it, in the image and the shadow maps;\n"
+        "ambient_map (linear) replaces the scene's ambient per texel; specular_vertex_normal\n"
+        "evaluates the highlight with the unmapped normal (BTF n_s = (0, 0, 1), eq. 4.30).")
         .def(py::init([](py::handle ka, py::handle kd, py::handle ks, float shininess,
                          py::handle baseColor, std::shared_ptr<Texture> texture,
                          std::shared_ptr<Texture> normalMap, std::shared_ptr<Texture> specularMap,
-                         float alphaCutoff) {
+                         float alphaCutoff, std::shared_ptr<Texture> ambientMap,
+                         bool specularVertexNormal, bool twoSided) {
             Material mat;
             mat.ka = toVec3(ka, "ka");
             mat.kd = toVec3(kd, "kd");
@@ -163,13 +166,17 @@ void bindScene(py::module_& m) {
             mat.normalMap = normalMap;
             mat.specularMap = specularMap;
             mat.alphaCutoff = alphaCutoff;
+            mat.ambientMap = ambientMap;
+            mat.specularVertexNormal = specularVertexNormal;
+            mat.twoSided = twoSided;
             mat.validate();
             return mat;
         }), py::arg("ka") = py::make_tuple(1, 1, 1), py::arg("kd") = py::make_tuple(1, 1, 1),
            py::arg("ks") = py::make_tuple(0, 0, 0), py::arg("shininess") = 32.0f,
            py::arg("base_color") = py::make_tuple(1, 1, 1), py::arg("texture") = nullptr,
            py::arg("normal_map") = nullptr, py::arg("specular_map") = nullptr,
-           py::arg("alpha_cutoff") = 0.0f)
+           py::arg("alpha_cutoff") = 0.0f, py::arg("ambient_map") = nullptr,
+           py::arg("specular_vertex_normal") = false, py::arg("two_sided") = false)
         .WEFT_VEC3_PROPERTY(Material, "ka", ka)
         .WEFT_VEC3_PROPERTY(Material, "kd", kd)
         .WEFT_VEC3_PROPERTY(Material, "ks", ks)
@@ -187,6 +194,12 @@ void bindScene(py::module_& m) {
         .def_property("specular_map",
                       [](const Material& x) { return std::const_pointer_cast<Texture>(x.specularMap); },
                       [](Material& x, std::shared_ptr<Texture> t) { x.specularMap = t; })
+        .def_property("ambient_map",
+                      [](const Material& x) { return std::const_pointer_cast<Texture>(x.ambientMap); },
+                      [](Material& x, std::shared_ptr<Texture> t) {
+                          setChecked(x, [&](Material& y) { y.ambientMap = t; });
+                      })
+        .def_readwrite("specular_vertex_normal", &Material::specularVertexNormal)
         .def_readwrite("two_sided", &Material::twoSided,
                        "Draw both faces; the back face uses the flipped normal (cloth: always).")
         .def_property("alpha_cutoff", [](const Material& x) { return x.alphaCutoff; },

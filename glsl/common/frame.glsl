@@ -23,7 +23,7 @@ struct Instance {
     mat4 model;
     mat4 normalMatrix; // inverse transpose of the model matrix (upper 3x3 used)
     vec4 ka;        // w: alpha cutoff (0: opaque)
-    vec4 kd;        // w: 1 with a normal map
+    vec4 kd;        // w: bits 1 normal map, 2 ambient map, 4 specular from the vertex normal
     vec4 ks;        // w: shininess
     vec4 baseColor;
 };

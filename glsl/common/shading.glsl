@@ -6,6 +6,13 @@
 layout(set = 1, binding = 0) uniform sampler2D baseTexture;
 layout(set = 1, binding = 1) uniform sampler2D normalMap;   // linear, tangent space
 layout(set = 1, binding = 2) uniform sampler2D specularMap; // linear, multiplies K_S
+layout(set = 1, binding = 3) uniform sampler2D ambientMap;  // linear, replaces I_A
+
+const int MAP_NORMAL = 1;
+const int MAP_AMBIENT = 2;
+const int SPECULAR_VERTEX_NORMAL = 4;
+
+bool hasFlag(Instance ins, int flag) { return (int(ins.kd.w) & flag) != 0; }
 
 // Depth of a perspective shadow map's NDC depth d as distance along the view axis.
 float linearShadowDepth(float d, float zNear, float zFar) {
@@ -116,9 +123,23 @@ bool alphaDiscarded(vec2 uv, Instance ins) {
     return ins.ka.w > 0.0 && texture(baseTexture, uv).a < ins.ka.w;
 }
 
+// What eq. 2.10 needs at a fragment: position, shading normal n (normal-mapped, eq. 2.11-2.12),
+// the normal of the specular term (n, or the vertex normal for n_s = (0, 0, 1), eq. 4.30),
+// T, K_S and the ambient I_A (the scene's, or the material's ambient map).
+struct Surface {
+    vec3 p;
+    vec3 n;
+    vec3 ns;
+    vec3 T;
+    vec3 ks;
+    vec3 ambient;
+};
+
 // The shading normal: the interpolated vertex normal, perturbed by the tangent-space normal
-// map (eq. 2.11: m = texel * 2 - 1; eq. 2.12: the frame t, b = w (n x t), n).
-vec3 shadingNormal(vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins, bool frontFacing) {
+// map (eq. 2.11: m = texel * 2 - 1; eq. 2.12: the frame t, b = w (n x t), n). `vertexOut`
+// returns the (possibly flipped) vertex normal.
+vec3 shadingNormal(vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins, bool frontFacing,
+                   out vec3 vertexOut) {
     vec3 n = normalize(vertexNormal);
     // Two-sided (bit 0 of baseColor.w): the back face is shaded with the flipped normal; a
     // mirroring transform (bit 1) reverses which side the rasteriser calls front.
@@ -127,7 +148,8 @@ vec3 shadingNormal(vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins, bool 
         n = -n;
         tangent.w = -tangent.w;
     }
-    if (ins.kd.w < 0.5) return n;
+    vertexOut = n;
+    if (!hasFlag(ins, MAP_NORMAL)) return n;
     vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
     float tl = length(t);
     if (tl < 1e-12) return n;
@@ -140,11 +162,24 @@ vec3 shadingNormal(vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins, bool 
 // K_S at uv: the material's coefficient times its specular map.
 vec3 specular(vec2 uv, Instance ins) { return ins.ks.rgb * texture(specularMap, uv).rgb; }
 
+Surface surfaceAt(vec3 p, vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins,
+                  bool frontFacing) {
+    Surface s;
+    s.p = p;
+    vec3 vertexN;
+    s.n = shadingNormal(vertexNormal, tangent, uv, ins, frontFacing, vertexN);
+    s.ns = hasFlag(ins, SPECULAR_VERTEX_NORMAL) ? vertexN : s.n;
+    s.T = albedo(uv, ins);
+    s.ks = specular(uv, ins);
+    s.ambient = hasFlag(ins, MAP_AMBIENT) ? texture(ambientMap, uv).rgb : frame.ambient.rgb;
+    return s;
+}
+
 // Eq. 2.10 summed over lights. `debugVis`/`debugDepth` report the debug light's shadow test.
-vec3 shade(vec3 p, vec3 n, vec3 T, vec3 ks, Instance ins, out float debugVis,
-           out float debugDepth) {
+vec3 shade(Surface sf, Instance ins, out float debugVis, out float debugDepth) {
+    vec3 p = sf.p, n = sf.n;
     vec3 v = normalize(frame.cameraPos.xyz - p);
-    vec3 color = frame.ambient.rgb * ins.ka.rgb * T;
+    vec3 color = sf.ambient * ins.ka.rgb * sf.T;
     debugVis = 1.0;
     debugDepth = 0.0;
     for (int i = 0; i < frame.counts.x; ++i) {
@@ -162,8 +197,8 @@ vec3 shade(vec3 p, vec3 n, vec3 T, vec3 ks, Instance ins, out float debugVis,
         }
         if (ndl > 0.0) {
             vec3 h = normalize(l + v);
-            float s = pow(max(dot(n, h), 0.0), ins.ks.w);
-            color += vis * (ndl * L * ins.kd.rgb * T + s * L * ks);
+            float s = pow(max(dot(sf.ns, h), 0.0), ins.ks.w);
+            color += vis * (ndl * L * ins.kd.rgb * sf.T + s * L * sf.ks);
         }
     }
     return color;

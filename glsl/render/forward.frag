@@ -12,7 +12,6 @@ void main() {
     Instance ins = instances[push.instance];
     if (alphaDiscarded(inUv, ins)) discard;
     float vis, depth;
-    vec3 n = shadingNormal(inNormal, inTangent, inUv, ins, gl_FrontFacing);
-    outColor = vec4(shade(inWorldPos, n, albedo(inUv, ins), specular(inUv, ins), ins, vis, depth),
-                    1.0);
+    Surface sf = surfaceAt(inWorldPos, inNormal, inTangent, inUv, ins, gl_FrontFacing);
+    outColor = vec4(shade(sf, ins, vis, depth), 1.0);
 }

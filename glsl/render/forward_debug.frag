@@ -17,12 +17,10 @@ void main() {
     Instance ins = instances[push.instance];
     if (alphaDiscarded(inUv, ins)) discard;
     float vis, depth;
-    vec3 n = shadingNormal(inNormal, inTangent, inUv, ins, gl_FrontFacing);
-    vec3 T = albedo(inUv, ins);
-    vec3 ks = specular(inUv, ins);
-    outColor = vec4(shade(inWorldPos, n, T, ks, ins, vis, depth), 1.0);
-    outAlbedo = vec4(T, texture(specularMap, inUv).g);
+    Surface sf = surfaceAt(inWorldPos, inNormal, inTangent, inUv, ins, gl_FrontFacing);
+    outColor = vec4(shade(sf, ins, vis, depth), 1.0);
+    outAlbedo = vec4(sf.T, texture(specularMap, inUv).g);
     outPosition = vec4(inWorldPos, 1.0);
-    outNormal = vec4(n, vis);
+    outNormal = vec4(sf.n, vis);
     outSurface = vec4(inUv, depth, float(push.instance + 1u));
 }

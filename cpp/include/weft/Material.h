@@ -18,6 +18,12 @@ struct Material {
     TexturePtr normalMap;
     /// Specular map: its RGB (linear) multiplies K_S per texel; none = 1.
     TexturePtr specularMap;
+    /// Ambient map (linear): its RGB replaces the scene's ambient I_A per texel (a BTF fit's
+    /// I_A map, SPEC §3.2); none = the scene's ambient.
+    TexturePtr ambientMap;
+    /// Specular highlights use the interpolated vertex normal instead of the normal-mapped one
+    /// (the BTF fit's n_s = (0, 0, 1), seed eq. 4.30).
+    bool specularVertexNormal = false;
     /// Alpha test: fragments whose base-texture alpha is below this are discarded, also from
     /// shadow maps (holes cast holes). 0 = opaque.
     float alphaCutoff = 0.0f;

@@ -112,7 +112,10 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
         g.model = inst.transform;
         g.normalMatrix = glm::transpose(glm::inverse(inst.transform));
         g.ka = glm::vec4(inst.material.ka, inst.material.alphaCutoff);
-        g.kd = glm::vec4(inst.material.kd, inst.material.normalMap ? 1.0f : 0.0f);
+        // kd.w: bit 0 normal map, bit 1 ambient map, bit 2 specular from the vertex normal
+        const int maps = (inst.material.normalMap ? 1 : 0) | (inst.material.ambientMap ? 2 : 0) |
+                         (inst.material.specularVertexNormal ? 4 : 0);
+        g.kd = glm::vec4(inst.material.kd, float(maps));
         g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
         const bool mirrored = glm::determinant(glm::mat3(inst.transform)) < 0.0f;
         // baseColor.w: bit 0 two-sided, bit 1 mirrored (for the back-face test)

@@ -236,17 +236,19 @@ TextureGpu& GpuCache::entry(const TexturePtr& texture, const TextureGpu& fallbac
 }
 
 VkDescriptorSet GpuCache::materialSet(const Material& material) {
-    const TexturePtr textures[3] = {material.texture, material.normalMap, material.specularMap};
-    const TextureGpu* fallbacks[3] = {&mWhite, &mFlatNormal, &mWhite};
-    std::array<uint64_t, 3> key{};
-    for (int i = 0; i < 3; ++i) key[size_t(i)] = textures[i] ? textures[i]->id() : 0;
+    constexpr int n = MaterialSetGpu::kTextures;
+    const TexturePtr textures[n] = {material.texture, material.normalMap, material.specularMap,
+                                    material.ambientMap};
+    const TextureGpu* fallbacks[n] = {&mWhite, &mFlatNormal, &mWhite, &mWhite};
+    std::array<uint64_t, n> key{};
+    for (int i = 0; i < n; ++i) key[size_t(i)] = textures[i] ? textures[i]->id() : 0;
     auto it = mMaterialSets.find(key);
     if (it != mMaterialSets.end()) return it->second.set;
     MaterialSetGpu m;
     m.set = allocateSet(m.pool);
-    VkDescriptorImageInfo infos[3];
-    VkWriteDescriptorSet writes[3];
-    for (int i = 0; i < 3; ++i) {
+    VkDescriptorImageInfo infos[n];
+    VkWriteDescriptorSet writes[n];
+    for (int i = 0; i < n; ++i) {
         m.sources[i] = textures[i];
         m.used[i] = textures[i] != nullptr;
         infos[i] = {mSampler, entry(textures[i], *fallbacks[i]).image.view(),
@@ -258,7 +260,7 @@ VkDescriptorSet GpuCache::materialSet(const Material& material) {
         writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         writes[i].pImageInfo = &infos[i];
     }
-    vkUpdateDescriptorSets(mCtx.device(), 3, writes, 0, nullptr);
+    vkUpdateDescriptorSets(mCtx.device(), n, writes, 0, nullptr);
     return mMaterialSets.emplace(key, m).first->second.set;
 }
 
@@ -269,9 +271,9 @@ void GpuCache::evictExpired() {
         it = it->second.source.expired() ? mCloths.erase(it) : std::next(it);
     for (auto it = mMaterialSets.begin(); it != mMaterialSets.end();) {
         const MaterialSetGpu& m = it->second;
-        const bool expired = (m.used[0] && m.sources[0].expired()) ||
-                             (m.used[1] && m.sources[1].expired()) ||
-                             (m.used[2] && m.sources[2].expired());
+        bool expired = false;
+        for (int i = 0; i < MaterialSetGpu::kTextures; ++i)
+            expired |= m.used[i] && m.sources[i].expired();
         if (expired) {
             freeSet(m.set, m.pool);
             it = mMaterialSets.erase(it);

@@ -38,8 +38,9 @@ struct ClothGpu {
 
 /// The descriptor set (set 1) of a material's textures: base colour, normal map, specular map.
 struct MaterialSetGpu {
-    std::weak_ptr<const Texture> sources[3]; // empty where the material has none
-    bool used[3] = {false, false, false};
+    static constexpr int kTextures = 4; // base colour, normal, specular, ambient
+    std::weak_ptr<const Texture> sources[kTextures]; // empty where the material has none
+    bool used[kTextures] = {false, false, false, false};
     VkDescriptorSet set = VK_NULL_HANDLE;
     size_t pool = 0;
 };
@@ -56,7 +57,7 @@ public:
     /// what was written.
     const MeshGpu& cloth(const std::shared_ptr<const Cloth>& cloth, uint64_t& uploadedBytes);
     /// Material descriptor set (set 1): base colour (none: white), normal map (none: flat),
-    /// specular map (none: white).
+    /// specular map (none: white), ambient map (none: white, unused).
     VkDescriptorSet materialSet(const Material& material);
     /// The image view of a texture (uploaded on first use); null gives white.
     VkImageView textureView(const TexturePtr& texture) { return entry(texture, mWhite).image.view(); }
@@ -80,7 +81,7 @@ private:
     std::unordered_map<const Mesh*, MeshGpu> mMeshes;
     std::unordered_map<const Cloth*, ClothGpu> mCloths;
     std::unordered_map<uint64_t, TextureGpu> mTextures;
-    std::map<std::array<uint64_t, 3>, MaterialSetGpu> mMaterialSets; // by texture ids (0: none)
+    std::map<std::array<uint64_t, MaterialSetGpu::kTextures>, MaterialSetGpu> mMaterialSets; // by texture ids
     TextureGpu mWhite, mFlatNormal;
 };
 

@@ -29,7 +29,7 @@ struct GpuInstance {
     glm::mat4 model;
     glm::mat4 normalMatrix;
     glm::vec4 ka; // w: alpha cutoff (0: opaque)
-    glm::vec4 kd; // w: 1 with a normal map
+    glm::vec4 kd; // w: bits 1 normal map, 2 ambient map, 4 specular from the vertex normal
     glm::vec4 ks; // w: shininess
     glm::vec4 baseColor;
 };

@@ -65,7 +65,8 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
                                               uint32_t(kMaxCookies)}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     outputSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     sceneLayout = vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));
     shadowLayout = vk::createPipelineLayout(c, {materialSetLayout}, sizeof(ShadowPush));

@@ -17,6 +17,8 @@ void Material::validate() const {
     requireFinite(alphaCutoff, "Material.alpha_cutoff");
     if (alphaCutoff < 0.0f || alphaCutoff > 1.0f)
         throw InvalidArgument("Material.alpha_cutoff must be in [0, 1]");
+    if (ambientMap && ambientMap->srgb())
+        throw InvalidArgument("Material.ambient_map must be a linear texture (Texture(..., srgb=False))");
     if (normalMap && normalMap->srgb())
         throw InvalidArgument("Material.normal_map must be a linear texture (Texture(..., srgb=False))");
 }

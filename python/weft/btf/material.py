@@ -95,6 +95,30 @@ class BtfMaterial:
         return (f"<weft.BtfMaterial {w}x{h} specular {spec}, n_s={ns}, "
                 f"{'clamped' if self.clamp_diffuse else 'linear'} diffuse>")
 
+    def render_material(self) -> "weft.Material":
+        """The renderer's material for these maps (SPEC §3.5, issue 5): ``albedo`` becomes the
+        base texture T, ``normal`` the tangent-space normal map (x right, y up in the image, as
+        the fit's frame), ``ambient`` the ambient map (I_A per texel, replacing the scene's),
+        ``specular`` the specular map with K_S = 1 and ``exponent`` the shininess;
+        ``flat_specular_normal`` evaluates the highlight with the vertex normal (eq. 4.30).
+        K_A = K_D = 1 as in the fit. Maps are stored as linear 8-bit textures (values clamped to
+        [0, 1]); the renderer clamps n.l at 0 whatever ``clamp_diffuse`` says, and uses the
+        scalar exponent (``exponent_map`` is not drawn)."""
+
+        def texture(values: np.ndarray) -> weft.Texture:
+            rgb = np.clip(np.rint(np.asarray(values, np.float64) * 255.0), 0, 255).astype(np.uint8)
+            return weft.Texture(rgb, srgb=False, mipmaps=True)
+
+        spec = self.specular if self.specular is not None else np.zeros_like(self.albedo)
+        return weft.Material(
+            ka=(1.0, 1.0, 1.0), kd=(1.0, 1.0, 1.0), ks=(1.0, 1.0, 1.0),
+            shininess=max(self.exponent, 1e-3),
+            texture=texture(self.albedo),
+            normal_map=texture(self.normal * 0.5 + 0.5),
+            specular_map=texture(spec),
+            ambient_map=texture(self.ambient),
+            specular_vertex_normal=self.flat_specular_normal)
+
     def save(self, folder: str) -> None:
         """Writes the folder (created if needed): material.json, <map>.exr, <map>.png."""
         os.makedirs(folder, exist_ok=True)
