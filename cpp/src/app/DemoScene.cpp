@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include <GLFW/glfw3.h>
+#include <weft/HairGenerator.h>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -95,6 +96,25 @@ DemoScene::DemoScene() {
     sphere.shininess = 64.0f;
     mScene.addMesh(std::make_shared<Mesh>(Mesh::uvSphere(kSphereRadius - 0.01f, 48, 24)), sphere,
                    glm::translate(glm::mat4(1.0f), kSphereCenter));
+
+    // A furry ball next to the cloth (SPEC §5.1: fur grown from a mesh, seed listing 1).
+    const auto ballMesh = std::make_shared<Mesh>(Mesh::uvSphere(0.28f, 24, 12));
+    const glm::mat4 ballAt = glm::translate(glm::mat4(1.0f), glm::vec3(1.35f, 0.3f, 0.55f));
+    Material skin;
+    skin.baseColor = glm::vec3(0.35f, 0.22f, 0.1f);
+    mScene.addMesh(ballMesh, skin, ballAt);
+    FurParams fur;
+    fur.density = 9000.0f; // strands per square metre
+    fur.segments = 6;
+    fur.length = 0.09f;
+    fur.lengthJitter = 0.3f;
+    fur.directionJitter = 0.35f;
+    fur.down = glm::vec3(0.0f, -6.0f, 0.0f);
+    HairMaterial furMaterial;
+    furMaterial.model = HairModel::KajiyaKay;
+    furMaterial.diffuse = glm::vec3(0.5f, 0.32f, 0.15f);
+    furMaterial.specular = glm::vec3(0.15f);
+    mScene.addHair(std::make_shared<HairStrands>(generateFur(*ballMesh, fur)), furMaterial, ballAt);
 
     ClothParams p;
     p.nx = p.ny = kClothN;
