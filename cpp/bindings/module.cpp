@@ -9,6 +9,7 @@
 #include <weft/ShaderReload.h>
 
 #include "Convert.h"
+#include "app/DemoScene.h"
 
 namespace weft::py_bind {
 void bindScene(py::module_& m);
@@ -172,6 +173,13 @@ PYBIND11_MODULE(_core, m) {
     m.def("shader_errors", &weft::shaderErrors,
           "Compile errors of reloaded shaders since the last clear (name: file:line: message).");
     m.def("clear_shader_errors", &weft::clearShaderErrors);
+
+    m.def("demo_scene", [] {
+        weft::app::DemoScene demo;
+        return py::make_tuple(std::make_shared<weft::Scene>(demo.scene()), demo.camera(),
+                              demo.clothPtr());
+    }, "The demo's scene (terrain, sphere, furry ball, sun and moon, and the cloth in it), its\n"
+       "camera and the cloth (step it to animate the scene), as (scene, camera, cloth).");
 
     m.def("run_demo", [](int width, int height, int frames, bool headless, bool vsync,
                          const std::string& out, const std::string& screenshot,

@@ -20,6 +20,7 @@ public:
     Scene& scene() { return mScene; }
     Camera& camera() { return mCamera; }
     const Cloth& cloth() const { return *mCloth; }
+    std::shared_ptr<Cloth> clothPtr() const { return mCloth; }
     /// Renderer settings the controls change (PCF kernel).
     void applySettings(Renderer& renderer) const;
 

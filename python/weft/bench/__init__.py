@@ -22,6 +22,7 @@ from typing import Any, Dict, List, Optional, Sequence, TextIO
 #: Benchmark subsystems: command name -> module implementing it.
 SUBSYSTEMS: Dict[str, str] = {
     "render": "weft.bench.render",
+    "scene": "weft.bench.scene",
     "cloth": "weft.bench.cloth",
     "hair": "weft.bench.hair",
     "btf": "weft.bench.btf",
