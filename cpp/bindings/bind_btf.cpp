@@ -10,6 +10,8 @@
 #include <weft/BtfNonlinear.h>
 #include <weft/BtfSynth.h>
 
+#include <weft/BtfRenderMaterial.h>
+
 #include "Convert.h"
 
 namespace weft::py_bind {
@@ -57,11 +59,10 @@ std::vector<BtfAngles> anglesFrom(py::handle obj) {
     return out;
 }
 
-BtfMaterialMaps mapsFrom(const BtfSamples& samples, py::dict d) {
-    const py::ssize_t h = samples.height(), w = samples.width();
+BtfMaterialMaps mapsFrom(py::ssize_t h, py::ssize_t w, py::dict d) {
     BtfMaterialMaps m;
-    m.width = samples.width();
-    m.height = samples.height();
+    m.width = int(w);
+    m.height = int(h);
     m.normal = floatArray(d["normal"], "normal", {h, w, 3});
     m.albedo = floatArray(d["albedo"], "albedo", {h, w, 3});
     m.ambient = floatArray(d["ambient"], "ambient", {h, w, 3});
@@ -80,6 +81,10 @@ BtfMaterialMaps mapsFrom(const BtfSamples& samples, py::dict d) {
     }
     m.validate();
     return m;
+}
+
+BtfMaterialMaps mapsFrom(const BtfSamples& samples, py::dict d) {
+    return mapsFrom(samples.height(), samples.width(), d);
 }
 
 py::dict mapsTo(const BtfMaterialMaps& m) {
@@ -141,6 +146,12 @@ BtfSolver solverFrom(const std::string& s) {
 } // namespace
 
 void bindBtf(py::module_& m) {
+    m.def("btf_render_material", [](py::dict maps) {
+        py::array normal = py::array::ensure(maps["normal"]);
+        if (!normal || normal.ndim() != 3) throw InvalidArgument("normal must be (H, W, 3)");
+        return btfRenderMaterial(mapsFrom(normal.shape(0), normal.shape(1), maps));
+    }, py::arg("maps"), "The renderer's Material for BTF maps (BtfMaterial.core_maps()).");
+
     py::class_<BtfSamples>(m, "BtfSamples",
                            "BTF measurements: per sample (light, view) an RGB image; values "
                            "float32 (S, 3, H, W), angles (S, 4) degrees θ_l, φ_l, θ_v, φ_v.")

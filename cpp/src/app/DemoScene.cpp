@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include <GLFW/glfw3.h>
+#include <weft/BtfRenderMaterial.h>
+#include <weft/BtfSynth.h>
 #include <weft/HairGenerator.h>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -83,6 +85,43 @@ TexturePtr weaveNormals(int size, int threads) {
             p[3] = 255;
         }
     return std::make_shared<Texture>(std::move(img), false, true);
+}
+
+// The cloth's BTF material the way the seed made one (SPEC §3): a woven fabric's BTF rendered
+// for the 81 frontal light directions, then fitted (linear fit + specular search, eq. 4.30).
+Material fittedWeaveBtf(int size, int threads) {
+    BtfMaterialMaps truth;
+    truth.width = truth.height = size;
+    const int cell = size / threads;
+    std::vector<float> height(size_t(size) * size_t(size));
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const bool warp = ((x / cell) + (y / cell)) % 2 == 0;
+            const float f = (float(warp ? x % cell : y % cell) + 0.5f) / float(cell);
+            height[size_t(y * size + x)] = 2.0f * std::sin(glm::pi<float>() * f);
+        }
+    auto h = [&](int x, int y) { return height[size_t(((y + size) % size) * size + (x + size) % size)]; };
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const bool warp = ((x / cell) + (y / cell)) % 2 == 0;
+            // normals: x right, y up (rows grow down), from the height field in texel units
+            const glm::vec3 n = glm::normalize(glm::vec3(-0.5f * (h(x + 1, y) - h(x - 1, y)),
+                                                         0.5f * (h(x, y + 1) - h(x, y - 1)), 1.0f));
+            const glm::vec3 a = warp ? glm::vec3(0.55f, 0.12f, 0.1f) : glm::vec3(0.75f, 0.62f, 0.35f);
+            for (int c = 0; c < 3; ++c) {
+                truth.normal.push_back(n[c]);
+                truth.albedo.push_back(a[c]);
+                truth.ambient.push_back(0.12f);
+                truth.specular.push_back(0.25f);
+            }
+        }
+    truth.exponent = 40.0f;
+    truth.flatSpecularNormal = true;
+    std::vector<BtfAngles> angles;
+    for (const glm::vec2& d : btfStandardDirections()) angles.push_back({d.x, d.y, 0.0f, 0.0f});
+    const BtfSamples samples = renderBtf(truth, angles);
+    const BtfSpecularFit fit = fitBtfSpecular(samples, fitBtfLinear(samples));
+    return btfRenderMaterial(fit.maps);
 }
 
 } // namespace
@@ -247,8 +286,14 @@ std::string DemoScene::key(int k) {
     case GLFW_KEY_N:
         mNormalMap = !mNormalMap;
         mClothMaterial.normalMap = mNormalMap ? mWeaveNormals : nullptr;
-        mScene.setMaterial(mClothId, mClothMaterial);
+        if (!mBtf) mScene.setMaterial(mClothId, mClothMaterial);
         what << "normal mapping " << (mNormalMap ? "on" : "off");
+        break;
+    case GLFW_KEY_B:
+        mBtf = !mBtf;
+        if (mBtf && !mBtfMaterial) mBtfMaterial = std::make_unique<Material>(fittedWeaveBtf(256, 16));
+        mScene.setMaterial(mClothId, mBtf ? *mBtfMaterial : mClothMaterial);
+        what << "BTF material " << (mBtf ? "on (fitted from a synthetic woven BTF)" : "off");
         break;
     case GLFW_KEY_S:
         mShadows = !mShadows;
@@ -325,15 +370,16 @@ void DemoScene::release() {
 
 const char* DemoScene::controls() {
     return "left-drag grabs the cloth; arrows orbit the camera; 1/2 wind weaker/stronger, R turns "
-           "the wind, L orbits the light, T day-night cycle, N normal mapping, S shadows, P PCF "
-           "size, H holes, C resets the cloth, Space pauses, Esc/Q quits";
+           "the wind, L orbits the light, T day-night cycle, N normal mapping, B BTF material, S "
+           "shadows, P PCF size, H holes, C resets the cloth, Space pauses, Esc/Q quits";
 }
 
 std::string DemoScene::status() const {
     std::ostringstream s;
     s << "wind " << mWindStrength << " @ " << std::lround(glm::degrees(std::fmod(mWindAngle, glm::two_pi<float>())))
       << " deg, time " << std::lround(24.0f * mTimeOfDay) << "h" << (mDayNight ? " (cycling)" : "")
-      << ", PCF " << 2 * mPcf + 1 << (mNormalMap ? ", normal map" : "") << (mHoles ? ", holes" : "")
+      << ", PCF " << 2 * mPcf + 1 << (mBtf ? ", BTF" : mNormalMap ? ", normal map" : "")
+      << (mHoles ? ", holes" : "")
       << (mShadows ? "" : ", no shadows") << (mPaused ? ", paused" : "");
     return s.str();
 }

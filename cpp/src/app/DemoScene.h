@@ -58,6 +58,8 @@ private:
     float mTimeOfDay = 0.35f; // 0..1, 0.25 = sunrise... 0.5 = noon (the sun at its highest)
     bool mDayNight = false, mPaused = false, mNormalMap = true, mHoles = false;
     bool mShadows = true;
+    bool mBtf = false;
+    std::unique_ptr<Material> mBtfMaterial; // fitted on first use
     int mPcf = 1;
     float mWindStrength = 3.0f, mWindAngle = 0.4f;
     int mGrabbed = -1;

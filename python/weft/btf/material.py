@@ -105,19 +105,9 @@ class BtfMaterial:
         [0, 1]); the renderer clamps n.l at 0 whatever ``clamp_diffuse`` says, and uses the
         scalar exponent (``exponent_map`` is not drawn)."""
 
-        def texture(values: np.ndarray) -> weft.Texture:
-            rgb = np.clip(np.rint(np.asarray(values, np.float64) * 255.0), 0, 255).astype(np.uint8)
-            return weft.Texture(rgb, srgb=False, mipmaps=True)
+        from weft._core import btf_render_material
 
-        spec = self.specular if self.specular is not None else np.zeros_like(self.albedo)
-        return weft.Material(
-            ka=(1.0, 1.0, 1.0), kd=(1.0, 1.0, 1.0), ks=(1.0, 1.0, 1.0),
-            shininess=max(self.exponent, 1e-3),
-            texture=texture(self.albedo),
-            normal_map=texture(self.normal * 0.5 + 0.5),
-            specular_map=texture(spec),
-            ambient_map=texture(self.ambient),
-            specular_vertex_normal=self.flat_specular_normal)
+        return btf_render_material(self.core_maps())
 
     def save(self, folder: str) -> None:
         """Writes the folder (created if needed): material.json, <map>.exr, <map>.png."""
