@@ -98,11 +98,9 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
 }
 
 DescriptorSetLayout createSetLayout(Context& ctx, const std::vector<SetBinding>& bindings,
-                                    VkDescriptorSetLayoutCreateFlags flags) {
+                                    VkDescriptorSetLayoutCreateFlags flags, VkShaderStageFlags stages) {
     std::vector<VkDescriptorSetLayoutBinding> b;
-    for (const SetBinding& s : bindings)
-        b.push_back({s.binding, s.type, s.count,
-                     VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    for (const SetBinding& s : bindings) b.push_back({s.binding, s.type, s.count, stages, nullptr});
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     info.flags = flags;
     info.bindingCount = uint32_t(b.size());
@@ -113,9 +111,8 @@ DescriptorSetLayout createSetLayout(Context& ctx, const std::vector<SetBinding>&
 }
 
 PipelineLayout createPipelineLayout(Context& ctx, const std::vector<VkDescriptorSetLayout>& sets,
-                                    uint32_t pushConstantBytes) {
-    VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                              pushConstantBytes};
+                                    uint32_t pushConstantBytes, VkShaderStageFlags stages) {
+    VkPushConstantRange range{stages, 0, pushConstantBytes};
     VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     info.setLayoutCount = uint32_t(sets.size());
     info.pSetLayouts = sets.data();

@@ -38,10 +38,15 @@ struct SetBinding {
     uint32_t count = 1; // array size
 };
 
-/// Descriptor set layout from {binding, type[, count]}, visible to vertex and fragment stages.
+constexpr VkShaderStageFlags kGraphicsStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
+/// Descriptor set layout from {binding, type[, count]}, visible to `stages`.
 DescriptorSetLayout createSetLayout(Context& ctx, const std::vector<SetBinding>& bindings,
-                                    VkDescriptorSetLayoutCreateFlags flags = 0);
+                                    VkDescriptorSetLayoutCreateFlags flags = 0,
+                                    VkShaderStageFlags stages = kGraphicsStages);
+/// Pipeline layout whose push constants (if any) are visible to `stages`.
 PipelineLayout createPipelineLayout(Context& ctx, const std::vector<VkDescriptorSetLayout>& sets,
-                                    uint32_t pushConstantBytes);
+                                    uint32_t pushConstantBytes,
+                                    VkShaderStageFlags stages = kGraphicsStages);
 
 } // namespace weft::vk
