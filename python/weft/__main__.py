@@ -1,7 +1,8 @@
-"""Command line of weft: ``python -m weft {demo,devices,render} ...``.
+"""Command line of weft: ``python -m weft {demo,devices,render,btf,ibl} ...``.
 
     python -m weft demo [--width W] [--height H] [--frames N] [--headless] [--no-vsync]
-                        [--out PNG] [--screenshot PNG] [--stats JSON]
+                        [--out PNG|DIR] [--screenshot PNG] [--stats JSON] [--script FILE]
+                        [--shader-dir DIR]
     python -m weft devices [--json]
     python -m weft render [--width W] [--height H] [--out PNG]
     python -m weft btf {synth PRESET OUT, fit PATH --out DIR} ...   (see weft.btf.cli)
@@ -42,8 +43,9 @@ def _non_negative_int(text: str) -> int:
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="python -m weft",
-        description="weft: Vulkan renderer for soft, textured materials. Run the demo, list "
-                    "Vulkan devices or render the default scene to a PNG.",
+        description="weft: real-time cloth, hair and fur with BTF materials and image-based "
+                    "lighting (Vulkan). Run the demo, list Vulkan devices, render the default "
+                    "scene to a PNG, synthesise or fit BTFs, convert and filter environments.",
         epilog="Environment: WEFT_DEVICE=<index|name substring> picks the Vulkan device, "
                "WEFT_VALIDATION=1 enables the validation layers. Benchmarks: "
                "python -m weft.bench --help",
