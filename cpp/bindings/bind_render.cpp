@@ -50,6 +50,8 @@ py::dict statsDict(const FrameStats& s) {
     d["reused"] = s.reused;
     d["mesh_uploads"] = s.meshUploads;
     d["upload_bytes"] = s.uploadBytes;
+    d["environment_bakes"] = s.environmentBakes;
+    d["environment_bake_ms"] = s.environmentBakeMs;
     return d;
 }
 

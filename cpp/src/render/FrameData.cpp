@@ -118,6 +118,7 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
         // baseColor.w: bit 0 two-sided, bit 1 mirrored (for the back-face test)
         g.baseColor = glm::vec4(inst.material.baseColor,
                                 float((inst.material.twoSided ? 1 : 0) | (mirrored ? 2 : 0)));
+        g.environment = glm::vec4(inst.material.reflectivity, inst.material.environmentDiffuse);
         const MeshGpu* mesh = nullptr;
         if (inst.cloth) {
             const uint64_t before = f.uploadBytes;

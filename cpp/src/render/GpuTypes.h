@@ -32,6 +32,7 @@ struct GpuInstance {
     glm::vec4 kd; // w: 1 with a normal map
     glm::vec4 ks; // w: shininess
     glm::vec4 baseColor;
+    glm::vec4 environment; // rgb: reflectivity (Fresnel F0), w: environment-diffuse weight
 };
 
 struct GpuFrame {
@@ -41,11 +42,13 @@ struct GpuFrame {
     glm::vec4 background;
     glm::vec4 bias;     // x: constant, y: slope, z: max (units of the light's depth range)
     glm::ivec4 counts;  // x: lights, y: PCF radius, z: shadow-map size, w: debug light or -1
+    glm::vec4 environment; // x: intensity (0: no environment), y: last level of the chain
+    glm::vec4 environmentSh[9]; // SH9 of E(n) / pi: A_l L_lm / pi (rgb), see environment.glsl
 };
 
 static_assert(sizeof(GpuLight) == 80, "GpuLight must match frame.glsl");
 static_assert(sizeof(GpuShadowLayer) == 80, "GpuShadowLayer must match frame.glsl");
-static_assert(sizeof(GpuInstance) == 192, "GpuInstance must match frame.glsl");
-static_assert(sizeof(GpuFrame) == 64 + 48 + 32, "GpuFrame must match frame.glsl");
+static_assert(sizeof(GpuInstance) == 208, "GpuInstance must match frame.glsl");
+static_assert(sizeof(GpuFrame) == 64 + 48 + 32 + 16 + 144, "GpuFrame must match frame.glsl");
 
 } // namespace weft::render

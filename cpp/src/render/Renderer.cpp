@@ -9,6 +9,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "render/EnvironmentGpu.h"
 #include "render/FrameData.h"
 #include "render/FrameGraph.h"
 #include "render/GpuCache.h"
@@ -96,6 +97,7 @@ struct Renderer::Impl {
     uint32_t width = 0, height = 0;
 
     render::ScenePipelines pipes{*ctx};
+    render::EnvironmentGpu environment{*ctx};
     std::unique_ptr<render::GpuCache> cache;
     std::unique_ptr<render::HairPasses> hair; // created with the first scene that has hair
 
@@ -147,7 +149,7 @@ void Renderer::Impl::createSlots() {
         const VkDescriptorPoolSize sizes[] = {
             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
-            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + uint32_t(render::kMaxCookies)}};
+            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 + uint32_t(render::kMaxCookies)}};
         VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pool.maxSets = 2;
         pool.poolSizeCount = 3;
@@ -233,6 +235,9 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     const float aspect = float(targets.width) / float(targets.height);
 
     FrameData data = buildFrameData(scene, camera, settings, aspect, *cache);
+    double environmentBakeMs = 0.0;
+    const bool environmentBaked = environment.prepare(scene.environment(), environmentBakeMs);
+    environment.fillFrame(scene.environment(), data.frame);
     shadowInfos = data.shadowInfos;
     if (!data.shadowViews.empty()) ensureShadowMaps(uint32_t(data.shadowViews.size()));
     std::vector<uint64_t> key = shadowKey(data, scene);
@@ -291,7 +296,10 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                           cache->textureView(size_t(i) < data.cookies.size() ? data.cookies[size_t(i)]
                                                                               : TexturePtr()),
                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet writes[7];
+    VkDescriptorImageInfo environmentInfo{pipes.environmentSampler,
+                                          environment.view(scene.environment()),
+                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet writes[8];
     for (auto& w : writes) w = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     auto setWrite = [&](int i, VkDescriptorSet set, uint32_t binding, VkDescriptorType type) {
         writes[i].dstSet = set;
@@ -314,7 +322,9 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     setWrite(6, frameSet, 5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     writes[6].descriptorCount = render::kMaxCookies;
     writes[6].pImageInfo = cookieInfos;
-    vkUpdateDescriptorSets(c.device(), 7, writes, 0, nullptr);
+    setWrite(7, frameSet, 6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    writes[7].pImageInfo = &environmentInfo;
+    vkUpdateDescriptorSets(c.device(), 8, writes, 0, nullptr);
 
     // ---- frame graph ----------------------------------------------------------------------
     FrameGraph g;
@@ -337,6 +347,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     };
 
     std::vector<std::string> reused;
+    if (scene.environment().environment && !environmentBaked) reused.push_back("environment");
     for (const ShadowView& s : shadowViews) {
         std::string name = "shadow[" + std::to_string(s.lightIndex) + "]";
         if (scene.lights()[size_t(s.lightIndex)].index() == 1) // a point light's six views
@@ -497,6 +508,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     slot.stats.reused = std::move(reused);
     slot.stats.meshUploads = data.meshUploads;
     slot.stats.uploadBytes = data.uploadBytes;
+    slot.stats.environmentBakes = environmentBaked ? 1 : 0;
+    slot.stats.environmentBakeMs = environmentBakeMs;
     g.execute(c, slot.cmd, slot.timestamps.get(), slot.stats);
     // The present pseudo-pass only transitions; it is not a pass users should time.
     if (present && !slot.stats.passes.empty() && slot.stats.passes.back().name == "present")

@@ -55,6 +55,10 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     s.magFilter = s.minFilter = VK_FILTER_LINEAR;
     VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
     cookieSampler = vk::Sampler(&c, sampler, vkDestroySampler);
+    s.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    s.maxLod = VK_LOD_CLAMP_NONE;
+    VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
+    environmentSampler = vk::Sampler(&c, sampler, vkDestroySampler);
 
     frameSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                                              {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -62,7 +66,8 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
                                              {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                              {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                              {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                              uint32_t(kMaxCookies)}});
+                                              uint32_t(kMaxCookies)},
+                                             {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
