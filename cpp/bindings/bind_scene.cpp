@@ -404,7 +404,8 @@ void bindScene(py::module_& m) {
         .def_property("background", [](const Scene& s) { return fromVec3(s.background()); },
                       [](Scene& s, py::handle v) { s.setBackground(toVec3(v, "background")); })
         .def("set_environment", [](Scene& s, py::object environment, float intensity, int specularSize,
-                                   int specularLevels, int specularSamples) {
+                                   int specularLevels, int specularSamples, int domeLights,
+                                   int domeMapSize, int domeRefresh) {
             EnvironmentLighting e;
             if (py::isinstance<Environment>(environment))
                 e.environment = environment.cast<std::shared_ptr<Environment>>();
@@ -417,13 +418,19 @@ void bindScene(py::module_& m) {
             e.specularSize = specularSize;
             e.specularLevels = specularLevels;
             e.specularSamples = specularSamples;
+            e.domeLights = domeLights;
+            e.domeMapSize = domeMapSize;
+            e.domeRefresh = domeRefresh;
             s.setEnvironment(e);
         }, py::arg("environment"), py::arg("intensity") = 1.0f, py::arg("specular_size") = 64,
            py::arg("specular_levels") = 6, py::arg("specular_samples") = 64,
+           py::arg("dome_lights") = 0, py::arg("dome_map_size") = 256, py::arg("dome_refresh") = 0,
            "Lights the scene with an environment (a weft.ibl.Environment, re-baked when its version\n"
            "changes, or a weft.ibl.CubeMap, copied into a new one): SH9 irradiance for materials'\n"
            "environment_diffuse, a GGX chain (level l: roughness l / (levels - 1)) for their\n"
-           "reflectivity.")
+           "reflectivity. dome_lights (0, 8, ..., 64) shadow lights of Environment.shadow_dome\n"
+           "cast dome_map_size shadow maps; the diffuse loses the occluded ones' light (eq. 2.23);\n"
+           "while casters move, dome_refresh maps per frame are re-rendered (0: all).")
         .def("clear_environment", &Scene::clearEnvironment)
         .def_property_readonly("environment", [](const Scene& s) -> py::object {
             if (!s.environment().environment) return py::none();

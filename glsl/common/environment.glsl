@@ -3,6 +3,35 @@
 // R = 2(n.v)n - v times Schlick's Fresnel. python/weft/reference/ibl_shading.py evaluates the
 // same in NumPy. Included by shading.glsl after frame.glsl.
 
+struct DomeLight {
+    mat4 viewProj;
+    vec4 direction; // xyz: towards the light, w: normal offset (world units)
+    vec4 intensity; // rgb: T_i / pi
+};
+layout(std430, set = 0, binding = 7) readonly buffer DomeLights { DomeLight domeLights[]; };
+layout(set = 0, binding = 8) uniform sampler2DArray domeMaps;
+
+// Eq. 2.23 / pi: the irradiance the occluded dome lights would have brought, at p (normal n).
+// One tap per map, receiver pushed along n by the normal offset, slope-scaled bias.
+vec3 domeOccluded(vec3 p, vec3 n) {
+    vec3 occluded = vec3(0.0);
+    int size = int(frame.environment.w);
+    for (int i = 0; i < int(frame.environment.z); ++i) {
+        DomeLight d = domeLights[i];
+        float c = dot(n, d.direction.xyz);
+        if (c <= 0.0) continue;
+        float sinTheta = sqrt(max(0.0, 1.0 - c * c));
+        vec4 clip = d.viewProj * vec4(p + n * (d.direction.w * sinTheta), 1.0);
+        vec2 uv = clip.xy * 0.5 + 0.5;
+        if (uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0 || clip.z > 1.0) continue;
+        float bias = min(frame.bias.x + frame.bias.y * sinTheta / max(c, 1e-4), frame.bias.z);
+        ivec2 t = clamp(ivec2(floor(uv * float(size))), ivec2(0), ivec2(size - 1));
+        if (clip.z - bias > texelFetch(domeMaps, ivec3(t, i), 0).r)
+            occluded += d.intensity.rgb * c;
+    }
+    return occluded;
+}
+
 // E(n) / pi times the intensity: the nine coefficients hold A_l L_lm / pi (Ramamoorthi &
 // Hanrahan 2001), in the basis order of weft::sh9Basis.
 vec3 environmentIrradiance(vec3 n) {
@@ -22,10 +51,17 @@ float environmentRoughness(float shininess) {
     return clamp(sqrt(sqrt(2.0 / (shininess + 2.0))), 0.0, 1.0);
 }
 
-// The environment's contribution at p (normal n, unit view vector v, texture colour T).
-vec3 environmentLight(vec3 n, vec3 v, vec3 T, Instance ins) {
+// The environment's contribution at p (normal n, unit view vector v, texture colour T); with a
+// dome of shadow lights the diffuse part loses what the occluded ones bring (eq. 2.23).
+vec3 environmentLight(vec3 p, vec3 n, vec3 v, vec3 T, Instance ins) {
     if (frame.environment.x <= 0.0) return vec3(0.0);
-    vec3 color = ins.environment.w * ins.kd.rgb * T * environmentIrradiance(n);
+    vec3 color = vec3(0.0);
+    if (ins.environment.w > 0.0) {
+        vec3 irradiance = environmentIrradiance(n);
+        if (frame.environment.z > 0.0)
+            irradiance = max(irradiance - domeOccluded(p, n) * frame.environment.x, vec3(0.0));
+        color = ins.environment.w * ins.kd.rgb * T * irradiance;
+    }
     vec3 f0 = ins.environment.rgb;
     if (any(greaterThan(f0, vec3(0.0)))) {
         float ndv = dot(n, v);

@@ -36,7 +36,7 @@ layout(set = 0, binding = 0) uniform FrameUbo {
     vec4 background;
     vec4 bias;    // x: constant, y: slope, z: max (units of the light's depth range)
     ivec4 counts; // x: lights, y: PCF radius, z: shadow-map size, w: debug light or -1
-    vec4 environment;      // x: intensity (0: no environment), y: last level of the chain
+    vec4 environment;      // x: intensity (0: none), y: last chain level, z: dome lights, w: size
     vec4 environmentSh[9]; // SH9 of E(n) / pi (environment.glsl)
 } frame;
 

@@ -167,6 +167,6 @@ vec3 shade(vec3 p, vec3 n, vec3 T, vec3 ks, Instance ins, out float debugVis,
             color += vis * (ndl * L * ins.kd.rgb * T + s * L * ks);
         }
     }
-    color += environmentLight(n, v, T, ins);
+    color += environmentLight(p, n, v, T, ins);
     return color;
 }

@@ -49,6 +49,13 @@ struct EnvironmentLighting {
     int specularSize = 64;    // texels per face of the specular chain's level 0
     int specularLevels = 6;   // mips: perceptual roughness 0 .. 1, at most log2(size) + 1
     int specularSamples = 64; // GGX importance samples per texel
+    /// Dome of shadow lights (SPEC §4.5): 0, or a multiple of 8 up to 64 directional lights from
+    /// Environment::shadowDome, each with a `domeMapSize` shadow map; the diffuse light becomes
+    /// eq. 2.23 D = E(n) - sum of occluded T_i max(0, n.V_i).
+    int domeLights = 0;
+    int domeMapSize = 256;
+    /// Dome maps re-rendered per frame while the casters move (round robin); 0 = all.
+    int domeRefresh = 0;
 
     /// Throws InvalidArgument for a missing/non-finite/negative environment or bad parameters.
     void validate() const;

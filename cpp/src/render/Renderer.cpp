@@ -9,6 +9,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "render/DomeShadows.h"
 #include "render/EnvironmentGpu.h"
 #include "render/FrameData.h"
 #include "render/FrameGraph.h"
@@ -38,7 +39,7 @@ constexpr uint32_t kMaxPasses = 64; // timestamp pairs: shadow views + forward +
 struct FrameSlot {
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     uint64_t serial = 0;
-    vk::Buffer ubo, instances, lights, shadowLayers;
+    vk::Buffer ubo, instances, lights, shadowLayers, domeLights;
     vk::DescriptorPool pool;
     std::unique_ptr<render::Timestamps> timestamps;
     vk::Semaphore acquired;
@@ -46,17 +47,15 @@ struct FrameSlot {
     bool statsPending = false;
 };
 
-// Everything the shadow maps' contents depend on: the light views and every caster's geometry,
+// Everything a shadow map's contents depend on besides its view: every caster's geometry,
 // transform and alpha test (hair: its strands object, which is immutable, and transform).
-// Equal keys mean the maps can be reused.
-std::vector<uint64_t> shadowKey(const render::FrameData& data, const Scene& scene) {
+std::vector<uint64_t> casterKey(const render::FrameData& data, const Scene& scene) {
     std::vector<uint64_t> key;
     auto put = [&](const void* p, size_t bytes) {
         const size_t at = key.size();
         key.resize(at + (bytes + 7) / 8, 0);
         std::memcpy(key.data() + at, p, bytes);
     };
-    for (const render::ShadowView& v : data.shadowViews) put(&v.frustum.viewProj, sizeof(glm::mat4));
     for (const render::Draw& d : data.draws) {
         if (!d.castShadows) continue;
         key.push_back(d.mesh->contentId);
@@ -71,6 +70,18 @@ std::vector<uint64_t> shadowKey(const render::FrameData& data, const Scene& scen
         key.push_back(h.strands->points.size());
         put(&h.transform, sizeof(glm::mat4));
     }
+    return key;
+}
+
+// The light views plus the casters: equal keys mean the scene lights' maps can be reused.
+std::vector<uint64_t> shadowKey(const render::FrameData& data, const std::vector<uint64_t>& casters) {
+    std::vector<uint64_t> key;
+    for (const render::ShadowView& v : data.shadowViews) {
+        const size_t at = key.size();
+        key.resize(at + sizeof(glm::mat4) / 8);
+        std::memcpy(key.data() + at, &v.frustum.viewProj, sizeof(glm::mat4));
+    }
+    key.insert(key.end(), casters.begin(), casters.end());
     return key;
 }
 
@@ -98,6 +109,7 @@ struct Renderer::Impl {
 
     render::ScenePipelines pipes{*ctx};
     render::EnvironmentGpu environment{*ctx};
+    render::DomeShadows dome{*ctx};
     std::unique_ptr<render::GpuCache> cache;
     std::unique_ptr<render::HairPasses> hair; // created with the first scene that has hair
 
@@ -148,8 +160,8 @@ void Renderer::Impl::createSlots() {
         VK_CHECK(vkAllocateCommandBuffers(ctx->device(), &alloc, &s.cmd));
         const VkDescriptorPoolSize sizes[] = {
             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
-            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 + uint32_t(render::kMaxCookies)}};
+            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 + uint32_t(render::kMaxCookies)}};
         VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pool.maxSets = 2;
         pool.poolSizeCount = 3;
@@ -240,7 +252,12 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     environment.fillFrame(scene.environment(), data.frame);
     shadowInfos = data.shadowInfos;
     if (!data.shadowViews.empty()) ensureShadowMaps(uint32_t(data.shadowViews.size()));
-    std::vector<uint64_t> key = shadowKey(data, scene);
+    const std::vector<uint64_t> casters = casterKey(data, scene);
+    std::vector<uint64_t> key = shadowKey(data, casters);
+    const std::vector<int> domeRender = dome.prepare(scene, settings, casters, frameCounter);
+    const std::vector<render::GpuDomeLight>& domeLights = dome.lights();
+    data.frame.environment.z = float(domeLights.size());
+    data.frame.environment.w = float(dome.mapSize());
     const bool reuseShadows = settings.reuseShadowMaps && !data.shadowViews.empty() &&
                               key == shadowSignature;
     shadowSignature = std::move(key);
@@ -270,6 +287,10 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     if (!layers.empty())
         slot.shadowLayers.write(layers.data(), layers.size() * sizeof(render::GpuShadowLayer));
+    ensureBuffer(c, slot.domeLights, domeLights.size() * sizeof(render::GpuDomeLight),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!domeLights.empty())
+        slot.domeLights.write(domeLights.data(), domeLights.size() * sizeof(render::GpuDomeLight));
 
     // ---- descriptors ----------------------------------------------------------------------
     VK_CHECK(vkResetDescriptorPool(c.device(), slot.pool, 0));
@@ -299,7 +320,11 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     VkDescriptorImageInfo environmentInfo{pipes.environmentSampler,
                                           environment.view(scene.environment()),
                                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet writes[8];
+    vk::Image& domeImage = dome.active() ? dome.maps() : dummyShadow;
+    VkDescriptorBufferInfo domeInfo{slot.domeLights.get(), 0, VK_WHOLE_SIZE};
+    VkDescriptorImageInfo domeMapInfo{pipes.nearestSampler, domeImage.view(),
+                                      render::useState(Use::Sampled, true).layout};
+    VkWriteDescriptorSet writes[10];
     for (auto& w : writes) w = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     auto setWrite = [&](int i, VkDescriptorSet set, uint32_t binding, VkDescriptorType type) {
         writes[i].dstSet = set;
@@ -324,7 +349,11 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     writes[6].pImageInfo = cookieInfos;
     setWrite(7, frameSet, 6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     writes[7].pImageInfo = &environmentInfo;
-    vkUpdateDescriptorSets(c.device(), 8, writes, 0, nullptr);
+    setWrite(8, frameSet, 7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    writes[8].pBufferInfo = &domeInfo;
+    setWrite(9, frameSet, 8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    writes[9].pImageInfo = &domeMapInfo;
+    vkUpdateDescriptorSets(c.device(), 10, writes, 0, nullptr);
 
     // ---- frame graph ----------------------------------------------------------------------
     FrameGraph g;
@@ -346,6 +375,39 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
         vkCmdSetScissor(cmd, 0, 1, &sc);
     };
 
+    // Depth of every shadow caster (meshes, alpha-tested ones with holes, hair) seen by viewProj.
+    auto drawCasters = [&](VkCommandBuffer cmd, VkImageView view, uint32_t size,
+                           const glm::mat4& viewProj) {
+        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        depth.imageView = view;
+        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        depth.clearValue.depthStencil = {1.0f, 0};
+        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        info.renderArea = {{0, 0}, {size, size}};
+        info.layerCount = 1;
+        info.pDepthAttachment = &depth;
+        c.fn().cmdBeginRendering(cmd, &info);
+        viewportScissor(cmd, size, size);
+        VkPipeline bound = VK_NULL_HANDLE;
+        for (const Draw& d : draws) {
+            if (!d.castShadows || d.mesh->indexCount == 0) continue;
+            const VkPipeline p = d.alphaCutoff > 0.0f ? pipes.shadowAlpha.get() : pipes.shadow.get();
+            if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+            if (d.alphaCutoff > 0.0f)
+                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.shadowLayout, 0, 1,
+                                        &d.material, 0, nullptr);
+            const render::ShadowPush push{viewProj * d.model, d.alphaCutoff};
+            vkCmdPushConstants(cmd, pipes.shadowLayout,
+                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof(push), &push);
+            drawMesh(cmd, *d.mesh);
+        }
+        if (hasHair) hair->drawDepth(cmd, viewProj);
+        c.fn().cmdEndRendering(cmd);
+    };
+
     std::vector<std::string> reused;
     if (scene.environment().environment && !environmentBaked) reused.push_back("environment");
     for (const ShadowView& s : shadowViews) {
@@ -356,44 +418,36 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
             reused.push_back(std::move(name));
             continue;
         }
-        g.addPass({name, {}, {{rShadow, Use::DepthWrite}},
-                   [&, s](VkCommandBuffer cmd) {
-                       VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-                       depth.imageView = shadowMaps.layerView(uint32_t(s.layer));
-                       depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-                       depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-                       depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-                       depth.clearValue.depthStencil = {1.0f, 0};
-                       const uint32_t size = settings.shadowMapSize;
-                       VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                       info.renderArea = {{0, 0}, {size, size}};
-                       info.layerCount = 1;
-                       info.pDepthAttachment = &depth;
-                       c.fn().cmdBeginRendering(cmd, &info);
-                       viewportScissor(cmd, size, size);
-                       VkPipeline bound = VK_NULL_HANDLE;
-                       for (const Draw& d : draws) {
-                           if (!d.castShadows || d.mesh->indexCount == 0) continue;
-                           const VkPipeline p = d.alphaCutoff > 0.0f ? pipes.shadowAlpha.get()
-                                                                     : pipes.shadow.get();
-                           if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
-                           if (d.alphaCutoff > 0.0f)
-                               vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                                       pipes.shadowLayout, 0, 1, &d.material, 0, nullptr);
-                           const render::ShadowPush push{s.frustum.viewProj * d.model, d.alphaCutoff};
-                           vkCmdPushConstants(cmd, pipes.shadowLayout, VK_SHADER_STAGE_VERTEX_BIT |
-                                              VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
-                           drawMesh(cmd, *d.mesh);
-                       }
-                       if (hasHair) hair->drawDepth(cmd, s.frustum.viewProj);
-                       c.fn().cmdEndRendering(cmd);
+        g.addPass({name, {}, {{rShadow, Use::DepthWrite}}, [&, s](VkCommandBuffer cmd) {
+                       drawCasters(cmd, shadowMaps.layerView(uint32_t(s.layer)),
+                                   settings.shadowMapSize, s.frustum.viewProj);
                    }});
+    }
+    // The environment's dome of shadow lights: the layers due this frame, the rest reused.
+    int rDome = -1;
+    if (dome.active()) {
+        rDome = g.addResource("dome_maps", &dome.maps());
+        std::vector<uint8_t> due(domeLights.size(), 0);
+        for (int i : domeRender) due[size_t(i)] = 1;
+        for (size_t i = 0; i < domeLights.size(); ++i) {
+            std::string name = "dome[" + std::to_string(i) + "]";
+            if (!due[i]) {
+                reused.push_back(std::move(name));
+                continue;
+            }
+            g.addPass({name, {}, {{rDome, Use::DepthWrite}}, [&, i](VkCommandBuffer cmd) {
+                           drawCasters(cmd, dome.maps().layerView(uint32_t(i)), dome.mapSize(),
+                                       domeLights[i].viewProj);
+                       }});
+        }
     }
 
     std::vector<ResourceUse> forwardWrites = {{rHdr, Use::ColorWrite}, {rDepth, Use::DepthWrite}};
     for (int r : rDebug)
         if (r >= 0) forwardWrites.push_back({r, Use::ColorWrite});
-    g.addPass({"forward", {{rShadow, Use::Sampled}}, forwardWrites, [&](VkCommandBuffer cmd) {
+    std::vector<ResourceUse> forwardReads = {{rShadow, Use::Sampled}};
+    if (rDome >= 0) forwardReads.push_back({rDome, Use::Sampled});
+    g.addPass({"forward", forwardReads, forwardWrites, [&](VkCommandBuffer cmd) {
                    std::vector<VkRenderingAttachmentInfo> colors;
                    auto color = [&](VkImageView view, glm::vec4 clear) {
                        VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};

@@ -67,7 +67,9 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
                                              {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                              {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                               uint32_t(kMaxCookies)},
-                                             {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                             {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                             {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});

@@ -181,6 +181,12 @@ void EnvironmentLighting::validate() const {
                               "] for specular_size " + std::to_string(specularSize));
     if (specularSamples < 1 || specularSamples > 4096)
         throw InvalidArgument("environment specular_samples must be in [1, 4096]");
+    if (domeLights < 0 || domeLights > 64 || domeLights % 8 != 0)
+        throw InvalidArgument("environment dome_lights must be 0, 8, 16, ..., 64 (got " +
+                              std::to_string(domeLights) + ")");
+    if (domeMapSize < 16 || domeMapSize > 4096)
+        throw InvalidArgument("environment dome_map_size must be in [16, 4096]");
+    if (domeRefresh < 0) throw InvalidArgument("environment dome_refresh must be >= 0 (0: all)");
 }
 
 void Scene::setEnvironment(const EnvironmentLighting& environment) {
