@@ -152,7 +152,8 @@ void bindScene(py::module_& m) {
         .def(py::init([](py::handle ka, py::handle kd, py::handle ks, float shininess,
                          py::handle baseColor, std::shared_ptr<Texture> texture,
                          std::shared_ptr<Texture> normalMap, std::shared_ptr<Texture> specularMap,
-                         float alphaCutoff, py::handle reflectivity, float environmentDiffuse) {
+                         float alphaCutoff, py::handle reflectivity, float environmentDiffuse,
+                         bool dynamicReflection) {
             Material mat;
             mat.ka = toVec3(ka, "ka");
             mat.kd = toVec3(kd, "kd");
@@ -165,6 +166,7 @@ void bindScene(py::module_& m) {
             mat.alphaCutoff = alphaCutoff;
             mat.reflectivity = toVec3(reflectivity, "reflectivity");
             mat.environmentDiffuse = environmentDiffuse;
+            mat.dynamicReflection = dynamicReflection;
             mat.validate();
             return mat;
         }), py::arg("ka") = py::make_tuple(1, 1, 1), py::arg("kd") = py::make_tuple(1, 1, 1),
@@ -172,7 +174,7 @@ void bindScene(py::module_& m) {
            py::arg("base_color") = py::make_tuple(1, 1, 1), py::arg("texture") = nullptr,
            py::arg("normal_map") = nullptr, py::arg("specular_map") = nullptr,
            py::arg("alpha_cutoff") = 0.0f, py::arg("reflectivity") = py::make_tuple(0, 0, 0),
-           py::arg("environment_diffuse") = 0.0f)
+           py::arg("environment_diffuse") = 0.0f, py::arg("dynamic_reflection") = false)
         .WEFT_VEC3_PROPERTY(Material, "ka", ka)
         .WEFT_VEC3_PROPERTY(Material, "kd", kd)
         .WEFT_VEC3_PROPERTY(Material, "ks", ks)
@@ -197,6 +199,10 @@ void bindScene(py::module_& m) {
                       [](Material& x, float v) {
                           setChecked(x, [&](Material& y) { y.environmentDiffuse = v; });
                       })
+        .def_property("dynamic_reflection", [](const Material& x) { return x.dynamicReflection; },
+                      [](Material& x, bool v) {
+                          setChecked(x, [&](Material& y) { y.dynamicReflection = v; });
+                      }, "Reflect a cube captured from this instance's origin (one per scene).")
         .def_property("alpha_cutoff", [](const Material& x) { return x.alphaCutoff; },
                       [](Material& x, float v) { setChecked(x, [&](Material& y) { y.alphaCutoff = v; }); })
         .def("__repr__", [](const Material& x) {

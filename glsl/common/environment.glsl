@@ -10,6 +10,7 @@ struct DomeLight {
 };
 layout(std430, set = 0, binding = 7) readonly buffer DomeLights { DomeLight domeLights[]; };
 layout(set = 0, binding = 8) uniform sampler2DArray domeMaps;
+layout(set = 0, binding = 9) uniform samplerCube probeMap; // dynamic capture (black while drawn)
 
 // Eq. 2.23 / pi: the irradiance the occluded dome lights would have brought, at p (normal n).
 // One tap per map, receiver pushed along n by the normal offset, slope-scaled bias.
@@ -54,9 +55,10 @@ float environmentRoughness(float shininess) {
 // The environment's contribution at p (normal n, unit view vector v, texture colour T); with a
 // dome of shadow lights the diffuse part loses what the occluded ones bring (eq. 2.23).
 vec3 environmentLight(vec3 p, vec3 n, vec3 v, vec3 T, Instance ins) {
-    if (frame.environment.x <= 0.0) return vec3(0.0);
+    bool probe = (int(ins.baseColor.w) & 4) != 0;
+    if (frame.environment.x <= 0.0 && !probe) return vec3(0.0);
     vec3 color = vec3(0.0);
-    if (ins.environment.w > 0.0) {
+    if (ins.environment.w > 0.0 && frame.environment.x > 0.0) {
         vec3 irradiance = environmentIrradiance(n);
         if (frame.environment.z > 0.0)
             irradiance = max(irradiance - domeOccluded(p, n) * frame.environment.x, vec3(0.0));
@@ -68,7 +70,8 @@ vec3 environmentLight(vec3 p, vec3 n, vec3 v, vec3 T, Instance ins) {
         vec3 r = 2.0 * ndv * n - v;
         float lod = environmentRoughness(ins.ks.w) * frame.environment.y;
         vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - clamp(ndv, 0.0, 1.0), 5.0);
-        color += fresnel * textureLod(environmentMap, r, lod).rgb * frame.environment.x;
+        color += fresnel * (probe ? textureLod(probeMap, r, 0.0).rgb
+                                  : textureLod(environmentMap, r, lod).rgb * frame.environment.x);
     }
     return color;
 }

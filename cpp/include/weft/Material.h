@@ -29,6 +29,10 @@ struct Material {
     glm::vec3 reflectivity{0.0f};
     /// Weight of the environment's diffuse light K_D T E(n) / pi (SH9 irradiance), >= 0.
     float environmentDiffuse = 0.0f;
+    /// The reflection (weighted by `reflectivity`'s Fresnel) is a cube captured from this
+    /// instance's origin (RenderSettings::probeSize), not the environment: one capture per scene,
+    /// from the first instance with this flag; it is captured again only when the scene changes.
+    bool dynamicReflection = false;
 
     /// Throws InvalidArgument for negative or non-finite coefficients or shininess <= 0.
     void validate() const;

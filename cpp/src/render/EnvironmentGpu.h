@@ -24,6 +24,7 @@ public:
     void fillFrame(const EnvironmentLighting& env, GpuFrame& frame) const;
     /// The cube view to bind: the chain, or black without an environment.
     VkImageView view(const EnvironmentLighting& env) const;
+    VkImageView black() const { return mBlack.view(); }
 
 private:
     // What the uploaded chain was baked from (weak: a new environment at a freed address differs).

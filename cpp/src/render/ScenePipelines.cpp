@@ -15,6 +15,8 @@ void RenderSettings::validate() const {
     if (shadowMapSize < 16 || shadowMapSize > 16384)
         throw InvalidArgument("shadow_map_size must be in [16, 16384] (got " +
                               std::to_string(shadowMapSize) + ")");
+    if (probeSize < 4 || probeSize > 2048)
+        throw InvalidArgument("probe_size must be in [4, 2048] (got " + std::to_string(probeSize) + ")");
     if (pcfRadius < 0 || pcfRadius > 7)
         throw InvalidArgument("pcf_radius must be in [0, 7] (got " + std::to_string(pcfRadius) + ")");
     for (float v : {biasConstant, biasSlope, biasMax, normalOffset})
@@ -69,7 +71,8 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
                                               uint32_t(kMaxCookies)},
                                              {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                              {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                             {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                             {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});

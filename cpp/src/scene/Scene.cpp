@@ -24,6 +24,8 @@ void Material::validate() const {
         throw InvalidArgument("Material.reflectivity (Fresnel F0) must be in [0, 1]");
     requireFinite(environmentDiffuse, "Material.environment_diffuse");
     if (environmentDiffuse < 0.0f) throw InvalidArgument("Material.environment_diffuse must be >= 0");
+    if (dynamicReflection && !glm::any(glm::greaterThan(reflectivity, glm::vec3(0.0f))))
+        throw InvalidArgument("Material.dynamic_reflection needs a reflectivity > 0");
 }
 
 void DirectionalLight::validate() const {
