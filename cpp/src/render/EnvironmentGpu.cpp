@@ -1,7 +1,6 @@
 #include "render/EnvironmentGpu.h"
 
 #include <chrono>
-#include <cstring>
 #include <vector>
 
 #include <glm/gtc/packing.hpp>

@@ -1,6 +1,5 @@
 #include "render/ReflectionProbe.h"
 
-#include <cstring>
 
 #include "render/RenderTargets.h"
 
