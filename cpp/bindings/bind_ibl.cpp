@@ -457,7 +457,7 @@ void bindIbl(py::module_& m) {
             return "<weft.ShadowDome lights=" + std::to_string(d.size()) + ">";
         });
 
-    py::class_<Environment>(m, "Environment",
+    py::class_<Environment, std::shared_ptr<Environment>>(m, "Environment",
         "An environment that re-filters only when its radiance changes (cached by version).")
         .def(py::init([](py::handle cube) {
             return new Environment(toCube(cube, "radiance").get());

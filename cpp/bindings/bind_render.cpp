@@ -50,6 +50,8 @@ py::dict statsDict(const FrameStats& s) {
     d["reused"] = s.reused;
     d["mesh_uploads"] = s.meshUploads;
     d["upload_bytes"] = s.uploadBytes;
+    d["environment_bakes"] = s.environmentBakes;
+    d["environment_bake_ms"] = s.environmentBakeMs;
     return d;
 }
 
@@ -104,6 +106,7 @@ void bindRender(py::module_& m) {
         }, py::arg("width"), py::arg("height"))
         .WEFT_SETTING("shadow_map_size", shadowMapSize, uint32_t)
         .WEFT_SETTING("pcf_radius", pcfRadius, int)
+        .WEFT_SETTING("probe_size", probeSize, uint32_t)
         .WEFT_SETTING("bias_constant", biasConstant, float)
         .WEFT_SETTING("bias_slope", biasSlope, float)
         .WEFT_SETTING("bias_max", biasMax, float)
@@ -162,6 +165,15 @@ void bindRender(py::module_& m) {
         }, py::arg("light_index") = 0, py::arg("view") = 0,
            "Depth in [0,1] of the last frame's shadow map of a light (`view`: one of a point\n"
            "light's six views +X, -X, +Y, -Y, +Z, -Z).")
+        .def("reflection_probe", [](Renderer& r) {
+            uint32_t size = 0;
+            std::vector<float> data = r.reflectionProbe(&size);
+            const py::ssize_t n = size;
+            py::array_t<float> out({py::ssize_t(6), n, n, py::ssize_t(4)});
+            std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
+            return out;
+        }, "The last frame's dynamic reflection capture, (6, S, S, 4) linear RGBA (faces +X, -X,\n"
+           "+Y, -Y, +Z, -Z as weft.ibl.CubeMap).")
         .def("shadow_info", [](const Renderer& r, int light) {
             const ShadowInfo i = r.shadowInfo(light);
             py::dict d;

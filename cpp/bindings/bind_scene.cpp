@@ -155,7 +155,8 @@ void bindScene(py::module_& m) {
                          py::handle baseColor, std::shared_ptr<Texture> texture,
                          std::shared_ptr<Texture> normalMap, std::shared_ptr<Texture> specularMap,
                          float alphaCutoff, std::shared_ptr<Texture> ambientMap,
-                         bool specularVertexNormal, bool twoSided) {
+                         bool specularVertexNormal, bool twoSided, py::handle reflectivity,
+                         float environmentDiffuse, bool dynamicReflection) {
             Material mat;
             mat.ka = toVec3(ka, "ka");
             mat.kd = toVec3(kd, "kd");
@@ -169,6 +170,9 @@ void bindScene(py::module_& m) {
             mat.ambientMap = ambientMap;
             mat.specularVertexNormal = specularVertexNormal;
             mat.twoSided = twoSided;
+            mat.reflectivity = toVec3(reflectivity, "reflectivity");
+            mat.environmentDiffuse = environmentDiffuse;
+            mat.dynamicReflection = dynamicReflection;
             mat.validate();
             return mat;
         }), py::arg("ka") = py::make_tuple(1, 1, 1), py::arg("kd") = py::make_tuple(1, 1, 1),
@@ -176,7 +180,9 @@ void bindScene(py::module_& m) {
            py::arg("base_color") = py::make_tuple(1, 1, 1), py::arg("texture") = nullptr,
            py::arg("normal_map") = nullptr, py::arg("specular_map") = nullptr,
            py::arg("alpha_cutoff") = 0.0f, py::arg("ambient_map") = nullptr,
-           py::arg("specular_vertex_normal") = false, py::arg("two_sided") = false)
+           py::arg("specular_vertex_normal") = false, py::arg("two_sided") = false,
+           py::arg("reflectivity") = py::make_tuple(0, 0, 0),
+           py::arg("environment_diffuse") = 0.0f, py::arg("dynamic_reflection") = false)
         .WEFT_VEC3_PROPERTY(Material, "ka", ka)
         .WEFT_VEC3_PROPERTY(Material, "kd", kd)
         .WEFT_VEC3_PROPERTY(Material, "ks", ks)
@@ -202,6 +208,15 @@ void bindScene(py::module_& m) {
         .def_readwrite("specular_vertex_normal", &Material::specularVertexNormal)
         .def_readwrite("two_sided", &Material::twoSided,
                        "Draw both faces; the back face uses the flipped normal (cloth: always).")
+        .WEFT_VEC3_PROPERTY(Material, "reflectivity", reflectivity)
+        .def_property("environment_diffuse", [](const Material& x) { return x.environmentDiffuse; },
+                      [](Material& x, float v) {
+                          setChecked(x, [&](Material& y) { y.environmentDiffuse = v; });
+                      })
+        .def_property("dynamic_reflection", [](const Material& x) { return x.dynamicReflection; },
+                      [](Material& x, bool v) {
+                          setChecked(x, [&](Material& y) { y.dynamicReflection = v; });
+                      }, "Reflect a cube captured from this instance's origin (one per scene).")
         .def_property("alpha_cutoff", [](const Material& x) { return x.alphaCutoff; },
                       [](Material& x, float v) { setChecked(x, [&](Material& y) { y.alphaCutoff = v; }); })
         .def("__repr__", [](const Material& x) {
@@ -408,6 +423,41 @@ void bindScene(py::module_& m) {
                       [](Scene& s, py::handle v) { s.setAmbient(toVec3(v, "ambient")); })
         .def_property("background", [](const Scene& s) { return fromVec3(s.background()); },
                       [](Scene& s, py::handle v) { s.setBackground(toVec3(v, "background")); })
+        .def("set_environment", [](Scene& s, py::object environment, float intensity, int specularSize,
+                                   int specularLevels, int specularSamples, int domeLights,
+                                   int domeMapSize, int domeRefresh) {
+            EnvironmentLighting e;
+            if (py::isinstance<Environment>(environment))
+                e.environment = environment.cast<std::shared_ptr<Environment>>();
+            else if (py::isinstance<CubeMap>(environment))
+                e.environment = std::make_shared<Environment>(environment.cast<const CubeMap&>());
+            else
+                throw InvalidArgument("Scene.set_environment: expected a weft.ibl.Environment or a "
+                                      "weft.ibl.CubeMap (radiance, world space)");
+            e.intensity = intensity;
+            e.specularSize = specularSize;
+            e.specularLevels = specularLevels;
+            e.specularSamples = specularSamples;
+            e.domeLights = domeLights;
+            e.domeMapSize = domeMapSize;
+            e.domeRefresh = domeRefresh;
+            s.setEnvironment(e);
+        }, py::arg("environment"), py::arg("intensity") = 1.0f, py::arg("specular_size") = 64,
+           py::arg("specular_levels") = 6, py::arg("specular_samples") = 64,
+           py::arg("dome_lights") = 0, py::arg("dome_map_size") = 256, py::arg("dome_refresh") = 0,
+           "Lights the scene with an environment (a weft.ibl.Environment, re-baked when its version\n"
+           "changes, or a weft.ibl.CubeMap, copied into a new one): SH9 irradiance for materials'\n"
+           "environment_diffuse, a GGX chain (level l: roughness l / (levels - 1)) for their\n"
+           "reflectivity. dome_lights (0, 8, ..., 64) shadow lights of Environment.shadow_dome\n"
+           "cast dome_map_size shadow maps; the diffuse loses the occluded ones' light (eq. 2.23);\n"
+           "while casters move, dome_refresh maps per frame are re-rendered (0: all).")
+        .def("clear_environment", &Scene::clearEnvironment)
+        .def_property_readonly("environment", [](const Scene& s) -> py::object {
+            if (!s.environment().environment) return py::none();
+            return py::cast(s.environment().environment);
+        }, "The scene's weft.ibl.Environment, or None.")
+        .def_property_readonly("environment_intensity",
+                               [](const Scene& s) { return s.environment().intensity; })
         .def_property_readonly("lights", &Scene::lights)
         .def_property_readonly("instance_count", [](const Scene& s) { return s.instances().size(); })
         .def("bounds", [](const Scene& s) {

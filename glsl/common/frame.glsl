@@ -26,6 +26,7 @@ struct Instance {
     vec4 kd;        // w: bits 1 normal map, 2 ambient map, 4 specular from the vertex normal
     vec4 ks;        // w: shininess
     vec4 baseColor;
+    vec4 environment; // rgb: reflectivity (Fresnel F0), w: environment-diffuse weight
 };
 
 layout(set = 0, binding = 0) uniform FrameUbo {
@@ -35,6 +36,8 @@ layout(set = 0, binding = 0) uniform FrameUbo {
     vec4 background;
     vec4 bias;    // x: constant, y: slope, z: max (units of the light's depth range)
     ivec4 counts; // x: lights, y: PCF radius, z: shadow-map size, w: debug light or -1
+    vec4 environment;      // x: intensity (0: none), y: last chain level, z: dome lights, w: size
+    vec4 environmentSh[9]; // SH9 of E(n) / pi (environment.glsl)
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };
@@ -42,5 +45,6 @@ layout(std430, set = 0, binding = 2) readonly buffer Lights { Light lights[]; };
 layout(set = 0, binding = 3) uniform sampler2DArray shadowMaps;
 layout(std430, set = 0, binding = 4) readonly buffer ShadowLayers { ShadowLayer shadowLayers[]; };
 layout(set = 0, binding = 5) uniform sampler2D cookies[MAX_COOKIES];
+layout(set = 0, binding = 6) uniform samplerCube environmentMap; // GGX chain by roughness
 
 layout(push_constant) uniform Push { uint instance; } push;

@@ -2,6 +2,7 @@
 // (SPEC §1.2, §1.3 eq. 2.3-2.5, 2.8-2.10; §1.5). python/weft/reference/shading.py and
 // shadow.py implement the same equations in NumPy.
 #include "frame.glsl"
+#include "environment.glsl"
 
 layout(set = 1, binding = 0) uniform sampler2D baseTexture;
 layout(set = 1, binding = 1) uniform sampler2D normalMap;   // linear, tangent space
@@ -201,5 +202,6 @@ vec3 shade(Surface sf, Instance ins, out float debugVis, out float debugDepth) {
             color += vis * (ndl * L * ins.kd.rgb * sf.T + s * L * sf.ks);
         }
     }
+    color += environmentLight(p, n, v, sf.T, ins);
     return color;
 }

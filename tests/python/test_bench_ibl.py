@@ -33,6 +33,9 @@ def test_bench_ibl_quick(tmp_path: Path) -> None:
     assert threshold["dir_err_deg"] < 2.0 and threshold["power_err"] < 0.05
     dome = data["dome"]
     assert dome[0]["err"] > dome[-1]["err"]
-    assert "renderer" in data["summary"]["shadow_light_frame_times"]
+    frames = data["frames"]
+    assert [(x["size"], x["lights"]) for x in frames] == [("64x48", 0), ("64x48", 16)]
+    assert all(x["reused_ms"] > 0 and x["rerendered_ms"] > 0 for x in frames)
+    assert "64x48, 16 lights" in data["summary"]["shadow_light_frame_times"]
     md = (out / "bench.md").read_text()
-    assert "## Irradiance" in md and "## Shadow-light dome" in md
+    assert "## Irradiance" in md and "## Shadow-light dome" in md and "## Frames" in md

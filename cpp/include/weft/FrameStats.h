@@ -21,6 +21,8 @@ struct FrameStats {
     double gpuMs = -1.0;           // sum of the passes' GPU times, negative if unmeasured
     int meshUploads = 0;           // dynamic meshes (cloth) re-uploaded for this frame
     uint64_t uploadBytes = 0;      // bytes they took
+    int environmentBakes = 0;      // 1 when the environment was filtered + uploaded for this frame
+    double environmentBakeMs = 0.0; // CPU time of that (filtering, or a cache hit, and upload)
 };
 
 } // namespace weft

@@ -29,6 +29,16 @@ struct Material {
     float alphaCutoff = 0.0f;
     /// Both faces are drawn; the back face is shaded with the flipped normal (cloth).
     bool twoSided = false;
+    /// Environment reflection (SPEC §1.3, §4.4), used when the scene has an environment: F0 of
+    /// Schlick's Fresnel per channel in [0, 1]; the reflection is the GGX-prefiltered
+    /// environment in R = 2(n.v)n - v at the roughness of `shininess` (Renderer.h). 0 = none.
+    glm::vec3 reflectivity{0.0f};
+    /// Weight of the environment's diffuse light K_D T E(n) / pi (SH9 irradiance), >= 0.
+    float environmentDiffuse = 0.0f;
+    /// The reflection (weighted by `reflectivity`'s Fresnel) is a cube captured from this
+    /// instance's origin (RenderSettings::probeSize), not the environment: one capture per scene,
+    /// from the first instance with this flag; it is captured again only when the scene changes.
+    bool dynamicReflection = false;
 
     /// Throws InvalidArgument for negative or non-finite coefficients or shininess <= 0.
     void validate() const;

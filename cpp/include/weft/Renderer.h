@@ -33,6 +33,7 @@ struct RenderSettings {
     float normalOffset = 1.5f;      // receiver offset along n, in shadow-map texels
     /// Keep the shadow maps of the last frame when no shadow view and no shadow caster changed.
     bool reuseShadowMaps = true;
+    uint32_t probeSize = 64;        // texels per face of the dynamic reflection capture
 
     // Hair (SPEC §5): drawing, deep opacity maps (self-shadowing from directional lights) and
     // weighted blended order-independent transparency.
@@ -127,6 +128,9 @@ public:
     /// `view` selects one of a point light's six views.
     std::vector<float> shadowMap(int lightIndex, uint32_t* size = nullptr, int view = 0);
     ShadowInfo shadowInfo(int lightIndex) const;
+    /// The last frame's dynamic reflection capture: 6 faces x size^2 x RGBA linear floats in
+    /// CubeMap.h's face order and orientation. Throws InvalidArgument without one.
+    std::vector<float> reflectionProbe(uint32_t* size = nullptr);
     /// The last frame's deep opacity map of directional light `lightIndex`.
     HairDomInfo hairDeepOpacity(int lightIndex) const;
     std::string deviceName() const;

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include <weft/Cloth.h>
+#include <weft/Environment.h>
 #include <weft/HairMaterial.h>
 #include <weft/HairStrands.h>
 #include <weft/Light.h>
@@ -39,6 +40,27 @@ struct HairInstance {
     glm::vec3 lo{0.0f}, hi{0.0f}; // object-space bounds of the points
 };
 
+/// Image-based lighting of a scene (SPEC §4.4): the environment's radiance is world space. The
+/// renderer bakes SH9 irradiance (diffuse) and a GGX-prefiltered chain (specular) from it, again
+/// only when the environment's content version or the chain parameters change.
+struct EnvironmentLighting {
+    std::shared_ptr<Environment> environment; // null: no environment
+    float intensity = 1.0f;   // scales the radiance, >= 0 (changing it bakes nothing)
+    int specularSize = 64;    // texels per face of the specular chain's level 0
+    int specularLevels = 6;   // mips: perceptual roughness 0 .. 1, at most log2(size) + 1
+    int specularSamples = 64; // GGX importance samples per texel
+    /// Dome of shadow lights (SPEC §4.5): 0, or a multiple of 8 up to 64 directional lights from
+    /// Environment::shadowDome, each with a `domeMapSize` shadow map; the diffuse light becomes
+    /// eq. 2.23 D = E(n) - sum of occluded T_i max(0, n.V_i).
+    int domeLights = 0;
+    int domeMapSize = 256;
+    /// Dome maps re-rendered per frame while the casters move (round robin); 0 = all.
+    int domeRefresh = 0;
+
+    /// Throws InvalidArgument for a missing/non-finite/negative environment or bad parameters.
+    void validate() const;
+};
+
 class Scene {
 public:
     /// Adds an instance and returns its id. The mesh and material are validated here.
@@ -68,6 +90,12 @@ public:
     const glm::vec3& ambient() const { return mAmbient; }
     const glm::vec3& background() const { return mBackground; }
 
+    /// Lights the scene with an environment (validated); materials opt in with `reflectivity`
+    /// and `environmentDiffuse`.
+    void setEnvironment(const EnvironmentLighting& environment);
+    void clearEnvironment();
+    const EnvironmentLighting& environment() const { return mEnvironment; }
+
     /// World-space bounds of all mesh and hair instances (min > max when the scene is empty).
     void bounds(glm::vec3& lo, glm::vec3& hi) const;
     /// Increases whenever anything in the scene changes; the renderer reuses work by it.
@@ -79,6 +107,7 @@ private:
     std::vector<Light> mLights;
     glm::vec3 mAmbient{0.1f};
     glm::vec3 mBackground{0.0f};
+    EnvironmentLighting mEnvironment;
     uint64_t mVersion = 1;
 };
 

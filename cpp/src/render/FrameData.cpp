@@ -118,9 +118,12 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
         g.kd = glm::vec4(inst.material.kd, float(maps));
         g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
         const bool mirrored = glm::determinant(glm::mat3(inst.transform)) < 0.0f;
-        // baseColor.w: bit 0 two-sided, bit 1 mirrored (for the back-face test)
+        // baseColor.w: bit 0 two-sided, bit 1 mirrored (for the back-face test), bit 2 reflects
+        // the dynamic capture
         g.baseColor = glm::vec4(inst.material.baseColor,
-                                float((inst.material.twoSided ? 1 : 0) | (mirrored ? 2 : 0)));
+                                float((inst.material.twoSided ? 1 : 0) | (mirrored ? 2 : 0) |
+                                      (inst.material.dynamicReflection ? 4 : 0)));
+        g.environment = glm::vec4(inst.material.reflectivity, inst.material.environmentDiffuse);
         const MeshGpu* mesh = nullptr;
         if (inst.cloth) {
             const uint64_t before = f.uploadBytes;

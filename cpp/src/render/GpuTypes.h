@@ -25,6 +25,13 @@ struct GpuShadowLayer {
                       // y: 1 perspective / 0 orthographic, z: near, w: far
 };
 
+/// A light of the environment's shadow dome (SPEC §4.5) and its shadow-map layer.
+struct GpuDomeLight {
+    glm::mat4 viewProj;
+    glm::vec4 direction; // xyz: unit vector towards the light, w: normal offset (world units)
+    glm::vec4 intensity; // rgb: T_i / pi
+};
+
 struct GpuInstance {
     glm::mat4 model;
     glm::mat4 normalMatrix;
@@ -32,6 +39,7 @@ struct GpuInstance {
     glm::vec4 kd; // w: bits 1 normal map, 2 ambient map, 4 specular from the vertex normal
     glm::vec4 ks; // w: shininess
     glm::vec4 baseColor;
+    glm::vec4 environment; // rgb: reflectivity (Fresnel F0), w: environment-diffuse weight
 };
 
 struct GpuFrame {
@@ -41,11 +49,15 @@ struct GpuFrame {
     glm::vec4 background;
     glm::vec4 bias;     // x: constant, y: slope, z: max (units of the light's depth range)
     glm::ivec4 counts;  // x: lights, y: PCF radius, z: shadow-map size, w: debug light or -1
+    glm::vec4 environment; // x: intensity (0: no environment), y: last level of the chain,
+                           // z: dome lights, w: dome shadow-map size
+    glm::vec4 environmentSh[9]; // SH9 of E(n) / pi: A_l L_lm / pi (rgb), see environment.glsl
 };
 
 static_assert(sizeof(GpuLight) == 80, "GpuLight must match frame.glsl");
 static_assert(sizeof(GpuShadowLayer) == 80, "GpuShadowLayer must match frame.glsl");
-static_assert(sizeof(GpuInstance) == 192, "GpuInstance must match frame.glsl");
-static_assert(sizeof(GpuFrame) == 64 + 48 + 32, "GpuFrame must match frame.glsl");
+static_assert(sizeof(GpuDomeLight) == 96, "GpuDomeLight must match environment.glsl");
+static_assert(sizeof(GpuInstance) == 208, "GpuInstance must match frame.glsl");
+static_assert(sizeof(GpuFrame) == 64 + 48 + 32 + 16 + 144, "GpuFrame must match frame.glsl");
 
 } // namespace weft::render

@@ -9,8 +9,11 @@
 #include <string>
 #include <unordered_map>
 
+#include "render/DomeShadows.h"
+#include "render/EnvironmentGpu.h"
 #include "render/FrameData.h"
 #include "render/FrameGraph.h"
+#include "render/ReflectionProbe.h"
 #include "render/GpuCache.h"
 #include "render/GpuTypes.h"
 #include "render/HairPasses.h"
@@ -32,12 +35,14 @@ using render::Use;
 namespace {
 
 constexpr uint32_t kFramesInFlight = 2;
-constexpr uint32_t kMaxPasses = 64; // timestamp pairs: shadow views + forward + output + readback
+// timestamp pairs: shadow views + dome maps + probe faces + forward + output + readback
+constexpr uint32_t kMaxPasses = 128;
+constexpr uint32_t kFrameSets = 7; // the frame's, and one per face of the reflection capture
 
 struct FrameSlot {
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     uint64_t serial = 0;
-    vk::Buffer ubo, instances, lights, shadowLayers;
+    vk::Buffer ubo, probeUbo, instances, lights, shadowLayers, domeLights;
     vk::DescriptorPool pool;
     std::unique_ptr<render::Timestamps> timestamps;
     vk::Semaphore acquired;
@@ -45,17 +50,15 @@ struct FrameSlot {
     bool statsPending = false;
 };
 
-// Everything the shadow maps' contents depend on: the light views and every caster's geometry,
+// Everything a shadow map's contents depend on besides its view: every caster's geometry,
 // transform and alpha test (hair: its strands object, which is immutable, and transform).
-// Equal keys mean the maps can be reused.
-std::vector<uint64_t> shadowKey(const render::FrameData& data, const Scene& scene) {
+std::vector<uint64_t> casterKey(const render::FrameData& data, const Scene& scene) {
     std::vector<uint64_t> key;
     auto put = [&](const void* p, size_t bytes) {
         const size_t at = key.size();
         key.resize(at + (bytes + 7) / 8, 0);
         std::memcpy(key.data() + at, p, bytes);
     };
-    for (const render::ShadowView& v : data.shadowViews) put(&v.frustum.viewProj, sizeof(glm::mat4));
     for (const render::Draw& d : data.draws) {
         if (!d.castShadows) continue;
         key.push_back(d.mesh->contentId);
@@ -70,6 +73,18 @@ std::vector<uint64_t> shadowKey(const render::FrameData& data, const Scene& scen
         key.push_back(h.strands->points.size());
         put(&h.transform, sizeof(glm::mat4));
     }
+    return key;
+}
+
+// The light views plus the casters: equal keys mean the scene lights' maps can be reused.
+std::vector<uint64_t> shadowKey(const render::FrameData& data, const std::vector<uint64_t>& casters) {
+    std::vector<uint64_t> key;
+    for (const render::ShadowView& v : data.shadowViews) {
+        const size_t at = key.size();
+        key.resize(at + sizeof(glm::mat4) / 8);
+        std::memcpy(key.data() + at, &v.frustum.viewProj, sizeof(glm::mat4));
+    }
+    key.insert(key.end(), casters.begin(), casters.end());
     return key;
 }
 
@@ -96,6 +111,9 @@ struct Renderer::Impl {
     uint32_t width = 0, height = 0;
 
     render::ScenePipelines pipes{*ctx};
+    render::EnvironmentGpu environment{*ctx};
+    render::DomeShadows dome{*ctx};
+    render::ReflectionProbe probe{*ctx};
     std::unique_ptr<render::GpuCache> cache;
     std::unique_ptr<render::HairPasses> hair; // created with the first scene that has hair
 
@@ -145,11 +163,12 @@ void Renderer::Impl::createSlots() {
         alloc.commandBufferCount = 1;
         VK_CHECK(vkAllocateCommandBuffers(ctx->device(), &alloc, &s.cmd));
         const VkDescriptorPoolSize sizes[] = {
-            {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
-            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + uint32_t(render::kMaxCookies)}};
+            {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFrameSets},
+            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kFrameSets},
+            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+             (4 + uint32_t(render::kMaxCookies)) * kFrameSets + 1}};
         VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        pool.maxSets = 2;
+        pool.maxSets = kFrameSets + 1;
         pool.poolSizeCount = 3;
         pool.pPoolSizes = sizes;
         VkDescriptorPool p;
@@ -233,9 +252,19 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     const float aspect = float(targets.width) / float(targets.height);
 
     FrameData data = buildFrameData(scene, camera, settings, aspect, *cache);
+    double environmentBakeMs = 0.0;
+    const bool environmentBaked = environment.prepare(scene.environment(), environmentBakeMs);
+    environment.fillFrame(scene.environment(), data.frame);
     shadowInfos = data.shadowInfos;
     if (!data.shadowViews.empty()) ensureShadowMaps(uint32_t(data.shadowViews.size()));
-    std::vector<uint64_t> key = shadowKey(data, scene);
+    const std::vector<uint64_t> casters = casterKey(data, scene);
+    std::vector<uint64_t> key = shadowKey(data, casters);
+    const std::vector<int> domeRender = dome.prepare(scene, settings, casters, frameCounter);
+    const std::vector<render::GpuDomeLight>& domeLights = dome.lights();
+    data.frame.environment.z = float(domeLights.size());
+    data.frame.environment.w = float(dome.mapSize());
+    const bool captureProbe = probe.prepare(scene, data, settings.probeSize);
+    const bool hasProbe = probe.instance() >= 0;
     const bool reuseShadows = settings.reuseShadowMaps && !data.shadowViews.empty() &&
                               key == shadowSignature;
     shadowSignature = std::move(key);
@@ -258,6 +287,20 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     ensureBuffer(c, slot.lights, lights.size() * sizeof(render::GpuLight),
                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     slot.ubo.write(&frame, sizeof(frame));
+    // The capture's faces: the frame's uniforms seen from the probe, at aligned offsets.
+    const VkDeviceSize align = c.properties().limits.minUniformBufferOffsetAlignment;
+    const VkDeviceSize faceStride = (sizeof(frame) + align - 1) / align * align;
+    if (captureProbe) {
+        ensureBuffer(c, slot.probeUbo, 6 * faceStride, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        std::vector<uint8_t> faces(6 * faceStride, 0);
+        for (int f = 0; f < 6; ++f) {
+            render::GpuFrame face = frame;
+            face.viewProj = render::probeFaceViewProj(f, probe.position(), 0.02f, 1000.0f);
+            face.cameraPos = glm::vec4(probe.position(), 1.0f);
+            std::memcpy(faces.data() + f * faceStride, &face, sizeof(face));
+        }
+        slot.probeUbo.write(faces.data(), faces.size());
+    }
     if (!instances.empty())
         slot.instances.write(instances.data(), instances.size() * sizeof(render::GpuInstance));
     if (!lights.empty()) slot.lights.write(lights.data(), lights.size() * sizeof(render::GpuLight));
@@ -265,56 +308,94 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     if (!layers.empty())
         slot.shadowLayers.write(layers.data(), layers.size() * sizeof(render::GpuShadowLayer));
+    ensureBuffer(c, slot.domeLights, domeLights.size() * sizeof(render::GpuDomeLight),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!domeLights.empty())
+        slot.domeLights.write(domeLights.data(), domeLights.size() * sizeof(render::GpuDomeLight));
 
     // ---- descriptors ----------------------------------------------------------------------
     VK_CHECK(vkResetDescriptorPool(c.device(), slot.pool, 0));
-    VkDescriptorSetLayout layouts[] = {pipes.frameSetLayout, pipes.outputSetLayout};
+    VkDescriptorSetLayout layouts[kFrameSets + 1];
+    for (uint32_t i = 0; i < kFrameSets; ++i) layouts[i] = pipes.frameSetLayout;
+    layouts[kFrameSets] = pipes.outputSetLayout;
+    const uint32_t setCount = captureProbe ? kFrameSets + 1 : 2;
+    if (!captureProbe) layouts[1] = pipes.outputSetLayout;
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = slot.pool;
-    alloc.descriptorSetCount = 2;
+    alloc.descriptorSetCount = setCount;
     alloc.pSetLayouts = layouts;
-    VkDescriptorSet sets[2];
+    VkDescriptorSet sets[kFrameSets + 1];
     VK_CHECK(vkAllocateDescriptorSets(c.device(), &alloc, sets));
-    const VkDescriptorSet frameSet = sets[0], outputSet = sets[1];
+    const VkDescriptorSet frameSet = sets[0], outputSet = sets[setCount - 1];
     vk::Image& shadowImage = shadowViews.empty() ? dummyShadow : shadowMaps;
-    VkDescriptorBufferInfo uboInfo{slot.ubo.get(), 0, sizeof(frame)};
-    VkDescriptorBufferInfo instInfo{slot.instances.get(), 0, VK_WHOLE_SIZE};
-    VkDescriptorBufferInfo lightInfo{slot.lights.get(), 0, VK_WHOLE_SIZE};
-    VkDescriptorImageInfo shadowInfo{pipes.nearestSampler, shadowImage.view(),
-                                     render::useState(Use::Sampled, true).layout};
+    vk::Image& domeImage = dome.active() ? dome.maps() : dummyShadow;
+    // A frame set: the frame's data with uniforms `ubo` and the reflection capture `probeView`.
+    auto writeFrameSet = [&](VkDescriptorSet set, VkDescriptorBufferInfo uboInfo, VkImageView probeView) {
+        VkDescriptorBufferInfo instInfo{slot.instances.get(), 0, VK_WHOLE_SIZE};
+        VkDescriptorBufferInfo lightInfo{slot.lights.get(), 0, VK_WHOLE_SIZE};
+        VkDescriptorImageInfo shadowInfo{pipes.nearestSampler, shadowImage.view(),
+                                         render::useState(Use::Sampled, true).layout};
+        VkDescriptorBufferInfo layerInfo{slot.shadowLayers.get(), 0, VK_WHOLE_SIZE};
+        VkDescriptorImageInfo cookieInfos[render::kMaxCookies];
+        for (int i = 0; i < render::kMaxCookies; ++i) // unused slots hold white
+            cookieInfos[i] = {pipes.cookieSampler,
+                              cache->textureView(size_t(i) < data.cookies.size() ? data.cookies[size_t(i)]
+                                                                                  : TexturePtr()),
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        VkDescriptorImageInfo environmentInfo{pipes.environmentSampler,
+                                              environment.view(scene.environment()),
+                                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        VkDescriptorBufferInfo domeInfo{slot.domeLights.get(), 0, VK_WHOLE_SIZE};
+        VkDescriptorImageInfo domeMapInfo{pipes.nearestSampler, domeImage.view(),
+                                          render::useState(Use::Sampled, true).layout};
+        VkDescriptorImageInfo probeInfo{pipes.environmentSampler, probeView,
+                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        VkWriteDescriptorSet writes[10];
+        for (auto& w : writes) w = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        auto setWrite = [&](int i, uint32_t binding, VkDescriptorType type) {
+            writes[i].dstSet = set;
+            writes[i].dstBinding = binding;
+            writes[i].descriptorCount = 1;
+            writes[i].descriptorType = type;
+        };
+        setWrite(0, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+        writes[0].pBufferInfo = &uboInfo;
+        setWrite(1, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+        writes[1].pBufferInfo = &instInfo;
+        setWrite(2, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+        writes[2].pBufferInfo = &lightInfo;
+        setWrite(3, 3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[3].pImageInfo = &shadowInfo;
+        setWrite(4, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+        writes[4].pBufferInfo = &layerInfo;
+        setWrite(5, 5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[5].descriptorCount = render::kMaxCookies;
+        writes[5].pImageInfo = cookieInfos;
+        setWrite(6, 6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[6].pImageInfo = &environmentInfo;
+        setWrite(7, 7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+        writes[7].pBufferInfo = &domeInfo;
+        setWrite(8, 8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[8].pImageInfo = &domeMapInfo;
+        setWrite(9, 9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[9].pImageInfo = &probeInfo;
+        vkUpdateDescriptorSets(c.device(), 10, writes, 0, nullptr);
+    };
+    writeFrameSet(frameSet, {slot.ubo.get(), 0, sizeof(frame)},
+                  hasProbe ? probe.cube().view() : environment.black());
+    if (captureProbe) // the faces see the capture as black: it is being drawn
+        for (uint32_t f = 0; f < 6; ++f)
+            writeFrameSet(sets[1 + f], {slot.probeUbo.get(), f * faceStride, sizeof(frame)},
+                          environment.black());
     VkDescriptorImageInfo hdrInfo{pipes.nearestSampler, targets.hdr.view(),
                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkDescriptorBufferInfo layerInfo{slot.shadowLayers.get(), 0, VK_WHOLE_SIZE};
-    VkDescriptorImageInfo cookieInfos[render::kMaxCookies];
-    for (int i = 0; i < render::kMaxCookies; ++i) // unused slots hold white
-        cookieInfos[i] = {pipes.cookieSampler,
-                          cache->textureView(size_t(i) < data.cookies.size() ? data.cookies[size_t(i)]
-                                                                              : TexturePtr()),
-                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet writes[7];
-    for (auto& w : writes) w = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    auto setWrite = [&](int i, VkDescriptorSet set, uint32_t binding, VkDescriptorType type) {
-        writes[i].dstSet = set;
-        writes[i].dstBinding = binding;
-        writes[i].descriptorCount = 1;
-        writes[i].descriptorType = type;
-    };
-    setWrite(0, frameSet, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
-    writes[0].pBufferInfo = &uboInfo;
-    setWrite(1, frameSet, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-    writes[1].pBufferInfo = &instInfo;
-    setWrite(2, frameSet, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-    writes[2].pBufferInfo = &lightInfo;
-    setWrite(3, frameSet, 3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-    writes[3].pImageInfo = &shadowInfo;
-    setWrite(4, outputSet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-    writes[4].pImageInfo = &hdrInfo;
-    setWrite(5, frameSet, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-    writes[5].pBufferInfo = &layerInfo;
-    setWrite(6, frameSet, 5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-    writes[6].descriptorCount = render::kMaxCookies;
-    writes[6].pImageInfo = cookieInfos;
-    vkUpdateDescriptorSets(c.device(), 7, writes, 0, nullptr);
+    VkWriteDescriptorSet outputWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    outputWrite.dstSet = outputSet;
+    outputWrite.dstBinding = 0;
+    outputWrite.descriptorCount = 1;
+    outputWrite.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    outputWrite.pImageInfo = &hdrInfo;
+    vkUpdateDescriptorSets(c.device(), 1, &outputWrite, 0, nullptr);
 
     // ---- frame graph ----------------------------------------------------------------------
     FrameGraph g;
@@ -336,7 +417,41 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
         vkCmdSetScissor(cmd, 0, 1, &sc);
     };
 
+    // Depth of every shadow caster (meshes, alpha-tested ones with holes, hair) seen by viewProj.
+    auto drawCasters = [&](VkCommandBuffer cmd, VkImageView view, uint32_t size,
+                           const glm::mat4& viewProj) {
+        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        depth.imageView = view;
+        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        depth.clearValue.depthStencil = {1.0f, 0};
+        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        info.renderArea = {{0, 0}, {size, size}};
+        info.layerCount = 1;
+        info.pDepthAttachment = &depth;
+        c.fn().cmdBeginRendering(cmd, &info);
+        viewportScissor(cmd, size, size);
+        VkPipeline bound = VK_NULL_HANDLE;
+        for (const Draw& d : draws) {
+            if (!d.castShadows || d.mesh->indexCount == 0) continue;
+            const VkPipeline p = d.alphaCutoff > 0.0f ? pipes.shadowAlpha.get() : pipes.shadow.get();
+            if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+            if (d.alphaCutoff > 0.0f)
+                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.shadowLayout, 0, 1,
+                                        &d.material, 0, nullptr);
+            const render::ShadowPush push{viewProj * d.model, d.alphaCutoff};
+            vkCmdPushConstants(cmd, pipes.shadowLayout,
+                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof(push), &push);
+            drawMesh(cmd, *d.mesh);
+        }
+        if (hasHair) hair->drawDepth(cmd, viewProj);
+        c.fn().cmdEndRendering(cmd);
+    };
+
     std::vector<std::string> reused;
+    if (scene.environment().environment && !environmentBaked) reused.push_back("environment");
     for (const ShadowView& s : shadowViews) {
         std::string name = "shadow[" + std::to_string(s.lightIndex) + "]";
         if (scene.lights()[size_t(s.lightIndex)].index() == 1) // a point light's six views
@@ -345,44 +460,96 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
             reused.push_back(std::move(name));
             continue;
         }
-        g.addPass({name, {}, {{rShadow, Use::DepthWrite}},
-                   [&, s](VkCommandBuffer cmd) {
-                       VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-                       depth.imageView = shadowMaps.layerView(uint32_t(s.layer));
-                       depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-                       depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-                       depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-                       depth.clearValue.depthStencil = {1.0f, 0};
-                       const uint32_t size = settings.shadowMapSize;
-                       VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                       info.renderArea = {{0, 0}, {size, size}};
-                       info.layerCount = 1;
-                       info.pDepthAttachment = &depth;
-                       c.fn().cmdBeginRendering(cmd, &info);
-                       viewportScissor(cmd, size, size);
-                       VkPipeline bound = VK_NULL_HANDLE;
-                       for (const Draw& d : draws) {
-                           if (!d.castShadows || d.mesh->indexCount == 0) continue;
-                           const VkPipeline p = d.alphaCutoff > 0.0f ? pipes.shadowAlpha.get()
-                                                                     : pipes.shadow.get();
-                           if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
-                           if (d.alphaCutoff > 0.0f)
-                               vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                                       pipes.shadowLayout, 0, 1, &d.material, 0, nullptr);
-                           const render::ShadowPush push{s.frustum.viewProj * d.model, d.alphaCutoff};
-                           vkCmdPushConstants(cmd, pipes.shadowLayout, VK_SHADER_STAGE_VERTEX_BIT |
-                                              VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
-                           drawMesh(cmd, *d.mesh);
-                       }
-                       if (hasHair) hair->drawDepth(cmd, s.frustum.viewProj);
-                       c.fn().cmdEndRendering(cmd);
+        g.addPass({name, {}, {{rShadow, Use::DepthWrite}}, [&, s](VkCommandBuffer cmd) {
+                       drawCasters(cmd, shadowMaps.layerView(uint32_t(s.layer)),
+                                   settings.shadowMapSize, s.frustum.viewProj);
                    }});
+    }
+    // The environment's dome of shadow lights: the layers due this frame, the rest reused.
+    int rDome = -1;
+    if (dome.active()) {
+        rDome = g.addResource("dome_maps", &dome.maps());
+        std::vector<uint8_t> due(domeLights.size(), 0);
+        for (int i : domeRender) due[size_t(i)] = 1;
+        for (size_t i = 0; i < domeLights.size(); ++i) {
+            std::string name = "dome[" + std::to_string(i) + "]";
+            if (!due[i]) {
+                reused.push_back(std::move(name));
+                continue;
+            }
+            g.addPass({name, {}, {{rDome, Use::DepthWrite}}, [&, i](VkCommandBuffer cmd) {
+                           drawCasters(cmd, dome.maps().layerView(uint32_t(i)), dome.mapSize(),
+                                       domeLights[i].viewProj);
+                       }});
+        }
     }
 
     std::vector<ResourceUse> forwardWrites = {{rHdr, Use::ColorWrite}, {rDepth, Use::DepthWrite}};
     for (int r : rDebug)
         if (r >= 0) forwardWrites.push_back({r, Use::ColorWrite});
-    g.addPass({"forward", {{rShadow, Use::Sampled}}, forwardWrites, [&](VkCommandBuffer cmd) {
+    // The dynamic reflection capture: six faces of everything but the probe's own instance.
+    int rProbe = -1;
+    if (hasProbe) {
+        rProbe = g.addResource("probe", &probe.cube());
+        if (!captureProbe) reused.push_back("probe");
+    }
+    if (captureProbe) {
+        const int rProbeDepth = g.addResource("probe_depth", &probe.depth());
+        std::vector<ResourceUse> faceReads = {{rShadow, Use::Sampled}};
+        if (rDome >= 0) faceReads.push_back({rDome, Use::Sampled});
+        for (uint32_t f = 0; f < 6; ++f) {
+            const VkDescriptorSet faceSet = sets[1 + f];
+            g.addPass({"probe[" + std::to_string(f) + "]", faceReads,
+                       {{rProbe, Use::ColorWrite}, {rProbeDepth, Use::DepthWrite}},
+                       [&, f, faceSet](VkCommandBuffer cmd) {
+                           const uint32_t size = probe.cube().desc().width;
+                           VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                           color.imageView = probe.cube().layerView(f);
+                           color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                           color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+                           color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                           const glm::vec4 clear(scene.background(), 1.0f);
+                           std::memcpy(color.clearValue.color.float32, &clear, sizeof(clear));
+                           VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                           depth.imageView = probe.depth().view();
+                           depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+                           depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+                           depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+                           depth.clearValue.depthStencil = {1.0f, 0};
+                           VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                           info.renderArea = {{0, 0}, {size, size}};
+                           info.layerCount = 1;
+                           info.colorAttachmentCount = 1;
+                           info.pColorAttachments = &color;
+                           info.pDepthAttachment = &depth;
+                           c.fn().cmdBeginRendering(cmd, &info);
+                           viewportScissor(cmd, size, size);
+                           VkPipeline bound = VK_NULL_HANDLE;
+                           for (const Draw& d : draws) {
+                               if (d.mesh->indexCount == 0 || int(d.instance) == probe.instance()) continue;
+                               // cube faces mirror the view: the winding flips
+                               const VkPipeline p = pipes.forwardFor(false, !d.mirrored, d.twoSided);
+                               if (p != bound) {
+                                   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+                                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                           pipes.sceneLayout, 0, 1, &faceSet, 0, nullptr);
+                               }
+                               vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                       pipes.sceneLayout, 1, 1, &d.material, 0, nullptr);
+                               vkCmdPushConstants(cmd, pipes.sceneLayout,
+                                                  VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                                  0, sizeof(uint32_t), &d.instance);
+                               drawMesh(cmd, *d.mesh);
+                           }
+                           c.fn().cmdEndRendering(cmd);
+                       }});
+        }
+    }
+
+    std::vector<ResourceUse> forwardReads = {{rShadow, Use::Sampled}};
+    if (rDome >= 0) forwardReads.push_back({rDome, Use::Sampled});
+    if (rProbe >= 0) forwardReads.push_back({rProbe, Use::Sampled});
+    g.addPass({"forward", forwardReads, forwardWrites, [&](VkCommandBuffer cmd) {
                    std::vector<VkRenderingAttachmentInfo> colors;
                    auto color = [&](VkImageView view, glm::vec4 clear) {
                        VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -497,6 +664,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     slot.stats.reused = std::move(reused);
     slot.stats.meshUploads = data.meshUploads;
     slot.stats.uploadBytes = data.uploadBytes;
+    slot.stats.environmentBakes = environmentBaked ? 1 : 0;
+    slot.stats.environmentBakeMs = environmentBakeMs;
     g.execute(c, slot.cmd, slot.timestamps.get(), slot.stats);
     // The present pseudo-pass only transitions; it is not a pass users should time.
     if (present && !slot.stats.passes.empty() && slot.stats.passes.back().name == "present")
@@ -627,6 +796,28 @@ ShadowInfo Renderer::shadowInfo(int lightIndex) const {
 HairDomInfo Renderer::hairDeepOpacity(int lightIndex) const {
     if (!mImpl->hair) throw InvalidArgument("the last rendered scene had no hair");
     return mImpl->hair->domInfo(lightIndex);
+}
+
+std::vector<float> Renderer::reflectionProbe(uint32_t* sizeOut) {
+    Impl& m = *mImpl;
+    if (m.probe.instance() < 0)
+        throw InvalidArgument("the last rendered scene had no material with dynamic_reflection");
+    vk::Image& cube = m.probe.cube();
+    const uint32_t size = cube.desc().width;
+    const VkDeviceSize bytes = VkDeviceSize(6) * size * size * 4 * sizeof(float);
+    vk::Buffer buffer(m.ctx.get(), bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback);
+    m.ctx->immediate([&](VkCommandBuffer cmd) {
+        const render::UseState s = render::useState(Use::TransferRead, false);
+        vk::transition(*m.ctx, cmd, cube, s.layout, s.stage, s.access);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 6};
+        region.imageExtent = {size, size, 1};
+        vkCmdCopyImageToBuffer(cmd, cube.get(), s.layout, buffer.get(), 1, &region);
+    });
+    std::vector<float> out(size_t(bytes / sizeof(float)));
+    std::memcpy(out.data(), buffer.mapped(), bytes);
+    if (sizeOut) *sizeOut = size;
+    return out;
 }
 
 std::vector<float> Renderer::shadowMap(int lightIndex, uint32_t* sizeOut, int view) {

@@ -15,6 +15,8 @@ void RenderSettings::validate() const {
     if (shadowMapSize < 16 || shadowMapSize > 16384)
         throw InvalidArgument("shadow_map_size must be in [16, 16384] (got " +
                               std::to_string(shadowMapSize) + ")");
+    if (probeSize < 4 || probeSize > 2048)
+        throw InvalidArgument("probe_size must be in [4, 2048] (got " + std::to_string(probeSize) + ")");
     if (pcfRadius < 0 || pcfRadius > 7)
         throw InvalidArgument("pcf_radius must be in [0, 7] (got " + std::to_string(pcfRadius) + ")");
     for (float v : {biasConstant, biasSlope, biasMax, normalOffset})
@@ -55,6 +57,10 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     s.magFilter = s.minFilter = VK_FILTER_LINEAR;
     VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
     cookieSampler = vk::Sampler(&c, sampler, vkDestroySampler);
+    s.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    s.maxLod = VK_LOD_CLAMP_NONE;
+    VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
+    environmentSampler = vk::Sampler(&c, sampler, vkDestroySampler);
 
     frameSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                                              {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -62,7 +68,11 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
                                              {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                              {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                              {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                              uint32_t(kMaxCookies)}});
+                                              uint32_t(kMaxCookies)},
+                                             {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                             {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},

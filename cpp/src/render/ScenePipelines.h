@@ -21,6 +21,7 @@ struct ScenePipelines {
     vk::Sampler textureSampler; // trilinear, repeat
     vk::Sampler nearestSampler; // texel fetches (shadow maps, hdr)
     vk::Sampler cookieSampler;  // bilinear, clamp to edge, level 0 (spot-light cookies)
+    vk::Sampler environmentSampler; // trilinear over the whole chain (environment cube)
     vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout;
     vk::PipelineLayout sceneLayout, shadowLayout, outputLayout;
     vk::Pipeline shadow, shadowAlpha;

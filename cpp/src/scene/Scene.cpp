@@ -21,6 +21,13 @@ void Material::validate() const {
         throw InvalidArgument("Material.ambient_map must be a linear texture (Texture(..., srgb=False))");
     if (normalMap && normalMap->srgb())
         throw InvalidArgument("Material.normal_map must be a linear texture (Texture(..., srgb=False))");
+    requireNonNegative(reflectivity, "Material.reflectivity");
+    if (glm::any(glm::greaterThan(reflectivity, glm::vec3(1.0f))))
+        throw InvalidArgument("Material.reflectivity (Fresnel F0) must be in [0, 1]");
+    requireFinite(environmentDiffuse, "Material.environment_diffuse");
+    if (environmentDiffuse < 0.0f) throw InvalidArgument("Material.environment_diffuse must be >= 0");
+    if (dynamicReflection && !glm::any(glm::greaterThan(reflectivity, glm::vec3(0.0f))))
+        throw InvalidArgument("Material.dynamic_reflection needs a reflectivity > 0");
 }
 
 void DirectionalLight::validate() const {
@@ -161,6 +168,39 @@ void Scene::setAmbient(const glm::vec3& ambient) {
 void Scene::setBackground(const glm::vec3& background) {
     requireNonNegative(background, "Scene.background");
     mBackground = background;
+    ++mVersion;
+}
+
+void EnvironmentLighting::validate() const {
+    if (!environment) throw InvalidArgument("Scene.set_environment: no environment given");
+    environment->radiance().requireFinite("environment radiance", true);
+    requireFinite(intensity, "environment intensity");
+    if (intensity < 0.0f) throw InvalidArgument("environment intensity must be >= 0");
+    if (specularSize < 4 || specularSize > 1024)
+        throw InvalidArgument("environment specular_size must be in [4, 1024]");
+    int maxLevels = 1;
+    while ((specularSize >> maxLevels) >= 1 && maxLevels < 16) ++maxLevels;
+    if (specularLevels < 2 || specularLevels > maxLevels)
+        throw InvalidArgument("environment specular_levels must be in [2, " + std::to_string(maxLevels) +
+                              "] for specular_size " + std::to_string(specularSize));
+    if (specularSamples < 1 || specularSamples > 4096)
+        throw InvalidArgument("environment specular_samples must be in [1, 4096]");
+    if (domeLights < 0 || domeLights > 64 || domeLights % 8 != 0)
+        throw InvalidArgument("environment dome_lights must be 0, 8, 16, ..., 64 (got " +
+                              std::to_string(domeLights) + ")");
+    if (domeMapSize < 16 || domeMapSize > 4096)
+        throw InvalidArgument("environment dome_map_size must be in [16, 4096]");
+    if (domeRefresh < 0) throw InvalidArgument("environment dome_refresh must be >= 0 (0: all)");
+}
+
+void Scene::setEnvironment(const EnvironmentLighting& environment) {
+    environment.validate();
+    mEnvironment = environment;
+    ++mVersion;
+}
+
+void Scene::clearEnvironment() {
+    mEnvironment = EnvironmentLighting{};
     ++mVersion;
 }
 

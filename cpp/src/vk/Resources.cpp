@@ -90,6 +90,8 @@ Image::Image(Context* ctx, const ImageDesc& desc) : mCtx(ctx), mDesc(desc) {
                               std::to_string(limits.maxImageDimension2D));
     mAspect = isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    if (desc.cube && desc.layers != 6) throw InvalidArgument("a cube image has 6 layers");
+    info.flags = desc.cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = desc.format;
     info.extent = {desc.width, desc.height, 1};
@@ -116,7 +118,8 @@ Image::Image(Context* ctx, const ImageDesc& desc) : mCtx(ctx), mDesc(desc) {
             VK_CHECK(vkCreateImageView(ctx->device(), &v, nullptr, &view));
             return view;
         };
-        mView = makeView(desc.layers > 1 || (desc.usage & VK_IMAGE_USAGE_SAMPLED_BIT && isDepthFormat(desc.format))
+        mView = makeView(desc.cube ? VK_IMAGE_VIEW_TYPE_CUBE
+                         : desc.layers > 1 || (desc.usage & VK_IMAGE_USAGE_SAMPLED_BIT && isDepthFormat(desc.format))
                              ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
                              : VK_IMAGE_VIEW_TYPE_2D,
                          0, desc.layers);

@@ -87,6 +87,7 @@ struct ImageDesc {
     uint32_t width = 1, height = 1, layers = 1, mipLevels = 1;
     VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
     VkImageUsageFlags usage = 0;
+    bool cube = false; // 6 layers viewed as a cube map (view() is VK_IMAGE_VIEW_TYPE_CUBE)
 };
 
 /// A 2D (array) image with one view over all layers and mips, and per-layer views for

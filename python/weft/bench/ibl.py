@@ -20,7 +20,10 @@ so every error has an independent reference:
 - shadow-light dome: build time and visibility-weighted irradiance error at ground points under a
   sphere occluder against the ray-cast reference, for 16 / 64 / 256 lights.
 
-Frame times with 0 / 16 / 64 shadow lights need the renderer's IBL passes and are not measured.
+- frames: the demo scene lit by the sky (SH9 diffuse, GGX reflections) with 0 / 16 / 64 dome
+  shadow lights (256^2 maps), at 640x480 and 1280x1024: frame time with the dome maps reused
+  (nothing moves) and with every map re-rendered each frame (the sphere moves), as the seed's
+  table 4.1 (41 / 28 / 14 fps at 640x480, GeForce of 2006) measured.
 """
 
 from __future__ import annotations
@@ -286,6 +289,44 @@ def bench_dome(counts: Sequence[int], size: int) -> List[Dict[str, Any]]:
     return rows
 
 
+def bench_frames(resolutions: Sequence[Tuple[int, int]], counts: Sequence[int],
+                 frames: int) -> List[Dict[str, Any]]:
+    import weft
+    import weft.ibl as ibl
+
+    env = ibl.Environment(cube_faces(sky, 32, 1))
+    rows = []
+    for width, height in resolutions:
+        renderer = weft.Renderer(width, height)
+        for n in counts:
+            scene, camera = weft.default_scene()
+            for i in range(scene.instance_count):
+                m = scene.material(i)
+                m.environment_diffuse = 1.0
+                m.reflectivity = (0.04, 0.04, 0.04)
+                scene.set_material(i, m)
+            scene.ambient = (0.0, 0.0, 0.0)
+            scene.set_environment(env, dome_lights=n)
+            renderer.render(scene, camera)  # bake, first maps
+            row: Dict[str, Any] = dict(size=f"{width}x{height}", lights=n)
+            for mode in ("reused", "rerendered"):
+                times = []
+                base = scene.transform(1)
+                for k in range(frames):
+                    if mode == "rerendered":  # the sphere moves: every dome map is stale
+                        t = base.copy()
+                        t[0, 3] += 0.01 * (k + 1)
+                        scene.set_transform(1, t)
+                    t0 = time.perf_counter()
+                    renderer.render(scene, camera)
+                    times.append(1000.0 * (time.perf_counter() - t0))
+                ms = statistics.median(times)
+                row[f"{mode}_ms"] = ms
+                row[f"{mode}_fps"] = 1000.0 / ms
+            rows.append(row)
+    return rows
+
+
 def to_markdown(r: Dict[str, Any]) -> str:
     f3 = lambda v: f"{v:.3f}"  # noqa: E731
     pct = lambda v: f"{100 * v:.2f}%"  # noqa: E731
@@ -328,8 +369,14 @@ def to_markdown(r: Dict[str, Any]) -> str:
     lines.append(markdown_table(["lights", "build ms", "mean rel. error"],
                                 [[x["lights"], f3(x["build_ms"]), pct(x["err"])]
                                  for x in r["dome"]]))
-    lines += ["", "Frame times with 0 / 16 / 64 shadow lights need the renderer's IBL passes "
-              "(not integrated yet) and are not measured here."]
+    lines += ["", "## Frames: demo scene under the sky with N dome shadow lights "
+              f"({r['machine'].get('device', {}).get('name', '?')}; seed table 4.1: 41 / 28 / 14 "
+              "fps at 640x480 for 0 / 16 / 64)", ""]
+    lines.append(markdown_table(["size", "dome lights", "ms (maps reused)", "fps",
+                                 "ms (all maps re-rendered)", "fps"],
+                                [[x["size"], x["lights"], f"{x['reused_ms']:.1f}",
+                                  f"{x['reused_fps']:.1f}", f"{x['rerendered_ms']:.1f}",
+                                  f"{x['rerendered_fps']:.1f}"] for x in r["frames"]]))
     return "\n".join(lines) + "\n"
 
 
@@ -338,11 +385,13 @@ def run(args: argparse.Namespace) -> int:
         conv, irr, out_size, ref_source = (32,), (32,), 8, 32
         samples, gsizes, chain, chain_samples = (8, 32), (8,), 32, (16,)
         light_sizes, dome_counts, dome_size = (64,), (16, 64), 16
+        resolutions, frame_counts, frames = ((64, 48),), (0, 16), 2
     else:
         conv, irr, out_size, ref_source = (128, 256), (64, 128, 256), 32, 64
         samples, gsizes, chain, chain_samples = (8, 32, 128), (16, 32), 256, (16, 64)
         light_sizes, dome_counts, dome_size = (128, 256), (16, 64, 256), 32
-    progress = Progress(6, enabled=args.progress)
+        resolutions, frame_counts, frames = ((640, 480), (1280, 1024)), (0, 16, 64), 5
+    progress = Progress(7, enabled=args.progress)
     command = "python -m weft.bench ibl" + (" --quick" if args.quick else "")
     report: Dict[str, Any] = {"benchmark": "ibl", "command": command}
     progress.update("conversion")
@@ -355,6 +404,8 @@ def run(args: argparse.Namespace) -> int:
     report["lights"] = bench_lights(light_sizes)
     progress.step("dome")
     report["dome"] = bench_dome(dome_counts, dome_size)
+    progress.step("frames")
+    report["frames"] = bench_frames(resolutions, frame_counts, frames)
     progress.step("report")
     progress.close()
     report["machine"] = machine_info()
@@ -368,7 +419,10 @@ def run(args: argparse.Namespace) -> int:
         "ggx_chain_compute_dispatch_s": {f'{x["env"]}, {x["samples"]} samples': x["gpu_dispatch_s"]
                                          for x in report["glossy"]["ggx_chain"]},
         "ggx_chain_target_s": GLOSSY_TARGET_S,
-        "shadow_light_frame_times": "need the renderer; not measured",
+        "shadow_light_frame_times": {f'{x["size"]}, {x["lights"]} lights':
+                                     dict(reused_fps=x["reused_fps"],
+                                          rerendered_fps=x["rerendered_fps"])
+                                     for x in report["frames"]},
     }
     markdown = to_markdown(report)
     paths = write_report(args.out, report, markdown)

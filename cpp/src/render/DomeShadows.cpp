@@ -1,0 +1,69 @@
+#include "render/DomeShadows.h"
+
+#include <cstring>
+
+#include "render/RenderTargets.h"
+
+namespace weft::render {
+
+std::vector<int> DomeShadows::prepare(const Scene& scene, const RenderSettings& settings,
+                                      const std::vector<uint64_t>& casterKey, uint64_t frame) {
+    const EnvironmentLighting& env = scene.environment();
+    if (!env.environment || env.domeLights == 0) {
+        mLights.clear();
+        mMaps = vk::Image();
+        mFrustumKey.clear();
+        return {};
+    }
+    // Cached by the environment's content version: unchanged radiance integrates nothing.
+    const ShadowDome dome = env.environment->shadowDome(env.domeLights);
+    glm::vec3 lo, hi;
+    scene.bounds(lo, hi);
+    const unsigned size = unsigned(env.domeMapSize);
+    std::vector<GpuDomeLight> lights;
+    std::vector<uint64_t> frustumKey;
+    for (const DomeLight& l : dome.lights()) {
+        const ShadowFrustum f = fitDirectionalShadow(l.direction, lo, hi, size);
+        GpuDomeLight g;
+        g.viewProj = f.viewProj;
+        g.direction = glm::vec4(l.direction, settings.normalOffset * f.texelWorld);
+        g.intensity = glm::vec4(l.intensity / 3.14159265f, 0.0f);
+        lights.push_back(g);
+        const size_t at = frustumKey.size();
+        frustumKey.resize(at + sizeof(glm::mat4) / 8);
+        std::memcpy(frustumKey.data() + at, &f.viewProj, sizeof(glm::mat4));
+    }
+    mLights = std::move(lights);
+    const uint32_t n = uint32_t(mLights.size());
+    std::vector<int> render;
+    if (!mMaps || mMaps.desc().layers != n || mMaps.desc().width != size || frustumKey != mFrustumKey ||
+        !settings.reuseShadowMaps) {
+        if (!mMaps || mMaps.desc().layers != n || mMaps.desc().width != size) {
+            vk::ImageDesc d;
+            d.width = d.height = size;
+            d.layers = n;
+            d.format = kDepthFormat;
+            d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+            mMaps = vk::Image(&mCtx, d);
+        }
+        for (uint32_t i = 0; i < n; ++i) render.push_back(int(i));
+        mCurrent.assign(n, 1);
+    } else {
+        if (casterKey != mCasterKey) mCurrent.assign(n, 0); // every map is stale now
+        const int perFrame = env.domeRefresh > 0 ? env.domeRefresh : int(n);
+        int rendered = 0;
+        // Round robin over the stale maps, starting where the frame index points.
+        for (uint32_t k = 0; k < n && rendered < perFrame; ++k) {
+            const uint32_t i = uint32_t((frame * uint64_t(perFrame) + k) % n);
+            if (mCurrent[i]) continue;
+            render.push_back(int(i));
+            mCurrent[i] = 1;
+            ++rendered;
+        }
+    }
+    mFrustumKey = std::move(frustumKey);
+    mCasterKey = casterKey;
+    return render;
+}
+
+} // namespace weft::render

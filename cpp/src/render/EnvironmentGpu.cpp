@@ -1,0 +1,111 @@
+#include "render/EnvironmentGpu.h"
+
+#include <chrono>
+#include <vector>
+
+#include <glm/gtc/packing.hpp>
+
+#include "render/FrameGraph.h"
+
+namespace weft::render {
+
+namespace {
+
+// Half floats: filterable on every device (32-bit float filtering is optional in Vulkan).
+constexpr VkFormat kEnvironmentFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+vk::ImageDesc cubeDesc(uint32_t size, uint32_t levels) {
+    vk::ImageDesc d;
+    d.width = d.height = size;
+    d.layers = 6;
+    d.mipLevels = levels;
+    d.format = kEnvironmentFormat;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    d.cube = true;
+    return d;
+}
+
+void toShaderRead(vk::Context& ctx, VkCommandBuffer cmd, vk::Image& image) {
+    const UseState s = useState(Use::Sampled, false);
+    vk::transition(ctx, cmd, image, s.layout, s.stage, s.access);
+}
+
+} // namespace
+
+EnvironmentGpu::EnvironmentGpu(vk::Context& ctx) : mCtx(ctx) {
+    mBlack = vk::Image(&ctx, cubeDesc(1, 1));
+    ctx.immediate([&](VkCommandBuffer cmd) {
+        vk::transition(ctx, cmd, mBlack, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        const VkClearColorValue black{};
+        const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 6};
+        vkCmdClearColorImage(cmd, mBlack.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1,
+                             &range);
+        toShaderRead(ctx, cmd, mBlack);
+    });
+}
+
+bool EnvironmentGpu::prepare(const EnvironmentLighting& env, double& bakeMs) {
+    bakeMs = 0.0;
+    if (!env.environment) return false;
+    const Key key{env.environment, env.environment->version(), env.specularSize,
+                  env.specularLevels, env.specularSamples};
+    if (mCube && key.same(mKey)) return false;
+    const auto t0 = std::chrono::steady_clock::now();
+    // Environment caches both by content version, so a chain another user already asked for
+    // (or a renderer before this one) is not filtered again.
+    const Sh9 sh = env.environment->irradianceSh();
+    const float a[9] = {1.0f, 2.0f / 3.0f, 2.0f / 3.0f, 2.0f / 3.0f, 0.25f, 0.25f, 0.25f, 0.25f,
+                        0.25f}; // A_l / pi
+    for (int k = 0; k < 9; ++k) mSh[size_t(k)] = glm::vec4(a[k] * sh.coeffs[size_t(k)], 0.0f);
+    upload(env.environment->specularChain(env.specularSize, env.specularLevels, env.specularSamples));
+    mKey = key;
+    bakeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return true;
+}
+
+void EnvironmentGpu::upload(const CubeMap& chain) {
+    const uint32_t size = uint32_t(chain.size()), levels = uint32_t(chain.levels());
+    std::vector<uint16_t> halves;
+    std::vector<VkBufferImageCopy> regions;
+    for (uint32_t l = 0; l < levels; ++l) {
+        const uint32_t s = uint32_t(chain.levelSize(int(l)));
+        VkBufferImageCopy r{};
+        r.bufferOffset = halves.size() * sizeof(uint16_t);
+        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l, 0, 6};
+        r.imageExtent = {s, s, 1};
+        regions.push_back(r);
+        const float* src = chain.data(int(l));
+        for (size_t t = 0; t < size_t(6) * s * s; ++t) {
+            for (int c = 0; c < 3; ++c) halves.push_back(glm::packHalf1x16(src[t * 3 + size_t(c)]));
+            halves.push_back(glm::packHalf1x16(1.0f));
+        }
+    }
+    vk::Buffer staging(&mCtx, halves.size() * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                       vk::MemoryUsage::Upload);
+    staging.write(halves.data(), halves.size() * sizeof(uint16_t));
+    // A new image: a frame in flight may still sample the old one, which is retired after it.
+    mCube = vk::Image(&mCtx, cubeDesc(size, levels));
+    mCtx.immediate([&](VkCommandBuffer cmd) {
+        vk::transition(mCtx, cmd, mCube, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        vkCmdCopyBufferToImage(cmd, staging.get(), mCube.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               uint32_t(regions.size()), regions.data());
+        toShaderRead(mCtx, cmd, mCube);
+    });
+}
+
+void EnvironmentGpu::fillFrame(const EnvironmentLighting& env, GpuFrame& frame) const {
+    if (!env.environment || !mCube) {
+        frame.environment = glm::vec4(0.0f);
+        return;
+    }
+    frame.environment = glm::vec4(env.intensity, float(mCube.desc().mipLevels - 1), 0.0f, 0.0f);
+    for (int k = 0; k < 9; ++k) frame.environmentSh[k] = mSh[size_t(k)];
+}
+
+VkImageView EnvironmentGpu::view(const EnvironmentLighting& env) const {
+    return env.environment && mCube ? mCube.view() : mBlack.view();
+}
+
+} // namespace weft::render
