@@ -133,7 +133,8 @@ DemoScene::DemoScene() {
     sphere.baseColor = glm::vec3(0.55f, 0.58f, 0.62f);
     sphere.ks = glm::vec3(0.6f);
     sphere.shininess = 64.0f;
-    mScene.addMesh(std::make_shared<Mesh>(Mesh::uvSphere(kSphereRadius - 0.01f, 48, 24)), sphere,
+    mSphereMaterial = sphere;
+    mSphereId = mScene.addMesh(std::make_shared<Mesh>(Mesh::uvSphere(kSphereRadius - 0.01f, 48, 24)), sphere,
                    glm::translate(glm::mat4(1.0f), kSphereCenter));
 
     // A furry ball next to the cloth (SPEC §5.1: fur grown from a mesh, seed listing 1).
@@ -289,6 +290,18 @@ std::string DemoScene::key(int k) {
         if (!mBtf) mScene.setMaterial(mClothId, mClothMaterial);
         what << "normal mapping " << (mNormalMap ? "on" : "off");
         break;
+    case GLFW_KEY_E: {
+        mReflections = !mReflections;
+        Material m = mSphereMaterial;
+        if (mReflections) { // a mirror-like sphere reflecting a cube captured from its centre
+            m.dynamicReflection = true;
+            m.reflectivity = glm::vec3(0.6f);
+            m.baseColor = glm::vec3(0.15f);
+        }
+        mScene.setMaterial(mSphereId, m);
+        what << "reflective sphere " << (mReflections ? "on (dynamic cube capture, Fresnel)" : "off");
+        break;
+    }
     case GLFW_KEY_B:
         mBtf = !mBtf;
         if (mBtf && !mBtfMaterial) mBtfMaterial = std::make_unique<Material>(fittedWeaveBtf(256, 16));
@@ -370,7 +383,8 @@ void DemoScene::release() {
 
 const char* DemoScene::controls() {
     return "left-drag grabs the cloth; arrows orbit the camera; 1/2 wind weaker/stronger, R turns "
-           "the wind, L orbits the light, T day-night cycle, N normal mapping, B BTF material, S "
+           "the wind, L orbits the light, T day-night cycle, N normal mapping, B BTF material, E "
+           "reflective sphere, S "
            "shadows, P PCF size, H holes, C resets the cloth, Space pauses, Esc/Q quits";
 }
 

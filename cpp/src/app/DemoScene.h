@@ -59,6 +59,9 @@ private:
     bool mDayNight = false, mPaused = false, mNormalMap = true, mHoles = false;
     bool mShadows = true;
     bool mBtf = false;
+    bool mReflections = false;
+    uint32_t mSphereId = 0;
+    Material mSphereMaterial;
     std::unique_ptr<Material> mBtfMaterial; // fitted on first use
     int mPcf = 1;
     float mWindStrength = 3.0f, mWindAngle = 0.4f;
