@@ -47,12 +47,14 @@ float shadowVisibility(Light L, vec3 p, vec3 n, vec3 l, out float lightDepth) {
     vec3 ndc = clip.xyz / clip.w;
     lightDepth = ndc.z;
     vec2 uv = ndc.xy * 0.5 + 0.5;
-    if (clip.w <= 0.0 || uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0 || ndc.z > 1.0)
-        return 1.0;
+    if (clip.w <= 0.0 || uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0) return 1.0;
+    // The views enclose the shadow casters only: a receiver beyond the far plane is compared
+    // as if on it (shadowed where a caster was drawn, lit where the map is empty).
+    float z = min(ndc.z, 1.0);
     float bias = min(frame.bias.x + frame.bias.y * sinTheta / max(c, 1e-4), frame.bias.z);
-    float receiver = perspective ? linearShadowDepth(ndc.z, s.params.z, s.params.w) -
+    float receiver = perspective ? linearShadowDepth(z, s.params.z, s.params.w) -
                                        bias * (s.params.w - s.params.z)
-                                 : ndc.z - bias;
+                                 : z - bias;
     int size = frame.counts.z;
     int r = frame.counts.y;
     ivec2 texel = ivec2(floor(uv * float(size)));

@@ -112,7 +112,9 @@ def test_hair_draws_and_casts_into_shadow_maps(small):
     assert (d["hair"] == 0).sum() > 50  # the strands cover pixels
     ground = (d["instance"] == 0)
     lit = d["shadow"][ground]
-    assert lit.min() == 0.0 and lit.max() == 1.0  # the strands shadow the ground
+    # the strands shadow the ground (one-texel lines in a map fitted to them: PCF sees a
+    # third of its taps covered at least)
+    assert lit.min() <= 2 / 3 + 1e-6 and lit.max() == 1.0
     for prim in ("lines", "ribbons"):
         small.hair_primitive = prim
         img = small.render_linear(scene, camera)

@@ -96,8 +96,9 @@ public:
     void clearEnvironment();
     const EnvironmentLighting& environment() const { return mEnvironment; }
 
-    /// World-space bounds of all mesh and hair instances (min > max when the scene is empty).
-    void bounds(glm::vec3& lo, glm::vec3& hi) const;
+    /// World-space bounds of all mesh and hair instances (min > max when the scene is empty);
+    /// with `castersOnly`, of those that cast shadows (what shadow maps must enclose).
+    void bounds(glm::vec3& lo, glm::vec3& hi, bool castersOnly = false) const;
     /// Increases whenever anything in the scene changes; the renderer reuses work by it.
     uint64_t version() const { return mVersion; }
 

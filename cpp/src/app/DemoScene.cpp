@@ -124,6 +124,21 @@ Material fittedWeaveBtf(int size, int threads) {
     return btfRenderMaterial(fit.maps);
 }
 
+// The sky's vertical gradient (linear RGB), from the zenith (v = 0) through the horizon
+// (v = 0.5) down: an ambient map, so the sky dome shows it unlit.
+TexturePtr skyGradient() {
+    ImageU8 img(4, 128, 4);
+    for (int y = 0; y < 128; ++y) {
+        const float v = (float(y) + 0.5f) / 128.0f;
+        const glm::vec3 zenith(0.18f, 0.36f, 0.78f), horizon(0.72f, 0.82f, 0.95f);
+        const glm::vec3 c = v < 0.5f ? glm::mix(zenith, horizon, std::pow(v / 0.5f, 1.5f))
+                                     : horizon * (1.0f - 0.2f * smoothstep(0.5f, 0.7f, v));
+        for (int x = 0; x < 4; ++x)
+            for (int k = 0; k < 4; ++k) img.at(x, y)[k] = uint8_t(std::lround(255.0f * (k < 3 ? c[k] : 1.0f)));
+    }
+    return std::make_shared<Texture>(std::move(img), false, false);
+}
+
 } // namespace
 
 DemoScene::DemoScene() {
@@ -196,6 +211,15 @@ DemoScene::DemoScene() {
     mClothMaterial.shininess = 20.0f;
     mClothId = mScene.addCloth(mCloth, mClothMaterial);
 
+    // The sky: a large dome drawn from inside, lit only by its ambient-map gradient, tinted by
+    // the time of day (updateSky).
+    mSkyMaterial.ka = glm::vec3(1.0f);
+    mSkyMaterial.kd = mSkyMaterial.ks = glm::vec3(0.0f);
+    mSkyMaterial.ambientMap = skyGradient();
+    mSkyMaterial.twoSided = true;
+    mSkyId = mScene.addMesh(std::make_shared<Mesh>(Mesh::uvSphere(45.0f, 32, 16)), mSkyMaterial,
+                            glm::mat4(1.0f), false);
+
     mSunId = mScene.addLight(DirectionalLight{});
     mMoonId = mScene.addLight(DirectionalLight{});
     updateSky();
@@ -242,6 +266,10 @@ void DemoScene::updateSky() {
     mScene.setLight(mMoonId, moon);
     mScene.setAmbient(glm::mix(glm::vec3(0.03f, 0.04f, 0.08f), glm::vec3(0.2f, 0.22f, 0.27f), day));
     mScene.setBackground(glm::mix(glm::vec3(0.01f, 0.015f, 0.04f), glm::vec3(0.45f, 0.62f, 0.86f), day));
+    Material sky = mSkyMaterial;
+    sky.baseColor = glm::mix(glm::vec3(0.03f, 0.04f, 0.1f), glm::vec3(1.0f), day) *
+                    glm::mix(glm::vec3(1.0f, 0.7f, 0.5f), glm::vec3(1.0f), smoothstep(0.0f, 0.4f, height));
+    mScene.setMaterial(mSkyId, sky);
 }
 
 void DemoScene::applySettings(Renderer& renderer) const {

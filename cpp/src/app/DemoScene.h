@@ -53,7 +53,8 @@ private:
     uint32_t mClothId = 0;
     Material mClothMaterial;
     TexturePtr mWeaveNormals;
-    uint32_t mSunId = 0, mMoonId = 0;
+    uint32_t mSunId = 0, mMoonId = 0, mSkyId = 0;
+    Material mSkyMaterial;
     float mSunAzimuth = 0.6f;
     float mTimeOfDay = 0.35f; // 0..1, 0.25 = sunrise... 0.5 = noon (the sun at its highest)
     bool mDayNight = false, mPaused = false, mNormalMap = true, mHoles = false;

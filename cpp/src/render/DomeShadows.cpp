@@ -18,7 +18,7 @@ std::vector<int> DomeShadows::prepare(const Scene& scene, const RenderSettings& 
     // Cached by the environment's content version: unchanged radiance integrates nothing.
     const ShadowDome dome = env.environment->shadowDome(env.domeLights);
     glm::vec3 lo, hi;
-    scene.bounds(lo, hi);
+    scene.bounds(lo, hi, true);
     const unsigned size = unsigned(env.domeMapSize);
     std::vector<GpuDomeLight> lights;
     std::vector<uint64_t> frustumKey;

@@ -141,7 +141,7 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
     for (const HairInstance& h : scene.hairs()) anyCaster |= h.castShadows; // drawn by HairPasses
 
     LightBuilder builder{settings, {}, {}, anyCaster, f};
-    scene.bounds(builder.lo, builder.hi);
+    scene.bounds(builder.lo, builder.hi, true); // shadow maps enclose the casters only
     f.shadowInfos.assign(scene.lights().size(), ShadowInfo{});
     int debugLight = -1;
     for (size_t i = 0; i < scene.lights().size(); ++i) {

@@ -204,7 +204,7 @@ void Scene::clearEnvironment() {
     ++mVersion;
 }
 
-void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
+void Scene::bounds(glm::vec3& lo, glm::vec3& hi, bool castersOnly) const {
     lo = glm::vec3(1e30f);
     hi = glm::vec3(-1e30f);
     auto add = [&](const glm::vec3& olo, const glm::vec3& ohi, const glm::mat4& transform) {
@@ -217,6 +217,7 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
         }
     };
     for (const MeshInstance& inst : mInstances) {
+        if (castersOnly && !inst.castShadows) continue;
         if (inst.cloth) { // particles are in world space
             const float* p = inst.cloth->particleData(); // x, y, z, w records
             for (int k = 0; k < inst.cloth->particleCount(); ++k) {
@@ -231,7 +232,8 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
         inst.mesh->bounds(mlo, mhi);
         add(mlo, mhi, inst.transform);
     }
-    for (const HairInstance& h : mHairs) add(h.lo, h.hi, h.transform);
+    for (const HairInstance& h : mHairs)
+        if (!castersOnly || h.castShadows) add(h.lo, h.hi, h.transform);
 }
 
 } // namespace weft

@@ -69,10 +69,11 @@ def shadow_lookup(position: np.ndarray, normal: np.ndarray, light: Any,
         view  = 0, or for a point light the face of q - x_L (largest component)
         c     = views[view] @ (q, 1);  ndc = c.xyz / c.w
         u, v  = ndc.xy * 0.5 + 0.5;  d = ndc.z
-        outside the map, d > 1 or c.w <= 0  ->  visibility 1
+        outside the map or c.w <= 0  ->  visibility 1;  z = min(d, 1) (the views enclose the
+        casters only: a receiver beyond the far plane is compared as if on it)
         bias  = min(bias_constant + bias_slope * sin / max(ndl, 1e-4), bias_max)
-        orthographic: lit tap when  d - bias <= depth
-        perspective:  lit tap when  lin(d) - bias (far - near) <= lin(depth),
+        orthographic: lit tap when  z - bias <= depth
+        perspective:  lit tap when  lin(z) - bias (far - near) <= lin(depth),
                       lin(z) = near far / (far - z (far - near))
         visibility = fraction of lit taps among the (2r+1)^2 texels around
                      (floor(u S), floor(v S)) (clamped to the map)
@@ -123,12 +124,13 @@ def shadow_lookup(position: np.ndarray, normal: np.ndarray, light: Any,
     u = ndc[..., 0] * 0.5 + 0.5
     v = ndc[..., 1] * 0.5 + 0.5
     d = ndc[..., 2]
-    outside = (u < 0.0) | (u > 1.0) | (v < 0.0) | (v > 1.0) | (d > 1.0) | (w <= 0.0)
+    outside = (u < 0.0) | (u > 1.0) | (v < 0.0) | (v > 1.0) | (w <= 0.0)
     outside |= ~np.isfinite(u) | ~np.isfinite(v) | ~np.isfinite(d)
 
     bias = np.minimum(bias_constant + bias_slope * sin / np.maximum(ndl, 1e-4), bias_max)
     with np.errstate(divide="ignore", invalid="ignore"):
-        ref = _linear_depth(d, near, far) - bias * (far - near) if perspective else d - bias
+        z = np.minimum(d, 1.0)  # beyond the far plane: compared as if on it
+        ref = _linear_depth(z, near, far) - bias * (far - near) if perspective else z - bias
         tx = np.floor(np.where(outside, 0.0, u) * size).astype(np.int64)
         ty = np.floor(np.where(outside, 0.0, v) * size).astype(np.int64)
     stored_maps = _linear_depth(maps, near, far) if perspective else maps
