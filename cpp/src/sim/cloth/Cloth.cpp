@@ -60,7 +60,7 @@ void Cloth::setParams(const ClothParams& p) {
 int Cloth::particleCount() const { return mImpl->n; }
 int Cloth::constraintCount() const { return int(mImpl->constraints.size()); }
 const float* Cloth::particleData() const { return &mImpl->particles[0].x.x; }
-const float* Cloth::normalData() const { return &mImpl->normals[0].x; }
+const float* Cloth::normalData() const { return &mImpl->currentNormals()[0].x; }
 
 void Cloth::step(float dt) {
     if (!(std::isfinite(dt) && dt > 0.0f && dt <= 1.0f))
@@ -71,7 +71,7 @@ void Cloth::step(float dt) {
     const float damping = std::pow(m.params.damping, h * 60.0f);
     for (int s = 0; s < m.params.substeps; ++s) m.substep(h, damping);
     m.lastH = h;
-    m.computeNormals();
+    m.normalsStale = true;
     m.afterStep(dt);
     ++m.steps;
     ++m.meshVersion;

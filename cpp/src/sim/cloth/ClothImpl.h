@@ -6,14 +6,9 @@
 #include <weft/Cloth.h>
 
 #include "core/ThreadPool.h"
+#include "sim/cloth/ClothKernels.h"
 
 namespace weft::cloth {
-
-/// A particle record: position and inverse mass, 16 bytes (one SIMD register).
-struct alignas(16) Particle {
-    glm::vec3 x;
-    float w;
-};
 
 struct Constraint {
     int a, b;
@@ -22,15 +17,16 @@ struct Constraint {
 
 /// Constraints that share no particle: projected in any order, or in parallel. They are all of
 /// one grid offset (dx >= 0, dy) and one colour, stored row by row: row `rows[r]` holds
-/// constraints [begin + r * perRow, begin + (r + 1) * perRow), so the solver walks the grid
-/// instead of loading particle indices.
+/// constraints [begin + r * perRow, begin + (r + 1) * perRow), whose particles a lie in the
+/// same columns `cols` in every row, so the solver walks the grid instead of loading particle
+/// indices.
 struct Batch {
     ConstraintFamily family;
     int begin, end; // range in the constraint arrays
     int dx, dy;     // particle b = a + (dx, dy)
-    int parity;     // colour: (i / dx) % 2 when dx > 0 (rows then hold every valid j)
     int perRow;
     std::vector<int> rows;
+    std::vector<int> cols; // perRow columns i of particle a (colour: (i / dx) % 2 when dx > 0)
 };
 
 /// Long-range attachment: |x_particle - x_anchor| <= length (the rest distance), one-sided.
@@ -52,7 +48,10 @@ struct Cloth::Impl {
     std::vector<glm::vec3> rest;            // initial positions
     std::vector<float> baseInvMass;         // inverse mass without pins/grabs
     std::vector<uint8_t> pinned, hole;
-    std::vector<glm::vec4> normals;
+    // Normals are needed by wind (computed at the start of each substep) and by readers
+    // (normalData, mesh); after a step they are computed on first read, not every step.
+    mutable std::vector<glm::vec4> normals;
+    mutable bool normalsStale = false;
     std::vector<glm::vec3> pendingVelocity;
     bool hasPendingVelocity = false;
 
@@ -85,7 +84,11 @@ struct Cloth::Impl {
     void projectBatch(const cloth::Batch& batch, float alphaTilde);
     void collide(int begin, int end);
     void selfCollide();
-    void computeNormals();
+    void computeNormals() const;
+    const std::vector<glm::vec4>& currentNormals() const {
+        if (normalsStale) computeNormals();
+        return normals;
+    }
     void afterStep(float dt);        // tearing, sleeping
 };
 

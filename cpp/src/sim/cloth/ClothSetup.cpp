@@ -82,9 +82,10 @@ void Cloth::Impl::build() {
     batches.clear();
     for (const Offset& o : offsets) {
         for (int parity = 0; parity < 2; ++parity) {
-            cloth::Batch batch{o.family, int(constraints.size()), 0, o.dx, o.dy, parity, 0, {}};
+            cloth::Batch batch{o.family, int(constraints.size()), 0, o.dx, o.dy, 0, {}, {}};
             for (int j = 0; j < p.ny; ++j) {
                 const int rowBegin = int(constraints.size());
+                std::vector<int> cols;
                 for (int i = 0; i < p.nx; ++i) {
                     const int i2 = i + o.dx, j2 = j + o.dy;
                     if (i2 < 0 || i2 >= p.nx || j2 < 0 || j2 >= p.ny) continue;
@@ -93,10 +94,12 @@ void Cloth::Impl::build() {
                     const int a = j * p.nx + i, b = j2 * p.nx + i2;
                     constraints.push_back({a, b, glm::length(rest[size_t(b)] - rest[size_t(a)])});
                     family.push_back(uint8_t(o.family));
+                    cols.push_back(i);
                 }
                 const int count = int(constraints.size()) - rowBegin;
                 if (count == 0) continue;
-                batch.perRow = count; // equal for every row of a batch
+                batch.perRow = count; // the same columns in every row of a batch
+                batch.cols = std::move(cols);
                 batch.rows.push_back(j);
             }
             batch.end = int(constraints.size());

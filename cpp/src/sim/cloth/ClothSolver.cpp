@@ -26,7 +26,7 @@ float compliance(const ClothParams& p, ConstraintFamily f) {
 }
 } // namespace
 
-void Cloth::Impl::computeNormals() {
+void Cloth::Impl::computeNormals() const {
     const int nx = params.nx, ny = params.ny;
     pool->parallelFor(ny, [&](int j0, int j1) {
         for (int j = j0; j < j1; ++j) {
@@ -42,67 +42,25 @@ void Cloth::Impl::computeNormals() {
             }
         }
     }, 64);
+    normalsStale = false;
 }
-
-namespace {
-
-// Eq. 3.3/3.4 (XPBD with alphaTilde > 0) for the constraint between particles A and B.
-inline void projectDistance(Particle& A, Particle& B, float restLen, float alphaTilde,
-                            float& lambda, const glm::vec3& restOffset) {
-    const float wsum = A.w + B.w;
-    if (wsum <= 0.0f) return;
-    glm::vec3 d = B.x - A.x;
-    float len2 = glm::dot(d, d);
-    if (len2 < 1e-24f) {
-        // Coincident particles have no direction: separate them along their rest offset, so
-        // a collapsed cloth unfolds instead of staying stuck.
-        d = restOffset * 1e-6f;
-        len2 = glm::dot(d, d);
-    }
-    const float len = std::sqrt(len2);
-    const float C = len - restLen;
-    float dl;
-    if (alphaTilde == 0.0f) {
-        dl = -C / wsum;
-    } else {
-        dl = (-C - alphaTilde * lambda) / (wsum + alphaTilde);
-        lambda += dl;
-    }
-    const glm::vec3 corr = d * (dl / len);
-    A.x -= A.w * corr;
-    B.x += B.w * corr;
-}
-
-} // namespace
 
 void Cloth::Impl::projectBatch(const cloth::Batch& batch, float alphaTilde) {
     const int nx = params.nx;
-    const int delta = batch.dy * nx + batch.dx;
-    const int dx = batch.dx;
-    const uint8_t* on = active.data();
-    const float* restLen = restLength.data();
-    Particle* ps = particles.data();
-    float* lam = lambda.data();
     const cloth::Constraint& first = constraints[size_t(batch.begin)];
-    const glm::vec3 restOffset = rest[size_t(first.b)] - rest[size_t(first.a)]; // same in a batch
-    // Walks the batch's rows of the grid; the constraint index c advances in storage order.
-    auto row = [&](int r) {
-        const int j = batch.rows[size_t(r)];
-        int c = batch.begin + r * batch.perRow;
-        Particle* base = ps + size_t(j) * size_t(nx);
-        if (dx == 0) {
-            for (int i = 0; i < nx; ++i, ++c)
-                if (on[c]) projectDistance(base[i], base[i + delta], restLen[c], alphaTilde, lam[c], restOffset);
-            return;
-        }
-        const int iEnd = nx - dx;
-        for (int i0 = batch.parity * dx; i0 < iEnd; i0 += 2 * dx)
-            for (int i = i0; i < std::min(i0 + dx, iEnd); ++i, ++c)
-                if (on[c]) projectDistance(base[i], base[i + delta], restLen[c], alphaTilde, lam[c], restOffset);
-    };
+    cloth::RowJob job{batch.cols.data(), batch.perRow, batch.dy * nx + batch.dx, nullptr, nullptr,
+                      nullptr, alphaTilde, rest[size_t(first.b)] - rest[size_t(first.a)]};
+    Particle* ps = particles.data();
     const int rows = int(batch.rows.size());
     pool->parallelFor(rows, [&](int r0, int r1) {
-        for (int r = r0; r < r1; ++r) row(r);
+        cloth::RowJob rowJob = job;
+        for (int r = r0; r < r1; ++r) {
+            const size_t c = size_t(batch.begin) + size_t(r) * size_t(batch.perRow);
+            rowJob.rest = restLength.data() + c;
+            rowJob.on = active.data() + c;
+            rowJob.lambda = lambda.data() + c;
+            cloth::projectRow(ps + size_t(batch.rows[size_t(r)]) * size_t(nx), rowJob);
+        }
     }, std::max(2, 2048 / std::max(1, batch.perRow)));
 }
 
