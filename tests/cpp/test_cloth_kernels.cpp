@@ -1,5 +1,6 @@
-// The SIMD row projection against the scalar definition on random data: pinned particles,
-// broken constraints, coincident ends, XPBD multipliers, rows whose length is no multiple of 4.
+// The SIMD projections (SSE, AVX where the CPU has it) against the scalar definition on random
+// data: pinned particles, broken constraints, coincident ends, XPBD multipliers, lengths that
+// are no multiple of the SIMD width.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -10,11 +11,18 @@
 namespace {
 
 using weft::cloth::Particle;
-using weft::cloth::RowJob;
+using weft::cloth::BatchJob;
+using weft::cloth::Isa;
+
+bool anyMoved(const std::vector<Particle>& p, const std::vector<Particle>& q) {
+    for (size_t k = 0; k < p.size(); ++k)
+        if (p[k].x != q[k].x) return true;
+    return false;
+}
 
 struct RowCase {
     std::vector<Particle> particles;
-    std::vector<int> cols;
+    std::vector<int> a;
     std::vector<float> rest, lambda;
     std::vector<uint8_t> on;
 };
@@ -27,53 +35,66 @@ RowCase randomRow(std::mt19937& rng, int nx, int dx, int count) {
         p.x = glm::vec3(pos(rng), pos(rng), pos(rng));
         p.w = unit(rng) < 0.2f ? 0.0f : 1.0f + 100.0f * unit(rng);
     }
-    // Constraint q joins column cols[q] of row 0 and column cols[q] + dx of row 1 (no two share
-    // a particle, as in a batch).
-    for (int q = 0; q < count; ++q) rc.cols.push_back(q * (dx + 1));
+    // Constraint q joins column a[q] of row 0 and column a[q] + dx of row 1 (no two share a
+    // particle, as in a batch).
+    for (int q = 0; q < count; ++q) rc.a.push_back(q * (dx + 1));
     for (int q = 0; q < count; ++q) {
         rc.rest.push_back(0.01f + unit(rng));
         rc.lambda.push_back(pos(rng) * 1e-3f);
         rc.on.push_back(unit(rng) < 0.15f ? 0 : 1);
         if (unit(rng) < 0.1f) // coincident ends
-            rc.particles[size_t(rc.cols[size_t(q)] + nx + dx)].x = rc.particles[size_t(rc.cols[size_t(q)])].x;
+            rc.particles[size_t(rc.a[size_t(q)] + nx + dx)].x = rc.particles[size_t(rc.a[size_t(q)])].x;
     }
     return rc;
 }
 
 } // namespace
 
-TEST(ClothKernels, SimdRowEqualsScalarRow) {
+TEST(ClothKernels, SimdEqualsScalar) {
+    std::vector<Isa> simd = {Isa::Sse};
+    if (weft::cloth::bestIsa() == Isa::Avx) simd.push_back(Isa::Avx);
+    if (weft::cloth::bestIsa() == Isa::Scalar) GTEST_SKIP() << "no SIMD in this build";
     std::mt19937 rng(7);
-    for (int trial = 0; trial < 200; ++trial) {
-        const int dx = trial % 3, count = 1 + trial % 23, nx = count * (dx + 1) + dx;
+    int moved = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        const int dx = trial % 3, count = 1 + trial % 37, nx = count * (dx + 1) + dx;
         for (float alphaTilde : {0.0f, 0.5f, 3600.0f}) {
-            RowCase simd = randomRow(rng, nx, dx, count);
-            RowCase scalar = simd;
-            auto job = [&](RowCase& rc) {
-                return RowJob{rc.cols.data(), count, nx + dx, rc.rest.data(), rc.on.data(),
-                              rc.lambda.data(), alphaTilde, glm::vec3(0.01f, -0.02f, 0.0f)};
+            const RowCase start = randomRow(rng, nx, dx, count);
+            auto project = [&](Isa isa) {
+                RowCase rc = start;
+                weft::cloth::projectBatch(rc.particles.data(),
+                                          BatchJob{rc.a.data(), count, nx + dx, rc.rest.data(),
+                                                   rc.on.data(), rc.lambda.data(), alphaTilde,
+                                                   glm::vec3(0.01f, -0.02f, 0.0f)},
+                                          isa);
+                return rc;
             };
-            weft::cloth::projectRow(simd.particles.data(), job(simd));
-            weft::cloth::projectRowScalar(scalar.particles.data(), job(scalar));
-            for (size_t k = 0; k < simd.particles.size(); ++k) {
-                ASSERT_EQ(simd.particles[k].x, scalar.particles[k].x) << trial << " " << k;
-                ASSERT_EQ(simd.particles[k].w, scalar.particles[k].w);
+            const RowCase scalar = project(Isa::Scalar);
+            for (Isa isa : simd) {
+                const RowCase got = project(isa);
+                for (size_t k = 0; k < got.particles.size(); ++k) {
+                    ASSERT_EQ(got.particles[k].x, scalar.particles[k].x) << trial << " " << k;
+                    ASSERT_EQ(got.particles[k].w, scalar.particles[k].w);
+                }
+                ASSERT_EQ(got.lambda, scalar.lambda) << trial;
             }
-            ASSERT_EQ(simd.lambda, scalar.lambda) << trial;
+            moved += anyMoved(scalar.particles, start.particles);
         }
     }
+    EXPECT_GT(moved, 800); // the cases do project something
 }
 
 TEST(ClothKernels, ProjectionSatisfiesTheConstraintAndKeepsPinnedParticles) {
     std::vector<Particle> ps(8);
     for (int k = 0; k < 8; ++k) ps[size_t(k)] = {glm::vec3(float(k), 0.0f, 0.0f), k == 0 ? 0.0f : 1.0f};
-    // Four constraints (0,4) (1,5) (2,6) (3,7) of rest length 2: one SIMD group.
-    const std::vector<int> cols = {0, 1, 2, 3};
+    // Four constraints (0,4) (1,5) (2,6) (3,7) of rest length 2: one SSE group.
+    const std::vector<int> a = {0, 1, 2, 3};
     const std::vector<float> rest(4, 2.0f);
     const std::vector<uint8_t> on = {1, 1, 1, 0};
     std::vector<float> lambda(4, 0.0f);
-    weft::cloth::projectRow(ps.data(), RowJob{cols.data(), 4, 4, rest.data(), on.data(),
-                                              lambda.data(), 0.0f, glm::vec3(4, 0, 0)});
+    weft::cloth::projectBatch(ps.data(), BatchJob{a.data(), 4, 4, rest.data(), on.data(),
+                                                  lambda.data(), 0.0f, glm::vec3(4, 0, 0)},
+                              weft::cloth::bestIsa());
     EXPECT_EQ(ps[0].x, glm::vec3(0, 0, 0)); // pinned: the other end moves all the way
     EXPECT_FLOAT_EQ(ps[4].x.x, 2.0f);
     EXPECT_FLOAT_EQ(ps[1].x.x, 2.0f); // equal masses share the correction

@@ -16,17 +16,11 @@ struct Constraint {
 };
 
 /// Constraints that share no particle: projected in any order, or in parallel. They are all of
-/// one grid offset (dx >= 0, dy) and one colour, stored row by row: row `rows[r]` holds
-/// constraints [begin + r * perRow, begin + (r + 1) * perRow), whose particles a lie in the
-/// same columns `cols` in every row, so the solver walks the grid instead of loading particle
-/// indices.
+/// one grid offset (dx >= 0, dy) and one colour, so particle b is particle a + dy * nx + dx.
 struct Batch {
     ConstraintFamily family;
     int begin, end; // range in the constraint arrays
-    int dx, dy;     // particle b = a + (dx, dy)
-    int perRow;
-    std::vector<int> rows;
-    std::vector<int> cols; // perRow columns i of particle a (colour: (i / dx) % 2 when dx > 0)
+    int dx, dy;
 };
 
 /// Long-range attachment: |x_particle - x_anchor| <= length (the rest distance), one-sided.
@@ -56,6 +50,7 @@ struct Cloth::Impl {
     bool hasPendingVelocity = false;
 
     std::vector<cloth::Constraint> constraints; // ordered by batch
+    std::vector<int> endA;                      // constraints[c].a, contiguous
     std::vector<float> restLength;              // constraints[c].rest, contiguous
     std::vector<uint8_t> family, active;
     std::vector<float> lambda;
@@ -75,6 +70,7 @@ struct Cloth::Impl {
     bool asleep = false;
     float lastH = 1.0f / 60.0f;
     std::unique_ptr<ThreadPool> pool;
+    cloth::Isa isa = cloth::bestIsa();
 
     void build();                    // grid, constraints, batches (ClothSetup.cpp)
     void rebuildTethers();           // (ClothSetup.cpp)

@@ -3,9 +3,19 @@
 #include <cmath>
 #include <cstring>
 
-#if defined(__SSE2__) || defined(_M_X64)
-#include <emmintrin.h>
-#define WEFT_CLOTH_SSE 1
+#if defined(__x86_64__) || defined(_M_X64)
+#include <immintrin.h>
+#define WEFT_CLOTH_X86 1
+#if defined(__GNUC__)
+#define WEFT_AVX __attribute__((target("avx")))
+// The SIMD body is inlined into its AVX or SSE caller and compiled with that caller's target,
+// so no AVX value crosses a call between code with and without AVX (GCC warns that it would).
+#define WEFT_FLATTEN inline __attribute__((always_inline))
+#pragma GCC diagnostic ignored "-Wpsabi"
+#else
+#define WEFT_AVX
+#define WEFT_FLATTEN inline
+#endif
 #endif
 
 namespace weft::cloth {
@@ -43,16 +53,24 @@ inline void projectOne(Particle& A, Particle& B, float restLen, float alphaTilde
 }
 
 template <bool Compliant>
-void scalarRange(Particle* base, const RowJob& job, int q0) {
+void scalarRange(Particle* ps, const BatchJob& job, int q0) {
     for (int q = q0; q < job.count; ++q) {
         if (!job.on[q]) continue;
-        Particle* a = base + job.cols[q];
+        Particle* a = ps + job.a[q];
         projectOne<Compliant>(a[0], a[job.delta], job.rest[q], job.alphaTilde, job.lambda[q],
                               job.restOffset);
     }
 }
 
-#ifdef WEFT_CLOTH_SSE
+#ifdef WEFT_CLOTH_X86
+
+// The SIMD kernels below are one template over a register type V: the operations of
+// projectOne, lane by lane. Lanes that projectOne would skip get dl = 0, which leaves their
+// positions unchanged.
+
+inline __m128 select(__m128 mask, __m128 a, __m128 b) {
+    return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
+}
 
 // Four records (x, y, z, w) <-> four registers of x, of y, of z, of w.
 inline void transpose(__m128& r0, __m128& r1, __m128& r2, __m128& r3) {
@@ -64,99 +82,201 @@ inline void transpose(__m128& r0, __m128& r1, __m128& r2, __m128& r3) {
     r3 = _mm_movehl_ps(t3, t2);
 }
 
-inline __m128 select(__m128 mask, __m128 a, __m128 b) {
-    return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
-}
+struct Sse {
+    using V = __m128;
+    static constexpr int kWidth = 4;
+    static V set1(float v) { return _mm_set1_ps(v); }
+    static V zero() { return _mm_setzero_ps(); }
+    static V add(V a, V b) { return _mm_add_ps(a, b); }
+    static V sub(V a, V b) { return _mm_sub_ps(a, b); }
+    static V mul(V a, V b) { return _mm_mul_ps(a, b); }
+    static V div(V a, V b) { return _mm_div_ps(a, b); }
+    static V sqrt(V a) { return _mm_sqrt_ps(a); }
+    static V andv(V a, V b) { return _mm_and_ps(a, b); }
+    static V xorv(V a, V b) { return _mm_xor_ps(a, b); }
+    static V lt(V a, V b) { return _mm_cmplt_ps(a, b); }
+    static V gt(V a, V b) { return _mm_cmpgt_ps(a, b); }
+    static V sel(V m, V a, V b) { return select(m, a, b); }
+    static bool any(V m) { return _mm_movemask_ps(m) != 0; }
+    static V load(const float* p) { return _mm_loadu_ps(p); }
+    static void store(float* p, V v) { _mm_storeu_ps(p, v); }
+    // All-ones lanes where on[q] != 0.
+    static V active(const uint8_t* on) {
+        uint32_t bytes;
+        std::memcpy(&bytes, on, 4);
+        const __m128i z = _mm_setzero_si128();
+        const __m128i words = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(int(bytes)), z), z);
+        return _mm_castsi128_ps(_mm_cmpgt_epi32(words, z));
+    }
+    // Records p[0..3] -> x, y, z, w registers, and back.
+    static void gather(float* const* p, V& x, V& y, V& z, V& w) {
+        x = _mm_load_ps(p[0]);
+        y = _mm_load_ps(p[1]);
+        z = _mm_load_ps(p[2]);
+        w = _mm_load_ps(p[3]);
+        transpose(x, y, z, w);
+    }
+    static void scatter(float* const* p, V x, V y, V z, V w) {
+        transpose(x, y, z, w);
+        _mm_store_ps(p[0], x);
+        _mm_store_ps(p[1], y);
+        _mm_store_ps(p[2], z);
+        _mm_store_ps(p[3], w);
+    }
+};
 
-// The operations of projectOne, lane by lane; lanes that projectOne would skip get dl = 0,
-// which leaves their positions unchanged.
-template <bool Compliant>
-void simdRows(Particle* base, const RowJob& job) {
+struct Avx {
+    using V = __m256;
+    static constexpr int kWidth = 8;
+    WEFT_AVX static V set1(float v) { return _mm256_set1_ps(v); }
+    WEFT_AVX static V zero() { return _mm256_setzero_ps(); }
+    WEFT_AVX static V add(V a, V b) { return _mm256_add_ps(a, b); }
+    WEFT_AVX static V sub(V a, V b) { return _mm256_sub_ps(a, b); }
+    WEFT_AVX static V mul(V a, V b) { return _mm256_mul_ps(a, b); }
+    WEFT_AVX static V div(V a, V b) { return _mm256_div_ps(a, b); }
+    WEFT_AVX static V sqrt(V a) { return _mm256_sqrt_ps(a); }
+    WEFT_AVX static V andv(V a, V b) { return _mm256_and_ps(a, b); }
+    WEFT_AVX static V xorv(V a, V b) { return _mm256_xor_ps(a, b); }
+    WEFT_AVX static V lt(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
+    WEFT_AVX static V gt(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_GT_OQ); }
+    WEFT_AVX static V sel(V m, V a, V b) { return _mm256_blendv_ps(b, a, m); }
+    WEFT_AVX static bool any(V m) { return _mm256_movemask_ps(m) != 0; }
+    WEFT_AVX static V load(const float* p) { return _mm256_loadu_ps(p); }
+    WEFT_AVX static void store(float* p, V v) { _mm256_storeu_ps(p, v); }
+    WEFT_AVX static V active(const uint8_t* on) {
+        return _mm256_set_m128(Sse::active(on + 4), Sse::active(on));
+    }
+    // Records p[0..7]: lane k of the low half from p[k], of the high half from p[k + 4]; the
+    // in-lane 4 x 4 transpose then gives x = (x0 .. x7) and so on.
+    WEFT_AVX static void transpose8(V& r0, V& r1, V& r2, V& r3) {
+        const V t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
+        const V t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
+        r0 = _mm256_shuffle_ps(t0, t1, 0x44);
+        r1 = _mm256_shuffle_ps(t0, t1, 0xEE);
+        r2 = _mm256_shuffle_ps(t2, t3, 0x44);
+        r3 = _mm256_shuffle_ps(t2, t3, 0xEE);
+    }
+    WEFT_AVX static V pair(const float* lo, const float* hi) {
+        return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(lo)), _mm_load_ps(hi), 1);
+    }
+    WEFT_AVX static void unpair(V v, float* lo, float* hi) {
+        _mm_store_ps(lo, _mm256_castps256_ps128(v));
+        _mm_store_ps(hi, _mm256_extractf128_ps(v, 1));
+    }
+    WEFT_AVX static void gather(float* const* p, V& x, V& y, V& z, V& w) {
+        x = pair(p[0], p[4]);
+        y = pair(p[1], p[5]);
+        z = pair(p[2], p[6]);
+        w = pair(p[3], p[7]);
+        transpose8(x, y, z, w);
+    }
+    WEFT_AVX static void scatter(float* const* p, V x, V y, V z, V w) {
+        transpose8(x, y, z, w);
+        unpair(x, p[0], p[4]);
+        unpair(y, p[1], p[5]);
+        unpair(z, p[2], p[6]);
+        unpair(w, p[3], p[7]);
+    }
+};
+
+template <class S, bool Compliant>
+WEFT_FLATTEN int simdRange(Particle* ps, const BatchJob& job) {
+    using V = typename S::V;
+    constexpr int W = S::kWidth;
     const glm::vec3 u = job.restOffset * kUnfold;
-    const float u2 = glm::dot(u, u);
-    const __m128 ux = _mm_set1_ps(u.x), uy = _mm_set1_ps(u.y), uz = _mm_set1_ps(u.z);
-    const __m128 uLen2 = _mm_set1_ps(u2), tiny = _mm_set1_ps(kCoincident2);
-    const __m128 zero = _mm_setzero_ps(), alpha = _mm_set1_ps(job.alphaTilde);
-    const __m128 signBit = _mm_set1_ps(-0.0f);
-    float* pf = &base[0].x.x;
+    const V ux = S::set1(u.x), uy = S::set1(u.y), uz = S::set1(u.z);
+    const V uLen2 = S::set1(glm::dot(u, u)), tiny = S::set1(kCoincident2);
+    const V zero = S::zero(), alpha = S::set1(job.alphaTilde), signBit = S::set1(-0.0f);
+    float* pf = &ps[0].x.x;
     const int delta4 = 4 * job.delta;
     int q = 0;
-    for (; q + 4 <= job.count; q += 4) {
-        float* a0 = pf + 4 * job.cols[q];
-        float* a1 = pf + 4 * job.cols[q + 1];
-        float* a2 = pf + 4 * job.cols[q + 2];
-        float* a3 = pf + 4 * job.cols[q + 3];
-        __m128 ax = _mm_load_ps(a0), ay = _mm_load_ps(a1), az = _mm_load_ps(a2), aw = _mm_load_ps(a3);
-        __m128 bx = _mm_load_ps(a0 + delta4), by = _mm_load_ps(a1 + delta4);
-        __m128 bz = _mm_load_ps(a2 + delta4), bw = _mm_load_ps(a3 + delta4);
-        transpose(ax, ay, az, aw);
-        transpose(bx, by, bz, bw);
-        uint32_t on4;
-        std::memcpy(&on4, job.on + q, 4);
-        const __m128i onBytes = _mm_cvtsi32_si128(int(on4));
-        const __m128i onWords = _mm_unpacklo_epi16(_mm_unpacklo_epi8(onBytes, _mm_setzero_si128()),
-                                                   _mm_setzero_si128());
-        const __m128 wsum = _mm_add_ps(aw, bw);
-        const __m128 ok = _mm_and_ps(_mm_cmpgt_ps(wsum, zero),
-                                     _mm_castsi128_ps(_mm_cmpgt_epi32(onWords, _mm_setzero_si128())));
-        __m128 dx = _mm_sub_ps(bx, ax), dy = _mm_sub_ps(by, ay), dz = _mm_sub_ps(bz, az);
-        __m128 len2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
-        const __m128 coincident = _mm_cmplt_ps(len2, tiny);
-        if (_mm_movemask_ps(coincident)) {
-            dx = select(coincident, ux, dx);
-            dy = select(coincident, uy, dy);
-            dz = select(coincident, uz, dz);
-            len2 = select(coincident, uLen2, len2);
+    for (; q + W <= job.count; q += W) {
+        float* pa[W];
+        float* pb[W];
+        for (int k = 0; k < W; ++k) {
+            pa[k] = pf + 4 * job.a[q + k];
+            pb[k] = pa[k] + delta4;
         }
-        const __m128 len = _mm_sqrt_ps(len2);
-        const __m128 negC = _mm_xor_ps(_mm_sub_ps(len, _mm_loadu_ps(job.rest + q)), signBit);
-        __m128 dl;
+        V ax, ay, az, aw, bx, by, bz, bw;
+        S::gather(pa, ax, ay, az, aw);
+        S::gather(pb, bx, by, bz, bw);
+        const V wsum = S::add(aw, bw);
+        const V ok = S::andv(S::gt(wsum, zero), S::active(job.on + q));
+        V dx = S::sub(bx, ax), dy = S::sub(by, ay), dz = S::sub(bz, az);
+        V len2 = S::add(S::add(S::mul(dx, dx), S::mul(dy, dy)), S::mul(dz, dz));
+        const V coincident = S::lt(len2, tiny);
+        if (S::any(coincident)) {
+            dx = S::sel(coincident, ux, dx);
+            dy = S::sel(coincident, uy, dy);
+            dz = S::sel(coincident, uz, dz);
+            len2 = S::sel(coincident, uLen2, len2);
+        }
+        const V len = S::sqrt(len2);
+        const V negC = S::xorv(S::sub(len, S::load(job.rest + q)), signBit);
+        V dl;
         if (Compliant) {
-            const __m128 lam = _mm_loadu_ps(job.lambda + q);
-            dl = _mm_div_ps(_mm_sub_ps(negC, _mm_mul_ps(alpha, lam)), _mm_add_ps(wsum, alpha));
-            dl = _mm_and_ps(ok, dl);
-            _mm_storeu_ps(job.lambda + q, select(ok, _mm_add_ps(lam, dl), lam));
+            const V lam = S::load(job.lambda + q);
+            dl = S::andv(ok, S::div(S::sub(negC, S::mul(alpha, lam)), S::add(wsum, alpha)));
+            S::store(job.lambda + q, S::sel(ok, S::add(lam, dl), lam));
         } else {
-            dl = _mm_and_ps(ok, _mm_div_ps(negC, wsum));
+            dl = S::andv(ok, S::div(negC, wsum));
         }
-        const __m128 s = _mm_div_ps(dl, len);
-        const __m128 cx = _mm_mul_ps(dx, s), cy = _mm_mul_ps(dy, s), cz = _mm_mul_ps(dz, s);
-        ax = _mm_sub_ps(ax, _mm_mul_ps(aw, cx));
-        ay = _mm_sub_ps(ay, _mm_mul_ps(aw, cy));
-        az = _mm_sub_ps(az, _mm_mul_ps(aw, cz));
-        bx = _mm_add_ps(bx, _mm_mul_ps(bw, cx));
-        by = _mm_add_ps(by, _mm_mul_ps(bw, cy));
-        bz = _mm_add_ps(bz, _mm_mul_ps(bw, cz));
-        transpose(ax, ay, az, aw);
-        transpose(bx, by, bz, bw);
-        _mm_store_ps(a0, ax);
-        _mm_store_ps(a1, ay);
-        _mm_store_ps(a2, az);
-        _mm_store_ps(a3, aw);
-        _mm_store_ps(a0 + delta4, bx);
-        _mm_store_ps(a1 + delta4, by);
-        _mm_store_ps(a2 + delta4, bz);
-        _mm_store_ps(a3 + delta4, bw);
+        const V s = S::div(dl, len);
+        const V cx = S::mul(dx, s), cy = S::mul(dy, s), cz = S::mul(dz, s);
+        S::scatter(pa, S::sub(ax, S::mul(aw, cx)), S::sub(ay, S::mul(aw, cy)),
+                   S::sub(az, S::mul(aw, cz)), aw);
+        S::scatter(pb, S::add(bx, S::mul(bw, cx)), S::add(by, S::mul(bw, cy)),
+                   S::add(bz, S::mul(bw, cz)), bw);
     }
-    scalarRange<Compliant>(base, job, q);
+    return q;
+}
+
+template <bool Compliant>
+void sseRange(Particle* ps, const BatchJob& job) {
+    scalarRange<Compliant>(ps, job, simdRange<Sse, Compliant>(ps, job));
+}
+
+template <bool Compliant>
+WEFT_AVX void avxRange(Particle* ps, const BatchJob& job) {
+    int q = simdRange<Avx, Compliant>(ps, job);
+    BatchJob rest = job; // the last 4..7: one SSE group first
+    rest.a += q;
+    rest.rest += q;
+    rest.on += q;
+    rest.lambda += q;
+    rest.count -= q;
+    sseRange<Compliant>(ps, rest);
 }
 
 #endif
 
 } // namespace
 
-void projectRowScalar(Particle* base, const RowJob& job) {
-    if (job.alphaTilde == 0.0f) scalarRange<false>(base, job, 0);
-    else scalarRange<true>(base, job, 0);
+Isa bestIsa() {
+#ifdef WEFT_CLOTH_X86
+#if defined(__GNUC__)
+    static const Isa best = __builtin_cpu_supports("avx") ? Isa::Avx : Isa::Sse;
+    return best;
+#else
+    return Isa::Sse;
+#endif
+#else
+    return Isa::Scalar;
+#endif
 }
 
-void projectRow(Particle* base, const RowJob& job) {
-#ifdef WEFT_CLOTH_SSE
-    if (job.alphaTilde == 0.0f) simdRows<false>(base, job);
-    else simdRows<true>(base, job);
-#else
-    projectRowScalar(base, job);
+void projectBatch(Particle* particles, const BatchJob& job, Isa isa) {
+    const bool compliant = job.alphaTilde != 0.0f;
+    switch (isa) {
+#ifdef WEFT_CLOTH_X86
+    case Isa::Avx:
+        return compliant ? avxRange<true>(particles, job) : avxRange<false>(particles, job);
+    case Isa::Sse:
+        return compliant ? sseRange<true>(particles, job) : sseRange<false>(particles, job);
 #endif
+    default:
+        return compliant ? scalarRange<true>(particles, job, 0) : scalarRange<false>(particles, job, 0);
+    }
 }
 
 } // namespace weft::cloth

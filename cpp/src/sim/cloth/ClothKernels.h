@@ -1,8 +1,9 @@
 #pragma once
-// The distance-constraint projection (eq. 3.3/3.4, XPBD when alphaTilde > 0) over one row of a
-// batch: constraint q joins particles base[cols[q]] and base[cols[q] + delta]. The SIMD version
-// projects four constraints at once with the same float operations in the same order as the
-// scalar one, so both give bit-identical positions (the tests check this).
+// The distance-constraint projection (eq. 3.3/3.4, XPBD when alphaTilde > 0) over constraints
+// that share no particle (one batch, or part of one): constraint q joins particles a[q] and
+// a[q] + delta. The SIMD versions project 4 (SSE) or 8 (AVX) constraints at once with the same
+// float operations in the same order as the scalar one, so all give bit-identical positions
+// (the tests check this); the fastest the CPU supports is picked at run time.
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -15,21 +16,23 @@ struct alignas(16) Particle {
     float w;
 };
 
-/// What one row projection needs besides the particles.
-struct RowJob {
-    const int* cols;      // column offset of particle a of each constraint within the row
-    int count;            // constraints in the row
+/// What a projection needs besides the particles.
+struct BatchJob {
+    const int* a;         // particle a of each constraint
+    int count;            // constraints
     int delta;            // particle b = particle a + delta
-    const float* rest;    // rest lengths of the row's constraints
+    const float* rest;    // rest lengths
     const uint8_t* on;    // 0 = broken or touching a hole: skipped
     float* lambda;        // XPBD multipliers (read and written only when alphaTilde > 0)
     float alphaTilde;     // compliance / h^2
     glm::vec3 restOffset; // rest offset b - a (the same in a batch): direction for coincident ends
 };
 
-/// One constraint at a time (the definition; also the tail of the SIMD rows).
-void projectRowScalar(Particle* base, const RowJob& job);
-/// Four constraints at a time where SSE is available, else the scalar loop; same results.
-void projectRow(Particle* base, const RowJob& job);
+enum class Isa { Scalar, Sse, Avx };
+
+/// The widest instruction set this build and this CPU support.
+Isa bestIsa();
+/// Projects the job's constraints with the given instruction set (at most bestIsa()).
+void projectBatch(Particle* particles, const BatchJob& job, Isa isa);
 
 } // namespace weft::cloth

@@ -82,10 +82,8 @@ void Cloth::Impl::build() {
     batches.clear();
     for (const Offset& o : offsets) {
         for (int parity = 0; parity < 2; ++parity) {
-            cloth::Batch batch{o.family, int(constraints.size()), 0, o.dx, o.dy, 0, {}, {}};
-            for (int j = 0; j < p.ny; ++j) {
-                const int rowBegin = int(constraints.size());
-                std::vector<int> cols;
+            cloth::Batch batch{o.family, int(constraints.size()), 0, o.dx, o.dy};
+            for (int j = 0; j < p.ny; ++j)
                 for (int i = 0; i < p.nx; ++i) {
                     const int i2 = i + o.dx, j2 = j + o.dy;
                     if (i2 < 0 || i2 >= p.nx || j2 < 0 || j2 >= p.ny) continue;
@@ -94,20 +92,17 @@ void Cloth::Impl::build() {
                     const int a = j * p.nx + i, b = j2 * p.nx + i2;
                     constraints.push_back({a, b, glm::length(rest[size_t(b)] - rest[size_t(a)])});
                     family.push_back(uint8_t(o.family));
-                    cols.push_back(i);
                 }
-                const int count = int(constraints.size()) - rowBegin;
-                if (count == 0) continue;
-                batch.perRow = count; // the same columns in every row of a batch
-                batch.cols = std::move(cols);
-                batch.rows.push_back(j);
-            }
             batch.end = int(constraints.size());
             if (batch.end > batch.begin) batches.push_back(std::move(batch));
         }
     }
+    endA.resize(constraints.size());
     restLength.resize(constraints.size());
-    for (size_t c = 0; c < constraints.size(); ++c) restLength[c] = constraints[c].rest;
+    for (size_t c = 0; c < constraints.size(); ++c) {
+        endA[c] = constraints[c].a;
+        restLength[c] = constraints[c].rest;
+    }
     active.assign(constraints.size(), 1);
     lambda.assign(constraints.size(), 0.0f);
 }

@@ -13,6 +13,10 @@ namespace weft {
 using cloth::Particle;
 
 namespace {
+// Below this many constraints a batch is projected on the calling thread: a fork-join and the
+// cache lines that move between cores cost more than the work.
+constexpr int kMinParallelConstraints = 4096;
+
 float compliance(const ClothParams& p, ConstraintFamily f) {
     switch (f) {
     case ConstraintFamily::Stretch:
@@ -46,22 +50,20 @@ void Cloth::Impl::computeNormals() const {
 }
 
 void Cloth::Impl::projectBatch(const cloth::Batch& batch, float alphaTilde) {
-    const int nx = params.nx;
     const cloth::Constraint& first = constraints[size_t(batch.begin)];
-    cloth::RowJob job{batch.cols.data(), batch.perRow, batch.dy * nx + batch.dx, nullptr, nullptr,
-                      nullptr, alphaTilde, rest[size_t(first.b)] - rest[size_t(first.a)]};
-    Particle* ps = particles.data();
-    const int rows = int(batch.rows.size());
-    pool->parallelFor(rows, [&](int r0, int r1) {
-        cloth::RowJob rowJob = job;
-        for (int r = r0; r < r1; ++r) {
-            const size_t c = size_t(batch.begin) + size_t(r) * size_t(batch.perRow);
-            rowJob.rest = restLength.data() + c;
-            rowJob.on = active.data() + c;
-            rowJob.lambda = lambda.data() + c;
-            cloth::projectRow(ps + size_t(batch.rows[size_t(r)]) * size_t(nx), rowJob);
-        }
-    }, std::max(2, 2048 / std::max(1, batch.perRow)));
+    const size_t c0 = size_t(batch.begin);
+    const cloth::BatchJob job{endA.data() + c0, batch.end - batch.begin, batch.dy * params.nx + batch.dx,
+                              restLength.data() + c0, active.data() + c0, lambda.data() + c0,
+                              alphaTilde, rest[size_t(first.b)] - rest[size_t(first.a)]};
+    pool->parallelFor(job.count, [&](int q0, int q1) {
+        cloth::BatchJob part = job;
+        part.a += q0;
+        part.rest += q0;
+        part.on += q0;
+        part.lambda += q0;
+        part.count = q1 - q0;
+        cloth::projectBatch(particles.data(), part, isa);
+    }, kMinParallelConstraints);
 }
 
 void Cloth::Impl::collide(int begin, int end) {
