@@ -3,6 +3,7 @@
 // are no multiple of the SIMD width.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -101,4 +102,48 @@ TEST(ClothKernels, ProjectionSatisfiesTheConstraintAndKeepsPinnedParticles) {
     EXPECT_FLOAT_EQ(ps[5].x.x, 4.0f);
     EXPECT_EQ(ps[3].x.x, 3.0f); // broken constraint untouched
     EXPECT_EQ(ps[7].x.x, 7.0f);
+}
+
+TEST(ClothKernels, SimdTethersEqualScalar) {
+    if (weft::cloth::bestIsa() == Isa::Scalar) GTEST_SKIP() << "no SIMD in this build";
+    std::vector<Isa> simd = {Isa::Sse};
+    if (weft::cloth::bestIsa() == Isa::Avx) simd.push_back(Isa::Avx);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> pos(-1.0f, 1.0f), unit(0.0f, 1.0f);
+    int pulled = 0;
+    for (int trial = 0; trial < 100; ++trial) {
+        const int n = 3 + trial % 41, slots = 1 + trial % 4;
+        std::vector<Particle> start(static_cast<size_t>(n));
+        std::vector<int> anchors;
+        for (int k = 0; k < n; ++k) {
+            const bool anchor = k == 0 || unit(rng) < 0.1f;
+            start[size_t(k)] = {glm::vec3(pos(rng), pos(rng), pos(rng)), anchor ? 0.0f : 1.0f};
+            if (anchor) anchors.push_back(k);
+        }
+        std::vector<int> anchor(size_t(slots * n));
+        std::vector<float> length(size_t(slots * n));
+        for (size_t t = 0; t < anchor.size(); ++t) {
+            anchor[t] = anchors[size_t(rng() % anchors.size())];
+            length[t] = unit(rng) < 0.2f ? std::numeric_limits<float>::infinity() : 0.2f + unit(rng);
+        }
+        const int begin = trial % 3, end = n - trial % 2;
+        auto project = [&](Isa isa) {
+            std::vector<Particle> ps = start;
+            weft::cloth::projectTethers(ps.data(), {begin, end, slots, n, anchor.data(), length.data()},
+                                        isa);
+            return ps;
+        };
+        const std::vector<Particle> scalar = project(Isa::Scalar);
+        pulled += anyMoved(scalar, start);
+        for (Isa isa : simd) {
+            const std::vector<Particle> got = project(isa);
+            for (size_t k = 0; k < got.size(); ++k) {
+                ASSERT_EQ(got[k].x, scalar[k].x) << trial << " " << k;
+                ASSERT_EQ(got[k].w, scalar[k].w);
+            }
+        }
+        for (int k : anchors) ASSERT_EQ(scalar[size_t(k)].x, start[size_t(k)].x); // anchors stay
+        for (int k = 0; k < begin; ++k) ASSERT_EQ(scalar[size_t(k)].x, start[size_t(k)].x);
+    }
+    EXPECT_GT(pulled, 80);
 }

@@ -23,12 +23,6 @@ struct Batch {
     int dx, dy;
 };
 
-/// Long-range attachment: |x_particle - x_anchor| <= length (the rest distance), one-sided.
-struct Tether {
-    int anchor;
-    float length;
-};
-
 } // namespace weft::cloth
 
 namespace weft {
@@ -55,8 +49,11 @@ struct Cloth::Impl {
     std::vector<uint8_t> family, active;
     std::vector<float> lambda;
     std::vector<cloth::Batch> batches;
-    std::vector<cloth::Tether> tethers;   // grouped by particle
-    std::vector<int> tetherStart;         // particle k owns tethers [start[k], start[k+1])
+    // Long-range attachments |x_k - x_anchor| <= length (the rest distance), one-sided, stored
+    // by slot: slot s of particle k at [s * n + k] (length +inf where k has fewer tethers).
+    int tetherSlots = 0;
+    std::vector<int> tetherAnchor;
+    std::vector<float> tetherLength;
 
     std::vector<int> grabbed;
     std::vector<glm::vec3> grabTargets;

@@ -62,6 +62,21 @@ void scalarRange(Particle* ps, const BatchJob& job, int q0) {
     }
 }
 
+void scalarTethers(Particle* ps, const TetherJob& job, int k0) {
+    for (int k = k0; k < job.end; ++k) {
+        Particle& p = ps[k];
+        if (p.w == 0.0f) continue;
+        for (int s = 0; s < job.slots; ++s) {
+            const size_t t = size_t(s) * size_t(job.n) + size_t(k);
+            const float length = job.length[t];
+            const glm::vec3 anchor = ps[job.anchor[t]].x;
+            const glm::vec3 d = p.x - anchor;
+            const float len2 = glm::dot(d, d);
+            if (len2 > length * length) p.x = anchor + d * (length / std::sqrt(len2));
+        }
+    }
+}
+
 #ifdef WEFT_CLOTH_X86
 
 // The SIMD kernels below are one template over a register type V: the operations of
@@ -96,6 +111,7 @@ struct Sse {
     static V xorv(V a, V b) { return _mm_xor_ps(a, b); }
     static V lt(V a, V b) { return _mm_cmplt_ps(a, b); }
     static V gt(V a, V b) { return _mm_cmpgt_ps(a, b); }
+    static V ne(V a, V b) { return _mm_cmpneq_ps(a, b); }
     static V sel(V m, V a, V b) { return select(m, a, b); }
     static bool any(V m) { return _mm_movemask_ps(m) != 0; }
     static V load(const float* p) { return _mm_loadu_ps(p); }
@@ -139,6 +155,7 @@ struct Avx {
     WEFT_AVX static V xorv(V a, V b) { return _mm256_xor_ps(a, b); }
     WEFT_AVX static V lt(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
     WEFT_AVX static V gt(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_GT_OQ); }
+    WEFT_AVX static V ne(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_NEQ_UQ); }
     WEFT_AVX static V sel(V m, V a, V b) { return _mm256_blendv_ps(b, a, m); }
     WEFT_AVX static bool any(V m) { return _mm256_movemask_ps(m) != 0; }
     WEFT_AVX static V load(const float* p) { return _mm256_loadu_ps(p); }
@@ -231,6 +248,41 @@ WEFT_FLATTEN int simdRange(Particle* ps, const BatchJob& job) {
     return q;
 }
 
+// The operations of scalarTethers, lane by lane; returns the first particle left over.
+template <class S>
+WEFT_FLATTEN int simdTethers(Particle* ps, const TetherJob& job) {
+    using V = typename S::V;
+    constexpr int W = S::kWidth;
+    float* pf = &ps[0].x.x;
+    const V zero = S::zero();
+    int k = job.begin;
+    for (; k + W <= job.end; k += W) {
+        float* pk[W];
+        for (int l = 0; l < W; ++l) pk[l] = pf + 4 * (k + l);
+        V x, y, z, w;
+        S::gather(pk, x, y, z, w);
+        const V free = S::ne(w, zero);
+        for (int s = 0; s < job.slots; ++s) {
+            const size_t t = size_t(s) * size_t(job.n) + size_t(k);
+            float* pa[W];
+            for (int l = 0; l < W; ++l) pa[l] = pf + 4 * job.anchor[t + size_t(l)];
+            V ax, ay, az, aw;
+            S::gather(pa, ax, ay, az, aw);
+            const V length = S::load(job.length + t);
+            const V dx = S::sub(x, ax), dy = S::sub(y, ay), dz = S::sub(z, az);
+            const V len2 = S::add(S::add(S::mul(dx, dx), S::mul(dy, dy)), S::mul(dz, dz));
+            const V pull = S::andv(free, S::gt(len2, S::mul(length, length)));
+            if (!S::any(pull)) continue;
+            const V scale = S::div(length, S::sqrt(len2));
+            x = S::sel(pull, S::add(ax, S::mul(dx, scale)), x);
+            y = S::sel(pull, S::add(ay, S::mul(dy, scale)), y);
+            z = S::sel(pull, S::add(az, S::mul(dz, scale)), z);
+        }
+        S::scatter(pk, x, y, z, w);
+    }
+    return k;
+}
+
 template <bool Compliant>
 void sseRange(Particle* ps, const BatchJob& job) {
     scalarRange<Compliant>(ps, job, simdRange<Sse, Compliant>(ps, job));
@@ -246,6 +298,16 @@ WEFT_AVX void avxRange(Particle* ps, const BatchJob& job) {
     rest.lambda += q;
     rest.count -= q;
     sseRange<Compliant>(ps, rest);
+}
+
+void sseTethers(Particle* ps, const TetherJob& job) {
+    scalarTethers(ps, job, simdTethers<Sse>(ps, job));
+}
+
+WEFT_AVX void avxTethers(Particle* ps, const TetherJob& job) {
+    TetherJob rest = job;
+    rest.begin = simdTethers<Avx>(ps, job);
+    sseTethers(ps, rest);
 }
 
 #endif
@@ -276,6 +338,19 @@ void projectBatch(Particle* particles, const BatchJob& job, Isa isa) {
 #endif
     default:
         return compliant ? scalarRange<true>(particles, job, 0) : scalarRange<false>(particles, job, 0);
+    }
+}
+
+void projectTethers(Particle* particles, const TetherJob& job, Isa isa) {
+    switch (isa) {
+#ifdef WEFT_CLOTH_X86
+    case Isa::Avx:
+        return avxTethers(particles, job);
+    case Isa::Sse:
+        return sseTethers(particles, job);
+#endif
+    default:
+        return scalarTethers(particles, job, job.begin);
     }
 }
 

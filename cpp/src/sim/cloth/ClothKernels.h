@@ -1,9 +1,11 @@
 #pragma once
-// The distance-constraint projection (eq. 3.3/3.4, XPBD when alphaTilde > 0) over constraints
+// The inner loops of the cloth solver. The distance-constraint projection (eq. 3.3/3.4, XPBD
+// when alphaTilde > 0) over constraints
 // that share no particle (one batch, or part of one): constraint q joins particles a[q] and
 // a[q] + delta. The SIMD versions project 4 (SSE) or 8 (AVX) constraints at once with the same
 // float operations in the same order as the scalar one, so all give bit-identical positions
-// (the tests check this); the fastest the CPU supports is picked at run time.
+// (the tests check this); the fastest the CPU supports is picked at run time. Tethers likewise,
+// 4 or 8 particles at a time.
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -28,11 +30,22 @@ struct BatchJob {
     glm::vec3 restOffset; // rest offset b - a (the same in a batch): direction for coincident ends
 };
 
+/// Tethers of particles [begin, end): slot s of particle k is anchor[s * n + k] at most
+/// length[s * n + k] away (+inf: no tether in that slot). Anchors have inverse mass 0.
+struct TetherJob {
+    int begin, end;
+    int slots, n;
+    const int* anchor;
+    const float* length;
+};
+
 enum class Isa { Scalar, Sse, Avx };
 
 /// The widest instruction set this build and this CPU support.
 Isa bestIsa();
 /// Projects the job's constraints with the given instruction set (at most bestIsa()).
 void projectBatch(Particle* particles, const BatchJob& job, Isa isa);
+/// Pulls each free particle back within its tethers' lengths, slot by slot.
+void projectTethers(Particle* particles, const TetherJob& job, Isa isa);
 
 } // namespace weft::cloth

@@ -125,23 +125,30 @@ void Cloth::Impl::rebuildTethers() {
     // the tethers only remove stretch the constraints have not resolved yet. Tying to one
     // anchor only would pull the cloth apart where the nearest anchor changes.
     constexpr size_t kMaxAnchors = 4;
-    tethers.clear();
-    tetherStart.assign(size_t(n) + 1, 0);
+    tetherSlots = 0;
+    tetherAnchor.clear();
+    tetherLength.clear();
     if (!params.tethers) return;
     std::vector<int> anchors;
     for (int k = 0; k < n; ++k)
         if (!hole[size_t(k)] && particles[size_t(k)].w == 0.0f) anchors.push_back(k);
+    if (anchors.empty()) return;
+    tetherSlots = int(std::min(kMaxAnchors, anchors.size()));
+    tetherAnchor.resize(size_t(tetherSlots) * size_t(n));
+    tetherLength.assign(size_t(tetherSlots) * size_t(n), std::numeric_limits<float>::infinity());
+    for (int k = 0; k < n; ++k)
+        for (int s = 0; s < tetherSlots; ++s) tetherAnchor[size_t(s) * size_t(n) + size_t(k)] = k;
     std::vector<std::pair<float, int>> nearest;
     for (int k = 0; k < n; ++k) {
-        tetherStart[size_t(k)] = int(tethers.size());
-        if (particles[size_t(k)].w == 0.0f || anchors.empty()) continue;
+        if (particles[size_t(k)].w == 0.0f) continue;
         nearest.clear();
         for (int a : anchors) nearest.push_back({glm::length(rest[size_t(k)] - rest[size_t(a)]), a});
-        const size_t keep = std::min(kMaxAnchors, nearest.size());
-        std::partial_sort(nearest.begin(), nearest.begin() + long(keep), nearest.end());
-        for (size_t t = 0; t < keep; ++t) tethers.push_back({nearest[t].second, nearest[t].first});
+        std::partial_sort(nearest.begin(), nearest.begin() + tetherSlots, nearest.end());
+        for (int s = 0; s < tetherSlots; ++s) {
+            tetherAnchor[size_t(s) * size_t(n) + size_t(k)] = nearest[size_t(s)].second;
+            tetherLength[size_t(s) * size_t(n) + size_t(k)] = nearest[size_t(s)].first;
+        }
     }
-    tetherStart[size_t(n)] = int(tethers.size());
 }
 
 } // namespace weft

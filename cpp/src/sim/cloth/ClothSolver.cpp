@@ -16,6 +16,7 @@ namespace {
 // Below this many constraints a batch is projected on the calling thread: a fork-join and the
 // cache lines that move between cores cost more than the work.
 constexpr int kMinParallelConstraints = 4096;
+constexpr int kMinParallelParticles = 4096;
 
 float compliance(const ClothParams& p, ConstraintFamily f) {
     switch (f) {
@@ -87,20 +88,11 @@ void Cloth::Impl::collide(int begin, int end) {
 void Cloth::Impl::relax(float h) {
     const float h2 = h * h;
     for (const cloth::Batch& b : batches) projectBatch(b, compliance(params, b.family) / h2);
-    if (!tethers.empty()) {
+    if (tetherSlots > 0) {
         pool->parallelFor(n, [&](int k0, int k1) {
-            for (int k = k0; k < k1; ++k) {
-                Particle& p = particles[size_t(k)];
-                if (p.w == 0.0f) continue;
-                for (int t = tetherStart[size_t(k)]; t < tetherStart[size_t(k) + 1]; ++t) {
-                    const cloth::Tether& te = tethers[size_t(t)];
-                    const glm::vec3 anchor = particles[size_t(te.anchor)].x;
-                    const glm::vec3 d = p.x - anchor;
-                    const float len2 = glm::dot(d, d);
-                    if (len2 > te.length * te.length) p.x = anchor + d * (te.length / std::sqrt(len2));
-                }
-            }
-        });
+            cloth::projectTethers(particles.data(), {k0, k1, tetherSlots, n, tetherAnchor.data(),
+                                                     tetherLength.data()}, isa);
+        }, kMinParallelParticles);
     }
     if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b); }, 1024);
 }
