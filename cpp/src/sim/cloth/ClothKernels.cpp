@@ -40,14 +40,15 @@ inline void projectOne(Particle& A, Particle& B, float restLen, float alphaTilde
     }
     const float len = std::sqrt(len2);
     const float C = len - restLen;
-    float dl;
+    float scale; // dl / len
     if (Compliant) {
-        dl = (-C - alphaTilde * lambda) / (wsum + alphaTilde);
+        const float dl = (-C - alphaTilde * lambda) / (wsum + alphaTilde);
         lambda += dl;
+        scale = dl / len;
     } else {
-        dl = -C / wsum;
+        scale = -C / (wsum * len); // one division instead of two (dl = -C / wsum)
     }
-    const glm::vec3 corr = d * (dl / len);
+    const glm::vec3 corr = d * scale;
     A.x -= A.w * corr;
     B.x += B.w * corr;
 }
@@ -80,8 +81,8 @@ void scalarTethers(Particle* ps, const TetherJob& job, int k0) {
 #ifdef WEFT_CLOTH_X86
 
 // The SIMD kernels below are one template over a register type V: the operations of
-// projectOne, lane by lane. Lanes that projectOne would skip get dl = 0, which leaves their
-// positions unchanged.
+// projectOne, lane by lane. Lanes that projectOne would skip get a zero correction, which
+// leaves their positions unchanged.
 
 inline __m128 select(__m128 mask, __m128 a, __m128 b) {
     return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
@@ -230,15 +231,15 @@ WEFT_FLATTEN int simdRange(Particle* ps, const BatchJob& job) {
         }
         const V len = S::sqrt(len2);
         const V negC = S::xorv(S::sub(len, S::load(job.rest + q)), signBit);
-        V dl;
+        V s; // dl / len
         if (Compliant) {
             const V lam = S::load(job.lambda + q);
-            dl = S::andv(ok, S::div(S::sub(negC, S::mul(alpha, lam)), S::add(wsum, alpha)));
+            const V dl = S::andv(ok, S::div(S::sub(negC, S::mul(alpha, lam)), S::add(wsum, alpha)));
             S::store(job.lambda + q, S::sel(ok, S::add(lam, dl), lam));
+            s = S::div(dl, len);
         } else {
-            dl = S::andv(ok, S::div(negC, wsum));
+            s = S::andv(ok, S::div(negC, S::mul(wsum, len)));
         }
-        const V s = S::div(dl, len);
         const V cx = S::mul(dx, s), cy = S::mul(dy, s), cz = S::mul(dz, s);
         S::scatter(pa, S::sub(ax, S::mul(aw, cx)), S::sub(ay, S::mul(aw, cy)),
                    S::sub(az, S::mul(aw, cz)), aw);
