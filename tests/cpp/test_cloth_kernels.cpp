@@ -147,3 +147,45 @@ TEST(ClothKernels, SimdTethersEqualScalar) {
     }
     EXPECT_GT(pulled, 80);
 }
+
+TEST(ClothKernels, SimdIntegrationEqualsScalar) {
+    if (weft::cloth::bestIsa() == Isa::Scalar) GTEST_SKIP() << "no SIMD in this build";
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> pos(-1.0f, 1.0f), unit(0.0f, 1.0f);
+    const int n = 37;
+    for (bool windy : {false, true}) {
+        std::vector<Particle> x(static_cast<size_t>(n)), prev(static_cast<size_t>(n));
+        std::vector<uint8_t> pinned(static_cast<size_t>(n)), hole(static_cast<size_t>(n));
+        std::vector<glm::vec4> normals(static_cast<size_t>(n));
+        for (int k = 0; k < n; ++k) {
+            const float r = unit(rng);
+            pinned[size_t(k)] = r < 0.2f;
+            hole[size_t(k)] = r > 0.1f && r < 0.3f;
+            const bool grabbed = r > 0.9f;
+            const float w = pinned[size_t(k)] || hole[size_t(k)] || grabbed ? 0.0f : 1.0f + unit(rng);
+            x[size_t(k)] = {glm::vec3(pos(rng), pos(rng), pos(rng)), w};
+            prev[size_t(k)] = {glm::vec3(pos(rng), pos(rng), pos(rng)), 0.0f};
+            normals[size_t(k)] = glm::vec4(glm::normalize(glm::vec3(pos(rng), pos(rng), 1.0f)), 0.0f);
+        }
+        const weft::cloth::IntegrateJob job{2, n - 1, pinned.data(), hole.data(),
+                                            glm::vec3(0.1f, -9.81f, 0.2f), 1.0f / 60.0f, 0.99f,
+                                            windy ? normals.data() : nullptr,
+                                            glm::normalize(glm::vec3(1.0f, 0.2f, 0.5f)), 7.0f};
+        auto run = [&](Isa isa, std::vector<Particle>& px, std::vector<Particle>& pp) {
+            px = x;
+            pp = prev;
+            weft::cloth::integrate(px.data(), pp.data(), job, isa);
+        };
+        std::vector<Particle> sx, sp, vx, vp;
+        run(Isa::Scalar, sx, sp);
+        run(weft::cloth::bestIsa(), vx, vp);
+        for (size_t k = 0; k < size_t(n); ++k) {
+            ASSERT_EQ(vx[k].x, sx[k].x) << windy << " " << k;
+            ASSERT_EQ(vx[k].w, sx[k].w);
+            ASSERT_EQ(vp[k].x, sp[k].x) << windy << " " << k;
+        }
+        EXPECT_TRUE(anyMoved(sx, x));
+        EXPECT_EQ(sx[0].x, x[0].x); // outside [begin, end)
+        EXPECT_EQ(sx[size_t(n) - 1].x, x[size_t(n) - 1].x);
+    }
+}

@@ -32,7 +32,7 @@ struct Cloth::Impl {
     int n = 0;
 
     std::vector<cloth::Particle> particles; // current positions + inverse mass
-    std::vector<glm::vec3> previous;        // x_prev of Verlet
+    std::vector<cloth::Particle> previous;  // x_prev of Verlet (w unused)
     std::vector<glm::vec3> rest;            // initial positions
     std::vector<float> baseInvMass;         // inverse mass without pins/grabs
     std::vector<uint8_t> pinned, hole;

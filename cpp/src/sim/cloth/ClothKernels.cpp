@@ -78,15 +78,65 @@ void scalarTethers(Particle* ps, const TetherJob& job, int k0) {
     }
 }
 
-#ifdef WEFT_CLOTH_X86
+// The Verlet update of one free particle: stores x_prev and returns the new position, one
+// register of x, y, z, w at a time for the SIMD version.
+template <bool Windy>
+inline glm::vec3 acceleration(const IntegrateJob& job, int k) {
+    glm::vec3 a = job.gravity;
+    if (Windy) {
+        const glm::vec3 nn(job.normals[k]);
+        a += job.windStrength * glm::dot(nn, job.windDirection) * nn;
+    }
+    return a * (job.h * job.h);
+}
 
-// The SIMD kernels below are one template over a register type V: the operations of
-// projectOne, lane by lane. Lanes that projectOne would skip get a zero correction, which
-// leaves their positions unchanged.
+// Returns whether particle k is fixed (inverse mass 0), after doing what a fixed one needs.
+inline bool fixedParticle(const Particle& p, Particle& prev, const IntegrateJob& job, int k) {
+    if (p.w != 0.0f) return false;
+    if (job.pinned[k] && !job.hole[k]) prev.x = p.x; // pinned: no velocity; grabbed: keep it
+    return true;
+}
+
+template <bool Windy>
+void scalarIntegrate(Particle* ps, Particle* prev, const IntegrateJob& job) {
+    for (int k = job.begin; k < job.end; ++k) {
+        if (fixedParticle(ps[k], prev[k], job, k)) continue;
+        const glm::vec3 x = ps[k].x;
+        ps[k].x = x + job.damping * (x - prev[k].x) + acceleration<Windy>(job, k);
+        prev[k].x = x;
+    }
+}
+
+#ifdef WEFT_CLOTH_X86
 
 inline __m128 select(__m128 mask, __m128 a, __m128 b) {
     return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
 }
+
+template <bool Windy>
+void sseIntegrate(Particle* ps, Particle* prev, const IntegrateJob& job) {
+    const __m128 damping = _mm_set1_ps(job.damping);
+    const __m128 xyz = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
+    const glm::vec3 g = acceleration<false>(job, 0);
+    __m128 a = _mm_set_ps(0.0f, g.z, g.y, g.x);
+    for (int k = job.begin; k < job.end; ++k) {
+        if (fixedParticle(ps[k], prev[k], job, k)) continue;
+        if (Windy) {
+            const glm::vec3 ak = acceleration<true>(job, k);
+            a = _mm_set_ps(0.0f, ak.z, ak.y, ak.x);
+        }
+        float* xp = &ps[k].x.x;
+        float* pp = &prev[k].x.x;
+        const __m128 x = _mm_load_ps(xp);
+        const __m128 next = _mm_add_ps(_mm_add_ps(x, _mm_mul_ps(damping, _mm_sub_ps(x, _mm_load_ps(pp)))), a);
+        _mm_store_ps(xp, select(xyz, next, x)); // w stays
+        _mm_store_ps(pp, x);
+    }
+}
+
+// The SIMD kernels below are one template over a register type V: the operations of
+// projectOne, lane by lane. Lanes that projectOne would skip get a zero correction, which
+// leaves their positions unchanged.
 
 // Four records (x, y, z, w) <-> four registers of x, of y, of z, of w.
 inline void transpose(__m128& r0, __m128& r1, __m128& r2, __m128& r3) {
@@ -353,6 +403,17 @@ void projectTethers(Particle* particles, const TetherJob& job, Isa isa) {
     default:
         return scalarTethers(particles, job, job.begin);
     }
+}
+
+void integrate(Particle* particles, Particle* previous, const IntegrateJob& job, Isa isa) {
+    const bool windy = job.normals != nullptr;
+#ifdef WEFT_CLOTH_X86
+    if (isa != Isa::Scalar)
+        return windy ? sseIntegrate<true>(particles, previous, job)
+                     : sseIntegrate<false>(particles, previous, job);
+#endif
+    (void)isa;
+    windy ? scalarIntegrate<true>(particles, previous, job) : scalarIntegrate<false>(particles, previous, job);
 }
 
 } // namespace weft::cloth

@@ -5,7 +5,7 @@
 // a[q] + delta. The SIMD versions project 4 (SSE) or 8 (AVX) constraints at once with the same
 // float operations in the same order as the scalar one, so all give bit-identical positions
 // (the tests check this); the fastest the CPU supports is picked at run time. Tethers likewise,
-// 4 or 8 particles at a time.
+// 4 or 8 particles at a time, and the Verlet integration.
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -39,6 +39,20 @@ struct TetherJob {
     const float* length;
 };
 
+/// Position Verlet with damping (eq. 3.12) for particles [begin, end), acceleration gravity
+/// plus wind s (n . r) n (eq. 3.5) when normals are given. Particles of inverse mass 0 stay:
+/// pinned ones lose their velocity, grabbed ones (and holes) keep their previous position.
+struct IntegrateJob {
+    int begin, end;
+    const uint8_t* pinned;
+    const uint8_t* hole;
+    glm::vec3 gravity;
+    float h, damping;
+    const glm::vec4* normals; // nullptr: no wind
+    glm::vec3 windDirection;  // unit
+    float windStrength;
+};
+
 enum class Isa { Scalar, Sse, Avx };
 
 /// The widest instruction set this build and this CPU support.
@@ -47,5 +61,8 @@ Isa bestIsa();
 void projectBatch(Particle* particles, const BatchJob& job, Isa isa);
 /// Pulls each free particle back within its tethers' lengths, slot by slot.
 void projectTethers(Particle* particles, const TetherJob& job, Isa isa);
+/// x_prev holds the previous positions (its w is unused); SSE or AVX use one SSE register per
+/// particle record.
+void integrate(Particle* particles, Particle* previous, const IntegrateJob& job, Isa isa);
 
 } // namespace weft::cloth

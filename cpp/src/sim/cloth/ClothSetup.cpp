@@ -66,7 +66,7 @@ void Cloth::Impl::build() {
     previous.resize(size_t(n));
     for (int k = 0; k < n; ++k) {
         particles[size_t(k)] = {rest[size_t(k)], baseInvMass[size_t(k)]};
-        previous[size_t(k)] = rest[size_t(k)];
+        previous[size_t(k)].x = rest[size_t(k)];
     }
 
     const int k = p.bendDistance;

@@ -78,8 +78,8 @@ void Cloth::Impl::collide(int begin, int end) {
             if (s >= thickness) continue;
             p.x += (thickness - s) * n;
             if (c.friction > 0.0f) {
-                const glm::vec3 v = p.x - previous[size_t(k)];
-                previous[size_t(k)] += (v - n * glm::dot(v, n)) * c.friction;
+                const glm::vec3 v = p.x - previous[size_t(k)].x;
+                previous[size_t(k)].x += (v - n * glm::dot(v, n)) * c.friction;
             }
         }
     }
@@ -164,32 +164,22 @@ void Cloth::Impl::substep(float h, float damping) {
     const glm::vec3 g = params.gravity;
     if (hasPendingVelocity) {
         for (int k = 0; k < n; ++k)
-            previous[size_t(k)] = particles[size_t(k)].x - pendingVelocity[size_t(k)] * h + 0.5f * g * h * h;
+            previous[size_t(k)].x = particles[size_t(k)].x - pendingVelocity[size_t(k)] * h + 0.5f * g * h * h;
         hasPendingVelocity = false;
     }
     for (size_t q = 0; q < grabbed.size(); ++q) {
         const int k = grabbed[q];
-        previous[size_t(k)] = particles[size_t(k)].x;
+        previous[size_t(k)].x = particles[size_t(k)].x;
         particles[size_t(k)].x = grabTargets[q];
     }
+    const cloth::IntegrateJob job{0, 0, pinned.data(), hole.data(), g, h, damping,
+                                  windy ? normals.data() : nullptr, r, wind.strength};
     pool->parallelFor(n, [&](int k0, int k1) {
-        for (int k = k0; k < k1; ++k) {
-            Particle& p = particles[size_t(k)];
-            if (p.w == 0.0f) {
-                if (!pinned[size_t(k)] || hole[size_t(k)]) continue; // grabbed: keep its velocity
-                previous[size_t(k)] = p.x;
-                continue;
-            }
-            glm::vec3 a = g;
-            if (windy) {
-                const glm::vec3 nn(normals[size_t(k)]);
-                a += wind.strength * glm::dot(nn, r) * nn;
-            }
-            const glm::vec3 x = p.x;
-            p.x = x + damping * (x - previous[size_t(k)]) + a * (h * h);
-            previous[size_t(k)] = x;
-        }
-    }, 4096);
+        cloth::IntegrateJob part = job;
+        part.begin = k0;
+        part.end = k1;
+        cloth::integrate(particles.data(), previous.data(), part, isa);
+    }, kMinParallelParticles);
     const bool compliant = params.complianceStretch > 0 || params.complianceShear > 0 ||
                            params.complianceBend > 0;
     if (compliant) std::fill(lambda.begin(), lambda.end(), 0.0f);
@@ -211,7 +201,7 @@ void Cloth::Impl::afterStep(float dt) {
         int count = 0;
         for (int k = 0; k < n; ++k) {
             if (particles[size_t(k)].w == 0.0f) continue;
-            sum += glm::length(particles[size_t(k)].x - previous[size_t(k)]);
+            sum += glm::length(particles[size_t(k)].x - previous[size_t(k)].x);
             ++count;
         }
         const double h = double(dt) / params.substeps;
