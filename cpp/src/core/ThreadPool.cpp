@@ -12,6 +12,11 @@
 
 namespace weft {
 
+namespace {
+// About a microsecond of pause instructions: the usual gap between jobs of one cloth sweep.
+constexpr int kSpinsBeforeYield = 64;
+} // namespace
+
 ThreadPool::ThreadPool(int threads) {
     const int hw = int(std::max(1u, std::thread::hardware_concurrency()));
     mSize = std::max(1, threads > 0 ? threads : hw);
@@ -51,12 +56,15 @@ void ThreadPool::workerLoop(int index) {
     using Clock = std::chrono::steady_clock;
     unsigned seen = 0;
     for (;;) {
-        // Spin for up to ~0.2 ms, then sleep until the next job.
+        // Wait for up to ~0.2 ms, then sleep until the next job. After a short spin the wait
+        // yields the core: on a loaded machine this thread may share one with the caller,
+        // which then runs instead of waiting for the scheduler to preempt the spinning.
         const auto spinUntil = Clock::now() + std::chrono::microseconds(200);
         int spins = 0;
         while (mGeneration.load(std::memory_order_acquire) == seen && !mStop.load()) {
-            WEFT_PAUSE();
-            if ((++spins & 255) == 0 && Clock::now() > spinUntil) {
+            if (++spins < kSpinsBeforeYield) WEFT_PAUSE();
+            else std::this_thread::yield();
+            if ((spins & 63) == 0 && Clock::now() > spinUntil) {
                 std::unique_lock<std::mutex> lock(mMutex);
                 mSleeping.fetch_add(1);
                 mWake.wait(lock, [&] { return mStop.load() || mGeneration.load() != seen; });
@@ -85,11 +93,11 @@ void ThreadPool::parallelFor(int n, const std::function<void(int, int)>& body, i
         mWake.notify_all();
     }
     runChunks(0, generation);
-    // Only chunks a worker has started are left: wait for them, yielding the core now and
-    // then in case that worker shares it.
+    // Only chunks a worker has started are left: wait for them, yielding the core after a
+    // short spin in case that worker shares it.
     for (int spins = 1; mDone.load(std::memory_order_acquire) != mSize; ++spins) {
-        WEFT_PAUSE();
-        if ((spins & 1023) == 0) std::this_thread::yield();
+        if (spins < kSpinsBeforeYield) WEFT_PAUSE();
+        else std::this_thread::yield();
     }
 }
 
