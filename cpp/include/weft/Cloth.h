@@ -104,7 +104,8 @@ public:
     int constraintCount() const; // including broken ones
     /// Particle positions as x, y, z, inverse mass (16-byte records, index j * nx + i).
     const float* particleData() const;
-    /// Particle normals as x, y, z, 0 records, recomputed every step.
+    /// Particle normals as x, y, z, 0 records of the positions after the last step (computed
+    /// on the first read after a step; not safe to call concurrently with other calls).
     const float* normalData() const;
 
     /// Advances one fixed step of dt seconds (split into substeps). Sleeping cloth does nothing.

@@ -12,9 +12,16 @@
 
 namespace weft {
 
+namespace {
+// About a microsecond of pause instructions: the usual gap between jobs of one cloth sweep.
+constexpr int kSpinsBeforeYield = 64;
+} // namespace
+
 ThreadPool::ThreadPool(int threads) {
     const int hw = int(std::max(1u, std::thread::hardware_concurrency()));
     mSize = std::max(1, threads > 0 ? threads : hw);
+    mClaimed = std::make_unique<std::atomic<unsigned>[]>(size_t(mSize));
+    for (int c = 0; c < mSize; ++c) mClaimed[size_t(c)].store(0, std::memory_order_relaxed);
     for (int i = 1; i < mSize; ++i) mWorkers.emplace_back([this, i] { workerLoop(i); });
 }
 
@@ -27,29 +34,46 @@ ThreadPool::~ThreadPool() {
     for (auto& t : mWorkers) t.join();
 }
 
+void ThreadPool::runChunks(int first, unsigned generation) {
+    for (int k = 0; k < mSize; ++k) {
+        const int c = (first + k) % mSize;
+        // Every chunk of a job is claimed before the next job starts, so a free chunk of job g
+        // reads exactly g - 1; a thread still holding an older generation can claim nothing.
+        unsigned expected = generation - 1;
+        if (!mClaimed[size_t(c)].compare_exchange_strong(expected, generation,
+                                                         std::memory_order_acq_rel))
+            continue;
+        // Claimed: the caller waits for this chunk, so body and count are this job's.
+        const int count = mCount.load(std::memory_order_relaxed);
+        const int begin = int(int64_t(count) * c / mSize);
+        const int end = int(int64_t(count) * (c + 1) / mSize);
+        if (end > begin) (*mBody.load(std::memory_order_relaxed))(begin, end);
+        mDone.fetch_add(1, std::memory_order_acq_rel);
+    }
+}
+
 void ThreadPool::workerLoop(int index) {
     using Clock = std::chrono::steady_clock;
     unsigned seen = 0;
     for (;;) {
-        // Spin for up to ~0.2 ms, then sleep until the next job.
+        // Wait for up to ~0.2 ms, then sleep until the next job. After a short spin the wait
+        // yields the core: on a loaded machine this thread may share one with the caller,
+        // which then runs instead of waiting for the scheduler to preempt the spinning.
         const auto spinUntil = Clock::now() + std::chrono::microseconds(200);
         int spins = 0;
         while (mGeneration.load(std::memory_order_acquire) == seen && !mStop.load()) {
-            WEFT_PAUSE();
-            if ((++spins & 255) == 0 && Clock::now() > spinUntil) {
+            if (++spins < kSpinsBeforeYield) WEFT_PAUSE();
+            else std::this_thread::yield();
+            if ((spins & 63) == 0 && Clock::now() > spinUntil) {
                 std::unique_lock<std::mutex> lock(mMutex);
-                mWake.wait(lock, [&] {
-                    return mStop.load() || mGeneration.load(std::memory_order_acquire) != seen;
-                });
+                mSleeping.fetch_add(1);
+                mWake.wait(lock, [&] { return mStop.load() || mGeneration.load() != seen; });
+                mSleeping.fetch_sub(1);
             }
         }
         if (mStop.load()) return;
         seen = mGeneration.load(std::memory_order_acquire);
-        const int count = mCount;
-        const int begin = int(int64_t(count) * index / mSize);
-        const int end = int(int64_t(count) * (index + 1) / mSize);
-        if (end > begin) (*mBody)(begin, end);
-        mPending.fetch_sub(1, std::memory_order_acq_rel);
+        runChunks(index, seen);
     }
 }
 
@@ -59,16 +83,22 @@ void ThreadPool::parallelFor(int n, const std::function<void(int, int)>& body, i
         body(0, n);
         return;
     }
-    mBody = &body;
-    mCount = n;
-    mPending.store(int(mWorkers.size()), std::memory_order_relaxed);
-    {
-        std::lock_guard<std::mutex> lock(mMutex);
-        mGeneration.fetch_add(1, std::memory_order_acq_rel);
+    mBody.store(&body, std::memory_order_relaxed);
+    mCount.store(n, std::memory_order_relaxed);
+    mDone.store(0, std::memory_order_relaxed);
+    const unsigned generation = mGeneration.load(std::memory_order_relaxed) + 1;
+    mGeneration.store(generation); // publishes the job (sequentially consistent with mSleeping)
+    if (mSleeping.load() > 0) {
+        std::lock_guard<std::mutex> lock(mMutex); // a worker between its check and its wait
+        mWake.notify_all();
     }
-    mWake.notify_all();
-    body(0, int(int64_t(n) / mSize)); // chunk 0 on the calling thread
-    while (mPending.load(std::memory_order_acquire) != 0) WEFT_PAUSE();
+    runChunks(0, generation);
+    // Only chunks a worker has started are left: wait for them, yielding the core after a
+    // short spin in case that worker shares it.
+    for (int spins = 1; mDone.load(std::memory_order_acquire) != mSize; ++spins) {
+        if (spins < kSpinsBeforeYield) WEFT_PAUSE();
+        else std::this_thread::yield();
+    }
 }
 
 } // namespace weft

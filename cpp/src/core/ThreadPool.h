@@ -1,11 +1,15 @@
 #pragma once
-// A small fork-join pool: parallelFor splits [0, n) into one contiguous chunk per worker and
+// A small fork-join pool: parallelFor splits [0, n) into one contiguous chunk per thread and
 // returns when all are done. Chunks depend only on n and the thread count, so callers whose
-// iterations are independent get the same result for any number of threads. Workers spin for
-// a short while between jobs (a cloth step issues dozens of them) and then sleep.
+// iterations are independent get the same result for any number of threads. Each thread runs
+// its own chunk (cache locality across jobs), and any thread that is done takes chunks nobody
+// has started: on a loaded machine the caller does not wait for a worker that is not running.
+// Workers spin for a short while between jobs (a cloth step issues dozens of them) and then
+// sleep.
 #include <atomic>
 #include <condition_variable>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -14,7 +18,7 @@ namespace weft {
 
 class ThreadPool {
 public:
-    /// threads <= 0: hardware concurrency. The calling thread runs one chunk itself.
+    /// threads <= 0: hardware concurrency. The calling thread runs chunk 0 itself.
     explicit ThreadPool(int threads = 0);
     ~ThreadPool();
     ThreadPool(const ThreadPool&) = delete;
@@ -26,15 +30,20 @@ public:
 
 private:
     void workerLoop(int index);
+    /// Runs chunk `first` and then any other chunk of job `generation` still unclaimed.
+    void runChunks(int first, unsigned generation);
 
     int mSize;
     std::vector<std::thread> mWorkers;
     std::mutex mMutex;
     std::condition_variable mWake;
-    const std::function<void(int, int)>* mBody = nullptr;
-    int mCount = 0;
+    std::atomic<const std::function<void(int, int)>*> mBody{nullptr};
+    std::atomic<int> mCount{0};
     std::atomic<unsigned> mGeneration{0};
-    std::atomic<int> mPending{0};
+    // Generation that last claimed each chunk: a chunk of job g is free while it reads g - 1.
+    std::unique_ptr<std::atomic<unsigned>[]> mClaimed;
+    std::atomic<int> mDone{0};
+    std::atomic<int> mSleeping{0};
     std::atomic<bool> mStop{false};
 };
 

@@ -60,7 +60,7 @@ void Cloth::setParams(const ClothParams& p) {
 int Cloth::particleCount() const { return mImpl->n; }
 int Cloth::constraintCount() const { return int(mImpl->constraints.size()); }
 const float* Cloth::particleData() const { return &mImpl->particles[0].x.x; }
-const float* Cloth::normalData() const { return &mImpl->normals[0].x; }
+const float* Cloth::normalData() const { return &mImpl->currentNormals()[0].x; }
 
 void Cloth::step(float dt) {
     if (!(std::isfinite(dt) && dt > 0.0f && dt <= 1.0f))
@@ -71,7 +71,7 @@ void Cloth::step(float dt) {
     const float damping = std::pow(m.params.damping, h * 60.0f);
     for (int s = 0; s < m.params.substeps; ++s) m.substep(h, damping);
     m.lastH = h;
-    m.computeNormals();
+    m.normalsStale = true;
     m.afterStep(dt);
     ++m.steps;
     ++m.meshVersion;
@@ -108,9 +108,9 @@ void Cloth::setPositions(const std::vector<glm::vec3>& positions, bool keepVeloc
     checkPoints(positions, size_t(m.n), "positions");
     ++m.meshVersion;
     for (int k = 0; k < m.n; ++k) {
-        const glm::vec3 v = m.particles[size_t(k)].x - m.previous[size_t(k)];
+        const glm::vec3 v = m.particles[size_t(k)].x - m.previous[size_t(k)].x;
         m.particles[size_t(k)].x = positions[size_t(k)];
-        m.previous[size_t(k)] = keepVelocity ? positions[size_t(k)] - v : positions[size_t(k)];
+        m.previous[size_t(k)].x = keepVelocity ? positions[size_t(k)] - v : positions[size_t(k)];
     }
     m.hasPendingVelocity = false;
     wake();
@@ -129,7 +129,7 @@ std::vector<glm::vec3> Cloth::velocities() const {
     if (m.hasPendingVelocity) return m.pendingVelocity;
     std::vector<glm::vec3> v(size_t(m.n));
     for (int k = 0; k < m.n; ++k)
-        v[size_t(k)] = (m.particles[size_t(k)].x - m.previous[size_t(k)]) / m.lastH;
+        v[size_t(k)] = (m.particles[size_t(k)].x - m.previous[size_t(k)].x) / m.lastH;
     return v;
 }
 
@@ -137,7 +137,7 @@ void Cloth::reset() {
     Impl& m = *mImpl;
     for (int k = 0; k < m.n; ++k) {
         m.particles[size_t(k)].x = m.rest[size_t(k)];
-        m.previous[size_t(k)] = m.rest[size_t(k)];
+        m.previous[size_t(k)].x = m.rest[size_t(k)];
     }
     std::fill(m.active.begin(), m.active.end(), uint8_t(1));
     m.grabbed.clear();
@@ -299,7 +299,7 @@ double Cloth::kineticEnergy() const {
     const double mass = double(m.params.mass) / m.n;
     for (int k = 0; k < m.n; ++k) {
         if (m.hole[size_t(k)]) continue;
-        const glm::vec3 v = (m.particles[size_t(k)].x - m.previous[size_t(k)]) / m.lastH;
+        const glm::vec3 v = (m.particles[size_t(k)].x - m.previous[size_t(k)].x) / m.lastH;
         e += 0.5 * mass * double(glm::dot(v, v));
     }
     return e;

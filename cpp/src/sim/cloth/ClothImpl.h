@@ -6,14 +6,9 @@
 #include <weft/Cloth.h>
 
 #include "core/ThreadPool.h"
+#include "sim/cloth/ClothKernels.h"
 
 namespace weft::cloth {
-
-/// A particle record: position and inverse mass, 16 bytes (one SIMD register).
-struct alignas(16) Particle {
-    glm::vec3 x;
-    float w;
-};
 
 struct Constraint {
     int a, b;
@@ -21,22 +16,11 @@ struct Constraint {
 };
 
 /// Constraints that share no particle: projected in any order, or in parallel. They are all of
-/// one grid offset (dx >= 0, dy) and one colour, stored row by row: row `rows[r]` holds
-/// constraints [begin + r * perRow, begin + (r + 1) * perRow), so the solver walks the grid
-/// instead of loading particle indices.
+/// one grid offset (dx >= 0, dy) and one colour, so particle b is particle a + dy * nx + dx.
 struct Batch {
     ConstraintFamily family;
     int begin, end; // range in the constraint arrays
-    int dx, dy;     // particle b = a + (dx, dy)
-    int parity;     // colour: (i / dx) % 2 when dx > 0 (rows then hold every valid j)
-    int perRow;
-    std::vector<int> rows;
-};
-
-/// Long-range attachment: |x_particle - x_anchor| <= length (the rest distance), one-sided.
-struct Tether {
-    int anchor;
-    float length;
+    int dx, dy;
 };
 
 } // namespace weft::cloth
@@ -48,21 +32,28 @@ struct Cloth::Impl {
     int n = 0;
 
     std::vector<cloth::Particle> particles; // current positions + inverse mass
-    std::vector<glm::vec3> previous;        // x_prev of Verlet
+    std::vector<cloth::Particle> previous;  // x_prev of Verlet (w unused)
     std::vector<glm::vec3> rest;            // initial positions
     std::vector<float> baseInvMass;         // inverse mass without pins/grabs
     std::vector<uint8_t> pinned, hole;
-    std::vector<glm::vec4> normals;
+    // Normals are needed by wind (computed at the start of each substep) and by readers
+    // (normalData, mesh); after a step they are computed on first read, not every step.
+    mutable std::vector<glm::vec4> normals;
+    mutable bool normalsStale = false;
     std::vector<glm::vec3> pendingVelocity;
     bool hasPendingVelocity = false;
 
     std::vector<cloth::Constraint> constraints; // ordered by batch
+    std::vector<int> endA;                      // constraints[c].a, contiguous
     std::vector<float> restLength;              // constraints[c].rest, contiguous
     std::vector<uint8_t> family, active;
     std::vector<float> lambda;
     std::vector<cloth::Batch> batches;
-    std::vector<cloth::Tether> tethers;   // grouped by particle
-    std::vector<int> tetherStart;         // particle k owns tethers [start[k], start[k+1])
+    // Long-range attachments |x_k - x_anchor| <= length (the rest distance), one-sided, stored
+    // by slot: slot s of particle k at [s * n + k] (length +inf where k has fewer tethers).
+    int tetherSlots = 0;
+    std::vector<int> tetherAnchor;
+    std::vector<float> tetherLength;
 
     std::vector<int> grabbed;
     std::vector<glm::vec3> grabTargets;
@@ -76,6 +67,7 @@ struct Cloth::Impl {
     bool asleep = false;
     float lastH = 1.0f / 60.0f;
     std::unique_ptr<ThreadPool> pool;
+    cloth::Isa isa = cloth::bestIsa();
 
     void build();                    // grid, constraints, batches (ClothSetup.cpp)
     void rebuildTethers();           // (ClothSetup.cpp)
@@ -85,7 +77,11 @@ struct Cloth::Impl {
     void projectBatch(const cloth::Batch& batch, float alphaTilde);
     void collide(int begin, int end);
     void selfCollide();
-    void computeNormals();
+    void computeNormals() const;
+    const std::vector<glm::vec4>& currentNormals() const {
+        if (normalsStale) computeNormals();
+        return normals;
+    }
     void afterStep(float dt);        // tearing, sleeping
 };
 

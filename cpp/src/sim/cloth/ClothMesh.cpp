@@ -8,6 +8,7 @@ namespace weft {
 
 ClothMesh Cloth::mesh() const {
     const Impl& m = *mImpl;
+    const std::vector<glm::vec4>& normals = m.currentNormals();
     const int nx = m.params.nx, ny = m.params.ny;
     ClothMesh out;
     out.positions.resize(size_t(m.n));
@@ -18,7 +19,7 @@ ClothMesh Cloth::mesh() const {
     for (int j = 0; j < ny; ++j) {
         for (int i = 0; i < nx; ++i) {
             const int k = j * nx + i;
-            const glm::vec3 nrm(m.normals[size_t(k)]);
+            const glm::vec3 nrm(normals[size_t(k)]);
             out.positions[size_t(k)] = at(i, j);
             out.normals[size_t(k)] = nrm;
             out.uvs[size_t(k)] = glm::vec2(nx > 1 ? float(i) / float(nx - 1) : 0.0f,

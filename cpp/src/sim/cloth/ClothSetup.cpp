@@ -66,7 +66,7 @@ void Cloth::Impl::build() {
     previous.resize(size_t(n));
     for (int k = 0; k < n; ++k) {
         particles[size_t(k)] = {rest[size_t(k)], baseInvMass[size_t(k)]};
-        previous[size_t(k)] = rest[size_t(k)];
+        previous[size_t(k)].x = rest[size_t(k)];
     }
 
     const int k = p.bendDistance;
@@ -82,9 +82,8 @@ void Cloth::Impl::build() {
     batches.clear();
     for (const Offset& o : offsets) {
         for (int parity = 0; parity < 2; ++parity) {
-            cloth::Batch batch{o.family, int(constraints.size()), 0, o.dx, o.dy, parity, 0, {}};
-            for (int j = 0; j < p.ny; ++j) {
-                const int rowBegin = int(constraints.size());
+            cloth::Batch batch{o.family, int(constraints.size()), 0, o.dx, o.dy};
+            for (int j = 0; j < p.ny; ++j)
                 for (int i = 0; i < p.nx; ++i) {
                     const int i2 = i + o.dx, j2 = j + o.dy;
                     if (i2 < 0 || i2 >= p.nx || j2 < 0 || j2 >= p.ny) continue;
@@ -94,17 +93,16 @@ void Cloth::Impl::build() {
                     constraints.push_back({a, b, glm::length(rest[size_t(b)] - rest[size_t(a)])});
                     family.push_back(uint8_t(o.family));
                 }
-                const int count = int(constraints.size()) - rowBegin;
-                if (count == 0) continue;
-                batch.perRow = count; // equal for every row of a batch
-                batch.rows.push_back(j);
-            }
             batch.end = int(constraints.size());
             if (batch.end > batch.begin) batches.push_back(std::move(batch));
         }
     }
+    endA.resize(constraints.size());
     restLength.resize(constraints.size());
-    for (size_t c = 0; c < constraints.size(); ++c) restLength[c] = constraints[c].rest;
+    for (size_t c = 0; c < constraints.size(); ++c) {
+        endA[c] = constraints[c].a;
+        restLength[c] = constraints[c].rest;
+    }
     active.assign(constraints.size(), 1);
     lambda.assign(constraints.size(), 0.0f);
 }
@@ -127,23 +125,30 @@ void Cloth::Impl::rebuildTethers() {
     // the tethers only remove stretch the constraints have not resolved yet. Tying to one
     // anchor only would pull the cloth apart where the nearest anchor changes.
     constexpr size_t kMaxAnchors = 4;
-    tethers.clear();
-    tetherStart.assign(size_t(n) + 1, 0);
+    tetherSlots = 0;
+    tetherAnchor.clear();
+    tetherLength.clear();
     if (!params.tethers) return;
     std::vector<int> anchors;
     for (int k = 0; k < n; ++k)
         if (!hole[size_t(k)] && particles[size_t(k)].w == 0.0f) anchors.push_back(k);
+    if (anchors.empty()) return;
+    tetherSlots = int(std::min(kMaxAnchors, anchors.size()));
+    tetherAnchor.resize(size_t(tetherSlots) * size_t(n));
+    tetherLength.assign(size_t(tetherSlots) * size_t(n), std::numeric_limits<float>::infinity());
+    for (int k = 0; k < n; ++k)
+        for (int s = 0; s < tetherSlots; ++s) tetherAnchor[size_t(s) * size_t(n) + size_t(k)] = k;
     std::vector<std::pair<float, int>> nearest;
     for (int k = 0; k < n; ++k) {
-        tetherStart[size_t(k)] = int(tethers.size());
-        if (particles[size_t(k)].w == 0.0f || anchors.empty()) continue;
+        if (particles[size_t(k)].w == 0.0f) continue;
         nearest.clear();
         for (int a : anchors) nearest.push_back({glm::length(rest[size_t(k)] - rest[size_t(a)]), a});
-        const size_t keep = std::min(kMaxAnchors, nearest.size());
-        std::partial_sort(nearest.begin(), nearest.begin() + long(keep), nearest.end());
-        for (size_t t = 0; t < keep; ++t) tethers.push_back({nearest[t].second, nearest[t].first});
+        std::partial_sort(nearest.begin(), nearest.begin() + tetherSlots, nearest.end());
+        for (int s = 0; s < tetherSlots; ++s) {
+            tetherAnchor[size_t(s) * size_t(n) + size_t(k)] = nearest[size_t(s)].second;
+            tetherLength[size_t(s) * size_t(n) + size_t(k)] = nearest[size_t(s)].first;
+        }
     }
-    tetherStart[size_t(n)] = int(tethers.size());
 }
 
 } // namespace weft

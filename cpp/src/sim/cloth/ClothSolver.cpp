@@ -13,6 +13,11 @@ namespace weft {
 using cloth::Particle;
 
 namespace {
+// Below this many constraints a batch is projected on the calling thread: a fork-join and the
+// cache lines that move between cores cost more than the work.
+constexpr int kMinParallelConstraints = 4096;
+constexpr int kMinParallelParticles = 4096;
+
 float compliance(const ClothParams& p, ConstraintFamily f) {
     switch (f) {
     case ConstraintFamily::Stretch:
@@ -26,7 +31,7 @@ float compliance(const ClothParams& p, ConstraintFamily f) {
 }
 } // namespace
 
-void Cloth::Impl::computeNormals() {
+void Cloth::Impl::computeNormals() const {
     const int nx = params.nx, ny = params.ny;
     pool->parallelFor(ny, [&](int j0, int j1) {
         for (int j = j0; j < j1; ++j) {
@@ -42,68 +47,24 @@ void Cloth::Impl::computeNormals() {
             }
         }
     }, 64);
+    normalsStale = false;
 }
-
-namespace {
-
-// Eq. 3.3/3.4 (XPBD with alphaTilde > 0) for the constraint between particles A and B.
-inline void projectDistance(Particle& A, Particle& B, float restLen, float alphaTilde,
-                            float& lambda, const glm::vec3& restOffset) {
-    const float wsum = A.w + B.w;
-    if (wsum <= 0.0f) return;
-    glm::vec3 d = B.x - A.x;
-    float len2 = glm::dot(d, d);
-    if (len2 < 1e-24f) {
-        // Coincident particles have no direction: separate them along their rest offset, so
-        // a collapsed cloth unfolds instead of staying stuck.
-        d = restOffset * 1e-6f;
-        len2 = glm::dot(d, d);
-    }
-    const float len = std::sqrt(len2);
-    const float C = len - restLen;
-    float dl;
-    if (alphaTilde == 0.0f) {
-        dl = -C / wsum;
-    } else {
-        dl = (-C - alphaTilde * lambda) / (wsum + alphaTilde);
-        lambda += dl;
-    }
-    const glm::vec3 corr = d * (dl / len);
-    A.x -= A.w * corr;
-    B.x += B.w * corr;
-}
-
-} // namespace
 
 void Cloth::Impl::projectBatch(const cloth::Batch& batch, float alphaTilde) {
-    const int nx = params.nx;
-    const int delta = batch.dy * nx + batch.dx;
-    const int dx = batch.dx;
-    const uint8_t* on = active.data();
-    const float* restLen = restLength.data();
-    Particle* ps = particles.data();
-    float* lam = lambda.data();
     const cloth::Constraint& first = constraints[size_t(batch.begin)];
-    const glm::vec3 restOffset = rest[size_t(first.b)] - rest[size_t(first.a)]; // same in a batch
-    // Walks the batch's rows of the grid; the constraint index c advances in storage order.
-    auto row = [&](int r) {
-        const int j = batch.rows[size_t(r)];
-        int c = batch.begin + r * batch.perRow;
-        Particle* base = ps + size_t(j) * size_t(nx);
-        if (dx == 0) {
-            for (int i = 0; i < nx; ++i, ++c)
-                if (on[c]) projectDistance(base[i], base[i + delta], restLen[c], alphaTilde, lam[c], restOffset);
-            return;
-        }
-        const int iEnd = nx - dx;
-        for (int i0 = batch.parity * dx; i0 < iEnd; i0 += 2 * dx)
-            for (int i = i0; i < std::min(i0 + dx, iEnd); ++i, ++c)
-                if (on[c]) projectDistance(base[i], base[i + delta], restLen[c], alphaTilde, lam[c], restOffset);
-    };
-    const int rows = int(batch.rows.size());
-    pool->parallelFor(rows, [&](int r0, int r1) {
-        for (int r = r0; r < r1; ++r) row(r);
-    }, std::max(2, 2048 / std::max(1, batch.perRow)));
+    const size_t c0 = size_t(batch.begin);
+    const cloth::BatchJob job{endA.data() + c0, batch.end - batch.begin, batch.dy * params.nx + batch.dx,
+                              restLength.data() + c0, active.data() + c0, lambda.data() + c0,
+                              alphaTilde, rest[size_t(first.b)] - rest[size_t(first.a)]};
+    pool->parallelFor(job.count, [&](int q0, int q1) {
+        cloth::BatchJob part = job;
+        part.a += q0;
+        part.rest += q0;
+        part.on += q0;
+        part.lambda += q0;
+        part.count = q1 - q0;
+        cloth::projectBatch(particles.data(), part, isa);
+    }, kMinParallelConstraints);
 }
 
 void Cloth::Impl::collide(int begin, int end) {
@@ -117,8 +78,8 @@ void Cloth::Impl::collide(int begin, int end) {
             if (s >= thickness) continue;
             p.x += (thickness - s) * n;
             if (c.friction > 0.0f) {
-                const glm::vec3 v = p.x - previous[size_t(k)];
-                previous[size_t(k)] += (v - n * glm::dot(v, n)) * c.friction;
+                const glm::vec3 v = p.x - previous[size_t(k)].x;
+                previous[size_t(k)].x += (v - n * glm::dot(v, n)) * c.friction;
             }
         }
     }
@@ -127,20 +88,11 @@ void Cloth::Impl::collide(int begin, int end) {
 void Cloth::Impl::relax(float h) {
     const float h2 = h * h;
     for (const cloth::Batch& b : batches) projectBatch(b, compliance(params, b.family) / h2);
-    if (!tethers.empty()) {
+    if (tetherSlots > 0) {
         pool->parallelFor(n, [&](int k0, int k1) {
-            for (int k = k0; k < k1; ++k) {
-                Particle& p = particles[size_t(k)];
-                if (p.w == 0.0f) continue;
-                for (int t = tetherStart[size_t(k)]; t < tetherStart[size_t(k) + 1]; ++t) {
-                    const cloth::Tether& te = tethers[size_t(t)];
-                    const glm::vec3 anchor = particles[size_t(te.anchor)].x;
-                    const glm::vec3 d = p.x - anchor;
-                    const float len2 = glm::dot(d, d);
-                    if (len2 > te.length * te.length) p.x = anchor + d * (te.length / std::sqrt(len2));
-                }
-            }
-        });
+            cloth::projectTethers(particles.data(), {k0, k1, tetherSlots, n, tetherAnchor.data(),
+                                                     tetherLength.data()}, isa);
+        }, kMinParallelParticles);
     }
     if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b); }, 1024);
 }
@@ -212,32 +164,22 @@ void Cloth::Impl::substep(float h, float damping) {
     const glm::vec3 g = params.gravity;
     if (hasPendingVelocity) {
         for (int k = 0; k < n; ++k)
-            previous[size_t(k)] = particles[size_t(k)].x - pendingVelocity[size_t(k)] * h + 0.5f * g * h * h;
+            previous[size_t(k)].x = particles[size_t(k)].x - pendingVelocity[size_t(k)] * h + 0.5f * g * h * h;
         hasPendingVelocity = false;
     }
     for (size_t q = 0; q < grabbed.size(); ++q) {
         const int k = grabbed[q];
-        previous[size_t(k)] = particles[size_t(k)].x;
+        previous[size_t(k)].x = particles[size_t(k)].x;
         particles[size_t(k)].x = grabTargets[q];
     }
+    const cloth::IntegrateJob job{0, 0, pinned.data(), hole.data(), g, h, damping,
+                                  windy ? normals.data() : nullptr, r, wind.strength};
     pool->parallelFor(n, [&](int k0, int k1) {
-        for (int k = k0; k < k1; ++k) {
-            Particle& p = particles[size_t(k)];
-            if (p.w == 0.0f) {
-                if (!pinned[size_t(k)] || hole[size_t(k)]) continue; // grabbed: keep its velocity
-                previous[size_t(k)] = p.x;
-                continue;
-            }
-            glm::vec3 a = g;
-            if (windy) {
-                const glm::vec3 nn(normals[size_t(k)]);
-                a += wind.strength * glm::dot(nn, r) * nn;
-            }
-            const glm::vec3 x = p.x;
-            p.x = x + damping * (x - previous[size_t(k)]) + a * (h * h);
-            previous[size_t(k)] = x;
-        }
-    }, 4096);
+        cloth::IntegrateJob part = job;
+        part.begin = k0;
+        part.end = k1;
+        cloth::integrate(particles.data(), previous.data(), part, isa);
+    }, kMinParallelParticles);
     const bool compliant = params.complianceStretch > 0 || params.complianceShear > 0 ||
                            params.complianceBend > 0;
     if (compliant) std::fill(lambda.begin(), lambda.end(), 0.0f);
@@ -259,7 +201,7 @@ void Cloth::Impl::afterStep(float dt) {
         int count = 0;
         for (int k = 0; k < n; ++k) {
             if (particles[size_t(k)].w == 0.0f) continue;
-            sum += glm::length(particles[size_t(k)].x - previous[size_t(k)]);
+            sum += glm::length(particles[size_t(k)].x - previous[size_t(k)].x);
             ++count;
         }
         const double h = double(dt) / params.substeps;

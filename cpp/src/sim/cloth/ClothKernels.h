@@ -1,0 +1,68 @@
+#pragma once
+// The inner loops of the cloth solver. The distance-constraint projection (eq. 3.3/3.4, XPBD
+// when alphaTilde > 0) over constraints
+// that share no particle (one batch, or part of one): constraint q joins particles a[q] and
+// a[q] + delta. The SIMD versions project 4 (SSE) or 8 (AVX) constraints at once with the same
+// float operations in the same order as the scalar one, so all give bit-identical positions
+// (the tests check this); the fastest the CPU supports is picked at run time. Tethers likewise,
+// 4 or 8 particles at a time, and the Verlet integration.
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace weft::cloth {
+
+/// A particle record: position and inverse mass, 16 bytes (one SIMD register).
+struct alignas(16) Particle {
+    glm::vec3 x;
+    float w;
+};
+
+/// What a projection needs besides the particles.
+struct BatchJob {
+    const int* a;         // particle a of each constraint
+    int count;            // constraints
+    int delta;            // particle b = particle a + delta
+    const float* rest;    // rest lengths
+    const uint8_t* on;    // 0 = broken or touching a hole: skipped
+    float* lambda;        // XPBD multipliers (read and written only when alphaTilde > 0)
+    float alphaTilde;     // compliance / h^2
+    glm::vec3 restOffset; // rest offset b - a (the same in a batch): direction for coincident ends
+};
+
+/// Tethers of particles [begin, end): slot s of particle k is anchor[s * n + k] at most
+/// length[s * n + k] away (+inf: no tether in that slot). Anchors have inverse mass 0.
+struct TetherJob {
+    int begin, end;
+    int slots, n;
+    const int* anchor;
+    const float* length;
+};
+
+/// Position Verlet with damping (eq. 3.12) for particles [begin, end), acceleration gravity
+/// plus wind s (n . r) n (eq. 3.5) when normals are given. Particles of inverse mass 0 stay:
+/// pinned ones lose their velocity, grabbed ones (and holes) keep their previous position.
+struct IntegrateJob {
+    int begin, end;
+    const uint8_t* pinned;
+    const uint8_t* hole;
+    glm::vec3 gravity;
+    float h, damping;
+    const glm::vec4* normals; // nullptr: no wind
+    glm::vec3 windDirection;  // unit
+    float windStrength;
+};
+
+enum class Isa { Scalar, Sse, Avx };
+
+/// The widest instruction set this build and this CPU support.
+Isa bestIsa();
+/// Projects the job's constraints with the given instruction set (at most bestIsa()).
+void projectBatch(Particle* particles, const BatchJob& job, Isa isa);
+/// Pulls each free particle back within its tethers' lengths, slot by slot.
+void projectTethers(Particle* particles, const TetherJob& job, Isa isa);
+/// x_prev holds the previous positions (its w is unused); SSE or AVX use one SSE register per
+/// particle record.
+void integrate(Particle* particles, Particle* previous, const IntegrateJob& job, Isa isa);
+
+} // namespace weft::cloth
