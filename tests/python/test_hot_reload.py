@@ -75,3 +75,20 @@ def test_bad_directory_is_rejected() -> None:
     with pytest.raises(ValueError, match="does not exist"):
         weft.set_shader_directory("/no/such/dir")
     assert weft.shader_directory() == ""
+
+
+def test_shader_needing_a_new_descriptor_is_refused(shader_dir: Path, make_renderer) -> None:
+    """A reloaded shader may not read a binding its pipeline layout lacks (that would be
+    undefined behaviour): it is reported and the built-in pipeline keeps rendering."""
+    scene, camera = weft.default_scene()
+    r = make_renderer(48, 36)
+    good = r.render(scene, camera)
+    edit(shader_dir / "render" / "output.frag",
+         "layout(set = 0, binding = 0) uniform sampler2D hdr;",
+         "layout(set = 0, binding = 0) uniform sampler2D hdr;\n"
+         "layout(set = 0, binding = 7) uniform sampler2D extra;")
+    edit(shader_dir / "render" / "output.frag", "vec3 c = texelFetch(hdr, ivec2(gl_FragCoord.xy), 0).rgb;",
+         "vec3 c = texelFetch(hdr, ivec2(gl_FragCoord.xy), 0).rgb + texture(extra, vec2(0.5)).rgb;")
+    np.testing.assert_array_equal(r.render(scene, camera), good)
+    errors = weft.shader_errors()
+    assert len(errors) == 1 and "binding 7" in errors[0], errors

@@ -101,6 +101,43 @@ std::map<std::string, Stamp> scan(const fs::path& root) {
 }
 
 #if WEFT_HAVE_SHADERC
+// The (set, binding) pairs a SPIR-V module's resources are decorated with (OpDecorate, opcode
+// 71, with DescriptorSet = 34 and Binding = 33).
+std::set<std::pair<uint32_t, uint32_t>> descriptorBindings(const uint32_t* words, size_t count) {
+    std::map<uint32_t, std::pair<uint32_t, uint32_t>> byId; // id -> (set, binding)
+    std::set<uint32_t> hasBinding;
+    for (size_t i = 5; i < count;) {
+        const uint32_t length = words[i] >> 16, opcode = words[i] & 0xffffu;
+        if (length == 0 || i + length > count) break;
+        if (opcode == 71 && length >= 4) {
+            const uint32_t id = words[i + 1], decoration = words[i + 2], value = words[i + 3];
+            if (decoration == 34) byId[id].first = value;
+            if (decoration == 33) {
+                byId[id].second = value;
+                hasBinding.insert(id);
+            }
+        }
+        i += length;
+    }
+    std::set<std::pair<uint32_t, uint32_t>> out;
+    for (uint32_t id : hasBinding) out.insert(byId[id]);
+    return out;
+}
+
+// A reloaded shader may only use descriptors its built-in version uses: the pipeline layouts
+// were made for those, and a pipeline whose shader reads a binding its layout lacks is
+// undefined behaviour (lavapipe crashes). Returns "" when it fits, else why not.
+std::string layoutMismatch(const std::string& name, const std::vector<uint32_t>& words) {
+    const vk::EmbeddedShader& built = vk::embeddedShader(name.c_str());
+    const auto allowed = descriptorBindings(built.words, built.wordCount);
+    for (const auto& [set, binding] : descriptorBindings(words.data(), words.size()))
+        if (!allowed.count({set, binding}))
+            return "uses descriptor set " + std::to_string(set) + " binding " +
+                   std::to_string(binding) + ", which the built-in version does not; new "
+                   "descriptors need a rebuild of weft";
+    return "";
+}
+
 struct IncludeContext {
     fs::path root;
 };
@@ -209,10 +246,17 @@ int pollShaderChanges() {
         if (!affected) continue;
         std::vector<uint32_t> words;
         std::string error;
-        if (compile(s.root, name, words, error)) {
+        bool known = true;
+        try {
+            vk::embeddedShader(name.c_str());
+        } catch (const Error&) {
+            known = false; // not a shader of the library: nothing uses it
+        }
+        if (known && compile(s.root, name, words, error) &&
+            (error = layoutMismatch(name, words)).empty()) {
             s.spirv[name] = std::move(words);
             ++compiled;
-        } else {
+        } else if (known) {
             std::cerr << "weft: shader " << name << " failed to compile; the previous version "
                       << "stays in use:\n" << error << std::flush;
             s.errors.push_back(name + ": " + error);
