@@ -184,7 +184,7 @@ PYBIND11_MODULE(_core, m) {
     m.def("run_demo", [](int width, int height, int frames, bool headless, bool vsync,
                          const std::string& out, const std::string& screenshot,
                          const std::string& statsJson, const std::string& script,
-                         const std::string& shaderDir) {
+                         const std::string& shaderDir, const std::string& environment) {
         weft::DemoOptions o;
         o.width = width;
         o.height = height;
@@ -196,12 +196,13 @@ PYBIND11_MODULE(_core, m) {
         o.statsJson = statsJson;
         o.script = script;
         o.shaderDir = shaderDir;
+        o.environment = environment;
         py::gil_scoped_release release;
         return weft::runDemo(o);
     }, py::arg("width") = 1280, py::arg("height") = 720, py::arg("frames") = 0,
        py::arg("headless") = false, py::arg("vsync") = true, py::arg("out") = "out/demo.png",
        py::arg("screenshot") = "", py::arg("stats_json") = "", py::arg("script") = "",
-       py::arg("shader_dir") = "",
+       py::arg("shader_dir") = "", py::arg("environment") = "",
        "Runs the demo (the seed's cloth environment): a window when a display exists, else\n"
        "headless to `out` (see `weft-demo --help` for frames, scripts and output folders).");
 

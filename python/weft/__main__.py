@@ -79,6 +79,10 @@ def build_parser() -> argparse.ArgumentParser:
                       help="shader hot reload: watch DIR (laid out like glsl/); edited shaders "
                            "are recompiled and used from the next frame (default "
                            "$WEFT_SHADER_DIR)")
+    demo.add_argument("--environment", default="", metavar="FILE",
+                      help="light the scene with a captured environment instead of the sun and "
+                           "moon: an equirectangular (2:1) or sphere-map (square) .hdr/.exr/.png "
+                           "(SH9 diffuse, shadows from a dome of 16 lights)")
     demo.add_argument("--script", default="", metavar="FILE",
                       help="scripted input: lines '<frame> key <K>', '<frame> grab <x> <y>', "
                            "'<frame> drag <x> <y>', '<frame> release'")
@@ -118,7 +122,8 @@ def _cmd_demo(args: argparse.Namespace) -> int:
     return int(weft.run_demo(width=args.width, height=args.height, frames=args.frames,
                              headless=args.headless, vsync=args.vsync, out=args.out,
                              screenshot=args.screenshot, stats_json=args.stats,
-                             script=args.script, shader_dir=args.shader_dir))
+                             script=args.script, shader_dir=args.shader_dir,
+                             environment=args.environment))
 
 
 def format_table(rows: List[Dict[str, Any]], columns: Sequence[str]) -> str:

@@ -211,3 +211,33 @@ def test_bad_script_is_reported(tmp_path: Path, text: str, message: str) -> None
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=DEMO_TIMEOUT_S)
     assert proc.returncode != 0
     assert message in proc.stderr and "bad.txt" in proc.stderr, proc.stderr
+
+
+def test_demo_lit_by_a_captured_environment(tmp_path: Path) -> None:
+    """--environment lights the demo scene from an HDR panorama: the sun and moon go dark and
+    a dome of shadow lights (refreshed four per frame) casts the shadows."""
+    h, w = 32, 64
+    theta = (np.arange(h)[:, None] + 0.5) / h * np.pi * np.ones((1, w))
+    sky = np.stack([0.3 + 0.4 * np.cos(theta).clip(0), 0.45 + 0.4 * np.cos(theta).clip(0),
+                    0.9 * np.ones_like(theta)], -1)
+    sky[theta > np.pi / 2] = [0.25, 0.22, 0.18]
+    sky[3:5, 20:22] = 300.0  # a sun
+    env = tmp_path / "sky.hdr"
+    weft.save_hdr(str(env), sky.astype(np.float32))
+    out = tmp_path / "frames"
+    run_demo_process(["--headless", "--width", "96", "--height", "54", "--frames", "2",
+                      "--environment", str(env), "--out", str(out)],
+                     dict(os.environ, WEFT_VALIDATION="1"))
+    stats = json.loads((out / "stats.json").read_text())
+    names = [p["name"] for p in stats[0]["passes"]]
+    assert sum(n.startswith("dome[") for n in names) == 16, names  # all maps on the first frame
+    assert not any(n.startswith("shadow[") for n in names), names  # the sun and moon are off
+    later = [p["name"] for p in stats[1]["passes"]]
+    assert sum(n.startswith("dome[") for n in later) == 4, later  # round robin while it moves
+    assert_not_uniform(weft.load_png(str(out / "frame_0001.png")))
+    bad = tmp_path / "bad.hdr"
+    weft.save_hdr(str(bad), np.ones((10, 30, 3), np.float32))
+    cmd = demo_command() + ["--headless", "--width", "32", "--height", "32", "--environment",
+                            str(bad), "--out", str(tmp_path / "x.png")]
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=DEMO_TIMEOUT_S)
+    assert proc.returncode != 0 and "equirectangular" in proc.stderr

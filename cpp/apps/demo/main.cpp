@@ -26,6 +26,9 @@ options:
   --headless         render offscreen even when a display exists
   --out PATH         headless output: a .png (default out/demo.png; with --frames the last
                      frame), or with --frames a directory for frame_NNNN.png + stats.json
+  --environment PATH light the scene with a captured environment instead of the sun and moon:
+                     an equirectangular (2:1) or sphere-map (square) .hdr/.exr/.png; diffuse
+                     from its SH9 irradiance, shadows from a dome of 16 shadow lights
   --script PATH      scripted input, one event per line: "<frame> key <K>",
                      "<frame> grab <x> <y>", "<frame> drag <x> <y>", "<frame> release"
                      (pixels from the top left; keys as below, or SPACE/LEFT/RIGHT/UP/DOWN)
@@ -82,6 +85,7 @@ int main(int argc, char** argv) {
             else if (a == "--stats") o.statsJson = next();
             else if (a == "--script") o.script = next();
             else if (a == "--shader-dir") o.shaderDir = next();
+            else if (a == "--environment") o.environment = next();
             else if (a == "--no-hot-reload") hotReload = false;
             else throw weft::InvalidArgument("unknown option '" + a + "' (see --help)");
         }

@@ -16,6 +16,7 @@ struct DemoOptions {
     /// Headless output: a .png path (the last frame), or with frames > 0 a directory that gets
     /// frame_NNNN.png for every frame and stats.json.
     std::string out = "out/demo.png";
+    std::string environment;    // light with this .hdr/.exr/.png (equirect or sphere map)
     std::string shaderDir;      // hot reload: watch this glsl/-like directory ("" = off)
     std::string script;         // scripted input: "<frame> key K | grab x y | drag x y | release"
     std::string screenshot;     // windowed: save the last presented frame here

@@ -254,6 +254,7 @@ int runDemo(const DemoOptions& o) {
         std::cout << "weft-demo: shader hot reload: watching " << o.shaderDir << std::endl;
     }
     app::DemoScene demo;
+    if (!o.environment.empty()) demo.lightWith(o.environment);
     const int rc = !o.headless && Window::displayAvailable() ? runWindow(o, demo)
                                                              : runHeadless(o, demo);
     // With validation on, any message the layers reported makes the run fail visibly.

@@ -7,7 +7,9 @@
 #include <GLFW/glfw3.h>
 #include <weft/BtfRenderMaterial.h>
 #include <weft/BtfSynth.h>
+#include <weft/Environment.h>
 #include <weft/HairGenerator.h>
+#include <weft/IblConvert.h>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -240,9 +242,45 @@ void DemoScene::buildTerrain() {
     ground.texture = grassTexture(256);
     ground.ks = glm::vec3(0.03f);
     ground.shininess = 8.0f;
-    mScene.addMesh(std::make_shared<Mesh>(Mesh::heightField(heights, kTerrainCells + 1, kTerrainCells + 1,
+    mTerrainMaterial = ground;
+    mTerrainId = mScene.addMesh(std::make_shared<Mesh>(Mesh::heightField(heights, kTerrainCells + 1, kTerrainCells + 1,
                                                             origin, glm::vec2(kTerrainSize), 12.0f)),
                    ground);
+}
+
+void DemoScene::lightWith(const std::string& path) {
+    // An equirectangular panorama (2:1) or a 360-degree sphere map (square), as captured.
+    const ImageF image = loadImageF(path);
+    if (image.channels < 3) throw InvalidArgument("environment image '" + path + "' needs RGB");
+    ImageF rgb(image.width, image.height, 3);
+    for (size_t t = 0; t < size_t(image.width) * size_t(image.height); ++t)
+        for (int c = 0; c < 3; ++c) rgb.pixels[t * 3 + size_t(c)] = image.pixels[t * size_t(image.channels) + size_t(c)];
+    CubeMap cube;
+    if (image.width == 2 * image.height) {
+        cube = equirectToCube(rgbView(rgb), 64);
+    } else if (image.width == image.height) {
+        CaptureCube capture = sphereToCube(rgbView(rgb), glm::mat4(1.0f), 1.0f, 64);
+        fillUnseen(capture.cube, capture.valid);
+        cube = std::move(capture.cube);
+    } else {
+        throw InvalidArgument("environment image '" + path + "' must be equirectangular (2:1) or "
+                              "a sphere map (square), got " + std::to_string(image.width) + "x" +
+                              std::to_string(image.height));
+    }
+    EnvironmentLighting env;
+    env.environment = std::make_shared<Environment>(std::move(cube));
+    env.domeLights = 16; // shadows from the dome (SPEC §4.5), 4 maps refreshed per frame
+    env.domeMapSize = 256;
+    env.domeRefresh = 4;
+    mScene.setEnvironment(env);
+    // The environment replaces the sun, the moon and the constant ambient term.
+    mEnvironmentLit = true;
+    mDayNight = false;
+    updateSky();
+    for (Material* m : {&mTerrainMaterial, &mSphereMaterial, &mClothMaterial}) m->environmentDiffuse = 1.0f;
+    mScene.setMaterial(mTerrainId, mTerrainMaterial);
+    mScene.setMaterial(mSphereId, mSphereMaterial);
+    mScene.setMaterial(mClothId, mClothMaterial);
 }
 
 void DemoScene::updateSky() {
@@ -255,16 +293,17 @@ void DemoScene::updateSky() {
     DirectionalLight sun;
     sun.direction = -toSun;
     sun.color = glm::mix(glm::vec3(1.0f, 0.55f, 0.3f), glm::vec3(1.0f, 0.96f, 0.88f), smoothstep(0.0f, 0.5f, height));
-    sun.intensity = 0.95f * day;
-    sun.castShadows = mShadows && day > 0.0f;
+    sun.intensity = mEnvironmentLit ? 0.0f : 0.95f * day;
+    sun.castShadows = mShadows && day > 0.0f && !mEnvironmentLit;
     DirectionalLight moon;
     moon.direction = toSun;
     moon.color = glm::vec3(0.55f, 0.65f, 1.0f);
-    moon.intensity = 0.25f * (1.0f - day);
-    moon.castShadows = mShadows && day <= 0.0f;
+    moon.intensity = mEnvironmentLit ? 0.0f : 0.25f * (1.0f - day);
+    moon.castShadows = mShadows && day <= 0.0f && !mEnvironmentLit;
     mScene.setLight(mSunId, sun);
     mScene.setLight(mMoonId, moon);
-    mScene.setAmbient(glm::mix(glm::vec3(0.03f, 0.04f, 0.08f), glm::vec3(0.2f, 0.22f, 0.27f), day));
+    mScene.setAmbient(mEnvironmentLit ? glm::vec3(0.0f)
+                                      : glm::mix(glm::vec3(0.03f, 0.04f, 0.08f), glm::vec3(0.2f, 0.22f, 0.27f), day));
     mScene.setBackground(glm::mix(glm::vec3(0.01f, 0.015f, 0.04f), glm::vec3(0.45f, 0.62f, 0.86f), day));
     Material sky = mSkyMaterial;
     sky.baseColor = glm::mix(glm::vec3(0.03f, 0.04f, 0.1f), glm::vec3(1.0f), day) *

@@ -21,6 +21,10 @@ public:
     Camera& camera() { return mCamera; }
     const Cloth& cloth() const { return *mCloth; }
     std::shared_ptr<Cloth> clothPtr() const { return mCloth; }
+    /// Lights the scene with a captured environment instead of the sun and moon: an
+    /// equirectangular (2:1) or sphere-map (square) .hdr/.exr/.png, diffuse from its SH9
+    /// irradiance and shadows from a dome of 16 lights (SPEC §4.4, §4.5).
+    void lightWith(const std::string& path);
     /// Renderer settings the controls change (PCF kernel).
     void applySettings(Renderer& renderer) const;
 
@@ -53,7 +57,9 @@ private:
     uint32_t mClothId = 0;
     Material mClothMaterial;
     TexturePtr mWeaveNormals;
-    uint32_t mSunId = 0, mMoonId = 0, mSkyId = 0;
+    uint32_t mSunId = 0, mMoonId = 0, mSkyId = 0, mTerrainId = 0;
+    Material mTerrainMaterial;
+    bool mEnvironmentLit = false;
     Material mSkyMaterial;
     float mSunAzimuth = 0.6f;
     float mTimeOfDay = 0.35f; // 0..1, 0.25 = sunrise... 0.5 = noon (the sun at its highest)
