@@ -30,12 +30,16 @@ int hairDomSlot(int light) {
     return -1;
 }
 
-// Ambient * diffuse colour + sum over lights of L * visibility * f(t, l, v). `debugVis` is the
-// visibility of the frame's debug light (frame.counts.w).
+// Ambient * diffuse colour + sum over lights of L * visibility * f(t, l, v), plus, in a scene
+// lit by an environment, its irradiance averaged over all directions (the SH9 constant term: a
+// fibre has no single normal) times diffuse / pi (environmentSh holds E / pi). `debugVis` is the visibility of the frame's
+// debug light (frame.counts.w).
 vec3 hairRadiance(vec3 p, vec3 t, vec3 color, HairShading s, uint strand, out float debugVis) {
     vec3 v = normalize(frame.cameraPos.xyz - p);
     s.diffuse.rgb *= color;
     vec3 c = frame.ambient.rgb * s.diffuse.rgb;
+    vec3 meanIrradiance = max(0.282095 * frame.environmentSh[0].rgb, vec3(0.0)) * frame.environment.x;
+    c += meanIrradiance * s.diffuse.rgb; // environmentSh holds E / pi already
     debugVis = 1.0;
     for (int i = 0; i < frame.counts.x; ++i) {
         vec3 l;

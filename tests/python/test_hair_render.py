@@ -214,3 +214,25 @@ def test_add_fur_grows_fur_on_a_mesh_instance(small):
     assert hair_passes(small) == ["hair"]
     with pytest.raises(ValueError):
         weft.add_fur(scene, mesh, segments=0)
+
+
+def test_constant_environment_lights_hair_analytically():
+    """A constant environment of radiance L gives E = pi L for every direction, so a fibre with
+    no light but the environment shows (I_A + L) * diffuse exactly (SPEC §4.4 on hair)."""
+    import weft.ibl as ibl
+
+    scene = weft.Scene()
+    fur = weft.generate_fur(weft.Mesh.uv_sphere(0.3, 16, 8), level=3, length=0.08)
+    mat = weft.HairMaterial("kajiya_kay")
+    mat.diffuse = (0.5, 0.3, 0.2)
+    scene.add_hair(fur, mat)
+    scene.ambient = (0.1, 0.1, 0.1)
+    camera = weft.Camera(position=(0, 0.3, 1.5), target=(0, 0, 0))
+    r = weft.Renderer(48, 48)
+    scene.set_environment(ibl.CubeMap(np.full((6, 16, 16, 3), 0.8, np.float32)))
+    d = r.render_debug(scene, camera)
+    hair = d["hair"] >= 0
+    assert hair.sum() > 200
+    expected = (0.1 + 0.8) * np.array([0.5, 0.3, 0.2])
+    np.testing.assert_allclose(d["linear"][hair][:, :3], np.broadcast_to(expected, (hair.sum(), 3)),
+                               atol=2e-3)
