@@ -22,6 +22,7 @@ def test_bench_scene_quick(tmp_path: Path) -> None:
     for r in data["results"]:
         assert r["sim_ms"] > 0 and r["render_ms"] > 0
         # the cloth moves every frame, so its shadow is drawn every frame; hair is in the scene
-        assert {"shadow", "forward", "hair", "output"} <= set(r["pass_ms"]), r["pass_ms"]
+        assert {"shadow", "forward", "hair DOM", "hair OIT", "output"} <= set(r["pass_ms"]), \
+            r["pass_ms"]
         assert r["shadow_mismatch"] is not None and r["shadow_mismatch"] < 0.01
     assert "shadow error" in (out / "bench.md").read_text()

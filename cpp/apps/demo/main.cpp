@@ -44,7 +44,8 @@ options:
 controls (window): left-drag grabs and moves the cloth; arrows orbit the camera; 1/2 weaker/
 stronger wind, R turns the wind, L orbits the light, T starts/stops the day-night cycle,
 N normal mapping, B the cloth's fitted BTF material, E a reflective sphere (dynamic cube
-capture with Fresnel), S shadows, P PCF kernel size, H holes,
+capture with Fresnel), K the fur's shading model (Kajiya-Kay, Marschner, Sadeghi), S shadows,
+P PCF kernel size, H holes,
 C resets the cloth, Space pauses the
 simulation, Esc or Q quits. The title bar shows fps, simulation steps/s and pass times.
 )";

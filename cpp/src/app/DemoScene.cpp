@@ -167,11 +167,12 @@ DemoScene::DemoScene() {
     fur.lengthJitter = 0.3f;
     fur.directionJitter = 0.35f;
     fur.down = glm::vec3(0.0f, -6.0f, 0.0f);
-    HairMaterial furMaterial;
-    furMaterial.model = HairModel::KajiyaKay;
-    furMaterial.diffuse = glm::vec3(0.5f, 0.32f, 0.15f);
-    furMaterial.specular = glm::vec3(0.15f);
-    mScene.addHair(std::make_shared<HairStrands>(generateFur(*ballMesh, fur)), furMaterial, ballAt);
+    mFurMaterial.model = HairModel::KajiyaKay;
+    mFurMaterial.diffuse = glm::vec3(0.5f, 0.32f, 0.15f);
+    mFurMaterial.specular = glm::vec3(0.15f);
+    HairStrands strands = generateFur(*ballMesh, fur);
+    strands.defaultTransparency = 0.25f; // drawn through weighted blended OIT (SPEC §5.4)
+    mFurId = mScene.addHair(std::make_shared<HairStrands>(std::move(strands)), mFurMaterial, ballAt);
 
     ClothParams p;
     p.nx = p.ny = kClothN;
@@ -369,6 +370,15 @@ std::string DemoScene::key(int k) {
         what << "reflective sphere " << (mReflections ? "on (dynamic cube capture, Fresnel)" : "off");
         break;
     }
+    case GLFW_KEY_K: {
+        static const char* const names[] = {"Kajiya-Kay", "Marschner", "Sadeghi"};
+        static const HairModel models[] = {HairModel::KajiyaKay, HairModel::Marschner, HairModel::Sadeghi};
+        mFurModel = (mFurModel + 1) % 3;
+        mFurMaterial.model = models[mFurModel];
+        mScene.setHairMaterial(mFurId, mFurMaterial);
+        what << "fur shading " << names[mFurModel];
+        break;
+    }
     case GLFW_KEY_B:
         mBtf = !mBtf;
         if (mBtf && !mBtfMaterial) mBtfMaterial = std::make_unique<Material>(fittedWeaveBtf(256, 16));
@@ -451,7 +461,7 @@ void DemoScene::release() {
 const char* DemoScene::controls() {
     return "left-drag grabs the cloth; arrows orbit the camera; 1/2 wind weaker/stronger, R turns "
            "the wind, L orbits the light, T day-night cycle, N normal mapping, B BTF material, E "
-           "reflective sphere, S "
+           "reflective sphere, K fur shading model, S "
            "shadows, P PCF size, H holes, C resets the cloth, Space pauses, Esc/Q quits";
 }
 

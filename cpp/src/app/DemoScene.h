@@ -67,6 +67,9 @@ private:
     bool mShadows = true;
     bool mBtf = false;
     bool mReflections = false;
+    uint32_t mFurId = 0;
+    int mFurModel = 0; // Kajiya-Kay, Marschner, Sadeghi
+    HairMaterial mFurMaterial;
     uint32_t mSphereId = 0;
     Material mSphereMaterial;
     std::unique_ptr<Material> mBtfMaterial; // fitted on first use

@@ -1,5 +1,5 @@
-"""Scene benchmark: the demo scene (terrain, sphere, furry ball, the 32 x 32 cloth in the wind,
-sun) per frame, against shadow-map size, PCF kernel and light count, with the simulation cost
+"""Scene benchmark: the demo scene (terrain, sphere, furry ball drawn with deep opacity maps and
+weighted blended OIT, the 32 x 32 cloth in the wind, sun) per frame, against shadow-map size, PCF kernel and light count, with the simulation cost
 per frame (issue 5).
 
 Every frame steps the cloth once (1/60 s) and renders, so the cloth's mesh upload and the
@@ -98,7 +98,10 @@ def measure(size: Tuple[int, int], shadow: int, pcf: int, lights: int, frames: i
         sim_ms.append(1e3 * (t1 - t0))
         frame_ms.append(1e3 * (t2 - t1))
         for p in renderer.stats["passes"]:
-            group = "shadow" if p["name"].startswith("shadow") else p["name"]
+            name = p["name"]
+            group = ("shadow" if name.startswith("shadow") else
+                     "hair DOM" if name.startswith("hair_dom") else
+                     "hair OIT" if name in ("hair", "hair_oit", "hair_composite") else name)
             value = p["gpu_ms"] if p["gpu_ms"] is not None else p["cpu_ms"]
             passes.setdefault(group, []).append(value)
     per_frame = {k: sum(v) / frames for k, v in passes.items()}  # shadow: all views summed
@@ -111,14 +114,16 @@ def measure(size: Tuple[int, int], shadow: int, pcf: int, lights: int, frames: i
 
 def to_markdown(report: Dict[str, Any]) -> str:
     m = report["machine"]
-    groups = ["shadow", "forward", "hair", "output", "readback"]
+    groups = ["shadow", "forward", "hair DOM", "hair OIT", "output", "readback"]
     lines = ["# weft scene benchmark: the demo scene per frame", "",
              f"- command: `{report['command']}`",
              f"- machine: {m.get('platform')}, {m.get('cpu_count')} CPUs; device "
              f"{report['device']}",
              "- each frame: one cloth step (1/60 s) + render(); medians over "
              f"{report['frames']} timed frames after a warm-up; pass ms are GPU timestamps "
-             "(CPU recording time where the device has none); shadow = all shadow views.",
+             "(CPU recording time where the device has none); shadow = all shadow views; hair "
+             "DOM = deep-opacity depth + opacity passes; hair OIT = the fur's weighted blended "
+             "OIT passes (accumulate + composite).",
              "- shadow error: covered pixels whose GPU PCF visibility of the sun differs from "
              "NumPy's shadow test on a debug frame of the same setting.", ""]
     header = ["shadow map", "PCF", "lights", "sim ms", "render() ms"] + \
