@@ -1,0 +1,504 @@
+// One frame of a Renderer: the scene's GPU data, descriptor sets and the frame graph of passes
+// (shadow views, dome maps, reflection capture, forward shading, hair, sRGB output, readback or
+// present), recorded into the frame slot's command buffer.
+#include "render/RendererImpl.h"
+
+namespace weft {
+
+using render::Draw;
+using render::FrameData;
+using render::FrameGraph;
+using render::ShadowView;
+using render::ResourceUse;
+using render::Use;
+using render::FrameSlot;
+using render::kFrameSets;
+using render::kFramesInFlight;
+
+namespace {
+
+// Everything a shadow map's contents depend on besides its view: every caster's geometry,
+// transform and alpha test (hair: its strands object, which is immutable, and transform).
+std::vector<uint64_t> casterKey(const render::FrameData& data, const Scene& scene) {
+    std::vector<uint64_t> key;
+    auto put = [&](const void* p, size_t bytes) {
+        const size_t at = key.size();
+        key.resize(at + (bytes + 7) / 8, 0);
+        std::memcpy(key.data() + at, p, bytes);
+    };
+    for (const render::Draw& d : data.draws) {
+        if (!d.castShadows) continue;
+        key.push_back(d.mesh->contentId);
+        put(&d.model, sizeof(glm::mat4));
+        put(&d.alphaCutoff, sizeof(float));
+        if (d.alphaCutoff > 0.0f) put(&d.material, sizeof(d.material));
+    }
+    for (const HairInstance& h : scene.hairs()) {
+        if (!h.castShadows) continue;
+        const HairStrands* strands = h.strands.get();
+        put(&strands, sizeof(strands));
+        key.push_back(h.strands->points.size());
+        put(&h.transform, sizeof(glm::mat4));
+    }
+    return key;
+}
+
+// The light views plus the casters: equal keys mean the scene lights' maps can be reused.
+std::vector<uint64_t> shadowKey(const render::FrameData& data, const std::vector<uint64_t>& casters) {
+    std::vector<uint64_t> key;
+    for (const render::ShadowView& v : data.shadowViews) {
+        const size_t at = key.size();
+        key.resize(at + sizeof(glm::mat4) / 8);
+        std::memcpy(key.data() + at, &v.frustum.viewProj, sizeof(glm::mat4));
+    }
+    key.insert(key.end(), casters.begin(), casters.end());
+    return key;
+}
+
+void drawMesh(VkCommandBuffer cmd, const render::MeshGpu& mesh) {
+    const VkDeviceSize offset = 0;
+    const VkBuffer vertices = mesh.vertices.get();
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+    vkCmdBindIndexBuffer(cmd, mesh.indices.get(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
+}
+
+// Grows a host-visible buffer to hold `bytes`.
+void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
+    bytes = std::max<VkDeviceSize>(bytes, 256);
+    if (buffer && buffer.size() >= bytes) return;
+    buffer = vk::Buffer(&ctx, bytes * 3 / 2, usage, vk::MemoryUsage::Upload);
+}
+
+
+} // namespace
+
+void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Camera& camera,
+                                 uint32_t outputs, vk::Image* ldr, bool present) {
+    vk::Context& c = *ctx;
+    const bool debug = outputs & OutputDebug;
+    const float aspect = float(targets.width) / float(targets.height);
+
+    FrameData data = buildFrameData(scene, camera, settings, aspect, *cache);
+    double environmentBakeMs = 0.0;
+    const bool environmentBaked = environment.prepare(scene.environment(), environmentBakeMs);
+    environment.fillFrame(scene.environment(), data.frame);
+    shadowInfos = data.shadowInfos;
+    if (!data.shadowViews.empty()) ensureShadowMaps(uint32_t(data.shadowViews.size()));
+    const std::vector<uint64_t> casters = casterKey(data, scene);
+    std::vector<uint64_t> key = shadowKey(data, casters);
+    const std::vector<int> domeRender = dome.prepare(scene, settings, casters, frameCounter);
+    const std::vector<render::GpuDomeLight>& domeLights = dome.lights();
+    data.frame.environment.z = float(domeLights.size());
+    data.frame.environment.w = float(dome.mapSize());
+    const bool captureProbe = probe.prepare(scene, data, settings.probeSize);
+    const bool hasProbe = probe.instance() >= 0;
+    const bool reuseShadows = settings.reuseShadowMaps && !data.shadowViews.empty() &&
+                              key == shadowSignature;
+    shadowSignature = std::move(key);
+    const render::GpuFrame& frame = data.frame;
+    const std::vector<render::GpuInstance>& instances = data.instances;
+    const std::vector<render::GpuLight>& lights = data.lights;
+    const std::vector<render::GpuShadowLayer>& layers = data.shadowLayers;
+    const std::vector<Draw>& draws = data.draws;
+    const std::vector<ShadowView>& shadowViews = data.shadowViews;
+    const bool hasHair = !scene.hairs().empty();
+    if (hasHair) {
+        if (!hair) hair = std::make_unique<render::HairPasses>(c, pipes);
+        hair->prepare(uint32_t(frameCounter % kFramesInFlight), scene, camera, settings,
+                      targets.width, targets.height);
+    }
+
+    ensureBuffer(c, slot.ubo, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    ensureBuffer(c, slot.instances, instances.size() * sizeof(render::GpuInstance),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    ensureBuffer(c, slot.lights, lights.size() * sizeof(render::GpuLight),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    slot.ubo.write(&frame, sizeof(frame));
+    // The capture's faces: the frame's uniforms seen from the probe, at aligned offsets.
+    const VkDeviceSize align = c.properties().limits.minUniformBufferOffsetAlignment;
+    const VkDeviceSize faceStride = (sizeof(frame) + align - 1) / align * align;
+    if (captureProbe) {
+        ensureBuffer(c, slot.probeUbo, 6 * faceStride, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        std::vector<uint8_t> faces(6 * faceStride, 0);
+        for (int f = 0; f < 6; ++f) {
+            render::GpuFrame face = frame;
+            face.viewProj = render::probeFaceViewProj(f, probe.position(), 0.02f, 1000.0f);
+            face.cameraPos = glm::vec4(probe.position(), 1.0f);
+            std::memcpy(faces.data() + f * faceStride, &face, sizeof(face));
+        }
+        slot.probeUbo.write(faces.data(), faces.size());
+    }
+    if (!instances.empty())
+        slot.instances.write(instances.data(), instances.size() * sizeof(render::GpuInstance));
+    if (!lights.empty()) slot.lights.write(lights.data(), lights.size() * sizeof(render::GpuLight));
+    ensureBuffer(c, slot.shadowLayers, layers.size() * sizeof(render::GpuShadowLayer),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!layers.empty())
+        slot.shadowLayers.write(layers.data(), layers.size() * sizeof(render::GpuShadowLayer));
+    ensureBuffer(c, slot.domeLights, domeLights.size() * sizeof(render::GpuDomeLight),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!domeLights.empty())
+        slot.domeLights.write(domeLights.data(), domeLights.size() * sizeof(render::GpuDomeLight));
+
+    // ---- descriptors ----------------------------------------------------------------------
+    VK_CHECK(vkResetDescriptorPool(c.device(), slot.pool, 0));
+    VkDescriptorSetLayout layouts[kFrameSets + 1];
+    for (uint32_t i = 0; i < kFrameSets; ++i) layouts[i] = pipes.frameSetLayout;
+    layouts[kFrameSets] = pipes.outputSetLayout;
+    const uint32_t setCount = captureProbe ? kFrameSets + 1 : 2;
+    if (!captureProbe) layouts[1] = pipes.outputSetLayout;
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = slot.pool;
+    alloc.descriptorSetCount = setCount;
+    alloc.pSetLayouts = layouts;
+    VkDescriptorSet sets[kFrameSets + 1];
+    VK_CHECK(vkAllocateDescriptorSets(c.device(), &alloc, sets));
+    const VkDescriptorSet frameSet = sets[0], outputSet = sets[setCount - 1];
+    vk::Image& shadowImage = shadowViews.empty() ? dummyShadow : shadowMaps;
+    vk::Image& domeImage = dome.active() ? dome.maps() : dummyShadow;
+    // A frame set: the frame's data with uniforms `ubo` and the reflection capture `probeView`.
+    auto writeFrameSet = [&](VkDescriptorSet set, VkDescriptorBufferInfo uboInfo, VkImageView probeView) {
+        VkDescriptorBufferInfo instInfo{slot.instances.get(), 0, VK_WHOLE_SIZE};
+        VkDescriptorBufferInfo lightInfo{slot.lights.get(), 0, VK_WHOLE_SIZE};
+        VkDescriptorImageInfo shadowInfo{pipes.nearestSampler, shadowImage.view(),
+                                         render::useState(Use::Sampled, true).layout};
+        VkDescriptorBufferInfo layerInfo{slot.shadowLayers.get(), 0, VK_WHOLE_SIZE};
+        VkDescriptorImageInfo cookieInfos[render::kMaxCookies];
+        for (int i = 0; i < render::kMaxCookies; ++i) // unused slots hold white
+            cookieInfos[i] = {pipes.cookieSampler,
+                              cache->textureView(size_t(i) < data.cookies.size() ? data.cookies[size_t(i)]
+                                                                                  : TexturePtr()),
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        VkDescriptorImageInfo environmentInfo{pipes.environmentSampler,
+                                              environment.view(scene.environment()),
+                                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        VkDescriptorBufferInfo domeInfo{slot.domeLights.get(), 0, VK_WHOLE_SIZE};
+        VkDescriptorImageInfo domeMapInfo{pipes.nearestSampler, domeImage.view(),
+                                          render::useState(Use::Sampled, true).layout};
+        VkDescriptorImageInfo probeInfo{pipes.environmentSampler, probeView,
+                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        VkWriteDescriptorSet writes[10];
+        for (auto& w : writes) w = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        auto setWrite = [&](int i, uint32_t binding, VkDescriptorType type) {
+            writes[i].dstSet = set;
+            writes[i].dstBinding = binding;
+            writes[i].descriptorCount = 1;
+            writes[i].descriptorType = type;
+        };
+        setWrite(0, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+        writes[0].pBufferInfo = &uboInfo;
+        setWrite(1, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+        writes[1].pBufferInfo = &instInfo;
+        setWrite(2, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+        writes[2].pBufferInfo = &lightInfo;
+        setWrite(3, 3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[3].pImageInfo = &shadowInfo;
+        setWrite(4, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+        writes[4].pBufferInfo = &layerInfo;
+        setWrite(5, 5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[5].descriptorCount = render::kMaxCookies;
+        writes[5].pImageInfo = cookieInfos;
+        setWrite(6, 6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[6].pImageInfo = &environmentInfo;
+        setWrite(7, 7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+        writes[7].pBufferInfo = &domeInfo;
+        setWrite(8, 8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[8].pImageInfo = &domeMapInfo;
+        setWrite(9, 9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[9].pImageInfo = &probeInfo;
+        vkUpdateDescriptorSets(c.device(), 10, writes, 0, nullptr);
+    };
+    writeFrameSet(frameSet, {slot.ubo.get(), 0, sizeof(frame)},
+                  hasProbe ? probe.cube().view() : environment.black());
+    if (captureProbe) // the faces see the capture as black: it is being drawn
+        for (uint32_t f = 0; f < 6; ++f)
+            writeFrameSet(sets[1 + f], {slot.probeUbo.get(), f * faceStride, sizeof(frame)},
+                          environment.black());
+    VkDescriptorImageInfo hdrInfo{pipes.nearestSampler, targets.hdr.view(),
+                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet outputWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    outputWrite.dstSet = outputSet;
+    outputWrite.dstBinding = 0;
+    outputWrite.descriptorCount = 1;
+    outputWrite.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    outputWrite.pImageInfo = &hdrInfo;
+    vkUpdateDescriptorSets(c.device(), 1, &outputWrite, 0, nullptr);
+
+    // ---- frame graph ----------------------------------------------------------------------
+    FrameGraph g;
+    const int rShadow = g.addResource("shadow_maps", &shadowImage);
+    const int rDepth = g.addResource("depth", &targets.depth);
+    const int rHdr = g.addResource("hdr", &targets.hdr);
+    const int rLdr = g.addResource("ldr", ldr);
+    int rDebug[4] = {-1, -1, -1, -1};
+    if (debug) {
+        rDebug[0] = g.addResource("position", &targets.position);
+        rDebug[1] = g.addResource("normal", &targets.normal);
+        rDebug[2] = g.addResource("surface", &targets.surface);
+        rDebug[3] = g.addResource("albedo", &targets.albedo);
+    }
+    auto viewportScissor = [](VkCommandBuffer cmd, uint32_t w, uint32_t h) {
+        VkViewport vp{0, 0, float(w), float(h), 0.0f, 1.0f};
+        VkRect2D sc{{0, 0}, {w, h}};
+        vkCmdSetViewport(cmd, 0, 1, &vp);
+        vkCmdSetScissor(cmd, 0, 1, &sc);
+    };
+
+    // Depth of every shadow caster (meshes, alpha-tested ones with holes, hair) seen by viewProj.
+    auto drawCasters = [&](VkCommandBuffer cmd, VkImageView view, uint32_t size,
+                           const glm::mat4& viewProj) {
+        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        depth.imageView = view;
+        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        depth.clearValue.depthStencil = {1.0f, 0};
+        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        info.renderArea = {{0, 0}, {size, size}};
+        info.layerCount = 1;
+        info.pDepthAttachment = &depth;
+        c.fn().cmdBeginRendering(cmd, &info);
+        viewportScissor(cmd, size, size);
+        VkPipeline bound = VK_NULL_HANDLE;
+        for (const Draw& d : draws) {
+            if (!d.castShadows || d.mesh->indexCount == 0) continue;
+            const VkPipeline p = d.alphaCutoff > 0.0f ? pipes.shadowAlpha.get() : pipes.shadow.get();
+            if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+            if (d.alphaCutoff > 0.0f)
+                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.shadowLayout, 0, 1,
+                                        &d.material, 0, nullptr);
+            const render::ShadowPush push{viewProj * d.model, d.alphaCutoff};
+            vkCmdPushConstants(cmd, pipes.shadowLayout,
+                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof(push), &push);
+            drawMesh(cmd, *d.mesh);
+        }
+        if (hasHair) hair->drawDepth(cmd, viewProj);
+        c.fn().cmdEndRendering(cmd);
+    };
+
+    std::vector<std::string> reused;
+    if (scene.environment().environment && !environmentBaked) reused.push_back("environment");
+    for (const ShadowView& s : shadowViews) {
+        std::string name = "shadow[" + std::to_string(s.lightIndex) + "]";
+        if (scene.lights()[size_t(s.lightIndex)].index() == 1) // a point light's six views
+            name += "." + std::to_string(s.layer - shadowInfos[size_t(s.lightIndex)].layer);
+        if (reuseShadows) { // the map already holds exactly this view of these casters
+            reused.push_back(std::move(name));
+            continue;
+        }
+        g.addPass({name, {}, {{rShadow, Use::DepthWrite}}, [&, s](VkCommandBuffer cmd) {
+                       drawCasters(cmd, shadowMaps.layerView(uint32_t(s.layer)),
+                                   settings.shadowMapSize, s.frustum.viewProj);
+                   }});
+    }
+    // The environment's dome of shadow lights: the layers due this frame, the rest reused.
+    int rDome = -1;
+    if (dome.active()) {
+        rDome = g.addResource("dome_maps", &dome.maps());
+        std::vector<uint8_t> due(domeLights.size(), 0);
+        for (int i : domeRender) due[size_t(i)] = 1;
+        for (size_t i = 0; i < domeLights.size(); ++i) {
+            std::string name = "dome[" + std::to_string(i) + "]";
+            if (!due[i]) {
+                reused.push_back(std::move(name));
+                continue;
+            }
+            g.addPass({name, {}, {{rDome, Use::DepthWrite}}, [&, i](VkCommandBuffer cmd) {
+                           drawCasters(cmd, dome.maps().layerView(uint32_t(i)), dome.mapSize(),
+                                       domeLights[i].viewProj);
+                       }});
+        }
+    }
+
+    std::vector<ResourceUse> forwardWrites = {{rHdr, Use::ColorWrite}, {rDepth, Use::DepthWrite}};
+    for (int r : rDebug)
+        if (r >= 0) forwardWrites.push_back({r, Use::ColorWrite});
+    // The dynamic reflection capture: six faces of everything but the probe's own instance.
+    int rProbe = -1;
+    if (hasProbe) {
+        rProbe = g.addResource("probe", &probe.cube());
+        if (!captureProbe) reused.push_back("probe");
+    }
+    if (captureProbe) {
+        const int rProbeDepth = g.addResource("probe_depth", &probe.depth());
+        std::vector<ResourceUse> faceReads = {{rShadow, Use::Sampled}};
+        if (rDome >= 0) faceReads.push_back({rDome, Use::Sampled});
+        for (uint32_t f = 0; f < 6; ++f) {
+            const VkDescriptorSet faceSet = sets[1 + f];
+            g.addPass({"probe[" + std::to_string(f) + "]", faceReads,
+                       {{rProbe, Use::ColorWrite}, {rProbeDepth, Use::DepthWrite}},
+                       [&, f, faceSet](VkCommandBuffer cmd) {
+                           const uint32_t size = probe.cube().desc().width;
+                           VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                           color.imageView = probe.cube().layerView(f);
+                           color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                           color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+                           color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                           const glm::vec4 clear(scene.background(), 1.0f);
+                           std::memcpy(color.clearValue.color.float32, &clear, sizeof(clear));
+                           VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                           depth.imageView = probe.depth().view();
+                           depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+                           depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+                           depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+                           depth.clearValue.depthStencil = {1.0f, 0};
+                           VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                           info.renderArea = {{0, 0}, {size, size}};
+                           info.layerCount = 1;
+                           info.colorAttachmentCount = 1;
+                           info.pColorAttachments = &color;
+                           info.pDepthAttachment = &depth;
+                           c.fn().cmdBeginRendering(cmd, &info);
+                           viewportScissor(cmd, size, size);
+                           VkPipeline bound = VK_NULL_HANDLE;
+                           for (const Draw& d : draws) {
+                               if (d.mesh->indexCount == 0 || int(d.instance) == probe.instance()) continue;
+                               // cube faces mirror the view: the winding flips
+                               const VkPipeline p = pipes.forwardFor(false, !d.mirrored, d.twoSided);
+                               if (p != bound) {
+                                   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+                                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                           pipes.sceneLayout, 0, 1, &faceSet, 0, nullptr);
+                               }
+                               vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                       pipes.sceneLayout, 1, 1, &d.material, 0, nullptr);
+                               vkCmdPushConstants(cmd, pipes.sceneLayout,
+                                                  VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                                  0, sizeof(uint32_t), &d.instance);
+                               drawMesh(cmd, *d.mesh);
+                           }
+                           c.fn().cmdEndRendering(cmd);
+                       }});
+        }
+    }
+
+    std::vector<ResourceUse> forwardReads = {{rShadow, Use::Sampled}};
+    if (rDome >= 0) forwardReads.push_back({rDome, Use::Sampled});
+    if (rProbe >= 0) forwardReads.push_back({rProbe, Use::Sampled});
+    g.addPass({"forward", forwardReads, forwardWrites, [&](VkCommandBuffer cmd) {
+                   std::vector<VkRenderingAttachmentInfo> colors;
+                   auto color = [&](VkImageView view, glm::vec4 clear) {
+                       VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                       a.imageView = view;
+                       a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                       a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+                       a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                       std::memcpy(a.clearValue.color.float32, &clear, sizeof(clear));
+                       colors.push_back(a);
+                   };
+                   color(targets.hdr.view(), glm::vec4(scene.background(), 1.0f));
+                   if (debug) { // background: not covered, not shadowed
+                       color(targets.position.view(), glm::vec4(0.0f));
+                       color(targets.normal.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+                       color(targets.surface.view(), glm::vec4(0.0f));
+                       color(targets.albedo.view(), glm::vec4(0.0f));
+                   }
+                   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                   depth.imageView = targets.depth.view();
+                   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+                   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+                   depth.storeOp = hasHair ? VK_ATTACHMENT_STORE_OP_STORE
+                                           : VK_ATTACHMENT_STORE_OP_DONT_CARE; // hair tests against it
+                   depth.clearValue.depthStencil = {1.0f, 0};
+                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                   info.renderArea = {{0, 0}, {targets.width, targets.height}};
+                   info.layerCount = 1;
+                   info.colorAttachmentCount = uint32_t(colors.size());
+                   info.pColorAttachments = colors.data();
+                   info.pDepthAttachment = &depth;
+                   c.fn().cmdBeginRendering(cmd, &info);
+                   viewportScissor(cmd, targets.width, targets.height);
+                   VkPipeline bound = VK_NULL_HANDLE;
+                   for (const Draw& d : draws) {
+                       if (d.mesh->indexCount == 0) continue; // e.g. a cloth torn to pieces
+                       const VkPipeline p = pipes.forwardFor(debug, d.mirrored, d.twoSided);
+                       if (p != bound) {
+                           vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+                           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                   pipes.sceneLayout, 0, 1, &frameSet, 0, nullptr);
+                       }
+                       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.sceneLayout, 1,
+                                               1, &d.material, 0, nullptr);
+                       vkCmdPushConstants(cmd, pipes.sceneLayout,
+                                          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                          0, sizeof(uint32_t), &d.instance);
+                       drawMesh(cmd, *d.mesh);
+                   }
+                   c.fn().cmdEndRendering(cmd);
+               }});
+
+    if (hasHair)
+        hair->addPasses(g, {rShadow, rDepth, rHdr, debug ? rDebug : nullptr, &targets.hdr,
+                            &targets.depth,
+                            {&targets.position, &targets.normal, &targets.surface, &targets.albedo},
+                            frameSet});
+
+    const VkPipeline outPipeline = pipes.outputPipeline(ldr->desc().format);
+    g.addPass({"output", {{rHdr, Use::Sampled}}, {{rLdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
+                   VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                   a.imageView = ldr->view();
+                   a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                   a.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+                   a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                   info.renderArea = {{0, 0}, {targets.width, targets.height}};
+                   info.layerCount = 1;
+                   info.colorAttachmentCount = 1;
+                   info.pColorAttachments = &a;
+                   c.fn().cmdBeginRendering(cmd, &info);
+                   viewportScissor(cmd, targets.width, targets.height);
+                   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, outPipeline);
+                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.outputLayout, 0, 1,
+                                           &outputSet, 0, nullptr);
+                   vkCmdDraw(cmd, 3, 1, 0, 0);
+                   c.fn().cmdEndRendering(cmd);
+               }});
+
+    // Readback copies: colour (ldr), linear (hdr), debug images.
+    std::vector<std::pair<int, vk::Image*>> copies;
+    if (outputs & OutputColor) copies.push_back({rLdr, ldr});
+    if (outputs & OutputLinear) copies.push_back({rHdr, &targets.hdr});
+    if (debug) {
+        vk::Image* images[4] = {&targets.position, &targets.normal, &targets.surface, &targets.albedo};
+        for (int i = 0; i < 4; ++i) copies.push_back({rDebug[i], images[i]});
+    }
+    if (!copies.empty()) {
+        std::vector<ResourceUse> reads;
+        for (auto& [r, im] : copies) reads.push_back({r, Use::TransferRead});
+        g.addPass({"readback", reads, {}, [&, copies](VkCommandBuffer cmd) {
+                       for (auto& [r, im] : copies) {
+                           vk::Buffer& dst = targets.readbackFor(*ctx, im);
+                           VkBufferImageCopy region{};
+                           region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+                           region.imageExtent = {targets.width, targets.height, 1};
+                           vkCmdCopyImageToBuffer(cmd, im->get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                                  dst.get(), 1, &region);
+                       }
+                   },
+                   true});
+    }
+    if (present)
+        g.addPass({"present", {{rLdr, Use::Present}}, {}, [](VkCommandBuffer) {}, true});
+
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkResetCommandBuffer(slot.cmd, 0));
+    VK_CHECK(vkBeginCommandBuffer(slot.cmd, &begin));
+    slot.timestamps->reset(slot.cmd);
+    slot.stats = FrameStats{};
+    slot.stats.frameIndex = frameCounter;
+    slot.stats.reused = std::move(reused);
+    slot.stats.meshUploads = data.meshUploads;
+    slot.stats.uploadBytes = data.uploadBytes;
+    slot.stats.environmentBakes = environmentBaked ? 1 : 0;
+    slot.stats.environmentBakeMs = environmentBakeMs;
+    g.execute(c, slot.cmd, slot.timestamps.get(), slot.stats);
+    // The present pseudo-pass only transitions; it is not a pass users should time.
+    if (present && !slot.stats.passes.empty() && slot.stats.passes.back().name == "present")
+        slot.stats.passes.pop_back();
+    VK_CHECK(vkEndCommandBuffer(slot.cmd));
+}
+
+} // namespace weft

@@ -1,0 +1,97 @@
+#pragma once
+// The state of a weft::Renderer, shared by Renderer.cpp (lifecycle, settings, render/present,
+// read-backs) and FrameRecording.cpp (one frame's graph of passes).
+#include <weft/Renderer.h>
+#include <weft/ShaderReload.h>
+
+#include <array>
+#include <chrono>
+#include <cstring>
+#include <string>
+#include <unordered_map>
+
+#include "render/DomeShadows.h"
+#include "render/EnvironmentGpu.h"
+#include "render/FrameData.h"
+#include "render/FrameGraph.h"
+#include "render/ReflectionProbe.h"
+#include "render/GpuCache.h"
+#include "render/GpuTypes.h"
+#include "render/HairPasses.h"
+#include "render/RenderTargets.h"
+#include "render/ScenePipelines.h"
+#include "render/ShadowFit.h"
+#include "vk/Pipeline.h"
+#include "vk/Swapchain.h"
+
+namespace weft {
+
+namespace render {
+
+constexpr uint32_t kFramesInFlight = 2;
+// timestamp pairs: shadow views + dome maps + probe faces + forward + output + readback
+constexpr uint32_t kMaxPasses = 128;
+constexpr uint32_t kFrameSets = 7; // the frame's, and one per face of the reflection capture
+
+/// Per frame in flight: its command buffer, uploads, descriptors and timestamps.
+struct FrameSlot {
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    uint64_t serial = 0;
+    vk::Buffer ubo, probeUbo, instances, lights, shadowLayers, domeLights;
+    vk::DescriptorPool pool;
+    std::unique_ptr<render::Timestamps> timestamps;
+    vk::Semaphore acquired;
+    FrameStats stats;
+    bool statsPending = false;
+};
+
+
+} // namespace render
+
+struct Renderer::Impl {
+    using FrameSlot = render::FrameSlot;
+    static constexpr uint32_t kFramesInFlight = render::kFramesInFlight;
+    std::shared_ptr<vk::Context> ctx = vk::Context::shared();
+    RenderSettings settings;
+    uint32_t width = 0, height = 0;
+
+    render::ScenePipelines pipes{*ctx};
+    render::EnvironmentGpu environment{*ctx};
+    render::DomeShadows dome{*ctx};
+    render::ReflectionProbe probe{*ctx};
+    std::unique_ptr<render::GpuCache> cache;
+    std::unique_ptr<render::HairPasses> hair; // created with the first scene that has hair
+
+    vk::CommandPool commandPool; // this renderer's; recording never contends with others
+    std::array<FrameSlot, kFramesInFlight> slots;
+    uint64_t frameCounter = 0;
+    render::RenderTargets targets;
+    vk::Image shadowMaps;
+    std::vector<uint64_t> shadowSignature; // what the shadow maps hold (see shadowKey)
+    uint64_t shaderGenerationBuilt = shaderGeneration(); // hot reload: shaders the pipes use
+    vk::Image dummyShadow;
+    std::vector<ShadowInfo> shadowInfos;
+    FrameStats stats;
+
+    Impl(uint32_t w, uint32_t h, const RenderSettings& s) : settings(s), width(w), height(h) {
+        cache = std::make_unique<render::GpuCache>(*ctx, pipes.materialSetLayout, pipes.textureSampler);
+        createSlots();
+        createDummyShadow();
+    }
+
+    ~Impl() {
+        // The pool (and its command buffers) is retired; wait only for this renderer's frames so
+        // no slot is mid-flight while its buffers are released.
+        for (auto& s : slots) ctx->waitFor(s.serial);
+    }
+
+    void createSlots();
+    void createDummyShadow();
+    FrameSlot& beginFrame();
+    void finishStats(FrameSlot& slot);
+    void recordFrame(FrameSlot& slot, const Scene& scene, const Camera& camera, uint32_t outputs,
+                     vk::Image* ldr, bool present);
+    void ensureShadowMaps(uint32_t layers);
+};
+
+} // namespace weft
