@@ -132,15 +132,7 @@ CubeMap phongSampled(const CubeMap& radiance, float shininess, int size, int sam
 }
 
 CubeMap prefilterGgx(const CubeMap& radiance, int size, int levels, int samples) {
-    requireCube(radiance, "radiance cube map");
-    requireCount(size, 4096, "output size");
-    requireCount(samples, 1 << 20, "sample count");
-    int maxLevels = 1;
-    while ((size >> maxLevels) >= 1) ++maxLevels;
-    if (levels < 1 || levels > maxLevels)
-        throw InvalidArgument("levels must be in [1, " + std::to_string(maxLevels) + "] for size " +
-                              std::to_string(size));
-    requireAffordable(8.0 * size * size * samples * 16.0, "GGX prefilter");
+    requireGgxArguments(radiance, size, levels, samples);
     const CubeMap chain = withMips(radiance);
     const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
     CubeMap out(size);

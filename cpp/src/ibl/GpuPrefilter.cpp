@@ -60,15 +60,7 @@ VkDescriptorSet bindBuffers(vk::Context& ctx, vk::DescriptorPool& pool,
 
 CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int samples,
                         double* dispatchMs) {
-    requireCube(radiance, "radiance cube map");
-    requireCount(size, 4096, "output size");
-    requireCount(samples, 1 << 20, "sample count");
-    int maxLevels = 1;
-    while ((size >> maxLevels) >= 1) ++maxLevels;
-    if (levels < 1 || levels > maxLevels)
-        throw InvalidArgument("levels must be in [1, " + std::to_string(maxLevels) + "] for size " +
-                              std::to_string(size));
-    requireAffordable(8.0 * size * size * samples * 16.0, "GGX prefilter");
+    requireGgxArguments(radiance, size, levels, samples);
     CubeMap out(size);
     out.buildMips(); // allocates every level; the dispatches overwrite those kept
     out.keepLevels(levels);

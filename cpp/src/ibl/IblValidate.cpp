@@ -40,4 +40,16 @@ void requireAffordable(double steps, const char* what) {
                               " steps is too expensive; reduce the sizes or sample counts");
 }
 
+void requireGgxArguments(const CubeMap& radiance, int size, int levels, int samples) {
+    requireCube(radiance, "radiance cube map");
+    requireCount(size, 4096, "output size");
+    requireCount(samples, 1 << 20, "sample count");
+    int maxLevels = 1;
+    while ((size >> maxLevels) >= 1) ++maxLevels;
+    if (levels < 1 || levels > maxLevels)
+        throw InvalidArgument("levels must be in [1, " + std::to_string(maxLevels) + "] for size " +
+                              std::to_string(size));
+    requireAffordable(8.0 * size * size * samples * 16.0, "GGX prefilter");
+}
+
 } // namespace weft

@@ -17,5 +17,8 @@ void requireCube(const CubeMap& cube, const char* what);
 void requireCount(int n, int maxValue, const char* what);
 /// Refuses jobs of more than 4e10 elementary steps (minutes of CPU) instead of hanging.
 void requireAffordable(double steps, const char* what);
+/// The arguments of a GGX prefilter chain (CPU and GPU): a valid cube, size and sample counts,
+/// levels in [1, log2(size) + 1], an affordable job.
+void requireGgxArguments(const CubeMap& radiance, int size, int levels, int samples);
 
 } // namespace weft

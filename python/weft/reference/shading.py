@@ -37,8 +37,9 @@ from typing import Any, Dict, Iterable, List, Mapping, NamedTuple, Optional, Seq
 
 import numpy as np
 
-from weft.reference.texture import (build_mip_chain, encode_u8, sample_bilinear_repeat,
-                                    sample_trilinear_repeat, texture_lod, texture_to_linear)
+from weft.reference.texture import (_bilinear_clamp, build_mip_chain, encode_u8,
+                                    sample_bilinear_repeat, sample_trilinear_repeat, texture_lod,
+                                    texture_to_linear)
 
 ArrayLike = Union[np.ndarray, Sequence[float], float]
 Vec3 = Tuple[float, float, float]
@@ -161,20 +162,10 @@ def _smoothstep(e0: float, e1: float, x: np.ndarray) -> np.ndarray:
 
 
 def _sample_bilinear_clamp(image: np.ndarray, uv: np.ndarray) -> np.ndarray:
-    """Bilinear lookup with clamp-to-edge addressing (texel centres at (i + 0.5) / size)."""
+    """Bilinear lookup with clamp-to-edge addressing at normalised uv (texel centres at
+    (i + 0.5) / size)."""
     h, w = image.shape[:2]
-    x = uv[..., 0] * w - 0.5
-    y = uv[..., 1] * h - 0.5
-    x0 = np.floor(x)
-    y0 = np.floor(y)
-    fx = (x - x0)[..., None]
-    fy = (y - y0)[..., None]
-    x0 = x0.astype(np.int64)
-    y0 = y0.astype(np.int64)
-    def at(yy: np.ndarray, xx: np.ndarray) -> np.ndarray:
-        return image[np.clip(yy, 0, h - 1), np.clip(xx, 0, w - 1)]
-    return ((1 - fy) * ((1 - fx) * at(y0, x0) + fx * at(y0, x0 + 1))
-            + fy * ((1 - fx) * at(y0 + 1, x0) + fx * at(y0 + 1, x0 + 1)))
+    return _bilinear_clamp(image, uv[..., 0] * w, uv[..., 1] * h)
 
 
 def incident(light: Any, position: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
