@@ -156,7 +156,8 @@ void bindScene(py::module_& m) {
                          std::shared_ptr<Texture> normalMap, std::shared_ptr<Texture> specularMap,
                          float alphaCutoff, std::shared_ptr<Texture> ambientMap,
                          bool specularVertexNormal, bool twoSided, py::handle reflectivity,
-                         float environmentDiffuse, bool dynamicReflection) {
+                         float environmentDiffuse, bool dynamicReflection, bool glossInAlpha,
+                         bool phantom) {
             Material mat;
             mat.ka = toVec3(ka, "ka");
             mat.kd = toVec3(kd, "kd");
@@ -173,6 +174,8 @@ void bindScene(py::module_& m) {
             mat.reflectivity = toVec3(reflectivity, "reflectivity");
             mat.environmentDiffuse = environmentDiffuse;
             mat.dynamicReflection = dynamicReflection;
+            mat.glossInAlpha = glossInAlpha;
+            mat.phantom = phantom;
             mat.validate();
             return mat;
         }), py::arg("ka") = py::make_tuple(1, 1, 1), py::arg("kd") = py::make_tuple(1, 1, 1),
@@ -182,7 +185,8 @@ void bindScene(py::module_& m) {
            py::arg("alpha_cutoff") = 0.0f, py::arg("ambient_map") = nullptr,
            py::arg("specular_vertex_normal") = false, py::arg("two_sided") = false,
            py::arg("reflectivity") = py::make_tuple(0, 0, 0),
-           py::arg("environment_diffuse") = 0.0f, py::arg("dynamic_reflection") = false)
+           py::arg("environment_diffuse") = 0.0f, py::arg("dynamic_reflection") = false,
+           py::arg("gloss_in_alpha") = false, py::arg("phantom") = false)
         .WEFT_VEC3_PROPERTY(Material, "ka", ka)
         .WEFT_VEC3_PROPERTY(Material, "kd", kd)
         .WEFT_VEC3_PROPERTY(Material, "ks", ks)
@@ -217,6 +221,14 @@ void bindScene(py::module_& m) {
                       [](Material& x, bool v) {
                           setChecked(x, [&](Material& y) { y.dynamicReflection = v; });
                       }, "Reflect a cube captured from this instance's origin (one per scene).")
+        .def_property("gloss_in_alpha", [](const Material& x) { return x.glossInAlpha; },
+                      [](Material& x, bool v) { setChecked(x, [&](Material& y) { y.glossInAlpha = v; }); },
+                      "The base texture's alpha is the decal's gloss (SPEC 4.4): environment light\n"
+                      "= T * lerp(specular, diffuse, alpha).")
+        .def_property("phantom", [](const Material& x) { return x.phantom; },
+                      [](Material& x, bool v) { setChecked(x, [&](Material& y) { y.phantom = v; }); },
+                      "A stand-in for a real object (AR): shows the background image times the\n"
+                      "shadows it receives (lit / unshadowed diffuse light), nothing else.")
         .def_property("alpha_cutoff", [](const Material& x) { return x.alphaCutoff; },
                       [](Material& x, float v) { setChecked(x, [&](Material& y) { y.alphaCutoff = v; }); })
         .def("__repr__", [](const Material& x) {
@@ -425,7 +437,9 @@ void bindScene(py::module_& m) {
                       [](Scene& s, py::handle v) { s.setBackground(toVec3(v, "background")); })
         .def("set_environment", [](Scene& s, py::object environment, float intensity, int specularSize,
                                    int specularLevels, int specularSamples, int domeLights,
-                                   int domeMapSize, int domeRefresh) {
+                                   int domeMapSize, int domeRefresh, float domeBlur,
+                                   float domeBlurDepthTolerance, const std::string& lookup,
+                                   int sphereMapSize) {
             EnvironmentLighting e;
             if (py::isinstance<Environment>(environment))
                 e.environment = environment.cast<std::shared_ptr<Environment>>();
@@ -441,17 +455,39 @@ void bindScene(py::module_& m) {
             e.domeLights = domeLights;
             e.domeMapSize = domeMapSize;
             e.domeRefresh = domeRefresh;
+            e.domeBlur = domeBlur;
+            e.domeBlurDepthTolerance = domeBlurDepthTolerance;
+            if (lookup == "cube")
+                e.lookup = EnvironmentLighting::Lookup::Cube;
+            else if (lookup == "sphere_map")
+                e.lookup = EnvironmentLighting::Lookup::SphereMap;
+            else
+                throw InvalidArgument("Scene.set_environment: lookup must be 'cube' or 'sphere_map' "
+                                      "(got '" + lookup + "')");
+            e.sphereMapSize = sphereMapSize;
             s.setEnvironment(e);
         }, py::arg("environment"), py::arg("intensity") = 1.0f, py::arg("specular_size") = 64,
            py::arg("specular_levels") = 6, py::arg("specular_samples") = 64,
            py::arg("dome_lights") = 0, py::arg("dome_map_size") = 256, py::arg("dome_refresh") = 0,
+           py::arg("dome_blur") = 0.0f, py::arg("dome_blur_depth_tolerance") = 0.05f,
+           py::arg("lookup") = "cube", py::arg("sphere_map_size") = 128,
            "Lights the scene with an environment (a weft.ibl.Environment, re-baked when its version\n"
            "changes, or a weft.ibl.CubeMap, copied into a new one): SH9 irradiance for materials'\n"
            "environment_diffuse, a GGX chain (level l: roughness l / (levels - 1)) for their\n"
            "reflectivity. dome_lights (0, 8, ..., 64) shadow lights of Environment.shadow_dome\n"
            "cast dome_map_size shadow maps; the diffuse loses the occluded ones' light (eq. 2.23);\n"
-           "while casters move, dome_refresh maps per frame are re-rendered (0: all).")
+           "while casters move, dome_refresh maps per frame are re-rendered (0: all).\n"
+           "dome_blur > 0 blurs the dome's shadows over that many pixels (bilateral: depths that\n"
+           "differ by more than dome_blur_depth_tolerance, relative, do not mix); they darken the\n"
+           "diffuse light only. lookup='sphere_map' is the seed's eye-space path: the environment\n"
+           "is read as eye space (a capture from the viewer's camera) and looked up in sphere maps\n"
+           "of sphere_map_size at normalize(d_eye + (0, 0, 1)).")
         .def("clear_environment", &Scene::clearEnvironment)
+        .def_property("background_image",
+                      [](const Scene& s) { return std::const_pointer_cast<Texture>(s.backgroundImage()); },
+                      [](Scene& s, std::shared_ptr<Texture> t) { s.setBackgroundImage(t); },
+                      "A weft.Texture behind everything instead of the background colour, stretched\n"
+                      "over the output (a camera frame for AR with phantom materials); None clears it.")
         .def_property_readonly("environment", [](const Scene& s) -> py::object {
             if (!s.environment().environment) return py::none();
             return py::cast(s.environment().environment);

@@ -52,26 +52,72 @@ float environmentRoughness(float shininess) {
     return clamp(sqrt(sqrt(2.0 / (shininess + 2.0))), 0.0, 1.0);
 }
 
-// The environment's contribution at p (normal n, unit view vector v, texture colour T); with a
-// dome of shadow lights the diffuse part loses what the occluded ones bring (eq. 2.23).
-vec3 environmentLight(vec3 p, vec3 n, vec3 v, vec3 T, Instance ins) {
+// Texture coordinates of world direction d in an eye-space sphere map (SPEC §4.4, the seed's
+// path): d goes to eye space, m = normalize(d_eye + A) with A = (0, 0, 1); rows run downwards
+// (weft::cubeToSphere). d_eye = -A (straight away from the eye) has no unique point: the rim.
+vec2 sphereMapUv(vec3 d) {
+    vec3 m = mat3(frame.view) * d + vec3(0.0, 0.0, 1.0);
+    float len = length(m);
+    m = len > 1e-6 ? m / len : vec3(1.0, 0.0, 0.0);
+    return vec2(0.5 + 0.5 * m.x, 0.5 - 0.5 * m.y);
+}
+
+// What the environment brings at p (normal n, unit view vector v, texture colour T, base-texture
+// alpha `decalAlpha`): the diffuse part before the dome's shadows, the specular part, and the
+// fraction of the diffuse light the dome does not occlude (eq. 2.23 as a ratio; 1 without a
+// dome). The total is specular + diffuse * visibility; the dome blur multiplies the diffuse part
+// with the blurred visibility instead.
+struct EnvironmentTerms {
+    vec3 diffuse;    // before the dome's shadows
+    vec3 diffuseLit; // after them (eq. 2.23, per channel)
+    vec3 specular;
+    float visibility;
+};
+
+EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlpha, Instance ins) {
+    EnvironmentTerms e;
+    e.diffuse = e.diffuseLit = vec3(0.0);
+    e.specular = vec3(0.0);
+    e.visibility = 1.0;
     bool probe = (int(ins.baseColor.w) & 4) != 0;
-    if (frame.environment.x <= 0.0 && !probe) return vec3(0.0);
-    vec3 color = vec3(0.0);
-    if (ins.environment.w > 0.0 && frame.environment.x > 0.0) {
-        vec3 irradiance = environmentIrradiance(n);
-        if (frame.environment.z > 0.0)
-            irradiance = max(irradiance - domeOccluded(p, n) * frame.environment.x, vec3(0.0));
-        color = ins.environment.w * ins.kd.rgb * T * irradiance;
+    bool sphere = frame.options.x > 0.5;
+    if (frame.environment.x <= 0.0 && !probe) return e;
+    vec3 irradiance = vec3(0.0), lit = vec3(-1.0);
+    if (frame.environment.x > 0.0) {
+        irradiance = sphere ? textureLod(sphereIrradiance, sphereMapUv(n), 0.0).rgb *
+                                  frame.environment.x
+                            : environmentIrradiance(n);
+        if (frame.environment.z > 0.0) {
+            lit = max(irradiance - domeOccluded(p, n) * frame.environment.x, vec3(0.0));
+            float full = dot(irradiance, vec3(0.2126, 0.7152, 0.0722));
+            e.visibility = full > 0.0 ? dot(lit, vec3(0.2126, 0.7152, 0.0722)) / full : 1.0;
+        }
     }
+    vec3 diffuse = ins.environment.w * ins.kd.rgb * irradiance;
+    vec3 specular = vec3(0.0);
     vec3 f0 = ins.environment.rgb;
     if (any(greaterThan(f0, vec3(0.0)))) {
         float ndv = dot(n, v);
         vec3 r = 2.0 * ndv * n - v;
-        float lod = environmentRoughness(ins.ks.w) * frame.environment.y;
+        float roughness = environmentRoughness(ins.ks.w);
         vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - clamp(ndv, 0.0, 1.0), 5.0);
-        color += fresnel * (probe ? textureLod(probeMap, r, 0.0).rgb
-                                  : textureLod(environmentMap, r, lod).rgb * frame.environment.x);
+        vec3 radiance;
+        if (probe)
+            radiance = textureLod(probeMap, r, 0.0).rgb;
+        else if (sphere)
+            radiance = textureLod(sphereGlossy, sphereMapUv(r), roughness * frame.options.y).rgb *
+                       frame.environment.x;
+        else
+            radiance = textureLod(environmentMap, r, roughness * frame.environment.y).rgb *
+                       frame.environment.x;
+        specular = fresnel * radiance;
     }
-    return color;
+    // The seed's decal material keeps its gloss in the base texture's alpha:
+    // lighting = lerp(specular, diffuse, alpha), out = lighting * T (SPEC §4.4).
+    bool gloss = (int(ins.kd.w) & 8) != 0;
+    e.diffuse = diffuse * T * (gloss ? decalAlpha : 1.0);
+    // Per channel as eq. 2.23 has it (the blur pass uses the scalar visibility).
+    e.diffuseLit = lit.x < 0.0 ? e.diffuse : e.diffuse * lit / max(irradiance, vec3(1e-30));
+    e.specular = specular * (gloss ? T * (1.0 - decalAlpha) : vec3(1.0));
+    return e;
 }

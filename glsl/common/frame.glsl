@@ -23,7 +23,8 @@ struct Instance {
     mat4 model;
     mat4 normalMatrix; // inverse transpose of the model matrix (upper 3x3 used)
     vec4 ka;        // w: alpha cutoff (0: opaque)
-    vec4 kd;        // w: bits 1 normal map, 2 ambient map, 4 specular from the vertex normal
+    vec4 kd;        // w: bits 1 normal map, 2 ambient map, 4 specular from the vertex normal,
+                    //    8 gloss in the base texture's alpha, 16 phantom
     vec4 ks;        // w: shininess
     vec4 baseColor;
     vec4 environment; // rgb: reflectivity (Fresnel F0), w: environment-diffuse weight
@@ -38,6 +39,10 @@ layout(set = 0, binding = 0) uniform FrameUbo {
     ivec4 counts; // x: lights, y: PCF radius, z: shadow-map size, w: debug light or -1
     vec4 environment;      // x: intensity (0: none), y: last chain level, z: dome lights, w: size
     vec4 environmentSh[9]; // SH9 of E(n) / pi (environment.glsl)
+    mat4 view;             // world -> eye (sphere-map lookups)
+    vec4 options;  // x: sphere-map lookups, y: last glossy sphere level, z: dome deferred to the
+                   // blur pass, w: background image
+    vec4 viewport; // xy: 1 / target size
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };
@@ -46,5 +51,8 @@ layout(set = 0, binding = 3) uniform sampler2DArray shadowMaps;
 layout(std430, set = 0, binding = 4) readonly buffer ShadowLayers { ShadowLayer shadowLayers[]; };
 layout(set = 0, binding = 5) uniform sampler2D cookies[MAX_COOKIES];
 layout(set = 0, binding = 6) uniform samplerCube environmentMap; // GGX chain by roughness
+layout(set = 0, binding = 10) uniform sampler2D backgroundImage;   // camera image (AR) or black
+layout(set = 0, binding = 11) uniform sampler2D sphereIrradiance;  // eye-space sphere maps
+layout(set = 0, binding = 12) uniform sampler2D sphereGlossy;      // mips by roughness
 
 layout(push_constant) uniform Push { uint instance; } push;

@@ -12,6 +12,8 @@ layout(set = 1, binding = 3) uniform sampler2D ambientMap;  // linear, replaces 
 const int MAP_NORMAL = 1;
 const int MAP_AMBIENT = 2;
 const int SPECULAR_VERTEX_NORMAL = 4;
+const int GLOSS_IN_ALPHA = 8;
+const int PHANTOM = 16;
 
 bool hasFlag(Instance ins, int flag) { return (int(ins.kd.w) & flag) != 0; }
 
@@ -118,9 +120,6 @@ vec3 incidentRadiance(Light L, vec3 p, out vec3 l) {
     return radiance;
 }
 
-// T of eq. 2.10: the material's base colour times its texture.
-vec3 albedo(vec2 uv, Instance ins) { return ins.baseColor.rgb * texture(baseTexture, uv).rgb; }
-
 // Alpha test (SPEC §1.5): true when the fragment is a hole.
 bool alphaDiscarded(vec2 uv, Instance ins) {
     return ins.ka.w > 0.0 && texture(baseTexture, uv).a < ins.ka.w;
@@ -136,6 +135,7 @@ struct Surface {
     vec3 T;
     vec3 ks;
     vec3 ambient;
+    float alpha; // the base texture's alpha (the decal's gloss with GLOSS_IN_ALPHA)
 };
 
 // The shading normal: the interpolated vertex normal, perturbed by the tangent-space normal
@@ -172,17 +172,30 @@ Surface surfaceAt(vec3 p, vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins
     vec3 vertexN;
     s.n = shadingNormal(vertexNormal, tangent, uv, ins, frontFacing, vertexN);
     s.ns = hasFlag(ins, SPECULAR_VERTEX_NORMAL) ? vertexN : s.n;
-    s.T = albedo(uv, ins);
+    vec4 base = texture(baseTexture, uv);
+    s.T = ins.baseColor.rgb * base.rgb;
+    s.alpha = base.a;
     s.ks = specular(uv, ins);
     s.ambient = hasFlag(ins, MAP_AMBIENT) ? texture(ambientMap, uv).rgb : frame.ambient.rgb;
     return s;
 }
 
-// Eq. 2.10 summed over lights. `debugVis`/`debugDepth` report the debug light's shadow test.
-vec3 shade(Surface sf, Instance ins, out float debugVis, out float debugDepth) {
+// The terms of eq. 2.10 summed over lights, plus the environment's (environment.glsl).
+struct Shading {
+    vec3 ambient;           // I_A K_A T
+    vec3 diffuse;           // direct diffuse, shadows applied
+    vec3 diffuseUnshadowed; // direct diffuse without shadows (phantoms' reference)
+    vec3 specular;          // direct specular, shadows applied
+    EnvironmentTerms environment;
+};
+
+// `debugVis`/`debugDepth` report the debug light's shadow test.
+Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth) {
     vec3 p = sf.p, n = sf.n;
     vec3 v = normalize(frame.cameraPos.xyz - p);
-    vec3 color = sf.ambient * ins.ka.rgb * sf.T;
+    Shading sh;
+    sh.ambient = sf.ambient * ins.ka.rgb * sf.T;
+    sh.diffuse = sh.diffuseUnshadowed = sh.specular = vec3(0.0);
     debugVis = 1.0;
     debugDepth = 0.0;
     for (int i = 0; i < frame.counts.x; ++i) {
@@ -201,9 +214,33 @@ vec3 shade(Surface sf, Instance ins, out float debugVis, out float debugDepth) {
         if (ndl > 0.0) {
             vec3 h = normalize(l + v);
             float s = pow(max(dot(sf.ns, h), 0.0), ins.ks.w);
-            color += vis * (ndl * L * ins.kd.rgb * sf.T + s * L * sf.ks);
+            vec3 d = ndl * L * ins.kd.rgb * sf.T;
+            sh.diffuseUnshadowed += d;
+            sh.diffuse += vis * d;
+            sh.specular += vis * s * L * sf.ks;
         }
     }
-    color += environmentLight(p, n, v, sf.T, ins);
-    return color;
+    sh.environment = environmentTerms(p, n, v, sf.T, sf.alpha, ins);
+    return sh;
+}
+
+// The colour of a shaded fragment. With the dome's diffuse deferred to the blur pass
+// (frame.options.z), `dome` receives that part before the dome's shadows (rgb) and its
+// visibility (a), and the colour leaves it out. A phantom (SPEC §4.5, AR) shows the background
+// image darkened by the shadows it receives: background * lit / unlit diffuse light (differential
+// rendering of a diffuse stand-in).
+vec3 shadedColor(Shading sh, Instance ins, out vec4 dome) {
+    bool deferDome = frame.options.z > 0.5;
+    EnvironmentTerms e = sh.environment;
+    if (hasFlag(ins, PHANTOM)) {
+        vec3 unlit = max(sh.ambient + sh.diffuseUnshadowed + e.diffuse, vec3(1e-30));
+        vec3 bg = frame.options.w > 0.5
+                      ? textureLod(backgroundImage, gl_FragCoord.xy * frame.viewport.xy, 0.0).rgb
+                      : frame.background.rgb;
+        vec3 direct = sh.ambient + sh.diffuse;
+        dome = vec4(bg * e.diffuse / unlit, e.visibility);
+        return bg * (deferDome ? direct : direct + e.diffuseLit) / unlit;
+    }
+    dome = vec4(e.diffuse, e.visibility);
+    return sh.ambient + sh.diffuse + sh.specular + e.specular + (deferDome ? vec3(0.0) : e.diffuseLit);
 }

@@ -1,26 +1,4 @@
 #version 450
-// The forward pass plus the inputs of its shading, for the NumPy shading oracle.
-#include "shading.glsl"
-
-layout(location = 0) in vec3 inWorldPos;
-layout(location = 1) in vec3 inNormal;
-layout(location = 2) in vec2 inUv;
-layout(location = 3) in vec4 inTangent;
-
-layout(location = 0) out vec4 outColor;
-layout(location = 1) out vec4 outPosition; // world xyz, 1 = covered
-layout(location = 2) out vec4 outNormal;   // shading normal, shadow visibility
-layout(location = 3) out vec4 outSurface;  // uv, light-space depth, instance + 1
-layout(location = 4) out vec4 outAlbedo;   // T: base colour * sampled texture; K_S (grey) map
-
-void main() {
-    Instance ins = instances[push.instance];
-    if (alphaDiscarded(inUv, ins)) discard;
-    float vis, depth;
-    Surface sf = surfaceAt(inWorldPos, inNormal, inTangent, inUv, ins, gl_FrontFacing);
-    outColor = vec4(shade(sf, ins, vis, depth), 1.0);
-    outAlbedo = vec4(sf.T, texture(specularMap, inUv).g);
-    outPosition = vec4(inWorldPos, 1.0);
-    outNormal = vec4(sf.n, vis);
-    outSurface = vec4(inUv, depth, float(push.instance + 1u));
-}
+// Forward shading plus the inputs of its shading, for the NumPy shading oracle.
+#define DEBUG_OUTPUTS
+#include "forward_main.glsl"

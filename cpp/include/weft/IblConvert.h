@@ -52,9 +52,9 @@ CubeMap equirectToCube(RgbView equirect, int size, int supersample = 2);
 /// Cube map -> equirectangular image (height x width x 3), for viewing and median cut.
 std::vector<float> cubeToEquirect(const CubeMap& cube, int width, int height);
 /// Cube map -> sphere map (size x size x 3) with the same mapping as sphereToCube; pixels
-/// outside the unit disc repeat the rim.
+/// outside the unit disc repeat the rim. `level` picks the cube's mip level.
 std::vector<float> cubeToSphere(const CubeMap& cube, int size, const glm::mat4& worldToSphere,
-                                float wrap);
+                                float wrap, int level = 0);
 /// Fills texels with valid == 0 by push-pull over the seamless mip pyramid: seen texels keep
 /// their value, unseen ones get a smooth interpolation of the nearest seen regions (across
 /// faces). Throws InvalidArgument when nothing was seen or the mask size is wrong.

@@ -39,6 +39,14 @@ struct Material {
     /// instance's origin (RenderSettings::probeSize), not the environment: one capture per scene,
     /// from the first instance with this flag; it is captured again only when the scene changes.
     bool dynamicReflection = false;
+    /// The seed's decal material (SPEC §4.4): the base texture's alpha is the gloss, not
+    /// opacity; the environment lighting becomes T * lerp(specular, diffuse, alpha). Not with
+    /// an alpha cutoff.
+    bool glossInAlpha = false;
+    /// A phantom (SPEC §4.5, AR): a stand-in for a real object, invisible except for the shadows
+    /// it receives. It shows the background (Scene::setBackgroundImage, else the background
+    /// colour) times its lit / unshadowed diffuse light, and hides what lies behind it.
+    bool phantom = false;
 
     /// Throws InvalidArgument for negative or non-finite coefficients or shininess <= 0.
     void validate() const;

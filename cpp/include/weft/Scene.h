@@ -56,6 +56,18 @@ struct EnvironmentLighting {
     int domeMapSize = 256;
     /// Dome maps re-rendered per frame while the casters move (round robin); 0 = all.
     int domeRefresh = 0;
+    /// Radius in pixels of the blur of the dome's shadows (SPEC §4.5: the accumulated shadow
+    /// image is blurred and darkens the diffuse light only); 0 = per pixel, unblurred. Bilateral:
+    /// depths differing by more than `domeBlurDepthTolerance` (relative) do not mix.
+    float domeBlur = 0.0f;
+    float domeBlurDepthTolerance = 0.05f;
+    /// Cube: world-space cube-map lookups (irradiance at N, glossy chain at R). SphereMap: the
+    /// seed's eye-space path (SPEC §4.4) for a capture taken from the viewer's camera: the
+    /// environment is read as eye space, baked into sphere maps of `sphereMapSize` (irradiance
+    /// and a glossy mip chain) and looked up at normalize(d_eye + (0, 0, 1)).
+    enum class Lookup { Cube, SphereMap };
+    Lookup lookup = Lookup::Cube;
+    int sphereMapSize = 128;
 
     /// Throws InvalidArgument for a missing/non-finite/negative environment or bad parameters.
     void validate() const;
@@ -87,6 +99,10 @@ public:
 
     void setAmbient(const glm::vec3& ambient);      // I_A
     void setBackground(const glm::vec3& background); // linear colour behind everything
+    /// An image behind everything instead of the colour (a camera frame for AR compositing with
+    /// phantom materials), stretched over the output; null clears it.
+    void setBackgroundImage(TexturePtr image);
+    const TexturePtr& backgroundImage() const { return mBackgroundImage; }
     const glm::vec3& ambient() const { return mAmbient; }
     const glm::vec3& background() const { return mBackground; }
 
@@ -108,6 +124,7 @@ private:
     std::vector<Light> mLights;
     glm::vec3 mAmbient{0.1f};
     glm::vec3 mBackground{0.0f};
+    TexturePtr mBackgroundImage;
     EnvironmentLighting mEnvironment;
     uint64_t mVersion = 1;
 };

@@ -165,8 +165,10 @@ std::vector<float> cubeToEquirect(const CubeMap& cube, int width, int height) {
 }
 
 std::vector<float> cubeToSphere(const CubeMap& cube, int size, const glm::mat4& worldToSphere,
-                                float wrap) {
+                                float wrap, int level) {
     requireCube(cube, "cube map");
+    if (level < 0 || level >= cube.levels())
+        throw InvalidArgument("cube map level " + std::to_string(level) + " does not exist");
     requireImageSize(size, size, "sphere map");
     if (!(wrap > 0.0f && wrap <= 1.0f))
         throw InvalidArgument("wrap value must be in (0, 1], got " + std::to_string(wrap));
@@ -187,7 +189,7 @@ std::vector<float> cubeToSphere(const CubeMap& cube, int size, const glm::mat4& 
                                                                           wrap * wrap + 1.0f));
                 glm::vec3 v = t * h - glm::vec3(0.0f, 0.0f, wrap);
                 if (glm::dot(v, v) < 1e-12f) v = glm::vec3(0.0f, 0.0f, -1.0f);
-                const glm::vec3 c = cube.sample(inv * v);
+                const glm::vec3 c = cube.sample(inv * v, level);
                 float* p = out.data() + (size_t(row) * size + col) * 3;
                 p[0] = c.x;
                 p[1] = c.y;

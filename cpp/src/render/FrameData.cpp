@@ -112,9 +112,10 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
         g.model = inst.transform;
         g.normalMatrix = glm::transpose(glm::inverse(inst.transform));
         g.ka = glm::vec4(inst.material.ka, inst.material.alphaCutoff);
-        // kd.w: bit 0 normal map, bit 1 ambient map, bit 2 specular from the vertex normal
-        const int maps = (inst.material.normalMap ? 1 : 0) | (inst.material.ambientMap ? 2 : 0) |
-                         (inst.material.specularVertexNormal ? 4 : 0);
+        const Material& m = inst.material;
+        const int maps = (m.normalMap ? kFlagNormalMap : 0) | (m.ambientMap ? kFlagAmbientMap : 0) |
+                         (m.specularVertexNormal ? kFlagSpecularVertexNormal : 0) |
+                         (m.glossInAlpha ? kFlagGlossInAlpha : 0) | (m.phantom ? kFlagPhantom : 0);
         g.kd = glm::vec4(inst.material.kd, float(maps));
         g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
         const bool mirrored = glm::determinant(glm::mat3(inst.transform)) < 0.0f;
@@ -134,7 +135,7 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
         }
         f.draws.push_back({mesh, cache.materialSet(inst.material), uint32_t(f.instances.size()),
                            inst.castShadows, inst.transform, inst.material.alphaCutoff, mirrored,
-                           inst.material.twoSided});
+                           inst.material.twoSided, inst.material.phantom});
         f.instances.push_back(g);
         anyCaster |= inst.castShadows;
     }
@@ -153,6 +154,7 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
     GpuFrame& g = f.frame;
     g.viewProj = camera.projection(aspect) * camera.view();
     g.cameraPos = glm::vec4(camera.position, 1);
+    g.view = camera.view();
     g.ambient = glm::vec4(scene.ambient(), 0);
     g.background = glm::vec4(scene.background(), 1);
     g.bias = glm::vec4(settings.biasConstant, settings.biasSlope, settings.biasMax, 0);

@@ -20,6 +20,7 @@ struct Draw {
     float alphaCutoff; // > 0: alpha-tested (also in shadow maps)
     bool mirrored;     // det(model) < 0: the triangles' winding is reversed
     bool twoSided;     // no culling; back faces shaded with the flipped normal
+    bool phantom;      // shows only the shadows it receives (not in reflection captures)
 };
 
 /// One shadow-map layer to render: a view of a shadow-casting light.

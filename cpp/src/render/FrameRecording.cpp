@@ -91,6 +91,12 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     const std::vector<render::GpuDomeLight>& domeLights = dome.lights();
     data.frame.environment.z = float(domeLights.size());
     data.frame.environment.w = float(dome.mapSize());
+    // The dome's diffuse light goes through the blur pass (SPEC §4.5) when a blur is asked for.
+    const bool domeBlur = dome.active() && scene.environment().domeBlur > 0.0f;
+    data.frame.options.z = domeBlur ? 1.0f : 0.0f;
+    const bool background = scene.backgroundImage() != nullptr;
+    data.frame.options.w = background ? 1.0f : 0.0f;
+    data.frame.viewport = glm::vec4(1.0f / float(targets.width), 1.0f / float(targets.height), 0, 0);
     const bool captureProbe = probe.prepare(scene, data, settings.probeSize);
     const bool hasProbe = probe.instance() >= 0;
     const bool reuseShadows = settings.reuseShadowMaps && !data.shadowViews.empty() &&
@@ -125,6 +131,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
             render::GpuFrame face = frame;
             face.viewProj = render::probeFaceViewProj(f, probe.position(), 0.02f, 1000.0f);
             face.cameraPos = glm::vec4(probe.position(), 1.0f);
+            face.options.z = 0.0f; // the faces shade the dome inline: no blur pass for them
             std::memcpy(faces.data() + f * faceStride, &face, sizeof(face));
         }
         slot.probeUbo.write(faces.data(), faces.size());
@@ -143,18 +150,23 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
 
     // ---- descriptors ----------------------------------------------------------------------
     VK_CHECK(vkResetDescriptorPool(c.device(), slot.pool, 0));
-    VkDescriptorSetLayout layouts[kFrameSets + 1];
-    for (uint32_t i = 0; i < kFrameSets; ++i) layouts[i] = pipes.frameSetLayout;
-    layouts[kFrameSets] = pipes.outputSetLayout;
-    const uint32_t setCount = captureProbe ? kFrameSets + 1 : 2;
-    if (!captureProbe) layouts[1] = pipes.outputSetLayout;
+    // The frame set, six probe-face sets while capturing, the output set, the dome blur's set.
+    VkDescriptorSetLayout layouts[kFrameSets + 2];
+    uint32_t setCount = 0;
+    layouts[setCount++] = pipes.frameSetLayout;
+    if (captureProbe)
+        for (uint32_t f = 0; f < 6; ++f) layouts[setCount++] = pipes.frameSetLayout;
+    const uint32_t outputIndex = setCount;
+    layouts[setCount++] = pipes.outputSetLayout;
+    layouts[setCount++] = pipes.domeBlurSetLayout;
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = slot.pool;
     alloc.descriptorSetCount = setCount;
     alloc.pSetLayouts = layouts;
-    VkDescriptorSet sets[kFrameSets + 1];
+    VkDescriptorSet sets[kFrameSets + 2];
     VK_CHECK(vkAllocateDescriptorSets(c.device(), &alloc, sets));
-    const VkDescriptorSet frameSet = sets[0], outputSet = sets[setCount - 1];
+    const VkDescriptorSet frameSet = sets[0], outputSet = sets[outputIndex],
+                          domeBlurSet = sets[outputIndex + 1];
     vk::Image& shadowImage = shadowViews.empty() ? dummyShadow : shadowMaps;
     vk::Image& domeImage = dome.active() ? dome.maps() : dummyShadow;
     // A frame set: the frame's data with uniforms `ubo` and the reflection capture `probeView`.
@@ -178,7 +190,15 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                                           render::useState(Use::Sampled, true).layout};
         VkDescriptorImageInfo probeInfo{pipes.environmentSampler, probeView,
                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        VkWriteDescriptorSet writes[10];
+        VkDescriptorImageInfo backgroundInfo{pipes.cookieSampler,
+                                             cache->textureView(scene.backgroundImage()),
+                                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        VkDescriptorImageInfo sphereInfos[2] = {
+            {pipes.environmentSampler, environment.sphereIrradiance(),
+             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+            {pipes.environmentSampler, environment.sphereGlossy(),
+             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+        VkWriteDescriptorSet writes[13];
         for (auto& w : writes) w = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         auto setWrite = [&](int i, uint32_t binding, VkDescriptorType type) {
             writes[i].dstSet = set;
@@ -207,7 +227,13 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
         writes[8].pImageInfo = &domeMapInfo;
         setWrite(9, 9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
         writes[9].pImageInfo = &probeInfo;
-        vkUpdateDescriptorSets(c.device(), 10, writes, 0, nullptr);
+        setWrite(10, 10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[10].pImageInfo = &backgroundInfo;
+        setWrite(11, 11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[11].pImageInfo = &sphereInfos[0];
+        setWrite(12, 12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+        writes[12].pImageInfo = &sphereInfos[1];
+        vkUpdateDescriptorSets(c.device(), 13, writes, 0, nullptr);
     };
     writeFrameSet(frameSet, {slot.ubo.get(), 0, sizeof(frame)},
                   hasProbe ? probe.cube().view() : environment.black());
@@ -224,6 +250,22 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     outputWrite.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     outputWrite.pImageInfo = &hdrInfo;
     vkUpdateDescriptorSets(c.device(), 1, &outputWrite, 0, nullptr);
+    vk::Image* domeTarget = domeBlur ? &targets.domeImage(c) : nullptr;
+    if (domeBlur) {
+        VkDescriptorImageInfo infos[2] = {
+            {pipes.nearestSampler, domeTarget->view(), render::useState(Use::Sampled, false).layout},
+            {pipes.nearestSampler, targets.depth.view(), render::useState(Use::Sampled, true).layout}};
+        VkWriteDescriptorSet w[2];
+        for (uint32_t i = 0; i < 2; ++i) {
+            w[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w[i].dstSet = domeBlurSet;
+            w[i].dstBinding = i;
+            w[i].descriptorCount = 1;
+            w[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            w[i].pImageInfo = &infos[i];
+        }
+        vkUpdateDescriptorSets(c.device(), 2, w, 0, nullptr);
+    }
 
     // ---- frame graph ----------------------------------------------------------------------
     FrameGraph g;
@@ -354,9 +396,11 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                            viewportScissor(cmd, size, size);
                            VkPipeline bound = VK_NULL_HANDLE;
                            for (const Draw& d : draws) {
-                               if (d.mesh->indexCount == 0 || int(d.instance) == probe.instance()) continue;
+                               if (d.mesh->indexCount == 0 || int(d.instance) == probe.instance() ||
+                                   d.phantom)
+                                   continue;
                                // cube faces mirror the view: the winding flips
-                               const VkPipeline p = pipes.forwardFor(false, !d.mirrored, d.twoSided);
+                               const VkPipeline p = pipes.forwardFor(false, false, !d.mirrored, d.twoSided);
                                if (p != bound) {
                                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
                                    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
@@ -374,6 +418,33 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
         }
     }
 
+    // The background image (AR: the camera frame) under everything the forward pass draws.
+    if (background)
+        g.addPass({"background", {}, {{rHdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
+                       VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                       a.imageView = targets.hdr.view();
+                       a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                       a.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+                       a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                       VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                       info.renderArea = {{0, 0}, {targets.width, targets.height}};
+                       info.layerCount = 1;
+                       info.colorAttachmentCount = 1;
+                       info.pColorAttachments = &a;
+                       c.fn().cmdBeginRendering(cmd, &info);
+                       viewportScissor(cmd, targets.width, targets.height);
+                       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.background.get());
+                       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.sceneLayout,
+                                               0, 1, &frameSet, 0, nullptr);
+                       vkCmdDraw(cmd, 3, 1, 0, 0);
+                       c.fn().cmdEndRendering(cmd);
+                   }});
+    int rDomeLight = -1; // the forward pass's dome output for the blur
+    if (domeBlur) {
+        rDomeLight = g.addResource("dome_light", domeTarget);
+        forwardWrites.push_back({rDomeLight, Use::ColorWrite});
+    }
+
     std::vector<ResourceUse> forwardReads = {{rShadow, Use::Sampled}};
     if (rDome >= 0) forwardReads.push_back({rDome, Use::Sampled});
     if (rProbe >= 0) forwardReads.push_back({rProbe, Use::Sampled});
@@ -389,18 +460,20 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                        colors.push_back(a);
                    };
                    color(targets.hdr.view(), glm::vec4(scene.background(), 1.0f));
+                   if (background) colors.back().loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
                    if (debug) { // background: not covered, not shadowed
                        color(targets.position.view(), glm::vec4(0.0f));
                        color(targets.normal.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
                        color(targets.surface.view(), glm::vec4(0.0f));
                        color(targets.albedo.view(), glm::vec4(0.0f));
                    }
+                   if (domeBlur) color(domeTarget->view(), glm::vec4(0.0f, 0.0f, 0.0f, -1.0f)); // a < 0: no surface
                    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
                    depth.imageView = targets.depth.view();
                    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
                    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-                   depth.storeOp = hasHair ? VK_ATTACHMENT_STORE_OP_STORE
-                                           : VK_ATTACHMENT_STORE_OP_DONT_CARE; // hair tests against it
+                   depth.storeOp = hasHair || domeBlur ? VK_ATTACHMENT_STORE_OP_STORE // hair tests
+                                                       : VK_ATTACHMENT_STORE_OP_DONT_CARE; // against it
                    depth.clearValue.depthStencil = {1.0f, 0};
                    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
                    info.renderArea = {{0, 0}, {targets.width, targets.height}};
@@ -413,7 +486,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    VkPipeline bound = VK_NULL_HANDLE;
                    for (const Draw& d : draws) {
                        if (d.mesh->indexCount == 0) continue; // e.g. a cloth torn to pieces
-                       const VkPipeline p = pipes.forwardFor(debug, d.mirrored, d.twoSided);
+                       const VkPipeline p = pipes.forwardFor(debug, domeBlur, d.mirrored, d.twoSided);
                        if (p != bound) {
                            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
                            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
@@ -428,6 +501,34 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    }
                    c.fn().cmdEndRendering(cmd);
                }});
+
+    // The dome's shadows blurred, times the diffuse light they darken, added to the colour.
+    if (domeBlur)
+        g.addPass({"dome_blur", {{rDomeLight, Use::Sampled}, {rDepth, Use::Sampled}},
+                   {{rHdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
+                       VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                       a.imageView = targets.hdr.view();
+                       a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                       a.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+                       a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                       VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                       info.renderArea = {{0, 0}, {targets.width, targets.height}};
+                       info.layerCount = 1;
+                       info.colorAttachmentCount = 1;
+                       info.pColorAttachments = &a;
+                       c.fn().cmdBeginRendering(cmd, &info);
+                       viewportScissor(cmd, targets.width, targets.height);
+                       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.domeBlur.get());
+                       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.domeBlurLayout,
+                                               0, 1, &domeBlurSet, 0, nullptr);
+                       const render::DomeBlurPush push{
+                           glm::vec4(scene.environment().domeBlur, camera.zNear, camera.zFar,
+                                     scene.environment().domeBlurDepthTolerance)};
+                       vkCmdPushConstants(cmd, pipes.domeBlurLayout, vk::kGraphicsStages, 0,
+                                          sizeof(push), &push);
+                       vkCmdDraw(cmd, 3, 1, 0, 0);
+                       c.fn().cmdEndRendering(cmd);
+                   }});
 
     if (hasHair)
         hair->addPasses(g, {rShadow, rDepth, rHdr, debug ? rDebug : nullptr, &targets.hdr,

@@ -36,7 +36,8 @@ struct GpuInstance {
     glm::mat4 model;
     glm::mat4 normalMatrix;
     glm::vec4 ka; // w: alpha cutoff (0: opaque)
-    glm::vec4 kd; // w: bits 1 normal map, 2 ambient map, 4 specular from the vertex normal
+    glm::vec4 kd; // w: bits 1 normal map, 2 ambient map, 4 specular from the vertex normal,
+                  //    8 gloss in the base texture's alpha, 16 phantom
     glm::vec4 ks; // w: shininess
     glm::vec4 baseColor;
     glm::vec4 environment; // rgb: reflectivity (Fresnel F0), w: environment-diffuse weight
@@ -52,12 +53,31 @@ struct GpuFrame {
     glm::vec4 environment; // x: intensity (0: no environment), y: last level of the chain,
                            // z: dome lights, w: dome shadow-map size
     glm::vec4 environmentSh[9]; // SH9 of E(n) / pi: A_l L_lm / pi (rgb), see environment.glsl
+    glm::mat4 view;        // world -> eye (the sphere-map lookups of SPEC §4.4)
+    glm::vec4 options;     // x: 1 = sphere-map (eye space) lookups, y: last level of the glossy
+                           // sphere map, z: 1 = dome diffuse deferred to the blur pass,
+                           // w: 1 = background image
+    glm::vec4 viewport;    // xy: 1 / target size in pixels
+};
+
+/// Instance flags in GpuInstance::kd.w.
+enum GpuInstanceFlag : int {
+    kFlagNormalMap = 1,
+    kFlagAmbientMap = 2,
+    kFlagSpecularVertexNormal = 4,
+    kFlagGlossInAlpha = 8,
+    kFlagPhantom = 16,
+};
+
+/// Push constants of the dome-shadow blur (glsl/render/dome_blur.frag).
+struct DomeBlurPush {
+    glm::vec4 params; // x: radius in pixels, y: camera near, z: camera far, w: depth tolerance
 };
 
 static_assert(sizeof(GpuLight) == 80, "GpuLight must match frame.glsl");
 static_assert(sizeof(GpuShadowLayer) == 80, "GpuShadowLayer must match frame.glsl");
 static_assert(sizeof(GpuDomeLight) == 96, "GpuDomeLight must match environment.glsl");
 static_assert(sizeof(GpuInstance) == 208, "GpuInstance must match frame.glsl");
-static_assert(sizeof(GpuFrame) == 64 + 48 + 32 + 16 + 144, "GpuFrame must match frame.glsl");
+static_assert(sizeof(GpuFrame) == 64 + 48 + 32 + 16 + 144 + 64 + 32, "GpuFrame must match frame.glsl");
 
 } // namespace weft::render

@@ -22,12 +22,14 @@ void RenderTargets::ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug)
         height = h;
         mReadback.clear();
         hdr = makeTarget(ctx, w, h, kHdrFormat, color | VK_IMAGE_USAGE_SAMPLED_BIT);
-        depth = makeTarget(ctx, w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+        depth = makeTarget(ctx, w, h, kDepthFormat,
+                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
         ldr = makeTarget(ctx, w, h, kLdrFormat, color);
         position = vk::Image();
         normal = vk::Image();
         surface = vk::Image();
         albedo = vk::Image();
+        dome = vk::Image();
     }
     if (debug && !position) {
         position = makeTarget(ctx, w, h, kDebugFormat, color);
@@ -35,6 +37,13 @@ void RenderTargets::ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug)
         surface = makeTarget(ctx, w, h, kDebugFormat, color);
         albedo = makeTarget(ctx, w, h, kDebugFormat, color);
     }
+}
+
+vk::Image& RenderTargets::domeImage(vk::Context& ctx) {
+    if (!dome)
+        dome = makeTarget(ctx, width, height, kDomeFormat,
+                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    return dome;
 }
 
 vk::Buffer& RenderTargets::readbackFor(vk::Context& ctx, const vk::Image* image) {

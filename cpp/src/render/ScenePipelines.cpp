@@ -72,7 +72,10 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
                                              {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                              {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                              {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                             {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
@@ -81,29 +84,62 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     sceneLayout = vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));
     shadowLayout = vk::createPipelineLayout(c, {materialSetLayout}, sizeof(ShadowPush));
     outputLayout = vk::createPipelineLayout(c, {outputSetLayout}, 0);
+    domeBlurSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    domeBlurLayout = vk::createPipelineLayout(c, {domeBlurSetLayout}, sizeof(DomeBlurPush));
     createPipelines();
+}
+
+VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool twoSided) {
+    const int facing = twoSided ? 2 : mirrored ? 1 : 0;
+    vk::Pipeline& p = mForward[debug][dome][facing];
+    if (p) return p;
+    static const char* const shaders[2][2] = {
+        {"render/forward.frag", "render/forward_dome.frag"},
+        {"render/forward_debug.frag", "render/forward_debug_dome.frag"}};
+    vk::GraphicsPipelineDesc d;
+    d.vertexStride = kVertexStride;
+    d.vertexShader = "render/forward.vert";
+    d.fragmentShader = shaders[debug][dome];
+    d.colorFormats = {kHdrFormat};
+    if (debug) d.colorFormats.insert(d.colorFormats.end(), 4, kDebugFormat);
+    if (dome) d.colorFormats.push_back(kDomeFormat);
+    d.depthFormat = kDepthFormat;
+    d.layout = sceneLayout;
+    d.cullMode = facing == 2 ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+    d.frontFace = facing == 1 ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    p = vk::createGraphicsPipeline(mCtx, d);
+    return p;
 }
 
 void ScenePipelines::createPipelines() {
     vk::Context& c = mCtx;
-    vk::GraphicsPipelineDesc d;
-    d.vertexStride = kVertexStride;
-    d.vertexShader = "render/forward.vert";
-    d.fragmentShader = "render/forward.frag";
-    d.colorFormats = {kHdrFormat};
-    d.depthFormat = kDepthFormat;
-    d.layout = sceneLayout;
-    for (int debug = 0; debug < 2; ++debug) {
-        if (debug) {
-            d.fragmentShader = "render/forward_debug.frag";
-            d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat, kDebugFormat, kDebugFormat};
-        }
-        for (int facing = 0; facing < 3; ++facing) {
-            d.cullMode = facing == 2 ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
-            d.frontFace = facing == 1 ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
-            forward[debug][facing] = vk::createGraphicsPipeline(c, d);
-        }
-    }
+    for (auto& byDome : mForward) // created again on first use
+        for (auto& byFacing : byDome)
+            for (vk::Pipeline& p : byFacing) p = vk::Pipeline();
+
+    vk::GraphicsPipelineDesc fd; // full-screen passes into the hdr target
+    fd.vertexShader = "render/fullscreen.vert";
+    fd.vertexLayout = vk::VertexLayout::None;
+    fd.colorFormats = {kHdrFormat};
+    fd.cullMode = VK_CULL_MODE_NONE;
+    fd.depthTest = fd.depthWrite = false;
+    fd.fragmentShader = "render/background.frag";
+    fd.layout = sceneLayout;
+    background = vk::createGraphicsPipeline(c, fd);
+    fd.fragmentShader = "render/dome_blur.frag";
+    fd.layout = domeBlurLayout;
+    VkPipelineColorBlendAttachmentState add{};
+    add.blendEnable = VK_TRUE;
+    add.srcColorBlendFactor = add.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+    add.colorBlendOp = VK_BLEND_OP_ADD;
+    add.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+    add.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    add.alphaBlendOp = VK_BLEND_OP_ADD;
+    add.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                         VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    fd.blends = {add};
+    domeBlur = vk::createGraphicsPipeline(c, fd);
 
     vk::GraphicsPipelineDesc sd;
     sd.vertexShader = "render/shadow.vert";

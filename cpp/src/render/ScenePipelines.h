@@ -22,16 +22,16 @@ struct ScenePipelines {
     vk::Sampler nearestSampler; // texel fetches (shadow maps, hdr)
     vk::Sampler cookieSampler;  // bilinear, clamp to edge, level 0 (spot-light cookies)
     vk::Sampler environmentSampler; // trilinear over the whole chain (environment cube)
-    vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout;
-    vk::PipelineLayout sceneLayout, shadowLayout, outputLayout;
+    vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout, domeBlurSetLayout;
+    vk::PipelineLayout sceneLayout, shadowLayout, outputLayout, domeBlurLayout;
     vk::Pipeline shadow, shadowAlpha;
-    /// Forward shading, [debug outputs][facing]: facing 0 = back faces culled, 1 = the same for
-    /// mirroring transforms (det < 0 reverses the winding), 2 = two-sided (no culling).
-    vk::Pipeline forward[2][3];
+    vk::Pipeline background; // the scene's background image into the hdr target
+    vk::Pipeline domeBlur;   // adds the blurred dome-shadowed diffuse light (additive)
 
-    VkPipeline forwardFor(bool debug, bool mirrored, bool twoSided) const {
-        return forward[debug ? 1 : 0][twoSided ? 2 : mirrored ? 1 : 0];
-    }
+    /// Forward shading for an output set (`debug` outputs, `dome` output for the blur pass) and
+    /// a facing: back faces culled, the same for mirroring transforms (det < 0 reverses the
+    /// winding), or two-sided (no culling). Created on first use.
+    VkPipeline forwardFor(bool debug, bool dome, bool mirrored, bool twoSided);
 
     /// Builds every pipeline again from the current shaders (hot reload); layouts and samplers
     /// stay, so descriptor sets made for them stay valid. Old pipelines are retired.
@@ -43,6 +43,7 @@ struct ScenePipelines {
 private:
     vk::Context& mCtx;
     std::unordered_map<int, vk::Pipeline> mOutput; // by format
+    vk::Pipeline mForward[2][2][3];                // [debug][dome][facing]
 };
 
 } // namespace weft::render

@@ -28,6 +28,12 @@ void Material::validate() const {
     if (environmentDiffuse < 0.0f) throw InvalidArgument("Material.environment_diffuse must be >= 0");
     if (dynamicReflection && !glm::any(glm::greaterThan(reflectivity, glm::vec3(0.0f))))
         throw InvalidArgument("Material.dynamic_reflection needs a reflectivity > 0");
+    if (glossInAlpha && alphaCutoff > 0.0f)
+        throw InvalidArgument("Material.gloss_in_alpha uses the texture's alpha as gloss: it cannot "
+                              "also be an alpha cutoff");
+    if (phantom && dynamicReflection)
+        throw InvalidArgument("Material.phantom: a phantom shows only shadows, it cannot carry the "
+                              "dynamic reflection");
 }
 
 void DirectionalLight::validate() const {
@@ -165,6 +171,11 @@ void Scene::setAmbient(const glm::vec3& ambient) {
     ++mVersion;
 }
 
+void Scene::setBackgroundImage(TexturePtr image) {
+    mBackgroundImage = std::move(image);
+    ++mVersion;
+}
+
 void Scene::setBackground(const glm::vec3& background) {
     requireNonNegative(background, "Scene.background");
     mBackground = background;
@@ -191,6 +202,18 @@ void EnvironmentLighting::validate() const {
     if (domeMapSize < 16 || domeMapSize > 4096)
         throw InvalidArgument("environment dome_map_size must be in [16, 4096]");
     if (domeRefresh < 0) throw InvalidArgument("environment dome_refresh must be >= 0 (0: all)");
+    requireFinite(domeBlur, "environment dome_blur");
+    if (domeBlur < 0.0f || domeBlur > 64.0f)
+        throw InvalidArgument("environment dome_blur must be in [0, 64] pixels");
+    requireFinite(domeBlurDepthTolerance, "environment dome_blur_depth_tolerance");
+    if (domeBlurDepthTolerance <= 0.0f)
+        throw InvalidArgument("environment dome_blur_depth_tolerance must be > 0");
+    if (lookup != Lookup::Cube && lookup != Lookup::SphereMap)
+        throw InvalidArgument("environment lookup must be cube or sphere_map");
+    if (sphereMapSize < 8 || sphereMapSize > 2048)
+        throw InvalidArgument("environment sphere_map_size must be in [8, 2048]");
+    if (lookup == Lookup::SphereMap && (sphereMapSize >> (specularLevels - 1)) < 1)
+        throw InvalidArgument("environment sphere_map_size must hold specular_levels mip levels");
 }
 
 void Scene::setEnvironment(const EnvironmentLighting& environment) {

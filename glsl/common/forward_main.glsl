@@ -1,0 +1,42 @@
+// The forward pass's fragment shader, included by the render/forward*.frag variants:
+// DEBUG_OUTPUTS adds the inputs of its shading (for the NumPy shading oracle), DOME_OUTPUT the
+// environment's diffuse light and its dome visibility for the blur pass (dome_blur.frag).
+#include "shading.glsl"
+
+layout(location = 0) in vec3 inWorldPos;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec4 inTangent;
+
+layout(location = 0) out vec4 outColor;
+#ifdef DEBUG_OUTPUTS
+layout(location = 1) out vec4 outPosition; // world xyz, 1 = covered
+layout(location = 2) out vec4 outNormal;   // shading normal, shadow visibility
+layout(location = 3) out vec4 outSurface;  // uv, light-space depth, instance + 1
+layout(location = 4) out vec4 outAlbedo;   // T: base colour * sampled texture; K_S (grey) map
+#endif
+#ifdef DOME_OUTPUT
+#ifdef DEBUG_OUTPUTS
+layout(location = 5) out vec4 outDome;
+#else
+layout(location = 1) out vec4 outDome;
+#endif
+#endif
+
+void main() {
+    Instance ins = instances[push.instance];
+    if (alphaDiscarded(inUv, ins)) discard;
+    float vis, depth;
+    Surface sf = surfaceAt(inWorldPos, inNormal, inTangent, inUv, ins, gl_FrontFacing);
+    vec4 dome;
+    outColor = vec4(shadedColor(shade(sf, ins, vis, depth), ins, dome), 1.0);
+#ifdef DOME_OUTPUT
+    outDome = dome;
+#endif
+#ifdef DEBUG_OUTPUTS
+    outAlbedo = vec4(sf.T, texture(specularMap, inUv).g);
+    outPosition = vec4(inWorldPos, 1.0);
+    outNormal = vec4(sf.n, vis);
+    outSurface = vec4(inUv, depth, float(push.instance + 1u));
+#endif
+}
