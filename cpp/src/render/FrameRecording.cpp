@@ -254,7 +254,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     if (domeBlur) {
         VkDescriptorImageInfo infos[2] = {
             {pipes.nearestSampler, domeTarget->view(), render::useState(Use::Sampled, false).layout},
-            {pipes.nearestSampler, targets.depth.view(), render::useState(Use::Sampled, true).layout}};
+            {pipes.nearestSampler, targets.depth.layerView(0), render::useState(Use::Sampled, true).layout}};
         VkWriteDescriptorSet w[2];
         for (uint32_t i = 0; i < 2; ++i) {
             w[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};

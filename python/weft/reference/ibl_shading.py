@@ -8,7 +8,13 @@ material's K_D, reflectivity F0, environment-diffuse weight w and shininess s:
 - specular = F G(R, lod), v = normalize(eye - p), R = 2 (n.v) n - v,
   F = F0 + (1 - F0) (1 - max(n.v, 0))^5 (Schlick), G the prefiltered chain sampled trilinearly
   at lod = roughness(s) (levels - 1) with roughness(s) = (2 / (s + 2))^(1/4);
-- both times the environment intensity.
+- both times the environment intensity;
+- the seed's decal material (``gloss_alpha`` = the base texture's alpha a): T (a diffuse / T +
+  (1 - a) specular), i.e. lighting = lerp(specular, diffuse, a) times T (SPEC §4.4).
+
+The seed's eye-space sphere-map path (``sphere_map_uv``): a world direction d goes to eye space,
+m = normalize(d_eye + (0, 0, 1)), texture coordinates (0.5 + 0.5 m.x, 0.5 - 0.5 m.y).
+``dome_blur`` is the bilateral blur of the dome's visibility (glsl/render/dome_blur.frag).
 
 The chain is sampled seamlessly: bilinear taps that fall off a face are read from the
 neighbouring face's texel across the edge. Vulkan's cube sampling
@@ -76,7 +82,8 @@ def sample_chain(levels: Sequence[np.ndarray], dirs: np.ndarray, lod: np.ndarray
 def environment_light(position: np.ndarray, normal: np.ndarray, eye: np.ndarray,
                       albedo: np.ndarray, *, kd: np.ndarray, reflectivity: np.ndarray,
                       environment_diffuse: float, shininess: float, sh_coeffs: np.ndarray,
-                      chain: Sequence[np.ndarray], intensity: float) -> np.ndarray:
+                      chain: Sequence[np.ndarray], intensity: float,
+                      gloss_alpha: np.ndarray | None = None) -> np.ndarray:
     """Environment radiance (N, 3) at N pixels (see the module docstring)."""
     p = np.asarray(position, np.float64)
     n = np.asarray(normal, np.float64)
@@ -91,4 +98,61 @@ def environment_light(position: np.ndarray, normal: np.ndarray, eye: np.ndarray,
     lod = np.full(len(p), environment_roughness(shininess) * (len(chain) - 1))
     fresnel = f0 + (1.0 - f0) * (1.0 - np.clip(ndv, 0.0, 1.0))[:, None] ** 5
     specular = fresnel * sample_chain(chain, r, lod) if np.any(f0 > 0) else 0.0
+    if gloss_alpha is not None:
+        a = np.asarray(gloss_alpha, np.float64).reshape(-1, 1)
+        return intensity * (a * diffuse + (1.0 - a) * t * specular)
     return intensity * (diffuse + specular)
+
+
+def sphere_map_uv(dirs: np.ndarray, view: np.ndarray) -> np.ndarray:
+    """Texture coordinates (N, 2) of world directions (N, 3) in an eye-space sphere map; `view`
+    is the camera's 4x4 world -> eye matrix."""
+    d = np.asarray(dirs, np.float64) @ np.asarray(view, np.float64)[:3, :3].T
+    m = d + np.array([0.0, 0.0, 1.0])
+    length = np.linalg.norm(m, axis=-1, keepdims=True)
+    m = np.where(length > 1e-6, m / np.maximum(length, 1e-300), np.array([1.0, 0.0, 0.0]))
+    return np.stack([0.5 + 0.5 * m[:, 0], 0.5 - 0.5 * m[:, 1]], axis=-1)
+
+
+def sample_image_bilinear(image: np.ndarray, uv: np.ndarray) -> np.ndarray:
+    """Bilinear lookup with clamp to edge of an (H, W, C) image at texture coordinates (N, 2)."""
+    img = np.asarray(image, np.float64)
+    h, w = img.shape[:2]
+    x = np.asarray(uv, np.float64)[:, 0] * w - 0.5
+    y = np.asarray(uv, np.float64)[:, 1] * h - 0.5
+    x0, y0 = np.floor(x), np.floor(y)
+    fx, fy = (x - x0)[:, None], (y - y0)[:, None]
+
+    def at(i, j):
+        return img[np.clip(j, 0, h - 1).astype(np.int64), np.clip(i, 0, w - 1).astype(np.int64)]
+
+    top = at(x0, y0) * (1 - fx) + at(x0 + 1, y0) * fx
+    bottom = at(x0, y0 + 1) * (1 - fx) + at(x0 + 1, y0 + 1) * fx
+    return top * (1 - fy) + bottom * fy
+
+
+def dome_blur(visibility: np.ndarray, depth: np.ndarray, covered: np.ndarray, radius: float,
+              tolerance: float) -> np.ndarray:
+    """The renderer's blur of the dome visibility (H, W) over `radius` pixels: 7 x 7 taps at
+    offsets o = (dx, dy) radius / 3 (rounded half up), weights exp(-|o|^2 / (2 sigma^2) - dz^2),
+    sigma = radius / 2, dz = (z_tap - z) / (tolerance z) in view depth z (H, W); taps clamp to the
+    image and skip uncovered pixels. Uncovered pixels return 0."""
+    vis = np.asarray(visibility, np.float64)
+    z = np.asarray(depth, np.float64)
+    h, w = vis.shape
+    step = radius / 3.0
+    sigma = max(radius * 0.5, 1e-6)
+    rows, cols = np.mgrid[0:h, 0:w]
+    total = np.zeros((h, w))
+    weights = np.zeros((h, w))
+    for dy in range(-3, 4):
+        for dx in range(-3, 4):
+            ox, oy = dx * step, dy * step
+            q_r = np.clip(rows + int(np.floor(oy + 0.5)), 0, h - 1)
+            q_c = np.clip(cols + int(np.floor(ox + 0.5)), 0, w - 1)
+            ok = covered[q_r, q_c]
+            dz = (z[q_r, q_c] - z) / (tolerance * np.where(covered, z, 1.0))
+            wgt = np.where(ok, np.exp(-(ox * ox + oy * oy) / (2 * sigma * sigma) - dz * dz), 0.0)
+            total += wgt * vis[q_r, q_c]
+            weights += wgt
+    return np.where(covered, total / np.maximum(weights, 1e-300), 0.0)
