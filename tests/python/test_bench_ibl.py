@@ -37,5 +37,12 @@ def test_bench_ibl_quick(tmp_path: Path) -> None:
     assert [(x["size"], x["lights"]) for x in frames] == [("64x48", 0), ("64x48", 16)]
     assert all(x["reused_ms"] > 0 and x["rerendered_ms"] > 0 for x in frames)
     assert "64x48, 16 lights" in data["summary"]["shadow_light_frame_times"]
+    seed = data["seed_options"]
+    assert [x["blur"] for x in seed["dome_blur"]] == [0.0, 2.0, 4.0, 8.0]
+    assert all(x["ms"] > 0 and 0.0 <= x["mean_err"] < 0.5 for x in seed["dome_blur"])
+    sphere = seed["lookups"][1]
+    assert sphere["lookup"] == "sphere_map" and 0.0 < sphere["mean_diff"] < 0.05
+    assert seed["phantom_ms"] > 0
     md = (out / "bench.md").read_text()
     assert "## Irradiance" in md and "## Shadow-light dome" in md and "## Frames" in md
+    assert "## Seed options" in md

@@ -273,6 +273,7 @@ void DemoScene::lightWith(const std::string& path) {
     env.domeLights = 16; // shadows from the dome (SPEC §4.5), 4 maps refreshed per frame
     env.domeMapSize = 256;
     env.domeRefresh = 4;
+    env.domeBlur = 4.0f; // the accumulated dome shadows blurred over 4 pixels
     mScene.setEnvironment(env);
     // The environment replaces the sun, the moon and the constant ambient term.
     mEnvironmentLit = true;

@@ -24,6 +24,11 @@ so every error has an independent reference:
   shadow lights (256^2 maps), at 640x480 and 1280x1024: frame time with the dome maps reused
   (nothing moves) and with every map re-rendered each frame (the sphere moves), as the seed's
   table 4.1 (41 / 28 / 14 fps at 640x480, GeForce of 2006) measured.
+- seed options: the blur of the dome's shadows (radius 0 / 2 / 4 / 8 pixels) on a sphere above a
+  ground plane with 16 dome lights: frame time and the ground's error against the ray-cast
+  visibility-weighted irradiance; the eye-space sphere-map path against the cube path (frame
+  time, bake time, difference on the sphere where R is within 120 degrees of the eye); a phantom
+  ground over a background image against the same ground drawn normally (frame time).
 """
 
 from __future__ import annotations
@@ -327,6 +332,94 @@ def bench_frames(resolutions: Sequence[Tuple[int, int]], counts: Sequence[int],
     return rows
 
 
+def _median_ms(fn: Callable[[], Any], frames: int) -> float:
+    times = []
+    for _ in range(frames):
+        t0 = time.perf_counter()
+        fn()
+        times.append(1000.0 * (time.perf_counter() - t0))
+    return statistics.median(times)
+
+
+def bench_seed_options(size: Tuple[int, int], frames: int, samples: int) -> Dict[str, Any]:
+    import weft
+    import weft.ibl as ibl
+    from weft.reference import ibl as ref
+
+    width, height = size
+    faces = cube_faces(sky, 32, 1)
+    env = ibl.Environment(faces)
+    renderer = weft.Renderer(width, height)
+    centre, radius = np.array([0.0, 0.8, 0.0]), 0.5
+    camera = weft.Camera(position=(0.0, 3.0, 3.0), target=(0.0, 0.0, 0.0), fov_y=0.9)
+
+    def ground_scene(blur: float, phantom: bool = False):
+        scene = weft.Scene()
+        scene.ambient = (0.0, 0.0, 0.0)
+        mat = weft.Material(kd=(1.0, 1.0, 1.0), environment_diffuse=1.0)
+        ground = weft.Material(kd=(1.0, 1.0, 1.0), environment_diffuse=1.0, phantom=phantom)
+        scene.add_mesh(weft.Mesh.plane(4.0, 4.0), ground)
+        m = np.eye(4, dtype=np.float32)
+        m[:3, :3] *= radius
+        m[:3, 3] = centre
+        scene.add_mesh(weft.Mesh.uv_sphere(1.0, 48, 24), mat, transform=m)
+        scene.set_environment(env, dome_lights=16, dome_map_size=256, dome_blur=blur)
+        return scene
+
+    # the ground's reference: visibility-weighted irradiance / pi, ray-cast per pixel
+    debug = renderer.render_debug(ground_scene(0.0), camera)
+    ground = debug["mask"] & (debug["instance"] == 0)
+    idx = np.flatnonzero(ground.reshape(-1))
+    idx = idx[np.linspace(0, len(idx) - 1, min(samples, len(idx))).astype(int)]
+    pos = debug["position"].reshape(-1, 3)[idx]
+    nrm = debug["normal"].reshape(-1, 3)[idx]
+    want = np.stack([ref.visible_irradiance(faces, p, n, centre, radius) for p, n in zip(pos, nrm)])
+    want_l = want @ LUMA / np.pi
+    blur_rows = []
+    for blur in (0.0, 2.0, 4.0, 8.0):
+        scene = ground_scene(blur)
+        image = renderer.render_linear(scene, camera)  # maps rendered, then reused
+        ms = _median_ms(lambda: renderer.render(scene, camera), frames)
+        got_l = image[..., :3].reshape(-1, 3)[idx] @ LUMA
+        blur_rows.append(dict(blur=blur, ms=ms,
+                              mean_err=float(np.mean(np.abs(got_l - want_l)) / np.mean(want_l))))
+    background = np.zeros((height, width, 4), np.uint8)
+    background[..., :3] = 140
+    background[..., 3] = 255
+    phantom_scene = ground_scene(0.0, phantom=True)
+    phantom_scene.background_image = weft.Texture(background)
+    renderer.render(phantom_scene, camera)
+    phantom_ms = _median_ms(lambda: renderer.render(phantom_scene, camera), frames)
+    plain_ms = blur_rows[0]["ms"]
+
+    # eye-space sphere maps vs world-space cube lookups of the same (eye = world) environment
+    eye = (0.0, 0.0, 3.0)  # looks down -Z with Y up: eye space is world space
+    cam = weft.Camera(position=eye, target=(0.0, 0.0, 0.0), fov_y=0.8)
+    mat = weft.Material(kd=(0.8, 0.8, 0.8), shininess=32.0, reflectivity=(0.5, 0.5, 0.5),
+                        environment_diffuse=1.0)
+    lookup_rows, images = [], {}
+    for lookup in ("cube", "sphere_map"):
+        scene = weft.Scene()
+        scene.ambient = (0.0, 0.0, 0.0)
+        scene.add_mesh(weft.Mesh.uv_sphere(1.0, 64, 32), mat)
+        scene.set_environment(ibl.Environment(faces), lookup=lookup, sphere_map_size=128)
+        images[lookup] = renderer.render_debug(scene, cam)
+        bake_ms = renderer.stats.get("environment_bake_ms", 0.0)
+        ms = _median_ms(lambda: renderer.render(scene, cam), frames)
+        lookup_rows.append(dict(lookup=lookup, ms=ms, bake_ms=bake_ms))
+    c, s = images["cube"], images["sphere_map"]
+    mask = c["mask"] & s["mask"]
+    v = np.asarray(eye) - c["position"][mask]
+    v /= np.linalg.norm(v, axis=1, keepdims=True)
+    front = np.einsum("nk,nk->n", c["normal"][mask], v) > 0.5
+    a, b = s["linear"][mask][front, :3] @ LUMA, c["linear"][mask][front, :3] @ LUMA
+    rel = np.abs(a - b) / np.maximum(b, 1e-12)
+    lookup_rows[1].update(mean_diff=float(rel.mean()), max_diff=float(rel.max()))
+    lookup_rows[0].update(mean_diff=0.0, max_diff=0.0)
+    return dict(size=f"{width}x{height}", dome_blur=blur_rows, lookups=lookup_rows,
+                phantom_ms=phantom_ms, plain_ms=plain_ms)
+
+
 def to_markdown(r: Dict[str, Any]) -> str:
     f3 = lambda v: f"{v:.3f}"  # noqa: E731
     pct = lambda v: f"{100 * v:.2f}%"  # noqa: E731
@@ -377,6 +470,20 @@ def to_markdown(r: Dict[str, Any]) -> str:
                                 [[x["size"], x["lights"], f"{x['reused_ms']:.1f}",
                                   f"{x['reused_fps']:.1f}", f"{x['rerendered_ms']:.1f}",
                                   f"{x['rerendered_fps']:.1f}"] for x in r["frames"]]))
+    s = r["seed_options"]
+    lines += ["", f"## Seed options at {s['size']}: blurred dome shadows (16 lights; ground error "
+              "vs the ray-cast visibility-weighted irradiance)", ""]
+    lines.append(markdown_table(["blur radius (px)", "ms per frame", "ground mean rel. error"],
+                                [[f"{x['blur']:g}", f"{x['ms']:.1f}", pct(x["mean_err"])]
+                                 for x in s["dome_blur"]]))
+    lines += ["", "Eye-space sphere maps (the seed's path) vs world-space cube lookups, same "
+              "environment (difference on the sphere where R is within 120 deg of the eye):", ""]
+    lines.append(markdown_table(["lookup", "ms per frame", "bake ms", "mean rel. difference",
+                                 "max rel. difference"],
+                                [[x["lookup"], f"{x['ms']:.1f}", f"{x['bake_ms']:.1f}",
+                                  pct(x["mean_diff"]), pct(x["max_diff"])] for x in s["lookups"]]))
+    lines += ["", f"Phantom ground over a background image: {s['phantom_ms']:.1f} ms per frame "
+              f"(the same ground drawn normally: {s['plain_ms']:.1f} ms)."]
     return "\n".join(lines) + "\n"
 
 
@@ -386,12 +493,14 @@ def run(args: argparse.Namespace) -> int:
         samples, gsizes, chain, chain_samples = (8, 32), (8,), 32, (16,)
         light_sizes, dome_counts, dome_size = (64,), (16, 64), 16
         resolutions, frame_counts, frames = ((64, 48),), (0, 16), 2
+        seed_size, seed_samples = (64, 48), 40
     else:
         conv, irr, out_size, ref_source = (128, 256), (64, 128, 256), 32, 64
         samples, gsizes, chain, chain_samples = (8, 32, 128), (16, 32), 256, (16, 64)
         light_sizes, dome_counts, dome_size = (128, 256), (16, 64, 256), 32
         resolutions, frame_counts, frames = ((640, 480), (1280, 1024)), (0, 16, 64), 5
-    progress = Progress(7, enabled=args.progress)
+        seed_size, seed_samples = (640, 480), 400
+    progress = Progress(8, enabled=args.progress)
     command = "python -m weft.bench ibl" + (" --quick" if args.quick else "")
     report: Dict[str, Any] = {"benchmark": "ibl", "command": command}
     progress.update("conversion")
@@ -406,6 +515,8 @@ def run(args: argparse.Namespace) -> int:
     report["dome"] = bench_dome(dome_counts, dome_size)
     progress.step("frames")
     report["frames"] = bench_frames(resolutions, frame_counts, frames)
+    progress.step("seed options")
+    report["seed_options"] = bench_seed_options(seed_size, frames, seed_samples)
     progress.step("report")
     progress.close()
     report["machine"] = machine_info()
