@@ -3,7 +3,8 @@ prefiltering, light extraction and the dome of shadow lights.
 
 The numeric work is in C++ (``weft._core``); this package re-exports it and adds conveniences:
 
-- :mod:`weft.ibl.capture`: sRGB decoding, environment files, cube crosses, the one-camera
+- :mod:`weft.ibl.capture`: sRGB decoding, environment files (also straight to a cube map:
+  ``load_environment_cube``), cube crosses, the one-camera
   mirror-ball cut-out and frame-by-frame environments from an image sequence;
 - :mod:`weft.ibl.lights`: light extraction as dataclasses, ``split_lights`` (lights + the sky
   without them) and median cut (Debevec 2005);
@@ -46,7 +47,9 @@ from weft.ibl.capture import (
     cube_to_cross,
     cut_out_sphere,
     environments_from_frames,
+    guess_source,
     load_environment,
+    load_environment_cube,
     save_environment,
     sphere_rect,
     srgb_to_linear,
@@ -62,6 +65,7 @@ __all__ = [
     "phong_exact", "phong_sampled", "prefilter_ggx", "prefilter_ggx_gpu", "project_sh9",
     "sh_irradiance",
     "sphere_to_cube", "cross_to_cube", "cube_to_cross", "cut_out_sphere",
-    "environments_from_frames", "load_environment", "save_environment", "sphere_rect",
+    "environments_from_frames",
+    "guess_source", "load_environment", "load_environment_cube", "save_environment", "sphere_rect",
     "srgb_to_linear", "to_cube", "extract_lights", "median_cut", "split_lights",
 ]
