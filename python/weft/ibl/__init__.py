@@ -3,8 +3,10 @@ prefiltering, light extraction and the dome of shadow lights.
 
 The numeric work is in C++ (``weft._core``); this package re-exports it and adds conveniences:
 
-- :mod:`weft.ibl.capture`: sRGB decoding, environment files, cube crosses, the one-camera
+- :mod:`weft.ibl.capture`: sRGB decoding, environment files (also straight to a cube map:
+  ``load_environment_cube``), cube crosses, the one-camera
   mirror-ball cut-out and frame-by-frame environments from an image sequence;
+- :mod:`weft.ibl.video`: video files (PyAV, optional) as the same frame-by-frame source;
 - :mod:`weft.ibl.lights`: light extraction as dataclasses, ``split_lights`` (lights + the sky
   without them) and median cut (Debevec 2005);
 - :mod:`weft.ibl.cli`: ``python -m weft ibl ...``;
@@ -46,13 +48,16 @@ from weft.ibl.capture import (
     cube_to_cross,
     cut_out_sphere,
     environments_from_frames,
+    guess_source,
     load_environment,
+    load_environment_cube,
     save_environment,
     sphere_rect,
     srgb_to_linear,
     to_cube,
 )
 from weft.ibl.lights import EnvLight, extract_lights, median_cut, split_lights
+from weft.ibl.video import environments_from_video, read_video_frames
 
 __all__ = [
     "CubeMap", "Environment", "ShadowDome", "EnvLight",
@@ -62,6 +67,7 @@ __all__ = [
     "phong_exact", "phong_sampled", "prefilter_ggx", "prefilter_ggx_gpu", "project_sh9",
     "sh_irradiance",
     "sphere_to_cube", "cross_to_cube", "cube_to_cross", "cut_out_sphere",
-    "environments_from_frames", "load_environment", "save_environment", "sphere_rect",
+    "environments_from_frames", "environments_from_video", "read_video_frames",
+    "guess_source", "load_environment", "load_environment_cube", "save_environment", "sphere_rect",
     "srgb_to_linear", "to_cube", "extract_lights", "median_cut", "split_lights",
 ]

@@ -24,6 +24,11 @@ _HORIZONTAL = ((1, 2), (1, 0), (0, 1), (2, 1), (1, 1), (1, 3))
 _VERTICAL = ((1, 2), (1, 0), (0, 1), (2, 1), (1, 1), (3, 1))
 
 
+def _positive_int(value: object) -> bool:
+    """True for an int (Python or NumPy, not bool) >= 1."""
+    return isinstance(value, (int, np.integer)) and not isinstance(value, bool) and value >= 1
+
+
 def srgb_to_linear(image: np.ndarray) -> np.ndarray:
     """Decodes sRGB: uint8 (0..255) or float (0..1) -> linear float32 (alpha dropped)."""
     a = np.asarray(image)
@@ -79,6 +84,54 @@ def load_environment(path: str) -> np.ndarray:
         return _float_image(weft.load_exr(path), path)
     raise InvalidArgument(f"{path}: unsupported environment format {ext!r} "
                           "(use .hdr, .exr, .npy or .png)")
+
+
+#: What ``source="auto"`` guesses from an image's shape (width x height).
+SOURCE_BY_SHAPE = "2:1 equirect, 4:3 or 3:4 cross, 1:1 sphere map"
+
+
+def guess_source(width: int, height: int) -> str:
+    """The kind of capture an image of this shape is: 'equirect' (2:1), 'cross' (4:3 or 3:4) or
+    'sphere' (square mirror-ball sphere map); InvalidArgument for any other shape."""
+    if width == 2 * height:
+        return "equirect"
+    if width * 3 == height * 4 or width * 4 == height * 3:
+        return "cross"
+    if width == height:
+        return "sphere"
+    raise InvalidArgument(f"cannot tell the kind of a {width} x {height} environment image "
+                          f"({SOURCE_BY_SHAPE}); give the source (equirect, cross, sphere or "
+                          "fisheye)")
+
+
+def load_environment_cube(path: str, size: int = 64, source: str = "auto", wrap: float = 1.0,
+                          fov: float = np.pi, matrix: Optional[np.ndarray] = None) -> CubeMap:
+    """An environment file as a world-space radiance CubeMap of face ``size``: any image
+    :func:`load_environment` reads, converted by :func:`to_cube` as ``source`` says ('auto':
+    :func:`guess_source`), or ``.npy`` cube faces (6, S, S, 3) resampled to ``size``. ``wrap``
+    and ``matrix`` (world -> sphere / camera) apply to sphere maps and fisheyes, ``fov``
+    (radians) to fisheyes. Unseen regions are filled. Errors: weft.IoError for unreadable files,
+    weft.InvalidArgument for bad parameters, shapes or non-finite or negative radiance."""
+    if not _positive_int(size):
+        raise InvalidArgument(f"cube size must be a positive integer, got {size!r}")
+    if source not in ("auto", "equirect", "cross", "sphere", "fisheye"):
+        raise InvalidArgument(f"unknown source {source!r}: use auto, equirect, cross, sphere or "
+                              "fisheye")
+    if not (isinstance(wrap, (int, float, np.integer, np.floating)) and np.isfinite(wrap)
+            and 0.0 < wrap <= 1.0):
+        raise InvalidArgument(f"wrap must be a number in (0, 1], got {wrap!r}")
+    image = load_environment(path)
+    if image.ndim == 4:
+        if image.shape[0] != 6 or image.shape[1] != image.shape[2] or image.shape[3] != 3:
+            raise InvalidArgument(f"{path}: cube faces must have shape (6, S, S, 3), got "
+                                  f"{image.shape}")
+        cube = CubeMap(np.ascontiguousarray(image, np.float32))
+        return cube if cube.size == size else resize_cube(cube, int(size))
+    if source == "auto":
+        source = guess_source(image.shape[1], image.shape[0])
+    if np.any(image < 0.0):
+        raise InvalidArgument(f"{path}: radiance must be >= 0")
+    return to_cube(image, source, int(size), wrap=wrap, fov=fov, matrix=matrix)
 
 
 def save_environment(path: str, image: np.ndarray) -> None:
@@ -229,16 +282,41 @@ def environments_from_frames(frames: Iterable[np.ndarray], size: int, sphere_siz
                              marker_to_camera: Optional[Iterable[np.ndarray]] = None,
                              centre: Sequence[float] = (0.0, 0.0, 0.0), radius: float = 0.05,
                              projection: Optional[np.ndarray] = None, wrap: float = 0.9,
-                             world_to_sphere: Optional[np.ndarray] = None) -> Iterator[CubeMap]:
-    """Frame by frame: cut the ball out (fixed ``rect`` = two-camera setup, or per-frame
-    ``marker_to_camera`` matrices with ``centre``/``radius``/``projection`` = one-camera setup),
-    convert to a cube map of ``size`` with ``wrap`` and fill what the ball cannot show."""
-    if (rect is None) == (marker_to_camera is None):
-        raise InvalidArgument("give either a fixed rect or per-frame marker_to_camera matrices")
+                             world_to_sphere: Optional[np.ndarray] = None,
+                             source: Optional[str] = None, fov: float = np.pi,
+                             fill: bool = True) -> Iterator[CubeMap]:
+    """Frame by frame (an image sequence, or a video through
+    :func:`weft.ibl.environments_from_video`), one CubeMap of face ``size`` per frame.
+
+    Mirror ball in a larger frame: cut the ball out (fixed ``rect`` = two-camera setup, or
+    per-frame ``marker_to_camera`` matrices with ``centre``/``radius``/``projection`` = one-camera
+    setup) into a ``sphere_size`` sphere map, convert it with ``wrap`` and ``world_to_sphere``
+    and (``fill``) fill what the ball cannot show. Whole-frame captures: ``source`` ('sphere',
+    'equirect', 'cross' or 'fisheye') converts each frame with :func:`to_cube` (``wrap``,
+    ``fov``, ``world_to_sphere``, ``fill``). Exactly one of ``rect``, ``marker_to_camera`` and ``source``
+    must be given; the choice is checked when called, each frame when it is reached."""
+    given = sum(x is not None for x in (rect, marker_to_camera, source))
+    if given != 1:
+        raise InvalidArgument("give exactly one of a fixed rect, per-frame marker_to_camera "
+                              "matrices or a whole-frame source")
     if marker_to_camera is not None and projection is None:
         raise InvalidArgument("the one-camera setup needs the projection matrix")
+    if source is not None and source not in ("sphere", "equirect", "cross", "fisheye"):
+        raise InvalidArgument(f"unknown source {source!r}: use equirect, cross, sphere or fisheye")
+    if not _positive_int(size):
+        raise InvalidArgument(f"cube size must be a positive integer, got {size!r}")
+    return _environments(frames, int(size), sphere_size, rect, marker_to_camera, centre, radius,
+                         projection, wrap, world_to_sphere, source, fov, fill)
+
+
+def _environments(frames, size, sphere_size, rect, marker_to_camera, centre, radius, projection,
+                  wrap, world_to_sphere, source, fov, fill) -> Iterator[CubeMap]:
     matrices = iter(marker_to_camera) if marker_to_camera is not None else None
     for frame in frames:
+        if source is not None:
+            yield to_cube(frame, source, size, wrap=wrap, fov=fov, matrix=world_to_sphere,
+                          fill=fill)
+            continue
         img = _float_image(frame, "frame")
         r = rect
         if matrices is not None:
@@ -249,4 +327,4 @@ def environments_from_frames(frames: Iterable[np.ndarray], size: int, sphere_siz
             r = sphere_rect(m, centre, radius, projection, img.shape[1], img.shape[0])
         sphere = cut_out_sphere(img, r, sphere_size)
         cube, valid = sphere_to_cube(sphere, size, world_to_sphere, wrap)
-        yield fill_unseen(cube, valid) if not valid.all() else cube
+        yield fill_unseen(cube, valid) if fill and not valid.all() else cube

@@ -1,0 +1,231 @@
+"""``python -m weft render`` with --scene cloth and --environment (issue 6): a script lights the
+cloth scene from a mirror-ball image with shadows from the dome. The CLI's PNG is compared with
+the same scene rendered through the API (weft.scenes), and the dome's shadows are measured on the
+ground: darker next to the sphere and cloth than on open ground with a dome, uniform without."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+from typing import List
+
+import numpy as np
+import pytest
+
+import weft
+import weft.ibl
+import weft.scenes
+from weft.__main__ import _CLOTH_STEPS, main
+
+TIMEOUT_S = 300
+W, H = 160, 120
+LUMA = np.array([0.2126, 0.7152, 0.0722])
+
+
+def run(args: List[str]) -> subprocess.CompletedProcess:
+    env = dict(os.environ, WEFT_VALIDATION="1")
+    proc = subprocess.run([sys.executable, *args], capture_output=True, text=True,
+                          timeout=TIMEOUT_S, env=env)
+    assert proc.returncode == 0, \
+        f"{args} exited {proc.returncode}\n--- stdout\n{proc.stdout}\n--- stderr\n{proc.stderr}"
+    for marker in ("VUID-", "Validation Error"):
+        assert marker not in proc.stdout + proc.stderr, f"validation message:\n{proc.stderr}"
+    return proc
+
+
+def sky_directions(size: int) -> np.ndarray:
+    """World direction of each pixel of a 360-degree sphere map (mirror ball seen along -Z,
+    row 0 at the top, y up): R = 2 (N.A) N - A with A = (0, 0, 1)."""
+    c = 2.0 * (np.arange(size) + 0.5) / size - 1.0
+    x, y = np.meshgrid(c, -c, indexing="xy")
+    z = np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
+    n = np.stack([x, y, z], -1)
+    n /= np.linalg.norm(n, axis=-1, keepdims=True)
+    return 2.0 * n[..., 2:3] * n - np.array([0.0, 0.0, 1.0])
+
+
+@pytest.fixture(scope="module")
+def sky(tmp_path_factory) -> Path:
+    """A sphere-map PNG: bright sky from above (brightest at the zenith), dark ground below."""
+    d = sky_directions(64)
+    up = d[..., 1:2]
+    radiance = np.where(up > 0.0, np.array([0.9, 0.95, 1.0]) * (0.6 + 0.4 * up),
+                        np.array([0.03, 0.025, 0.02]))
+    path = tmp_path_factory.mktemp("env") / "sky.png"
+    weft.ibl.save_environment(str(path), radiance.astype(np.float32))
+    return path
+
+
+def ground_rings(debug: dict, image: np.ndarray) -> tuple:
+    """Mean luminance (linear) of the PNG's ground pixels next to the sphere's foot (0.5 to 0.7 m
+    from its axis: under the draped cloth's skirt, seen past it) and of open ground (> 2 m)."""
+    ground = debug["instance"] == 0
+    p = debug["position"]
+    r = np.hypot(p[..., 0], p[..., 2])
+    lum = weft.ibl.srgb_to_linear(image[..., :3]) @ LUMA
+    near, far = ground & (r > 0.5) & (r < 0.7), ground & (r > 2.0)
+    assert near.sum() > 100 and far.sum() > 100, (near.sum(), far.sum())
+    return float(lum[near].mean()), float(lum[far].mean())
+
+
+def api_render(sky: Path, dome: int) -> tuple:
+    """The CLI's scene, built through the API: debug outputs and the sRGB image."""
+    scene, camera, _ = weft.scenes.cloth_scene(steps=weft.scenes.DEFAULT_STEPS)
+    cube = weft.ibl.load_environment_cube(str(sky), 64, source="sphere")
+    weft.scenes.light_with_environment(scene, cube, dome_lights=dome)
+    renderer = weft.Renderer(W, H)
+    debug = renderer.render_debug(scene, camera)
+    return debug, debug["color"]
+
+
+def test_cloth_scene_lit_by_a_mirror_ball_with_dome_shadows(sky: Path, tmp_path: Path) -> None:
+    out = tmp_path / "cloth.png"
+    proc = run(["-m", "weft", "render", "--scene", "cloth", "--environment", str(sky),
+                "--source", "sphere", "--wrap", "1", "--dome", "16", "--width", str(W),
+                "--height", str(H), "--out", str(out)])
+    assert out.is_file() and out.name in proc.stdout and "environment" in proc.stdout
+    assert "dome[15]" in proc.stdout and "dome[16]" not in proc.stdout  # 16 dome shadow maps
+    image = weft.load_png(str(out))
+    assert image.shape == (H, W, 4)
+    lum = weft.ibl.srgb_to_linear(image[..., :3]) @ LUMA
+    assert lum.std() > 0.05, lum.std()  # not a uniform image
+    # the CLI drew exactly the scene weft.scenes builds (same simulation, lighting and dome)
+    debug, colour = api_render(sky, 16)
+    diff = np.abs(colour.astype(int) - image.astype(int))
+    assert np.mean(diff > 1) < 0.002, np.mean(diff > 1)
+    # every part of the scene is in view: ground, sphere (below the cloth's edge) and cloth
+    for instance in (0, 1, 2):
+        assert (debug["instance"] == instance).sum() > 50, instance
+    # shadows from the dome: the sphere and the cloth hide much of the bright sky from the
+    # ground at their foot (measured 0.64 of the open ground's luminance)
+    near, far = ground_rings(debug, image)
+    assert near < 0.8 * far, (near, far)
+    assert near > 0.3 * far, (near, far)  # the dome subtracts occluded lights, not everything
+    # the cloth's top faces the bright zenith: brighter than the ground under the dark horizon
+    top = (debug["instance"] == 2) & (debug["normal"][..., 1] > 0.9)
+    assert top.sum() > 20 and lum[top].mean() > lum[debug["instance"] == 0].mean()
+
+
+def test_without_the_dome_the_ground_is_uniform(sky: Path, tmp_path: Path, capsys) -> None:
+    out = tmp_path / "nodome.png"
+    assert main(["render", "--scene", "cloth", "--environment", str(sky), "--dome", "0",
+                 "--width", str(W), "--height", str(H), "--out", str(out)]) == 0
+    assert "dome[" not in capsys.readouterr().out
+    image = weft.load_png(str(out))
+    debug, colour = api_render(sky, 0)
+    assert np.mean(np.abs(colour.astype(int) - image.astype(int)) > 1) < 0.002
+    # a flat ground under SH9 irradiance only: the same light next to the sphere and far off,
+    # so the darkening of the dome test comes from the dome's shadows
+    near, far = ground_rings(debug, image)
+    assert abs(near - far) < 0.01 * far, (near, far)
+
+
+def test_default_scene_with_an_equirect_npy_environment(tmp_path: Path, capsys) -> None:
+    # 2:1 -> equirect (auto); the default scene keeps its meshes, loses its sun
+    h = 32
+    theta = (np.arange(h) + 0.5) / h * np.pi  # from the zenith
+    column = np.where(np.cos(theta)[:, None] > 0, [1.0, 0.9, 0.8], [0.05, 0.05, 0.05])
+    env = np.repeat(column[:, None, :], 2 * h, axis=1).astype(np.float32)
+    path = tmp_path / "env.npy"
+    np.save(path, env)
+    out = tmp_path / "default.png"
+    assert main(["render", "--environment", str(path), "--width", "64", "--height", "48",
+                 "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "default, environment" in text and "dome[15]" in text  # --dome defaults to 16
+    image = weft.load_png(str(out))
+    assert image.shape == (48, 64, 4) and image[..., :3].std() > 5
+
+
+def test_default_render_is_unchanged(tmp_path: Path) -> None:
+    # no new option given: weft.default_scene() with its sun, as before
+    out = tmp_path / "plain.png"
+    assert main(["render", "--width", "64", "--height", "48", "--out", str(out)]) == 0
+    scene, camera = weft.default_scene()
+    expected = weft.Renderer(64, 48).render(scene, camera)
+    assert np.mean(np.abs(expected.astype(int) - weft.load_png(str(out)).astype(int)) > 1) < 0.002
+
+
+def test_cloth_scene_drapes_over_the_sphere() -> None:
+    assert _CLOTH_STEPS == weft.scenes.DEFAULT_STEPS
+    _, _, flat = weft.scenes.cloth_scene(steps=0)
+    assert np.ptp(np.asarray(flat.positions)[:, 1]) == 0.0
+    _, _, cloth = weft.scenes.cloth_scene()
+    p = np.asarray(cloth.positions, np.float64)
+    centre = np.array(weft.scenes.SPHERE_CENTRE)
+    assert np.linalg.norm(p - centre, axis=1).min() > 0.99 * weft.scenes.SPHERE_RADIUS
+    assert p[:, 1].max() < centre[1] + 0.6 and p[:, 1].min() < centre[1]  # on it, hanging down
+    assert p[:, 1].min() > -0.01  # not through the ground
+    assert cloth.stats()["max_strain"] < 0.25
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--dome", "16"], "--dome needs --environment FILE"),
+    (["--source", "sphere", "--wrap", "0.9"], "--source and --wrap need --environment FILE"),
+    (["--steps", "10"], "--steps applies to --scene cloth"),
+    (["--environment", "{tmp}/missing.png"], "no such file"),
+    (["--environment", "{tmp}/odd.png"], "cannot tell the kind"),
+    (["--environment", "{tmp}/notes.txt"], "unsupported environment format"),
+])
+def test_bad_options_give_clear_errors(tmp_path: Path, capsys, argv, message) -> None:
+    weft.save_png(str(tmp_path / "odd.png"), np.full((3, 5, 3), 128, np.uint8))
+    (tmp_path / "notes.txt").write_text("not an image")
+    out = tmp_path / "never.png"
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
+    assert main(["render", "--out", str(out), "--width", "32", "--height", "24", *argv]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("weft: error:") and message in err, err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--dome", "12"], "multiple of 8"), (["--dome", "72"], "multiple of 8"),
+    (["--wrap", "0"], "(0, 1]"), (["--wrap", "1.5"], "(0, 1]"),
+    (["--scene", "garden"], "invalid choice"), (["--source", "cubemap"], "invalid choice"),
+])
+def test_bad_option_values_are_usage_errors(capsys, argv, message) -> None:
+    with pytest.raises(SystemExit) as exc:
+        main(["render", *argv])
+    assert exc.value.code == 2
+    assert message in capsys.readouterr().err
+
+
+def test_scene_api_rejects_bad_arguments(sky: Path) -> None:
+    with pytest.raises(weft.InvalidArgument, match="resolution"):
+        weft.scenes.cloth_scene(resolution=2)
+    with pytest.raises(weft.InvalidArgument, match="steps"):
+        weft.scenes.cloth_scene(steps=-1)
+    with pytest.raises(weft.InvalidArgument, match="cloth_colour"):
+        weft.scenes.cloth_scene(cloth_colour=(1.0, float("nan"), 0.0))
+    scene, _, _ = weft.scenes.cloth_scene(steps=0)
+    cube = weft.ibl.load_environment_cube(str(sky), 8)
+    with pytest.raises(weft.InvalidArgument, match="multiple of 8"):
+        weft.scenes.light_with_environment(scene, cube, dome_lights=12)
+    with pytest.raises(weft.InvalidArgument, match="Environment or a weft.ibl.CubeMap"):
+        weft.scenes.light_with_environment(scene, np.zeros((6, 8, 8, 3), np.float32))
+    with pytest.raises(weft.InvalidArgument, match="wrap"):
+        weft.ibl.load_environment_cube(str(sky), 8, wrap=0.0)
+    with pytest.raises(weft.InvalidArgument, match="source"):
+        weft.ibl.load_environment_cube(str(sky), 8, source="panorama")
+
+
+def test_environment_files_of_every_kind_load_as_the_same_cube(tmp_path: Path) -> None:
+    # one smooth environment written as raw faces, a cube cross and an equirect panorama (float
+    # files), each read back by load_environment_cube with source="auto"; the equirect goes
+    # through two resamplings (measured mean error 0.0009; the others are exact)
+    d = weft.ibl.cube_texel_directions(16).reshape(-1, 3)
+    faces = (0.2 + 0.8 * np.clip(d[:, 1:2], 0, 1) * np.array([1.0, 0.9, 0.7])
+             + 0.1 * (d[:, :1] + 1)).reshape(6, 16, 16, 3).astype(np.float32)
+    cube = weft.ibl.CubeMap(faces)
+    np.save(tmp_path / "faces.npy", faces)
+    weft.ibl.save_environment(str(tmp_path / "cross.exr"), weft.ibl.cube_to_cross(cube))
+    weft.ibl.save_environment(str(tmp_path / "pano.exr"),
+                              weft.ibl.cube_to_equirect(cube, 128, 64))
+    for name, tol in (("faces.npy", 1e-6), ("cross.exr", 1e-5), ("pano.exr", 0.004)):
+        got = np.asarray(weft.ibl.load_environment_cube(str(tmp_path / name), 16).faces)
+        assert np.abs(got - faces).mean() < tol, (name, np.abs(got - faces).mean())
+    assert weft.ibl.load_environment_cube(str(tmp_path / "faces.npy"), 8).size == 8  # resampled
+    assert [weft.ibl.guess_source(w, h) for w, h in ((64, 32), (64, 48), (48, 64), (32, 32))] \
+        == ["equirect", "cross", "cross", "sphere"]
