@@ -113,14 +113,16 @@ def cloth_scene(resolution: int = 32, steps: int = DEFAULT_STEPS,
 
 def light_with_environment(scene: "weft.Scene", environment, dome_lights: int = 16,
                            dome_map_size: int = 256, intensity: float = 1.0,
-                           background: bool = True) -> "weft.ibl.Environment":
+                           background: bool = True,
+                           dome_blur: float = 4.0) -> "weft.ibl.Environment":
     """Lights ``scene`` with ``environment`` (a weft.ibl.Environment or a world-space radiance
     weft.ibl.CubeMap) instead of its own lights: every instance's material gets the
     environment's diffuse light (``environment_diffuse = 1``; SH9 irradiance) and keeps its
     ``reflectivity`` (GGX reflections), the scene's lights are switched off (intensity 0, no
     shadow maps) and its constant ambient set to 0, and ``dome_lights`` (0, or a multiple of 8
     up to 64) shadow lights of the environment's dome subtract the light the scene occludes
-    (SPEC eq. 2.23: shadows from the dome). With ``background`` the clear colour becomes the
+    (SPEC eq. 2.23: shadows from the dome), blurred over ``dome_blur`` pixels (SPEC §4.5; 0: per
+    pixel). With ``background`` the clear colour becomes the
     environment's mean radiance over the upper hemisphere. Returns the Environment (call its
     ``set_radiance`` to change the lighting, e.g. from a video)."""
     if dome_lights not in DOME_SIZES:
@@ -135,8 +137,8 @@ def light_with_environment(scene: "weft.Scene", environment, dome_lights: int = 
         raise InvalidArgument("environment must be a weft.ibl.Environment or a weft.ibl.CubeMap, "
                               f"got {type(environment).__name__}")
     scene.set_environment(env, intensity=float(intensity), dome_lights=int(dome_lights),
-                          dome_map_size=int(dome_map_size),
-                          dome_refresh=0)
+                          dome_map_size=int(dome_map_size), dome_refresh=0,
+                          dome_blur=float(dome_blur))
     for i in range(scene.instance_count):
         material = scene.material(i)
         material.environment_diffuse = 1.0

@@ -60,21 +60,20 @@ def add_ibl_parser(sub: Any) -> None:
 
 
 def load_cube(args: argparse.Namespace):
-    """The input file as a CubeMap."""
+    """The input file as a CubeMap (weft.ibl.load_environment_cube; .npy faces keep their size)."""
+    import weft
     import weft.ibl as ibl
 
     image = ibl.load_environment(args.input)
-    if image.ndim == 4:
-        return ibl.CubeMap(np.ascontiguousarray(image, np.float32))
-    source = args.source
-    if source == "auto":
+    size = image.shape[1] if image.ndim == 4 else args.cube_size
+    if image.ndim == 3 and args.source == "auto":
         h, w = image.shape[:2]
-        source = ("equirect" if w == 2 * h else "cross" if w * 3 == h * 4 or w * 4 == h * 3
-                  else "sphere" if w == h else "")
-        if not source:
-            raise ValueError(f"cannot tell the kind of a {w} x {h} image; pass --source")
-    return ibl.to_cube(image, source, args.cube_size, wrap=args.wrap,
-                       fov=math.radians(args.fov))
+        try:
+            ibl.guess_source(w, h)
+        except weft.InvalidArgument:
+            raise ValueError(f"cannot tell the kind of a {w} x {h} image; pass --source") from None
+    return ibl.load_environment_cube(args.input, size, source=args.source, wrap=args.wrap,
+                                     fov=math.radians(args.fov))
 
 
 def write_cube(path: str, cube, layout: str) -> None:
