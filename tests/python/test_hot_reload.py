@@ -63,9 +63,8 @@ def test_broken_shader_keeps_the_previous_pipeline(shader_dir: Path, make_render
     assert len(errors) == 1 and "render/output.frag:" in errors[0] and "error" in errors[0]
     # fixing it takes effect again; an edit in an included file recompiles its users
     edit(shader_dir / "render" / "output.frag", "outColr = vec4", "outColor = vec4")
-    edit(shader_dir / "common" / "shading.glsl",
-         "vec3 albedo(vec2 uv, Instance ins) { return ins.baseColor.rgb",
-         "vec3 albedo(vec2 uv, Instance ins) { return vec3(0.0) * ins.baseColor.rgb")
+    edit(shader_dir / "common" / "shading.glsl", "s.T = ins.baseColor.rgb * base.rgb;",
+         "s.T = vec3(0.0) * ins.baseColor.rgb * base.rgb;")
     dark = r.render_debug(scene, camera)
     covered = dark["mask"]
     assert np.all(dark["albedo"][covered] == 0.0)
