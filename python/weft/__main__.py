@@ -6,7 +6,7 @@
     python -m weft devices [--json]
     python -m weft render [--width W] [--height H] [--out PNG] [--scene default|cloth]
                           [--steps N] [--environment FILE [--source S] [--wrap W]
-                          [--dome N]]
+                          [--dome N]] [--background PNG]
     python -m weft btf {synth PRESET OUT, fit PATH --out DIR} ...   (see weft.btf.cli)
     python -m weft ibl {convert,irradiance,extract-lights} ...   (see python -m weft ibl --help)
 
@@ -156,6 +156,9 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--wrap", type=_wrap_value, default=None,
                         help="sphere-map wrap value in (0, 1]: 1 = full 360-degree sphere map, "
                              "less for a photographed mirror ball's visible part (default 1)")
+    render.add_argument("--background", default="", metavar="PNG",
+                        help="AR: composite over this camera image (PNG); the ground becomes a "
+                             "phantom that shows the image with the shadows it receives")
     render.add_argument("--dome", type=_dome_size, default=None, metavar="N",
                         help="shadow lights in the environment's dome: 0 or a multiple of 8 up "
                              "to 64 (default 16 with --environment)")
@@ -253,6 +256,10 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
         weft.scenes.light_with_environment(scene, cube,
                                            dome_lights=16 if args.dome is None else args.dome)
+    if args.background:
+        import weft.scenes
+
+        weft.scenes.composite_over(scene, weft.load_png(args.background))
     renderer = weft.Renderer(args.width, args.height)
     image = renderer.render(scene, camera)
     directory = os.path.dirname(args.out)

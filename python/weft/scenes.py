@@ -157,3 +157,32 @@ def light_with_environment(scene: "weft.Scene", environment, dome_lights: int = 
         mean = (faces.reshape(-1, 3)[up] * w[up, None]).sum(axis=0) / w[up].sum()
         scene.background = tuple(float(v) for v in np.clip(mean * intensity, 0.0, None))
     return env
+
+
+def composite_over(scene: "weft.Scene", image, phantoms: Sequence[int] = (0,)) -> None:
+    """AR compositing (SPEC §4.5): ``image`` (a camera frame: uint8 sRGB (H, W, 3) or (H, W, 4),
+    or a weft.Texture) is drawn behind everything, stretched over the output, and the instances
+    ``phantoms`` (default: the ground of :func:`cloth_scene` and ``weft.default_scene``) become
+    phantoms -- stand-ins for real surfaces that hide what lies behind them and show the image
+    darkened by the shadows they receive (lit / unshadowed diffuse light)."""
+    if isinstance(image, weft.Texture):
+        texture = image
+    else:
+        a = np.asarray(image)
+        if a.dtype != np.uint8 or a.ndim != 3 or a.shape[2] not in (3, 4):
+            raise InvalidArgument("background image must be uint8 sRGB (H, W, 3) or (H, W, 4), "
+                                  f"got {a.dtype} {a.shape}")
+        if a.shape[2] == 3:
+            a = np.concatenate([a, np.full(a.shape[:2] + (1,), 255, np.uint8)], axis=2)
+        texture = weft.Texture(np.ascontiguousarray(a))
+    ids = [int(i) for i in phantoms]
+    for i in ids:
+        if not 0 <= i < scene.instance_count:
+            raise InvalidArgument(f"phantom instance {i} does not exist "
+                                  f"({scene.instance_count} instances)")
+    scene.background_image = texture
+    for i in ids:
+        material = scene.material(i)
+        material.phantom = True
+        scene.set_material(i, material)
+

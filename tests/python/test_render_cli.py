@@ -229,3 +229,34 @@ def test_environment_files_of_every_kind_load_as_the_same_cube(tmp_path: Path) -
     assert weft.ibl.load_environment_cube(str(tmp_path / "faces.npy"), 8).size == 8  # resampled
     assert [weft.ibl.guess_source(w, h) for w, h in ((64, 32), (64, 48), (48, 64), (32, 32))] \
         == ["equirect", "cross", "cross", "sphere"]
+
+
+def test_cloth_composited_over_a_camera_image(sky: Path, tmp_path: Path) -> None:
+    """--background: the ground becomes a phantom over the image (AR, SPEC §4.5): open ground
+    shows the image unchanged, the ground at the sphere's foot the image darkened by the dome's
+    shadows, and the cloth and sphere are drawn as usual."""
+    y, x = np.mgrid[0:H, 0:W]
+    photo = np.zeros((H, W, 3), np.uint8)
+    photo[..., 0] = 60 + 150 * x // (W - 1)
+    photo[..., 1] = 80 + 120 * y // (H - 1)
+    photo[..., 2] = 120
+    bg = tmp_path / "photo.png"
+    weft.save_png(str(bg), photo)
+    out = tmp_path / "ar.png"
+    assert main(["render", "--scene", "cloth", "--environment", str(sky), "--dome", "16",
+                 "--background", str(bg), "--width", str(W), "--height", str(H),
+                 "--out", str(out)]) == 0
+    image = weft.load_png(str(out))[..., :3].astype(int)
+    debug, _ = api_render(sky, 16)
+    ground = debug["instance"] == 0
+    r = np.hypot(debug["position"][..., 0], debug["position"][..., 2])
+    far, near = ground & (r > 2.0), ground & (r > 0.5) & (r < 0.7)
+    # the image passes through exactly where nothing shadows the phantom (sRGB decode and
+    # re-encode: measured exact)
+    assert np.abs(image[far] - photo[far]).max() <= 2
+    lum = lambda c: weft.ibl.srgb_to_linear(c.astype(np.uint8)) @ LUMA  # noqa: E731
+    ratio = lum(image[near]).mean() / lum(photo[near]).mean()
+    assert 0.3 < ratio < 0.85, ratio  # measured 0.64
+    cloth = debug["instance"] == 2
+    assert np.abs(image[cloth] - photo[cloth]).mean() > 10  # the cloth is drawn, not the photo
+
