@@ -286,6 +286,28 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
         vkCmdSetViewport(cmd, 0, 1, &vp);
         vkCmdSetScissor(cmd, 0, 1, &sc);
     };
+    // One full-screen triangle into a single colour target of the output's size.
+    auto fullscreen = [&](VkCommandBuffer cmd, VkImageView target, VkAttachmentLoadOp load,
+                          VkPipeline pipeline, VkPipelineLayout layout, VkDescriptorSet set,
+                          const void* push, uint32_t pushBytes) {
+        VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        a.imageView = target;
+        a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        a.loadOp = load;
+        a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        info.renderArea = {{0, 0}, {targets.width, targets.height}};
+        info.layerCount = 1;
+        info.colorAttachmentCount = 1;
+        info.pColorAttachments = &a;
+        c.fn().cmdBeginRendering(cmd, &info);
+        viewportScissor(cmd, targets.width, targets.height);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+        if (pushBytes) vkCmdPushConstants(cmd, layout, vk::kGraphicsStages, 0, pushBytes, push);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        c.fn().cmdEndRendering(cmd);
+    };
 
     // Depth of every shadow caster (meshes, alpha-tested ones with holes, hair) seen by viewProj.
     auto drawCasters = [&](VkCommandBuffer cmd, VkImageView view, uint32_t size,
@@ -421,23 +443,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     // The background image (AR: the camera frame) under everything the forward pass draws.
     if (background)
         g.addPass({"background", {}, {{rHdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
-                       VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-                       a.imageView = targets.hdr.view();
-                       a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-                       a.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-                       a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-                       VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                       info.renderArea = {{0, 0}, {targets.width, targets.height}};
-                       info.layerCount = 1;
-                       info.colorAttachmentCount = 1;
-                       info.pColorAttachments = &a;
-                       c.fn().cmdBeginRendering(cmd, &info);
-                       viewportScissor(cmd, targets.width, targets.height);
-                       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.background.get());
-                       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.sceneLayout,
-                                               0, 1, &frameSet, 0, nullptr);
-                       vkCmdDraw(cmd, 3, 1, 0, 0);
-                       c.fn().cmdEndRendering(cmd);
+                       fullscreen(cmd, targets.hdr.view(), VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+                                  pipes.background.get(), pipes.sceneLayout, frameSet, nullptr, 0);
                    }});
     int rDomeLight = -1; // the forward pass's dome output for the blur
     if (domeBlur) {
@@ -506,28 +513,12 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     if (domeBlur)
         g.addPass({"dome_blur", {{rDomeLight, Use::Sampled}, {rDepth, Use::Sampled}},
                    {{rHdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
-                       VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-                       a.imageView = targets.hdr.view();
-                       a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-                       a.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-                       a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-                       VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                       info.renderArea = {{0, 0}, {targets.width, targets.height}};
-                       info.layerCount = 1;
-                       info.colorAttachmentCount = 1;
-                       info.pColorAttachments = &a;
-                       c.fn().cmdBeginRendering(cmd, &info);
-                       viewportScissor(cmd, targets.width, targets.height);
-                       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.domeBlur.get());
-                       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.domeBlurLayout,
-                                               0, 1, &domeBlurSet, 0, nullptr);
                        const render::DomeBlurPush push{
                            glm::vec4(scene.environment().domeBlur, camera.zNear, camera.zFar,
                                      scene.environment().domeBlurDepthTolerance)};
-                       vkCmdPushConstants(cmd, pipes.domeBlurLayout, vk::kGraphicsStages, 0,
-                                          sizeof(push), &push);
-                       vkCmdDraw(cmd, 3, 1, 0, 0);
-                       c.fn().cmdEndRendering(cmd);
+                       fullscreen(cmd, targets.hdr.view(), VK_ATTACHMENT_LOAD_OP_LOAD,
+                                  pipes.domeBlur.get(), pipes.domeBlurLayout, domeBlurSet, &push,
+                                  sizeof(push));
                    }});
 
     if (hasHair)
@@ -538,23 +529,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
 
     const VkPipeline outPipeline = pipes.outputPipeline(ldr->desc().format);
     g.addPass({"output", {{rHdr, Use::Sampled}}, {{rLdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
-                   VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-                   a.imageView = ldr->view();
-                   a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-                   a.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-                   a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                   info.renderArea = {{0, 0}, {targets.width, targets.height}};
-                   info.layerCount = 1;
-                   info.colorAttachmentCount = 1;
-                   info.pColorAttachments = &a;
-                   c.fn().cmdBeginRendering(cmd, &info);
-                   viewportScissor(cmd, targets.width, targets.height);
-                   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, outPipeline);
-                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.outputLayout, 0, 1,
-                                           &outputSet, 0, nullptr);
-                   vkCmdDraw(cmd, 3, 1, 0, 0);
-                   c.fn().cmdEndRendering(cmd);
+                   fullscreen(cmd, ldr->view(), VK_ATTACHMENT_LOAD_OP_DONT_CARE, outPipeline,
+                              pipes.outputLayout, outputSet, nullptr, 0);
                }});
 
     // Readback copies: colour (ldr), linear (hdr), debug images.
