@@ -198,42 +198,36 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
             {pipes.environmentSampler, environment.sphereGlossy(),
              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
-        VkWriteDescriptorSet writes[13];
-        for (auto& w : writes) w = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        auto setWrite = [&](int i, uint32_t binding, VkDescriptorType type) {
-            writes[i].dstSet = set;
-            writes[i].dstBinding = binding;
-            writes[i].descriptorCount = 1;
-            writes[i].descriptorType = type;
+        // Binding i of frame.glsl / environment.glsl: a buffer or images (count > 1: an array).
+        struct Entry {
+            VkDescriptorType type;
+            const VkDescriptorBufferInfo* buffer;
+            const VkDescriptorImageInfo* images;
+            uint32_t count;
         };
-        setWrite(0, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
-        writes[0].pBufferInfo = &uboInfo;
-        setWrite(1, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-        writes[1].pBufferInfo = &instInfo;
-        setWrite(2, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-        writes[2].pBufferInfo = &lightInfo;
-        setWrite(3, 3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-        writes[3].pImageInfo = &shadowInfo;
-        setWrite(4, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-        writes[4].pBufferInfo = &layerInfo;
-        setWrite(5, 5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-        writes[5].descriptorCount = render::kMaxCookies;
-        writes[5].pImageInfo = cookieInfos;
-        setWrite(6, 6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-        writes[6].pImageInfo = &environmentInfo;
-        setWrite(7, 7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-        writes[7].pBufferInfo = &domeInfo;
-        setWrite(8, 8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-        writes[8].pImageInfo = &domeMapInfo;
-        setWrite(9, 9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-        writes[9].pImageInfo = &probeInfo;
-        setWrite(10, 10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-        writes[10].pImageInfo = &backgroundInfo;
-        setWrite(11, 11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-        writes[11].pImageInfo = &sphereInfos[0];
-        setWrite(12, 12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-        writes[12].pImageInfo = &sphereInfos[1];
-        vkUpdateDescriptorSets(c.device(), 13, writes, 0, nullptr);
+        constexpr VkDescriptorType ubo = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                   ssbo = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                   image = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        const Entry entries[] = {
+            {ubo, &uboInfo, nullptr, 1},          {ssbo, &instInfo, nullptr, 1},
+            {ssbo, &lightInfo, nullptr, 1},       {image, nullptr, &shadowInfo, 1},
+            {ssbo, &layerInfo, nullptr, 1},       {image, nullptr, cookieInfos, render::kMaxCookies},
+            {image, nullptr, &environmentInfo, 1}, {ssbo, &domeInfo, nullptr, 1},
+            {image, nullptr, &domeMapInfo, 1},    {image, nullptr, &probeInfo, 1},
+            {image, nullptr, &backgroundInfo, 1}, {image, nullptr, &sphereInfos[0], 1},
+            {image, nullptr, &sphereInfos[1], 1}};
+        constexpr uint32_t kBindings = sizeof(entries) / sizeof(entries[0]);
+        VkWriteDescriptorSet writes[kBindings];
+        for (uint32_t i = 0; i < kBindings; ++i) {
+            writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            writes[i].dstSet = set;
+            writes[i].dstBinding = i;
+            writes[i].descriptorCount = entries[i].count;
+            writes[i].descriptorType = entries[i].type;
+            writes[i].pBufferInfo = entries[i].buffer;
+            writes[i].pImageInfo = entries[i].images;
+        }
+        vkUpdateDescriptorSets(c.device(), kBindings, writes, 0, nullptr);
     };
     writeFrameSet(frameSet, {slot.ubo.get(), 0, sizeof(frame)},
                   hasProbe ? probe.cube().view() : environment.black());
