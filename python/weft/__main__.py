@@ -6,7 +6,7 @@
     python -m weft devices [--json]
     python -m weft render [--width W] [--height H] [--out PNG] [--scene default|cloth]
                           [--steps N] [--environment FILE [--source S] [--wrap W]
-                          [--dome N]] [--background PNG]
+                          [--dome N] [--sun-lights N]] [--background PNG]
     python -m weft btf {synth PRESET OUT, fit PATH --out DIR} ...   (see weft.btf.cli)
     python -m weft ibl {convert,irradiance,extract-lights} ...   (see python -m weft ibl --help)
 
@@ -156,6 +156,10 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--wrap", type=_wrap_value, default=None,
                         help="sphere-map wrap value in (0, 1]: 1 = full 360-degree sphere map, "
                              "less for a photographed mirror ball's visible part (default 1)")
+    render.add_argument("--sun-lights", type=_non_negative_int, default=None, metavar="N",
+                        help="extract up to N bright lights (suns) from --environment as "
+                             "directional lights with sharp shadows; the dome lights with the "
+                             "rest of the sky (default 0)")
     render.add_argument("--background", default="", metavar="PNG",
                         help="AR: composite over this camera image (PNG); the ground becomes a "
                              "phantom that shows the image with the shadows it receives")
@@ -225,7 +229,8 @@ def format_stats(stats: Dict[str, Any]) -> str:
 def _check_render_args(args: argparse.Namespace) -> None:
     """Options that only make sense together: raises ValueError naming the missing one."""
     if not args.environment:
-        given = [f"--{n}" for n in ("source", "wrap", "dome") if getattr(args, n) is not None]
+        given = [f"--{n.replace('_', '-')}" for n in ("source", "wrap", "dome", "sun_lights")
+                 if getattr(args, n) is not None]
         if given:
             verb = "needs" if len(given) == 1 else "need"
             raise ValueError(f"{' and '.join(given)} {verb} --environment FILE")
@@ -255,7 +260,8 @@ def _cmd_render(args: argparse.Namespace) -> int:
         import weft.scenes
 
         weft.scenes.light_with_environment(scene, cube,
-                                           dome_lights=16 if args.dome is None else args.dome)
+                                           dome_lights=16 if args.dome is None else args.dome,
+                                           sun_lights=args.sun_lights or 0)
     if args.background:
         import weft.scenes
 

@@ -113,8 +113,8 @@ def cloth_scene(resolution: int = 32, steps: int = DEFAULT_STEPS,
 
 def light_with_environment(scene: "weft.Scene", environment, dome_lights: int = 16,
                            dome_map_size: int = 256, intensity: float = 1.0,
-                           background: bool = True,
-                           dome_blur: float = 4.0) -> "weft.ibl.Environment":
+                           background: bool = True, dome_blur: float = 4.0,
+                           sun_lights: int = 0) -> "weft.ibl.Environment":
     """Lights ``scene`` with ``environment`` (a weft.ibl.Environment or a world-space radiance
     weft.ibl.CubeMap) instead of its own lights: every instance's material gets the
     environment's diffuse light (``environment_diffuse = 1``; SH9 irradiance) and keeps its
@@ -122,7 +122,10 @@ def light_with_environment(scene: "weft.Scene", environment, dome_lights: int = 
     shadow maps) and its constant ambient set to 0, and ``dome_lights`` (0, or a multiple of 8
     up to 64) shadow lights of the environment's dome subtract the light the scene occludes
     (SPEC eq. 2.23: shadows from the dome), blurred over ``dome_blur`` pixels (SPEC §4.5; 0: per
-    pixel). With ``background`` the clear colour becomes the
+    pixel). With ``sun_lights`` > 0 up to that many bright lights are extracted
+    (``weft.ibl.split_lights``: threshold + components) and added as directional lights with
+    sharp shadow maps alongside the dome, which then lights with the rest of the sky: a sun
+    that SH9 cannot follow is exact that way. With ``background`` the clear colour becomes the
     environment's mean radiance over the upper hemisphere. Returns the Environment (call its
     ``set_radiance`` to change the lighting, e.g. from a video)."""
     if dome_lights not in DOME_SIZES:
@@ -130,12 +133,18 @@ def light_with_environment(scene: "weft.Scene", environment, dome_lights: int = 
                               f"{dome_lights!r}")
     if not (np.isfinite(intensity) and intensity >= 0.0):
         raise InvalidArgument(f"intensity must be finite and >= 0, got {intensity}")
+    sun_lights = _checked_int(sun_lights, "sun_lights", 0, 16)
     env = environment
     if isinstance(env, weft.ibl.CubeMap):
         env = weft.ibl.Environment(env)
     if not isinstance(env, weft.ibl.Environment):
         raise InvalidArgument("environment must be a weft.ibl.Environment or a weft.ibl.CubeMap, "
                               f"got {type(environment).__name__}")
+    suns = []
+    if sun_lights:
+        suns, sky = weft.ibl.split_lights(env.radiance, max_lights=sun_lights)
+        if suns:
+            env = weft.ibl.Environment(sky)
     scene.set_environment(env, intensity=float(intensity), dome_lights=int(dome_lights),
                           dome_map_size=int(dome_map_size), dome_refresh=0,
                           dome_blur=float(dome_blur))
@@ -148,6 +157,17 @@ def light_with_environment(scene: "weft.Scene", environment, dome_lights: int = 
         light.cast_shadows = False
         scene.set_light(i, light)
     scene.ambient = (0.0, 0.0, 0.0)
+    for sun in suns:
+        # colour is the light's integrated radiance: the irradiance E it brings at normal
+        # incidence; weft's Blinn-Phong diffuse is n.l L K_D T against K_D T E / pi for the
+        # environment, so L = E / pi
+        colour = np.asarray(sun.colour, np.float64) * float(intensity) / np.pi
+        peak = float(colour.max())
+        if peak <= 0.0:
+            continue
+        scene.add_light(weft.DirectionalLight(direction=tuple(-np.asarray(sun.direction)),
+                                              color=tuple(colour / peak), intensity=peak,
+                                              cast_shadows=True))
     if background:
         faces = np.asarray(env.radiance.faces, np.float64)
         dirs = weft.ibl.cube_texel_directions(faces.shape[1]).reshape(-1, 3)
