@@ -1,41 +1,29 @@
 #version 450
 // The dome's shadows blurred (SPEC §4.5: "the accumulated shadow image is blurred and multiplies
-// the diffuse term only"). Each pixel adds its environment diffuse light (before the dome's
-// shadows) times the bilateral average of the dome visibility around it: 7 x 7 taps spread over
-// `radius` pixels, weighted by a Gaussian (sigma = radius / 2) and by depth similarity
-// exp(-(dz / (tolerance z))^2) in linear view depth, so shadows do not bleed across silhouettes.
-// python/weft/reference/ibl_shading.py: dome_blur implements the same kernel in NumPy.
-layout(set = 0, binding = 0) uniform sampler2D domeTex;  // rgb: diffuse light, a: visibility; a < 0: no surface
-layout(set = 0, binding = 1) uniform sampler2D depthTex; // the forward pass's depth (perspective)
-layout(push_constant) uniform Push { vec4 params; } push; // radius, near, far, tolerance
+// the diffuse term only"), second of two separable passes: the row-blurred visibility of
+// dome_blur_x.frag averaged along the column with the same weights; each pixel adds its
+// environment diffuse light (before the dome's shadows) times the result.
+layout(set = 0, binding = 0) uniform sampler2D domeTex;     // rgb: diffuse light, a: visibility
+layout(set = 0, binding = 1) uniform sampler2D visDepthTex; // dome_blur_x.frag's output
+layout(push_constant) uniform Push { vec4 params; } push;   // radius, near, far, tolerance
 layout(location = 0) out vec4 outColor;
 
-float viewDepth(float d) {
-    float n = push.params.y, f = push.params.z;
-    return n * f / (f - d * (f - n));
-}
-
 void main() {
-    ivec2 size = textureSize(domeTex, 0);
     ivec2 c = ivec2(gl_FragCoord.xy);
-    vec4 centre = texelFetch(domeTex, c, 0);
-    if (centre.a < 0.0) discard;
-    float zc = viewDepth(texelFetch(depthTex, c, 0).r);
-    float radius = push.params.x;
-    float step = radius / 3.0;
-    float sigma = max(radius * 0.5, 1e-6);
+    vec2 centre = texelFetch(visDepthTex, c, 0).rg;
+    if (centre.y < 0.0) discard; // no surface
+    int last = textureSize(visDepthTex, 0).y - 1;
+    float step = push.params.x / 3.0;
+    float sigma = max(push.params.x * 0.5, 1e-6);
     float sum = 0.0, weights = 0.0;
-    for (int dy = -3; dy <= 3; ++dy) {
-        for (int dx = -3; dx <= 3; ++dx) {
-            vec2 o = vec2(dx, dy) * step;
-            ivec2 q = clamp(c + ivec2(floor(o + 0.5)), ivec2(0), size - 1);
-            vec4 s = texelFetch(domeTex, q, 0);
-            if (s.a < 0.0) continue;
-            float dz = (viewDepth(texelFetch(depthTex, q, 0).r) - zc) / (push.params.w * zc);
-            float w = exp(-dot(o, o) / (2.0 * sigma * sigma) - dz * dz);
-            sum += w * s.a;
-            weights += w;
-        }
+    for (int k = -3; k <= 3; ++k) {
+        float o = float(k) * step;
+        vec2 s = texelFetch(visDepthTex, ivec2(c.x, clamp(c.y + int(floor(o + 0.5)), 0, last)), 0).rg;
+        if (s.y < 0.0) continue;
+        float dz = (s.y - centre.y) / (push.params.w * centre.y);
+        float w = exp(-o * o / (2.0 * sigma * sigma) - dz * dz);
+        sum += w * s.x;
+        weights += w;
     }
-    outColor = vec4(centre.rgb * (sum / weights), 0.0); // blended: added to the colour
+    outColor = vec4(texelFetch(domeTex, c, 0).rgb * (sum / weights), 0.0); // added to the colour
 }

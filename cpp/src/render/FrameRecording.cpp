@@ -150,8 +150,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
 
     // ---- descriptors ----------------------------------------------------------------------
     VK_CHECK(vkResetDescriptorPool(c.device(), slot.pool, 0));
-    // The frame set, six probe-face sets while capturing, the output set, the dome blur's set.
-    VkDescriptorSetLayout layouts[kFrameSets + 2];
+    // The frame set, six probe-face sets while capturing, the output set, the dome blur's two.
+    VkDescriptorSetLayout layouts[kFrameSets + 3];
     uint32_t setCount = 0;
     layouts[setCount++] = pipes.frameSetLayout;
     if (captureProbe)
@@ -159,14 +159,15 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     const uint32_t outputIndex = setCount;
     layouts[setCount++] = pipes.outputSetLayout;
     layouts[setCount++] = pipes.domeBlurSetLayout;
+    layouts[setCount++] = pipes.domeBlurSetLayout;
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = slot.pool;
     alloc.descriptorSetCount = setCount;
     alloc.pSetLayouts = layouts;
-    VkDescriptorSet sets[kFrameSets + 2];
+    VkDescriptorSet sets[kFrameSets + 3];
     VK_CHECK(vkAllocateDescriptorSets(c.device(), &alloc, sets));
     const VkDescriptorSet frameSet = sets[0], outputSet = sets[outputIndex],
-                          domeBlurSet = sets[outputIndex + 1];
+                          domeRowsSet = sets[outputIndex + 1], domeBlurSet = sets[outputIndex + 2];
     vk::Image& shadowImage = shadowViews.empty() ? dummyShadow : shadowMaps;
     vk::Image& domeImage = dome.active() ? dome.maps() : dummyShadow;
     // A frame set: the frame's data with uniforms `ubo` and the reflection capture `probeView`.
@@ -244,21 +245,26 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     outputWrite.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     outputWrite.pImageInfo = &hdrInfo;
     vkUpdateDescriptorSets(c.device(), 1, &outputWrite, 0, nullptr);
-    vk::Image* domeTarget = domeBlur ? &targets.domeImage(c) : nullptr;
     if (domeBlur) {
-        VkDescriptorImageInfo infos[2] = {
-            {pipes.nearestSampler, domeTarget->view(), render::useState(Use::Sampled, false).layout},
-            {pipes.nearestSampler, targets.depth.layerView(0), render::useState(Use::Sampled, true).layout}};
-        VkWriteDescriptorSet w[2];
-        for (uint32_t i = 0; i < 2; ++i) {
+        // the row pass reads the dome output and the depth, the column pass the dome output and
+        // the row pass's result
+        targets.ensureDome(c);
+        const VkImageLayout colorRead = render::useState(Use::Sampled, false).layout;
+        VkDescriptorImageInfo infos[4] = {
+            {pipes.nearestSampler, targets.dome.view(), colorRead},
+            {pipes.nearestSampler, targets.depth.layerView(0), render::useState(Use::Sampled, true).layout},
+            {pipes.nearestSampler, targets.dome.view(), colorRead},
+            {pipes.nearestSampler, targets.domeRows.view(), colorRead}};
+        VkWriteDescriptorSet w[4];
+        for (uint32_t i = 0; i < 4; ++i) {
             w[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w[i].dstSet = domeBlurSet;
-            w[i].dstBinding = i;
+            w[i].dstSet = i < 2 ? domeRowsSet : domeBlurSet;
+            w[i].dstBinding = i % 2;
             w[i].descriptorCount = 1;
             w[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
             w[i].pImageInfo = &infos[i];
         }
-        vkUpdateDescriptorSets(c.device(), 2, w, 0, nullptr);
+        vkUpdateDescriptorSets(c.device(), 4, w, 0, nullptr);
     }
 
     // ---- frame graph ----------------------------------------------------------------------
@@ -442,7 +448,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    }});
     int rDomeLight = -1; // the forward pass's dome output for the blur
     if (domeBlur) {
-        rDomeLight = g.addResource("dome_light", domeTarget);
+        rDomeLight = g.addResource("dome_light", &targets.dome);
         forwardWrites.push_back({rDomeLight, Use::ColorWrite});
     }
 
@@ -468,7 +474,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                        color(targets.surface.view(), glm::vec4(0.0f));
                        color(targets.albedo.view(), glm::vec4(0.0f));
                    }
-                   if (domeBlur) color(domeTarget->view(), glm::vec4(0.0f, 0.0f, 0.0f, -1.0f)); // a < 0: no surface
+                   if (domeBlur) // a < 0: no surface
+                       color(targets.dome.view(), glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
                    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
                    depth.imageView = targets.depth.view();
                    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -503,17 +510,26 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    c.fn().cmdEndRendering(cmd);
                }});
 
-    // The dome's shadows blurred, times the diffuse light they darken, added to the colour.
-    if (domeBlur)
-        g.addPass({"dome_blur", {{rDomeLight, Use::Sampled}, {rDepth, Use::Sampled}},
-                   {{rHdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
-                       const render::DomeBlurPush push{
-                           glm::vec4(scene.environment().domeBlur, camera.zNear, camera.zFar,
-                                     scene.environment().domeBlurDepthTolerance)};
-                       fullscreen(cmd, targets.hdr.view(), VK_ATTACHMENT_LOAD_OP_LOAD,
-                                  pipes.domeBlur.get(), pipes.domeBlurLayout, domeBlurSet, &push,
-                                  sizeof(push));
+    // The dome's shadows blurred (rows, then columns), times the diffuse light they darken,
+    // added to the colour.
+    const render::DomeBlurPush domeBlurPush{
+        glm::vec4(scene.environment().domeBlur, camera.zNear, camera.zFar,
+                  scene.environment().domeBlurDepthTolerance)};
+    if (domeBlur) {
+        const int rRows = g.addResource("dome_rows", &targets.domeRows);
+        g.addPass({"dome_blur_x", {{rDomeLight, Use::Sampled}, {rDepth, Use::Sampled}},
+                   {{rRows, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
+                       fullscreen(cmd, targets.domeRows.view(), VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+                                  pipes.domeBlurRows.get(), pipes.domeBlurLayout, domeRowsSet,
+                                  &domeBlurPush, sizeof(domeBlurPush));
                    }});
+        g.addPass({"dome_blur", {{rDomeLight, Use::Sampled}, {rRows, Use::Sampled}},
+                   {{rHdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {
+                       fullscreen(cmd, targets.hdr.view(), VK_ATTACHMENT_LOAD_OP_LOAD,
+                                  pipes.domeBlur.get(), pipes.domeBlurLayout, domeBlurSet,
+                                  &domeBlurPush, sizeof(domeBlurPush));
+                   }});
+    }
 
     if (hasHair)
         hair->addPasses(g, {rShadow, rDepth, rHdr, debug ? rDebug : nullptr, &targets.hdr,

@@ -30,6 +30,7 @@ void RenderTargets::ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug)
         surface = vk::Image();
         albedo = vk::Image();
         dome = vk::Image();
+        domeRows = vk::Image();
     }
     if (debug && !position) {
         position = makeTarget(ctx, w, h, kDebugFormat, color);
@@ -39,11 +40,10 @@ void RenderTargets::ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug)
     }
 }
 
-vk::Image& RenderTargets::domeImage(vk::Context& ctx) {
-    if (!dome)
-        dome = makeTarget(ctx, width, height, kDomeFormat,
-                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-    return dome;
+void RenderTargets::ensureDome(vk::Context& ctx) {
+    constexpr VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    if (!dome) dome = makeTarget(ctx, width, height, kDomeFormat, usage);
+    if (!domeRows) domeRows = makeTarget(ctx, width, height, kDomeBlurFormat, usage);
 }
 
 vk::Buffer& RenderTargets::readbackFor(vk::Context& ctx, const vk::Image* image) {

@@ -11,6 +11,7 @@ constexpr VkFormat kDebugFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_SRGB;
 constexpr VkFormat kDomeFormat = VK_FORMAT_R16G16B16A16_SFLOAT; // dome diffuse + visibility
+constexpr VkFormat kDomeBlurFormat = VK_FORMAT_R32G32_SFLOAT;   // row-blurred visibility, depth
 
 struct RenderTargets {
     uint32_t width = 0, height = 0;
@@ -22,9 +23,10 @@ struct RenderTargets {
     vk::Image surface;
     vk::Image albedo;
     vk::Image dome;     // the forward pass's dome output for the blur, created on first use
+    vk::Image domeRows; // the blur's first (row) pass
 
-    /// The dome image at the current size (created on first request).
-    vk::Image& domeImage(vk::Context& ctx);
+    /// Creates the dome images at the current size on first request.
+    void ensureDome(vk::Context& ctx);
 
     /// (Re)creates the images for a size; debug images only when asked for.
     void ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug);

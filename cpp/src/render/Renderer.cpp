@@ -33,10 +33,10 @@ void Renderer::Impl::createSlots() {
             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFrameSets},
             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kFrameSets},
             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-             // frame sets; the output set (1) and the dome blur's (2)
-             (7 + uint32_t(render::kMaxCookies)) * kFrameSets + 3}};
+             // frame sets; the output set (1) and the dome blur's two (2 each)
+             (7 + uint32_t(render::kMaxCookies)) * kFrameSets + 5}};
         VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        pool.maxSets = kFrameSets + 2;
+        pool.maxSets = kFrameSets + 3;
         pool.poolSizeCount = 3;
         pool.pPoolSizes = sizes;
         VkDescriptorPool p;

@@ -127,8 +127,12 @@ void ScenePipelines::createPipelines() {
     fd.fragmentShader = "render/background.frag";
     fd.layout = sceneLayout;
     background = vk::createGraphicsPipeline(c, fd);
-    fd.fragmentShader = "render/dome_blur.frag";
     fd.layout = domeBlurLayout;
+    fd.fragmentShader = "render/dome_blur_x.frag";
+    fd.colorFormats = {kDomeBlurFormat};
+    domeBlurRows = vk::createGraphicsPipeline(c, fd);
+    fd.fragmentShader = "render/dome_blur.frag";
+    fd.colorFormats = {kHdrFormat};
     VkPipelineColorBlendAttachmentState add{};
     add.blendEnable = VK_TRUE;
     add.srcColorBlendFactor = add.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;

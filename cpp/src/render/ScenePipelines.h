@@ -26,7 +26,8 @@ struct ScenePipelines {
     vk::PipelineLayout sceneLayout, shadowLayout, outputLayout, domeBlurLayout;
     vk::Pipeline shadow, shadowAlpha;
     vk::Pipeline background; // the scene's background image into the hdr target
-    vk::Pipeline domeBlur;   // adds the blurred dome-shadowed diffuse light (additive)
+    vk::Pipeline domeBlurRows; // the dome blur's row pass
+    vk::Pipeline domeBlur;     // its column pass, adding the dome-shadowed diffuse light
 
     /// Forward shading for an output set (`debug` outputs, `dome` output for the blur pass) and
     /// a facing: back faces culled, the same for mirroring transforms (det < 0 reverses the

@@ -133,26 +133,30 @@ def sample_image_bilinear(image: np.ndarray, uv: np.ndarray) -> np.ndarray:
 
 def dome_blur(visibility: np.ndarray, depth: np.ndarray, covered: np.ndarray, radius: float,
               tolerance: float) -> np.ndarray:
-    """The renderer's blur of the dome visibility (H, W) over `radius` pixels: 7 x 7 taps at
-    offsets o = (dx, dy) radius / 3 (rounded half up), weights exp(-|o|^2 / (2 sigma^2) - dz^2),
-    sigma = radius / 2, dz = (z_tap - z) / (tolerance z) in view depth z (H, W); taps clamp to the
-    image and skip uncovered pixels. Uncovered pixels return 0."""
-    vis = np.asarray(visibility, np.float64)
+    """The renderer's blur of the dome visibility (H, W) over `radius` pixels, two separable
+    bilateral passes (rows, then columns of the rows' result): 7 taps at offsets
+    o = k radius / 3, k = -3..3 (rounded half up), weights exp(-o^2 / (2 sigma^2) - dz^2),
+    sigma = radius / 2, dz = (z_tap - z) / (tolerance z) in view depth z (H, W); taps clamp to
+    the image and skip uncovered pixels. Uncovered pixels return 0."""
+    vis = np.where(covered, np.asarray(visibility, np.float64), 0.0)
     z = np.asarray(depth, np.float64)
-    h, w = vis.shape
     step = radius / 3.0
     sigma = max(radius * 0.5, 1e-6)
-    rows, cols = np.mgrid[0:h, 0:w]
-    total = np.zeros((h, w))
-    weights = np.zeros((h, w))
-    for dy in range(-3, 4):
-        for dx in range(-3, 4):
-            ox, oy = dx * step, dy * step
-            q_r = np.clip(rows + int(np.floor(oy + 0.5)), 0, h - 1)
-            q_c = np.clip(cols + int(np.floor(ox + 0.5)), 0, w - 1)
-            ok = covered[q_r, q_c]
-            dz = (z[q_r, q_c] - z) / (tolerance * np.where(covered, z, 1.0))
-            wgt = np.where(ok, np.exp(-(ox * ox + oy * oy) / (2 * sigma * sigma) - dz * dz), 0.0)
-            total += wgt * vis[q_r, q_c]
-            weights += wgt
-    return np.where(covered, total / np.maximum(weights, 1e-300), 0.0)
+    safe_z = np.where(covered, z, 1.0)
+
+    def one_pass(values: np.ndarray, axis: int) -> np.ndarray:
+        n = values.shape[axis]
+        index = np.arange(n)
+        total = np.zeros_like(values)
+        weights = np.zeros_like(values)
+        for k in range(-3, 4):
+            o = k * step
+            q = np.clip(index + int(np.floor(o + 0.5)), 0, n - 1)
+            tap_v, tap_z, tap_ok = (np.take(a, q, axis=axis) for a in (values, z, covered))
+            dz = (tap_z - z) / (tolerance * safe_z)
+            w = np.where(tap_ok, np.exp(-o * o / (2 * sigma * sigma) - dz * dz), 0.0)
+            total += w * tap_v
+            weights += w
+        return np.where(covered, total / np.maximum(weights, 1e-300), 0.0)
+
+    return one_pass(one_pass(vis, axis=1), axis=0)
