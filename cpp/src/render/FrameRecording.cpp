@@ -1,6 +1,7 @@
-// One frame of a Renderer: the scene's GPU data, descriptor sets and the frame graph of passes
-// (shadow views, dome maps, reflection capture, forward shading, hair, sRGB output, readback or
-// present), recorded into the frame slot's command buffer.
+// One frame of a Renderer: its data (uploaded, and its descriptor sets written, by
+// FrameDescriptors.cpp) and the frame graph of passes (shadow views, dome maps, reflection
+// capture, background, forward shading, dome blur, hair, sRGB output, readback or present),
+// recorded into the frame slot's command buffer.
 #include "render/RendererImpl.h"
 
 namespace weft {
@@ -63,12 +64,6 @@ void drawMesh(VkCommandBuffer cmd, const render::MeshGpu& mesh) {
     vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
 }
 
-// Grows a host-visible buffer to hold `bytes`.
-void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
-    bytes = std::max<VkDeviceSize>(bytes, 256);
-    if (buffer && buffer.size() >= bytes) return;
-    buffer = vk::Buffer(&ctx, bytes * 3 / 2, usage, vk::MemoryUsage::Upload);
-}
 
 
 } // namespace
@@ -102,10 +97,6 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     const bool reuseShadows = settings.reuseShadowMaps && !data.shadowViews.empty() &&
                               key == shadowSignature;
     shadowSignature = std::move(key);
-    const render::GpuFrame& frame = data.frame;
-    const std::vector<render::GpuInstance>& instances = data.instances;
-    const std::vector<render::GpuLight>& lights = data.lights;
-    const std::vector<render::GpuShadowLayer>& layers = data.shadowLayers;
     const std::vector<Draw>& draws = data.draws;
     const std::vector<ShadowView>& shadowViews = data.shadowViews;
     const bool hasHair = !scene.hairs().empty();
@@ -115,157 +106,11 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                       targets.width, targets.height);
     }
 
-    ensureBuffer(c, slot.ubo, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
-    ensureBuffer(c, slot.instances, instances.size() * sizeof(render::GpuInstance),
-                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    ensureBuffer(c, slot.lights, lights.size() * sizeof(render::GpuLight),
-                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    slot.ubo.write(&frame, sizeof(frame));
-    // The capture's faces: the frame's uniforms seen from the probe, at aligned offsets.
-    const VkDeviceSize align = c.properties().limits.minUniformBufferOffsetAlignment;
-    const VkDeviceSize faceStride = (sizeof(frame) + align - 1) / align * align;
-    if (captureProbe) {
-        ensureBuffer(c, slot.probeUbo, 6 * faceStride, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
-        std::vector<uint8_t> faces(6 * faceStride, 0);
-        for (int f = 0; f < 6; ++f) {
-            render::GpuFrame face = frame;
-            face.viewProj = render::probeFaceViewProj(f, probe.position(), 0.02f, 1000.0f);
-            face.cameraPos = glm::vec4(probe.position(), 1.0f);
-            face.options.z = 0.0f; // the faces shade the dome inline: no blur pass for them
-            std::memcpy(faces.data() + f * faceStride, &face, sizeof(face));
-        }
-        slot.probeUbo.write(faces.data(), faces.size());
-    }
-    if (!instances.empty())
-        slot.instances.write(instances.data(), instances.size() * sizeof(render::GpuInstance));
-    if (!lights.empty()) slot.lights.write(lights.data(), lights.size() * sizeof(render::GpuLight));
-    ensureBuffer(c, slot.shadowLayers, layers.size() * sizeof(render::GpuShadowLayer),
-                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    if (!layers.empty())
-        slot.shadowLayers.write(layers.data(), layers.size() * sizeof(render::GpuShadowLayer));
-    ensureBuffer(c, slot.domeLights, domeLights.size() * sizeof(render::GpuDomeLight),
-                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    if (!domeLights.empty())
-        slot.domeLights.write(domeLights.data(), domeLights.size() * sizeof(render::GpuDomeLight));
-
-    // ---- descriptors ----------------------------------------------------------------------
-    VK_CHECK(vkResetDescriptorPool(c.device(), slot.pool, 0));
-    // The frame set, six probe-face sets while capturing, the output set, the dome blur's two.
-    VkDescriptorSetLayout layouts[kFrameSets + 3];
-    uint32_t setCount = 0;
-    layouts[setCount++] = pipes.frameSetLayout;
-    if (captureProbe)
-        for (uint32_t f = 0; f < 6; ++f) layouts[setCount++] = pipes.frameSetLayout;
-    const uint32_t outputIndex = setCount;
-    layouts[setCount++] = pipes.outputSetLayout;
-    layouts[setCount++] = pipes.domeBlurSetLayout;
-    layouts[setCount++] = pipes.domeBlurSetLayout;
-    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    alloc.descriptorPool = slot.pool;
-    alloc.descriptorSetCount = setCount;
-    alloc.pSetLayouts = layouts;
-    VkDescriptorSet sets[kFrameSets + 3];
-    VK_CHECK(vkAllocateDescriptorSets(c.device(), &alloc, sets));
-    const VkDescriptorSet frameSet = sets[0], outputSet = sets[outputIndex],
-                          domeRowsSet = sets[outputIndex + 1], domeBlurSet = sets[outputIndex + 2];
+    uploadFrame(slot, data, captureProbe);
+    const render::FrameSets sets = bindFrame(slot, scene, data, captureProbe, domeBlur);
+    const VkDescriptorSet frameSet = sets.frame, outputSet = sets.output,
+                          domeRowsSet = sets.domeRows, domeBlurSet = sets.domeBlur;
     vk::Image& shadowImage = shadowViews.empty() ? dummyShadow : shadowMaps;
-    vk::Image& domeImage = dome.active() ? dome.maps() : dummyShadow;
-    // A frame set: the frame's data with uniforms `ubo` and the reflection capture `probeView`.
-    auto writeFrameSet = [&](VkDescriptorSet set, VkDescriptorBufferInfo uboInfo, VkImageView probeView) {
-        VkDescriptorBufferInfo instInfo{slot.instances.get(), 0, VK_WHOLE_SIZE};
-        VkDescriptorBufferInfo lightInfo{slot.lights.get(), 0, VK_WHOLE_SIZE};
-        VkDescriptorImageInfo shadowInfo{pipes.nearestSampler, shadowImage.view(),
-                                         render::useState(Use::Sampled, true).layout};
-        VkDescriptorBufferInfo layerInfo{slot.shadowLayers.get(), 0, VK_WHOLE_SIZE};
-        VkDescriptorImageInfo cookieInfos[render::kMaxCookies];
-        for (int i = 0; i < render::kMaxCookies; ++i) // unused slots hold white
-            cookieInfos[i] = {pipes.cookieSampler,
-                              cache->textureView(size_t(i) < data.cookies.size() ? data.cookies[size_t(i)]
-                                                                                  : TexturePtr()),
-                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        VkDescriptorImageInfo environmentInfo{pipes.environmentSampler,
-                                              environment.view(scene.environment()),
-                                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        VkDescriptorBufferInfo domeInfo{slot.domeLights.get(), 0, VK_WHOLE_SIZE};
-        VkDescriptorImageInfo domeMapInfo{pipes.nearestSampler, domeImage.view(),
-                                          render::useState(Use::Sampled, true).layout};
-        VkDescriptorImageInfo probeInfo{pipes.environmentSampler, probeView,
-                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        VkDescriptorImageInfo backgroundInfo{pipes.cookieSampler,
-                                             cache->textureView(scene.backgroundImage()),
-                                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        VkDescriptorImageInfo sphereInfos[2] = {
-            {pipes.environmentSampler, environment.sphereIrradiance(),
-             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-            {pipes.environmentSampler, environment.sphereGlossy(),
-             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
-        // Binding i of frame.glsl / environment.glsl: a buffer or images (count > 1: an array).
-        struct Entry {
-            VkDescriptorType type;
-            const VkDescriptorBufferInfo* buffer;
-            const VkDescriptorImageInfo* images;
-            uint32_t count;
-        };
-        constexpr VkDescriptorType ubo = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                   ssbo = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                   image = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        const Entry entries[] = {
-            {ubo, &uboInfo, nullptr, 1},          {ssbo, &instInfo, nullptr, 1},
-            {ssbo, &lightInfo, nullptr, 1},       {image, nullptr, &shadowInfo, 1},
-            {ssbo, &layerInfo, nullptr, 1},       {image, nullptr, cookieInfos, render::kMaxCookies},
-            {image, nullptr, &environmentInfo, 1}, {ssbo, &domeInfo, nullptr, 1},
-            {image, nullptr, &domeMapInfo, 1},    {image, nullptr, &probeInfo, 1},
-            {image, nullptr, &backgroundInfo, 1}, {image, nullptr, &sphereInfos[0], 1},
-            {image, nullptr, &sphereInfos[1], 1}};
-        constexpr uint32_t kBindings = sizeof(entries) / sizeof(entries[0]);
-        VkWriteDescriptorSet writes[kBindings];
-        for (uint32_t i = 0; i < kBindings; ++i) {
-            writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            writes[i].dstSet = set;
-            writes[i].dstBinding = i;
-            writes[i].descriptorCount = entries[i].count;
-            writes[i].descriptorType = entries[i].type;
-            writes[i].pBufferInfo = entries[i].buffer;
-            writes[i].pImageInfo = entries[i].images;
-        }
-        vkUpdateDescriptorSets(c.device(), kBindings, writes, 0, nullptr);
-    };
-    writeFrameSet(frameSet, {slot.ubo.get(), 0, sizeof(frame)},
-                  hasProbe ? probe.cube().view() : environment.black());
-    if (captureProbe) // the faces see the capture as black: it is being drawn
-        for (uint32_t f = 0; f < 6; ++f)
-            writeFrameSet(sets[1 + f], {slot.probeUbo.get(), f * faceStride, sizeof(frame)},
-                          environment.black());
-    VkDescriptorImageInfo hdrInfo{pipes.nearestSampler, targets.hdr.view(),
-                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet outputWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    outputWrite.dstSet = outputSet;
-    outputWrite.dstBinding = 0;
-    outputWrite.descriptorCount = 1;
-    outputWrite.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    outputWrite.pImageInfo = &hdrInfo;
-    vkUpdateDescriptorSets(c.device(), 1, &outputWrite, 0, nullptr);
-    if (domeBlur) {
-        // the row pass reads the dome output and the depth, the column pass the dome output and
-        // the row pass's result
-        targets.ensureDome(c);
-        const VkImageLayout colorRead = render::useState(Use::Sampled, false).layout;
-        VkDescriptorImageInfo infos[4] = {
-            {pipes.nearestSampler, targets.dome.view(), colorRead},
-            {pipes.nearestSampler, targets.depth.layerView(0), render::useState(Use::Sampled, true).layout},
-            {pipes.nearestSampler, targets.dome.view(), colorRead},
-            {pipes.nearestSampler, targets.domeRows.view(), colorRead}};
-        VkWriteDescriptorSet w[4];
-        for (uint32_t i = 0; i < 4; ++i) {
-            w[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w[i].dstSet = i < 2 ? domeRowsSet : domeBlurSet;
-            w[i].dstBinding = i % 2;
-            w[i].descriptorCount = 1;
-            w[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-            w[i].pImageInfo = &infos[i];
-        }
-        vkUpdateDescriptorSets(c.device(), 4, w, 0, nullptr);
-    }
 
     // ---- frame graph ----------------------------------------------------------------------
     FrameGraph g;
@@ -390,7 +235,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
         std::vector<ResourceUse> faceReads = {{rShadow, Use::Sampled}};
         if (rDome >= 0) faceReads.push_back({rDome, Use::Sampled});
         for (uint32_t f = 0; f < 6; ++f) {
-            const VkDescriptorSet faceSet = sets[1 + f];
+            const VkDescriptorSet faceSet = sets.faces[f];
             g.addPass({"probe[" + std::to_string(f) + "]", faceReads,
                        {{rProbe, Use::ColorWrite}, {rProbeDepth, Use::DepthWrite}},
                        [&, f, faceSet](VkCommandBuffer cmd) {

@@ -33,6 +33,14 @@ constexpr uint32_t kFramesInFlight = 2;
 constexpr uint32_t kMaxPasses = 128;
 constexpr uint32_t kFrameSets = 7; // the frame's, and one per face of the reflection capture
 
+/// The descriptor sets of one frame: the frame's, one per probe face while capturing, the
+/// output pass's and the dome blur's two passes'.
+struct FrameSets {
+    VkDescriptorSet frame = VK_NULL_HANDLE;
+    std::array<VkDescriptorSet, 6> faces{};
+    VkDescriptorSet output = VK_NULL_HANDLE, domeRows = VK_NULL_HANDLE, domeBlur = VK_NULL_HANDLE;
+};
+
 /// Per frame in flight: its command buffer, uploads, descriptors and timestamps.
 struct FrameSlot {
     VkCommandBuffer cmd = VK_NULL_HANDLE;
@@ -91,6 +99,11 @@ struct Renderer::Impl {
     void finishStats(FrameSlot& slot);
     void recordFrame(FrameSlot& slot, const Scene& scene, const Camera& camera, uint32_t outputs,
                      vk::Image* ldr, bool present);
+    // FrameDescriptors.cpp: the slot's buffers and the frame's descriptor sets.
+    void uploadFrame(FrameSlot& slot, const render::FrameData& data, bool captureProbe);
+    render::FrameSets bindFrame(FrameSlot& slot, const Scene& scene, const render::FrameData& data,
+                                bool captureProbe, bool domeBlur);
+    VkDeviceSize probeFaceStride() const; // the probe faces' uniforms, aligned
     void ensureShadowMaps(uint32_t layers);
 };
 
