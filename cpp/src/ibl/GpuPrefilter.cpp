@@ -2,14 +2,17 @@
 // output level (glsl/ibl/prefilter_ggx.comp), read back into a CubeMap.
 #include <weft/IblFilter.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include <weft/Error.h>
 
 #include "CubeTexels.h"
+#include "GgxSamples.h"
 #include "IblValidate.h"
 #include "vk/ComputePipeline.h"
 
@@ -19,15 +22,73 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
+// Must match glsl/ibl/prefilter_ggx.comp.
+enum Mode : int32_t { kCopy = 0, kMirror = 1, kGgx = 2 };
+
 struct PrefilterPush {
-    int32_t srcSize, srcLevels, outSize, outOffset, samples;
-    float alpha, lod0, texelOmega;
+    int32_t outSize, outOffset, first, count, mode;
 };
 
+// One sample as the shader reads it (std430): the half vector in the texel's frame, the weight
+// of the second source level, and the two levels' texel offsets and sizes in the padded source.
+struct GpuSample {
+    float h[3], blend;
+    int32_t offset0, size0, offset1, size1;
+};
+
+// The source chain as the shader reads it: every level's faces with a one-texel border holding
+// the seamless taps CubeMap::sample makes past an edge (the neighbouring face's texel; past a
+// corner, the mean of the corner texel and its two neighbours across the edges), so the
+// shader's bilinear taps need no wrapping. Texel (f, i, j), i, j in [-1, s], of a level at
+// texel offset o lies at o + (f (s + 2) + j + 1) (s + 2) + i + 1; kChannels floats each.
+constexpr int kChannels = 3;
+
+std::vector<int32_t> paddedOffsets(const CubeMap& chain) {
+    std::vector<int32_t> offsets(size_t(chain.levels()) + 1, 0);
+    for (int l = 0; l < chain.levels(); ++l) {
+        const int p = chain.levelSize(l) + 2;
+        offsets[size_t(l) + 1] = offsets[size_t(l)] + 6 * p * p;
+    }
+    return offsets;
+}
+
+void writePadded(const CubeMap& chain, const std::vector<int32_t>& offsets, float* out) {
+    for (int l = 0; l < chain.levels(); ++l) {
+        const int s = chain.levelSize(l), p = s + 2;
+        for (int f = 0; f < 6; ++f)
+            for (int j = -1; j <= s; ++j) {
+                float* row = out + size_t(offsets[size_t(l)] + (f * p + j + 1) * p) * kChannels;
+                for (int i = -1; i <= s; ++i) {
+                    float* o = row + size_t(i + 1) * kChannels;
+                    const int ci = std::clamp(i, 0, s - 1), cj = std::clamp(j, 0, s - 1);
+                    const float* t = chain.texelWrapped(f, i, j, l);
+                    for (int k = 0; k < 3; ++k) o[k] = t[k];
+                    if (ci != i && cj != j) { // same expression as CubeMap::sample
+                        const float* a = chain.texel(f, ci, cj, l);
+                        const float* b = chain.texelWrapped(f, i, cj, l);
+                        const float* d = chain.texelWrapped(f, ci, j, l);
+                        for (int k = 0; k < 3; ++k) o[k] = (a[k] + b[k] + d[k]) / 3.0f;
+                    }
+                    for (int k = 3; k < kChannels; ++k) o[k] = 0.0f;
+                }
+            }
+    }
+}
+
+// The two source levels and the blend CubeMap::sampleLod uses for `lod`.
+GpuSample gpuSample(const glm::vec3& h, float lod, const CubeMap& chain,
+                    const std::vector<int32_t>& offsets) {
+    lod = std::clamp(std::isfinite(lod) ? lod : 0.0f, 0.0f, float(chain.levels() - 1));
+    const int l0 = int(std::floor(lod));
+    const float f = lod - float(l0);
+    const int l1 = f > 0.0f && l0 + 1 < chain.levels() ? l0 + 1 : l0;
+    return {{h.x, h.y, h.z}, l1 != l0 ? f : 0.0f, offsets[size_t(l0)], chain.levelSize(l0),
+            offsets[size_t(l1)], chain.levelSize(l1)};
+}
+
 VkDescriptorSet bindBuffers(vk::Context& ctx, vk::DescriptorPool& pool,
-                            VkDescriptorSetLayout layout, const vk::Buffer& src,
-                            const vk::Buffer& dst) {
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
+                            VkDescriptorSetLayout layout, const vk::Buffer* const (&buffers)[3]) {
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
     VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     info.maxSets = 1;
     info.poolSizeCount = 1;
@@ -41,18 +102,18 @@ VkDescriptorSet bindBuffers(vk::Context& ctx, vk::DescriptorPool& pool,
     alloc.pSetLayouts = &layout;
     VkDescriptorSet set;
     VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &alloc, &set));
-    VkDescriptorBufferInfo buffers[2] = {{src.get(), 0, VK_WHOLE_SIZE},
-                                         {dst.get(), 0, VK_WHOLE_SIZE}};
-    VkWriteDescriptorSet writes[2];
-    for (uint32_t k = 0; k < 2; ++k) {
+    VkDescriptorBufferInfo infos[3];
+    VkWriteDescriptorSet writes[3];
+    for (uint32_t k = 0; k < 3; ++k) {
+        infos[k] = {buffers[k]->get(), 0, VK_WHOLE_SIZE};
         writes[k] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         writes[k].dstSet = set;
         writes[k].dstBinding = k;
         writes[k].descriptorCount = 1;
         writes[k].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[k].pBufferInfo = &buffers[k];
+        writes[k].pBufferInfo = &infos[k];
     }
-    vkUpdateDescriptorSets(ctx.device(), 2, writes, 0, nullptr);
+    vkUpdateDescriptorSets(ctx.device(), 3, writes, 0, nullptr);
     return set;
 }
 
@@ -65,46 +126,64 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
     out.buildMips(); // allocates every level; the dispatches overwrite those kept
     out.keepLevels(levels);
     const CubeMap chain = withMips(radiance);
+    const std::vector<int32_t> offsets = paddedOffsets(chain);
+
+    // Every level's samples, computed once (not per texel) by the CPU filter's own code. The
+    // samples whose reflected direction lies below the horizon (n.l = 2 h.z^2 - 1 <= 0 for every
+    // texel) are dropped; those near 0 stay, the shader tests n.l per texel as the CPU does.
+    const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
+    std::vector<GpuSample> table;
+    std::vector<PrefilterPush> pushes;
+    int32_t dstOffset = 0;
+    for (int m = 0; m < levels; ++m) {
+        const int s = out.levelSize(m);
+        PrefilterPush push{s, dstOffset, int32_t(table.size()), 0, kGgx};
+        if (m == 0) {
+            const float lod0 = ggxMirrorLod(radiance.size(), size);
+            const int l0 = int(lod0);
+            // the mirror level: a copy of the source level of the output size when there is one
+            push.mode = float(l0) == lod0 && chain.levelSize(l0) == size ? kCopy : kMirror;
+            table.push_back(gpuSample(glm::vec3(0.0f, 0.0f, 1.0f), lod0, chain, offsets));
+        } else {
+            for (const GgxSample& g : ggxSamples(ggxLevelAlpha(m, levels), samples, texelOmega))
+                if (2.0f * g.h.z * g.h.z - 1.0f > -1e-3f)
+                    table.push_back(gpuSample(g.h, g.lod, chain, offsets));
+        }
+        push.count = int32_t(table.size()) - push.first;
+        pushes.push_back(push);
+        dstOffset += int32_t(out.floatCount(m));
+    }
 
     auto shared = vk::Context::shared();
     vk::Context& ctx = *shared;
-    size_t srcFloats = 0, dstFloats = 0;
-    for (int l = 0; l < chain.levels(); ++l) srcFloats += chain.floatCount(l);
+    size_t dstFloats = 0;
     for (int l = 0; l < out.levels(); ++l) dstFloats += out.floatCount(l);
-    vk::Buffer src(&ctx, srcFloats * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                   vk::MemoryUsage::Upload);
+    vk::Buffer src(&ctx, size_t(offsets.back()) * kChannels * sizeof(float),
+                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::Upload);
     vk::Buffer dst(&ctx, dstFloats * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                    vk::MemoryUsage::Readback);
-    size_t offset = 0;
-    for (int l = 0; l < chain.levels(); ++l) {
-        src.write(chain.data(l), chain.floatCount(l) * sizeof(float), offset * sizeof(float));
-        offset += chain.floatCount(l);
-    }
+    vk::Buffer sampleBuffer(&ctx, table.size() * sizeof(GpuSample),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::Upload);
+    writePadded(chain, offsets, static_cast<float*>(src.mapped()));
+    sampleBuffer.write(table.data(), table.size() * sizeof(GpuSample));
+
     vk::DescriptorSetLayout setLayout = vk::createComputeSetLayout(
-        ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+        ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+              {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
     vk::PipelineLayout layout = vk::createComputePipelineLayout(ctx, {setLayout},
                                                                 sizeof(PrefilterPush));
     vk::Pipeline pipeline = vk::createComputePipeline(ctx, "ibl/prefilter_ggx.comp", layout);
     vk::DescriptorPool pool;
-    const VkDescriptorSet set = bindBuffers(ctx, pool, setLayout, src, dst);
+    const VkDescriptorSet set = bindBuffers(ctx, pool, setLayout, {&src, &dst, &sampleBuffer});
 
-    const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
     const auto start = std::chrono::steady_clock::now();
     ctx.immediate([&](VkCommandBuffer cmd) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0,
                                 nullptr);
-        int32_t dstOffset = 0;
-        for (int m = 0; m < levels; ++m) {
-            const int s = out.levelSize(m);
-            const float rough = levels > 1 ? float(m) / float(levels - 1) : 0.0f;
-            PrefilterPush push{radiance.size(), chain.levels(), s, dstOffset, m == 0 ? 0 : samples,
-                               std::max(rough * rough, 1e-3f),
-                               std::max(0.0f, std::log2(float(radiance.size()) / float(size))),
-                               texelOmega};
+        for (const PrefilterPush& push : pushes) {
             vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-            vkCmdDispatch(cmd, uint32_t((6 * s * s + 63) / 64), 1, 1);
-            dstOffset += int32_t(out.floatCount(m));
+            vkCmdDispatch(cmd, uint32_t((6 * push.outSize * push.outSize + 63) / 64), 1, 1);
         }
         VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
         barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -116,7 +195,7 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
         const auto elapsed = std::chrono::steady_clock::now() - start;
         *dispatchMs = std::chrono::duration<double, std::milli>(elapsed).count();
     }
-    offset = 0;
+    size_t offset = 0;
     for (int m = 0; m < levels; ++m) {
         std::memcpy(out.data(m), static_cast<const float*>(dst.mapped()) + offset,
                     out.floatCount(m) * sizeof(float));
