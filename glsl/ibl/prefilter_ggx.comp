@@ -11,8 +11,8 @@
 layout(local_size_x = 64) in;
 
 // Level l (size s, p = s + 2) at texel offset o: texel (face, i, j), i, j in [-1, s], is
-// src[3 (o + (face p + j + 1) p + i + 1) + c].
-layout(std430, set = 0, binding = 0) readonly buffer Source { float src[]; };
+// src[o + (face p + j + 1) p + i + 1].rgb.
+layout(std430, set = 0, binding = 0) readonly buffer Source { vec4 src[]; };
 layout(std430, set = 0, binding = 1) writeonly buffer Target { float dst[]; };
 
 // A sample: the half vector in the output texel's frame (z = normal) in dir.xyz, and the
@@ -23,9 +23,9 @@ struct Sample {
 };
 layout(std430, set = 0, binding = 2) readonly buffer Samples { Sample smp[]; };
 
-const int MODE_COPY = 0;   // level 0 is a source level: copy it
-const int MODE_MIRROR = 1; // level 0 otherwise: the source read along the normal
-const int MODE_GGX = 2;    // the GGX lobe: smp[first .. first + count)
+const int MODE_MIRROR = 0; // level 0 (unless it is a copy of a source level): the source read
+                           // along the normal with the lookup smp[first]
+const int MODE_GGX = 1;    // the GGX lobe: smp[first .. first + count)
 
 layout(push_constant) uniform Params {
     int outSize;   // face size of the level written
@@ -69,10 +69,7 @@ vec3 cubeCoord(vec3 d) {
     return vec3(face, clamp(sc / ma, -1.0, 1.0), clamp(tc / ma, -1.0, 1.0));
 }
 
-vec3 fetch(int texel) {
-    int o = texel * 3;
-    return vec3(src[o], src[o + 1], src[o + 2]);
-}
+vec3 fetch(int texel) { return src[texel].xyz; }
 
 // Seamless bilinear lookup of the level at texel offset `offset`, size s, at cube coordinate c.
 vec3 bilinear(vec3 c, int offset, int s) {
@@ -97,33 +94,28 @@ void main() {
     int s = pc.outSize;
     if (index >= 6 * s * s) return;
     int face = index / (s * s), j = (index / s) % s, i = index % s;
+    vec3 n = faceDirection(face, 2.0 * (float(i) + 0.5) / float(s) - 1.0,
+                           2.0 * (float(j) + 0.5) / float(s) - 1.0);
     vec3 result;
-    if (pc.mode == MODE_COPY) {
-        int p = s + 2;
-        result = fetch(smp[pc.first].level.x + (face * p + j + 1) * p + i + 1);
+    if (pc.mode == MODE_MIRROR) {
+        result = sampleLod(cubeCoord(n), smp[pc.first]);
     } else {
-        vec3 n = faceDirection(face, 2.0 * (float(i) + 0.5) / float(s) - 1.0,
-                               2.0 * (float(j) + 0.5) / float(s) - 1.0);
-        if (pc.mode == MODE_MIRROR) {
-            result = sampleLod(cubeCoord(n), smp[pc.first]);
-        } else {
-            vec3 up = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-            vec3 t = normalize(cross(up, n));
-            vec3 b = cross(n, t);
-            vec3 acc = vec3(0.0);
-            float wsum = 0.0;
-            for (int k = pc.first; k < pc.first + pc.count; ++k) {
-                Sample sm = smp[k];
-                vec3 hl = sm.dir.xyz;
-                vec3 h = hl.x * t + hl.y * b + hl.z * n;
-                vec3 l = 2.0 * hl.z * h - n;
-                float nl = dot(n, l);
-                if (nl <= 0.0) continue;
-                acc += nl * sampleLod(cubeCoord(l), sm);
-                wsum += nl;
-            }
-            result = wsum > 0.0 ? acc / wsum : vec3(0.0);
+        vec3 up = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+        vec3 t = normalize(cross(up, n));
+        vec3 b = cross(n, t);
+        vec3 acc = vec3(0.0);
+        float wsum = 0.0;
+        for (int k = pc.first; k < pc.first + pc.count; ++k) {
+            Sample sm = smp[k];
+            vec3 hl = sm.dir.xyz;
+            vec3 h = hl.x * t + hl.y * b + hl.z * n;
+            vec3 l = 2.0 * hl.z * h - n;
+            float nl = dot(n, l);
+            if (nl <= 0.0) continue;
+            acc += nl * sampleLod(cubeCoord(l), sm);
+            wsum += nl;
         }
+        result = wsum > 0.0 ? acc / wsum : vec3(0.0);
     }
     int o = pc.outOffset + index * 3;
     dst[o] = result.x;

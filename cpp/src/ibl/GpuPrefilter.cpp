@@ -23,7 +23,7 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 
 // Must match glsl/ibl/prefilter_ggx.comp.
-enum Mode : int32_t { kCopy = 0, kMirror = 1, kGgx = 2 };
+enum Mode : int32_t { kMirror = 0, kGgx = 1 };
 
 struct PrefilterPush {
     int32_t outSize, outOffset, first, count, mode;
@@ -41,7 +41,7 @@ struct GpuSample {
 // corner, the mean of the corner texel and its two neighbours across the edges), so the
 // shader's bilinear taps need no wrapping. Texel (f, i, j), i, j in [-1, s], of a level at
 // texel offset o lies at o + (f (s + 2) + j + 1) (s + 2) + i + 1; kChannels floats each.
-constexpr int kChannels = 3;
+constexpr int kChannels = 4;
 
 std::vector<int32_t> paddedOffsets(const CubeMap& chain) {
     std::vector<int32_t> offsets(size_t(chain.levels()) + 1, 0);
@@ -134,15 +134,18 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
     const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
     std::vector<GpuSample> table;
     std::vector<PrefilterPush> pushes;
+    // Level 0 (the mirror level) is a copy of the source level of the output size when there is
+    // one, else the source read along each texel's direction.
+    const float lod0 = ggxMirrorLod(radiance.size(), size);
+    const int copyLevel = float(int(lod0)) == lod0 && chain.levelSize(int(lod0)) == size
+                              ? int(lod0) : -1;
     int32_t dstOffset = 0;
     for (int m = 0; m < levels; ++m) {
         const int s = out.levelSize(m);
-        PrefilterPush push{s, dstOffset, int32_t(table.size()), 0, kGgx};
+        PrefilterPush push{s, dstOffset, int32_t(table.size()), 0, m == 0 ? kMirror : kGgx};
+        dstOffset += int32_t(out.floatCount(m));
         if (m == 0) {
-            const float lod0 = ggxMirrorLod(radiance.size(), size);
-            const int l0 = int(lod0);
-            // the mirror level: a copy of the source level of the output size when there is one
-            push.mode = float(l0) == lod0 && chain.levelSize(l0) == size ? kCopy : kMirror;
+            if (copyLevel >= 0) continue;
             table.push_back(gpuSample(glm::vec3(0.0f, 0.0f, 1.0f), lod0, chain, offsets));
         } else {
             for (const GgxSample& g : ggxSamples(ggxLevelAlpha(m, levels), samples, texelOmega))
@@ -151,7 +154,6 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
         }
         push.count = int32_t(table.size()) - push.first;
         pushes.push_back(push);
-        dstOffset += int32_t(out.floatCount(m));
     }
 
     auto shared = vk::Context::shared();
@@ -160,12 +162,20 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
     for (int l = 0; l < out.levels(); ++l) dstFloats += out.floatCount(l);
     vk::Buffer src(&ctx, size_t(offsets.back()) * kChannels * sizeof(float),
                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::Upload);
-    vk::Buffer dst(&ctx, dstFloats * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+    vk::Buffer dst(&ctx, dstFloats * sizeof(float),
+                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                    vk::MemoryUsage::Readback);
-    vk::Buffer sampleBuffer(&ctx, table.size() * sizeof(GpuSample),
+    vk::Buffer sampleBuffer(&ctx, std::max<size_t>(table.size(), 1) * sizeof(GpuSample),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::Upload);
     writePadded(chain, offsets, static_cast<float*>(src.mapped()));
-    sampleBuffer.write(table.data(), table.size() * sizeof(GpuSample));
+    if (!table.empty()) sampleBuffer.write(table.data(), table.size() * sizeof(GpuSample));
+    vk::Buffer mirror; // level 0 when it is a copy: that source level as it is laid out in `dst`
+    const VkDeviceSize mirrorBytes = out.floatCount(0) * sizeof(float);
+    if (copyLevel >= 0) {
+        mirror = vk::Buffer(&ctx, mirrorBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                            vk::MemoryUsage::Upload);
+        mirror.write(chain.data(copyLevel), mirrorBytes);
+    }
 
     vk::DescriptorSetLayout setLayout = vk::createComputeSetLayout(
         ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -178,6 +188,10 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
 
     const auto start = std::chrono::steady_clock::now();
     ctx.immediate([&](VkCommandBuffer cmd) {
+        if (copyLevel >= 0) {
+            const VkBufferCopy region{0, 0, mirrorBytes};
+            vkCmdCopyBuffer(cmd, mirror.get(), dst.get(), 1, &region);
+        }
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0,
                                 nullptr);
@@ -186,10 +200,11 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
             vkCmdDispatch(cmd, uint32_t((6 * push.outSize * push.outSize + 63) / 64), 1, 1);
         }
         VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
         barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                             0, 1, &barrier, 0, nullptr, 0, nullptr);
+        vkCmdPipelineBarrier(cmd,
+                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
     });
     if (dispatchMs) {
         const auto elapsed = std::chrono::steady_clock::now() - start;
