@@ -7,12 +7,13 @@
 // The source levels carry a one-texel border holding the taps past each face edge (the
 // neighbouring face's texel; past a corner, the mean of three), so a bilinear lookup is four
 // plain reads: on lavapipe every lane runs both sides of a divergent branch, and resolving the
-// wrap per tap cost three quarters of the time.
+// wrap per tap cost three quarters of the time. They are read through a texel buffer: lavapipe
+// loads a storage buffer at per-lane addresses one lane at a time, a texel fetch as a gather.
 layout(local_size_x = 64) in;
 
 // Level l (size s, p = s + 2) at texel offset o: texel (face, i, j), i, j in [-1, s], is
-// src[o + (face p + j + 1) p + i + 1].rgb.
-layout(std430, set = 0, binding = 0) readonly buffer Source { vec4 src[]; };
+// texelFetch(src, o + (face p + j + 1) p + i + 1).rgb.
+layout(set = 0, binding = 0) uniform samplerBuffer src;
 layout(std430, set = 0, binding = 1) writeonly buffer Target { float dst[]; };
 
 // A sample: the half vector in the output texel's frame (z = normal) in dir.xyz, and the
@@ -69,7 +70,7 @@ vec3 cubeCoord(vec3 d) {
     return vec3(face, clamp(sc / ma, -1.0, 1.0), clamp(tc / ma, -1.0, 1.0));
 }
 
-vec3 fetch(int texel) { return src[texel].xyz; }
+vec3 fetch(int texel) { return texelFetch(src, texel).xyz; }
 
 // Seamless bilinear lookup of the level at texel offset `offset`, size s, at cube coordinate c.
 vec3 bilinear(vec3 c, int offset, int s) {
