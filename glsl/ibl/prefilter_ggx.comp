@@ -1,34 +1,40 @@
 #version 450
 // GGX split-sum prefiltering of one output cube level (N = V = R) by filtered importance sampling,
-// the GPU twin of weft::prefilterGgx (cpp/src/ibl/GlossyFilter.cpp): same face convention,
-// seamless taps (edge neighbours at the same position along the edge, corners averaged over the
-// three faces), Hammersley points, GGX half vectors and mip level from each sample's solid angle.
-// samples == 0 writes the mirror level: the source read at lod `lod0`.
+// the GPU twin of weft::prefilterGgx (cpp/src/ibl/GlossyFilter.cpp): same face convention, same
+// samples (computed once per level by the CPU filter's code, cpp/src/ibl/GpuPrefilter.cpp), same
+// seamless bilinear taps and trilinear blend between the source levels.
+//
+// The source levels carry a one-texel border holding the taps past each face edge (the
+// neighbouring face's texel; past a corner, the mean of three), so a bilinear lookup is four
+// plain reads: on lavapipe every lane runs both sides of a divergent branch, and resolving the
+// wrap per tap cost three quarters of the time. They are read through a texel buffer: lavapipe
+// loads a storage buffer at per-lane addresses one lane at a time, a texel fetch as a gather.
 layout(local_size_x = 64) in;
 
-layout(std430, set = 0, binding = 0) readonly buffer Source { float src[]; }; // all mip levels
+// Level l (size s, p = s + 2) at texel offset o: texel (face, i, j), i, j in [-1, s], is
+// texelFetch(src, o + (face p + j + 1) p + i + 1).rgb.
+layout(set = 0, binding = 0) uniform samplerBuffer src;
 layout(std430, set = 0, binding = 1) writeonly buffer Target { float dst[]; };
 
+// A sample: the half vector in the output texel's frame (z = normal) in dir.xyz, and the
+// trilinear lookup: level (offset, size) in level.xy, weight dir.w of the level in level.zw.
+struct Sample {
+    vec4 dir;
+    ivec4 level;
+};
+layout(std430, set = 0, binding = 2) readonly buffer Samples { Sample smp[]; };
+
+const int MODE_MIRROR = 0; // level 0 (unless it is a copy of a source level): the source read
+                           // along the normal with the lookup smp[first]
+const int MODE_GGX = 1;    // the GGX lobe: smp[first .. first + count)
+
 layout(push_constant) uniform Params {
-    int srcSize;      // level-0 face size of the source
-    int srcLevels;    // levels in `src`
-    int outSize;      // face size of the level written
-    int outOffset;    // float offset of that level in `dst`
-    int samples;      // 0: mirror level
-    float alpha;      // GGX alpha = roughness^2
-    float lod0;       // source lod for the mirror level
-    float texelOmega; // solid angle of a level-0 source texel, 4 pi / (6 srcSize^2)
+    int outSize;   // face size of the level written
+    int outOffset; // float offset of that level in `dst`
+    int first;     // this level's samples in smp
+    int count;
+    int mode;
 } pc;
-
-const float PI = 3.14159265358979;
-
-int levelSize(int l) { return max(1, pc.srcSize >> l); }
-
-int levelOffset(int l) {
-    int o = 0;
-    for (int k = 0; k < l; ++k) o += 6 * levelSize(k) * levelSize(k) * 3;
-    return o;
-}
 
 vec3 faceDirection(int face, float u, float v) {
     vec3 d;
@@ -64,60 +70,24 @@ vec3 cubeCoord(vec3 d) {
     return vec3(face, clamp(sc / ma, -1.0, 1.0), clamp(tc / ma, -1.0, 1.0));
 }
 
-int faceIndex(float c, int s) { return clamp(int(floor((c + 1.0) * 0.5 * float(s))), 0, s - 1); }
+vec3 fetch(int texel) { return texelFetch(src, texel).xyz; }
 
-float across(int k, int s) {
-    float eps = 1e-3 / float(s);
-    return k < 0 ? -1.0 - eps : (k >= s ? 1.0 + eps : 2.0 * (float(k) + 0.5) / float(s) - 1.0);
-}
-
-int indexWrapped(int face, int i, int j, int s) {
-    if (i < 0 || i >= s || j < 0 || j >= s) {
-        vec3 c = cubeCoord(faceDirection(face, across(i, s), across(j, s)));
-        face = int(c.x);
-        i = faceIndex(c.y, s);
-        j = faceIndex(c.z, s);
-    }
-    return (face * s + j) * s + i;
-}
-
-vec3 fetch(int offset, int index) {
-    int o = offset + index * 3;
-    return vec3(src[o], src[o + 1], src[o + 2]);
-}
-
-vec3 tap(int offset, int s, int face, int i, int j) {
-    int ci = clamp(i, 0, s - 1), cj = clamp(j, 0, s - 1);
-    if (ci != i && cj != j)
-        return (fetch(offset, (face * s + cj) * s + ci) +
-                fetch(offset, indexWrapped(face, i, cj, s)) +
-                fetch(offset, indexWrapped(face, ci, j, s))) / 3.0;
-    return fetch(offset, indexWrapped(face, i, j, s));
-}
-
-vec3 sampleLevel(vec3 d, int l) {
-    int s = levelSize(l), offset = levelOffset(l);
-    vec3 c = cubeCoord(d);
-    int face = int(c.x);
+// Seamless bilinear lookup of the level at texel offset `offset`, size s, at cube coordinate c.
+vec3 bilinear(vec3 c, int offset, int s) {
+    int p = s + 2;
     float x = (c.y + 1.0) * 0.5 * float(s) - 0.5, y = (c.z + 1.0) * 0.5 * float(s) - 0.5;
-    int i0 = int(floor(x)), j0 = int(floor(y));
+    int i0 = clamp(int(floor(x)), -1, s - 1), j0 = clamp(int(floor(y)), -1, s - 1);
     float fx = x - float(i0), fy = y - float(j0);
-    vec3 top = mix(tap(offset, s, face, i0, j0), tap(offset, s, face, i0 + 1, j0), fx);
-    vec3 bottom = mix(tap(offset, s, face, i0, j0 + 1), tap(offset, s, face, i0 + 1, j0 + 1), fx);
+    int t = offset + (int(c.x) * p + j0 + 1) * p + i0 + 1;
+    vec3 top = mix(fetch(t), fetch(t + 1), fx);
+    vec3 bottom = mix(fetch(t + p), fetch(t + p + 1), fx);
     return mix(top, bottom, fy);
 }
 
-vec3 sampleLod(vec3 d, float lod) {
-    lod = clamp(lod, 0.0, float(pc.srcLevels - 1));
-    int l0 = int(floor(lod));
-    float f = lod - float(l0);
-    vec3 a = sampleLevel(d, l0);
-    if (f <= 0.0 || l0 + 1 >= pc.srcLevels) return a;
-    return mix(a, sampleLevel(d, l0 + 1), f);
-}
-
-vec2 hammersley(uint i, uint n) {
-    return vec2(float(i) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10);
+vec3 sampleLod(vec3 c, Sample sm) {
+    vec3 a = bilinear(c, sm.level.x, sm.level.y);
+    if (sm.dir.w <= 0.0) return a;
+    return mix(a, bilinear(c, sm.level.z, sm.level.w), sm.dir.w);
 }
 
 void main() {
@@ -128,30 +98,22 @@ void main() {
     vec3 n = faceDirection(face, 2.0 * (float(i) + 0.5) / float(s) - 1.0,
                            2.0 * (float(j) + 0.5) / float(s) - 1.0);
     vec3 result;
-    if (pc.samples == 0) {
-        result = sampleLod(n, pc.lod0);
+    if (pc.mode == MODE_MIRROR) {
+        result = sampleLod(cubeCoord(n), smp[pc.first]);
     } else {
         vec3 up = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
         vec3 t = normalize(cross(up, n));
         vec3 b = cross(n, t);
-        float a2 = pc.alpha * pc.alpha;
         vec3 acc = vec3(0.0);
         float wsum = 0.0;
-        for (int k = 0; k < pc.samples; ++k) {
-            vec2 u = hammersley(uint(k), uint(pc.samples));
-            float cosT = sqrt((1.0 - u.y) / (1.0 + (a2 - 1.0) * u.y));
-            float sinT = sqrt(max(0.0, 1.0 - cosT * cosT));
-            float phi = 2.0 * PI * u.x;
-            vec3 hl = vec3(sinT * cos(phi), sinT * sin(phi), cosT);
+        for (int k = pc.first; k < pc.first + pc.count; ++k) {
+            Sample sm = smp[k];
+            vec3 hl = sm.dir.xyz;
             vec3 h = hl.x * t + hl.y * b + hl.z * n;
             vec3 l = 2.0 * hl.z * h - n;
             float nl = dot(n, l);
             if (nl <= 0.0) continue;
-            float dd = cosT * cosT * (a2 - 1.0) + 1.0;
-            float pdf = a2 / (PI * dd * dd) * 0.25;
-            float omegaS = 1.0 / (float(pc.samples) * max(pdf, 1e-12));
-            float lod = max(0.0, 0.5 * log2(omegaS / pc.texelOmega));
-            acc += nl * sampleLod(l, lod);
+            acc += nl * sampleLod(cubeCoord(l), sm);
             wsum += nl;
         }
         result = wsum > 0.0 ? acc / wsum : vec3(0.0);

@@ -233,14 +233,37 @@ def test_filters_reject_bad_input() -> None:
         ibl.project_sh9(np.ones((6, 8, 8), np.float32))
 
 
-def test_gpu_ggx_chain_equals_the_cpu_chain() -> None:
+@pytest.mark.parametrize("source,size,levels,samples", [
+    (32, 16, 4, 32),  # level 0 copied from source level 1
+    (48, 32, 3, 16),  # level 0 read at a fractional lod (source size not a power-of-two multiple)
+    (16, 32, 3, 8),   # level 0 magnified
+    (32, 32, 1, 4),   # level 0 only: no dispatch
+    (8, 8, 4, 256),   # many samples: high-roughness samples dropped below the horizon
+])
+def test_gpu_ggx_chain_equals_the_cpu_chain(source: int, size: int, levels: int,
+                                            samples: int) -> None:
     # Vulkan compute on the selected device (lavapipe on CI); validation layers are on
-    cube = ibl.CubeMap(envs.to_faces(ENVIRONMENTS["sun + sky"], 32, supersample=2))
-    gpu, ms = ibl.prefilter_ggx_gpu(cube, 16, levels=4, samples=32)
-    cpu = ibl.prefilter_ggx(cube, 16, levels=4, samples=32)
-    assert gpu.levels == cpu.levels == 4 and ms > 0
-    for level in range(4):
+    cube = ibl.CubeMap(envs.to_faces(ENVIRONMENTS["sun + sky"], source, supersample=2))
+    gpu, ms = ibl.prefilter_ggx_gpu(cube, size, levels=levels, samples=samples)
+    cpu = ibl.prefilter_ggx(cube, size, levels=levels, samples=samples)
+    assert gpu.levels == cpu.levels == levels and ms > 0
+    for level in range(levels):
         a, b = np.asarray(gpu.level(level)), np.asarray(cpu.level(level))
         np.testing.assert_allclose(a, b, rtol=1e-4, atol=1e-5 * float(b.max()))
+
+
+def test_gpu_ggx_mirror_level_is_the_source_level() -> None:
+    # a bilinear read at texel centres rounds into the neighbours: next to a 5000x sun that was
+    # a 10% error; when the output size is a source level, level 0 is that level exactly
+    faces = envs.to_faces(ENVIRONMENTS["sun + sky"], 64, supersample=2)
+    cube = ibl.CubeMap(faces)
+    assert np.array_equal(np.asarray(ibl.prefilter_ggx_gpu(cube, 64, 3, 8)[0].level(0)), faces)
+    half = np.asarray(ibl.prefilter_ggx(cube, 32, 2, 4).level(0))  # ~ source level 1
+    np.testing.assert_allclose(np.asarray(ibl.prefilter_ggx_gpu(cube, 32, 2, 4)[0].level(0)),
+                               half, rtol=1e-5)
+
+
+def test_gpu_ggx_chain_rejects_bad_arguments() -> None:
+    cube = ibl.CubeMap(envs.to_faces(ENVIRONMENTS["sun + sky"], 32, supersample=2))
     with pytest.raises(weft.InvalidArgument, match="levels"):
         ibl.prefilter_ggx_gpu(cube, 16, levels=6)

@@ -53,9 +53,11 @@ CubeMap phongSampled(const CubeMap& radiance, float shininess, int size, int sam
 /// Filtered importance sampling as in phongSampled.
 CubeMap prefilterGgx(const CubeMap& radiance, int size, int levels = 5, int samples = 64);
 /// prefilterGgx as a Vulkan compute shader on the shared device (a GPU, or lavapipe): the same
-/// algorithm, equal to the CPU result up to float rounding. `dispatchMs` (optional) receives the
-/// wall time of the recorded dispatches (upload of the source chain and pipeline creation
-/// excluded). Throws weft::Error when no Vulkan device is usable.
+/// algorithm and samples, equal to the CPU result up to float rounding (level 0 is an exact copy
+/// when `size` is the size of a source mip level). `dispatchMs` (optional) receives the wall time
+/// of the recorded dispatches and copy (upload of the source chain and pipeline creation
+/// excluded). Throws weft::Error when no Vulkan device is usable, InvalidArgument when the
+/// source levels the samples read exceed the device's texel buffer size.
 CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels = 5, int samples = 64,
                         double* dispatchMs = nullptr);
 /// Split-sum DFG table, `size` x `size` x 2 floats (scale, bias to F0): row j has perceptual

@@ -9,6 +9,7 @@
 #include <weft/Error.h>
 
 #include "CubeTexels.h"
+#include "GgxSamples.h"
 #include "IblParallel.h"
 #include "IblValidate.h"
 
@@ -131,38 +132,49 @@ CubeMap phongSampled(const CubeMap& radiance, float shininess, int size, int sam
     return out;
 }
 
+float ggxLevelAlpha(int m, int levels) {
+    const float rough = levels > 1 ? float(m) / float(levels - 1) : 0.0f;
+    return std::max(rough * rough, 1e-3f);
+}
+
+float ggxMirrorLod(int sourceSize, int size) {
+    return std::max(0.0f, std::log2(float(sourceSize) / float(size)));
+}
+
+std::vector<GgxSample> ggxSamples(float alpha, int samples, float texelSolidAngle) {
+    std::vector<GgxSample> out(static_cast<size_t>(samples));
+    for (int k = 0; k < samples; ++k) {
+        const glm::vec3 h = ggxHalf(hammersley(unsigned(k), unsigned(samples)), alpha);
+        out[size_t(k)] = {h, sampleLod(ggxD(h.z, alpha) * 0.25f, samples, texelSolidAngle)};
+    }
+    return out;
+}
+
 CubeMap prefilterGgx(const CubeMap& radiance, int size, int levels, int samples) {
     requireGgxArguments(radiance, size, levels, samples);
     const CubeMap chain = withMips(radiance);
     const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
     CubeMap out(size);
     // Level 0: the source at the output size (mirror reflection).
-    const float lod0 = std::max(0.0f, std::log2(float(radiance.size()) / float(size)));
+    const float lod0 = ggxMirrorLod(radiance.size(), size);
     fillLevel(out, 0, [&](const glm::vec3& d) { return chain.sampleLod(d, lod0); });
     out.buildMips(); // allocates the chain; levels 1 .. levels-1 are overwritten below
     out.keepLevels(levels);
     for (int m = 1; m < levels; ++m) {
-        const float rough = float(m) / float(levels - 1);
-        const float alpha = std::max(rough * rough, 1e-3f);
-        std::vector<glm::vec3> halves(static_cast<size_t>(samples));
-        std::vector<float> lods(static_cast<size_t>(samples));
-        for (int k = 0; k < samples; ++k) {
-            const glm::vec3 h = ggxHalf(hammersley(unsigned(k), unsigned(samples)), alpha);
-            halves[size_t(k)] = h;
-            lods[size_t(k)] = sampleLod(ggxD(h.z, alpha) * 0.25f, samples, texelOmega);
-        }
+        const std::vector<GgxSample> table = ggxSamples(ggxLevelAlpha(m, levels), samples,
+                                                        texelOmega);
         fillLevel(out, m, [&](const glm::vec3& n) {
             glm::vec3 t, b;
             tangentFrame(n, t, b);
             glm::vec3 acc(0.0f);
             float wsum = 0.0f;
-            for (int k = 0; k < samples; ++k) {
-                const glm::vec3& hl = halves[size_t(k)];
+            for (const GgxSample& s : table) {
+                const glm::vec3& hl = s.h;
                 const glm::vec3 h = hl.x * t + hl.y * b + hl.z * n;
                 const glm::vec3 l = 2.0f * hl.z * h - n; // reflect V = N about H
                 const float nl = glm::dot(n, l);
                 if (nl <= 0.0f) continue;
-                acc += nl * chain.sampleLod(l, lods[size_t(k)]);
+                acc += nl * chain.sampleLod(l, s.lod);
                 wsum += nl;
             }
             return wsum > 0.0f ? acc / wsum : glm::vec3(0.0f);

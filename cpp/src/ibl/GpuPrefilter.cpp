@@ -1,15 +1,21 @@
-// The GGX chain on the GPU: the source mip chain in one storage buffer, one compute dispatch per
-// output level (glsl/ibl/prefilter_ggx.comp), read back into a CubeMap.
+// The GGX chain on the GPU: the source mip levels the samples read in one texel buffer (faces
+// padded for seamless taps), the samples of every level in one storage buffer, one compute
+// dispatch per output level (glsl/ibl/prefilter_ggx.comp), read back into a CubeMap. Level 0 is
+// a buffer copy when the output size is a source level.
 #include <weft/IblFilter.h>
 
+#include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include <weft/Error.h>
 
 #include "CubeTexels.h"
+#include "GgxSamples.h"
 #include "IblValidate.h"
 #include "vk/ComputePipeline.h"
 
@@ -19,19 +25,88 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
+// Must match glsl/ibl/prefilter_ggx.comp.
+enum Mode : int32_t { kMirror = 0, kGgx = 1 };
+
 struct PrefilterPush {
-    int32_t srcSize, srcLevels, outSize, outOffset, samples;
-    float alpha, lod0, texelOmega;
+    int32_t outSize, outOffset, first, count, mode;
 };
 
+// One sample as the shader reads it (std430): the half vector in the texel's frame, the weight
+// of the second source level, and the two levels' texel offsets and sizes in the padded source
+// (the same level twice, weight 0, when the lod is an integer).
+struct GpuSample {
+    float h[3], blend;
+    int32_t offset0, size0, offset1, size1;
+};
+
+// The source chain as the shader reads it: the levels from `first` on (finer ones are read by no
+// sample), each face with a one-texel border holding the seamless taps CubeMap::sample makes past
+// an edge (the neighbouring face's texel; past a corner, the mean of the corner texel and its two
+// neighbours across the edges), so the shader's bilinear taps need no wrapping. Texel (f, i, j),
+// i, j in [-1, s], of a level at texel offset o lies at o + (f (s + 2) + j + 1) (s + 2) + i + 1;
+// RGBA floats (A unused), one texel per element of a uniform texel buffer.
+struct PaddedSource {
+    int first = 0;
+    std::vector<int64_t> offsets; // texel offset of each level >= first; [levels]: total texels
+};
+
+PaddedSource paddedSource(const CubeMap& chain, int first) {
+    PaddedSource p{first, std::vector<int64_t>(size_t(chain.levels()) + 1, 0)};
+    for (int l = first; l < chain.levels(); ++l) {
+        const int64_t w = chain.levelSize(l) + 2;
+        p.offsets[size_t(l) + 1] = p.offsets[size_t(l)] + 6 * w * w;
+    }
+    return p;
+}
+
+void writePadded(const CubeMap& chain, const PaddedSource& padded, float* out) {
+    for (int l = padded.first; l < chain.levels(); ++l) {
+        const int s = chain.levelSize(l), p = s + 2;
+        for (int f = 0; f < 6; ++f)
+            for (int j = -1; j <= s; ++j) {
+                float* row = out + (padded.offsets[size_t(l)] + int64_t(f * p + j + 1) * p) * 4;
+                for (int i = -1; i <= s; ++i) {
+                    float* o = row + size_t(i + 1) * 4;
+                    const int ci = std::clamp(i, 0, s - 1), cj = std::clamp(j, 0, s - 1);
+                    const float* t = chain.texelWrapped(f, i, j, l);
+                    for (int k = 0; k < 3; ++k) o[k] = t[k];
+                    if (ci != i && cj != j) { // same expression as CubeMap::sample
+                        const float* a = chain.texel(f, ci, cj, l);
+                        const float* b = chain.texelWrapped(f, i, cj, l);
+                        const float* d = chain.texelWrapped(f, ci, j, l);
+                        for (int k = 0; k < 3; ++k) o[k] = (a[k] + b[k] + d[k]) / 3.0f;
+                    }
+                    o[3] = 0.0f;
+                }
+            }
+    }
+}
+
+// A lookup at `lod` as CubeMap::sampleLod makes it: level l0, or l0 and l1 = l0 + 1 blended.
+struct LodLookup {
+    glm::vec3 h;
+    int l0, l1;
+    float blend;
+};
+
+LodLookup lodLookup(const glm::vec3& h, float lod, int levels) {
+    lod = std::clamp(std::isfinite(lod) ? lod : 0.0f, 0.0f, float(levels - 1));
+    const int l0 = int(std::floor(lod));
+    const float f = lod - float(l0);
+    if (f <= 0.0f || l0 + 1 >= levels) return {h, l0, l0, 0.0f};
+    return {h, l0, l0 + 1, f};
+}
+
 VkDescriptorSet bindBuffers(vk::Context& ctx, vk::DescriptorPool& pool,
-                            VkDescriptorSetLayout layout, const vk::Buffer& src,
-                            const vk::Buffer& dst) {
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
+                            VkDescriptorSetLayout layout, VkBufferView source,
+                            const vk::Buffer* const (&buffers)[3]) {
+    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
     VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     info.maxSets = 1;
-    info.poolSizeCount = 1;
-    info.pPoolSizes = &size;
+    info.poolSizeCount = 2;
+    info.pPoolSizes = sizes;
     VkDescriptorPool handle;
     VK_CHECK(vkCreateDescriptorPool(ctx.device(), &info, nullptr, &handle));
     pool = vk::DescriptorPool(&ctx, handle, vkDestroyDescriptorPool);
@@ -41,18 +116,21 @@ VkDescriptorSet bindBuffers(vk::Context& ctx, vk::DescriptorPool& pool,
     alloc.pSetLayouts = &layout;
     VkDescriptorSet set;
     VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &alloc, &set));
-    VkDescriptorBufferInfo buffers[2] = {{src.get(), 0, VK_WHOLE_SIZE},
-                                         {dst.get(), 0, VK_WHOLE_SIZE}};
-    VkWriteDescriptorSet writes[2];
-    for (uint32_t k = 0; k < 2; ++k) {
+    VkDescriptorBufferInfo infos[3];
+    VkWriteDescriptorSet writes[3];
+    for (uint32_t k = 0; k < 3; ++k) {
+        infos[k] = {buffers[k]->get(), 0, VK_WHOLE_SIZE};
         writes[k] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         writes[k].dstSet = set;
         writes[k].dstBinding = k;
         writes[k].descriptorCount = 1;
         writes[k].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[k].pBufferInfo = &buffers[k];
+        writes[k].pBufferInfo = &infos[k];
     }
-    vkUpdateDescriptorSets(ctx.device(), 2, writes, 0, nullptr);
+    writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    writes[0].pBufferInfo = nullptr;
+    writes[0].pTexelBufferView = &source;
+    vkUpdateDescriptorSets(ctx.device(), 3, writes, 0, nullptr);
     return set;
 }
 
@@ -66,57 +144,114 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
     out.keepLevels(levels);
     const CubeMap chain = withMips(radiance);
 
+    // Every level's samples, computed once (not per texel) by the CPU filter's own code. The
+    // samples whose reflected direction lies below the horizon (n.l = 2 h.z^2 - 1 <= 0 for every
+    // texel) are dropped; those near 0 stay, the shader tests n.l per texel as the CPU does.
+    // Level 0 (the mirror level) is a copy of the source level of the output size when there is
+    // one, else the source read along each texel's direction.
+    const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
+    const float lod0 = ggxMirrorLod(radiance.size(), size);
+    const int copyLevel = float(int(lod0)) == lod0 && chain.levelSize(int(lod0)) == size
+                              ? int(lod0) : -1;
+    std::vector<std::vector<LodLookup>> lookups(static_cast<size_t>(levels));
+    int firstRead = chain.levels() - 1;
+    for (int m = 0; m < levels; ++m) {
+        auto& level = lookups[size_t(m)];
+        if (m == 0 && copyLevel < 0)
+            level.push_back(lodLookup(glm::vec3(0.0f, 0.0f, 1.0f), lod0, chain.levels()));
+        if (m > 0)
+            for (const GgxSample& g : ggxSamples(ggxLevelAlpha(m, levels), samples, texelOmega))
+                if (2.0f * g.h.z * g.h.z - 1.0f > -1e-3f)
+                    level.push_back(lodLookup(g.h, g.lod, chain.levels()));
+        for (const LodLookup& k : level) firstRead = std::min(firstRead, k.l0);
+    }
+    const PaddedSource padded = paddedSource(chain, firstRead);
+
     auto shared = vk::Context::shared();
     vk::Context& ctx = *shared;
-    size_t srcFloats = 0, dstFloats = 0;
-    for (int l = 0; l < chain.levels(); ++l) srcFloats += chain.floatCount(l);
-    for (int l = 0; l < out.levels(); ++l) dstFloats += out.floatCount(l);
-    vk::Buffer src(&ctx, srcFloats * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                   vk::MemoryUsage::Upload);
-    vk::Buffer dst(&ctx, dstFloats * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                   vk::MemoryUsage::Readback);
-    size_t offset = 0;
-    for (int l = 0; l < chain.levels(); ++l) {
-        src.write(chain.data(l), chain.floatCount(l) * sizeof(float), offset * sizeof(float));
-        offset += chain.floatCount(l);
+    const int64_t srcTexels = padded.offsets.back();
+    if (srcTexels > int64_t(ctx.properties().limits.maxTexelBufferElements) ||
+        srcTexels > int64_t(INT32_MAX))
+        throw InvalidArgument("GGX prefilter on the GPU: the source levels read (" +
+                              std::to_string(srcTexels) + " texels) exceed the device's texel " +
+                              "buffer limit; use a smaller source or prefilterGgx");
+
+    std::vector<GpuSample> table;
+    std::vector<PrefilterPush> pushes;
+    int32_t dstOffset = 0;
+    for (int m = 0; m < levels; ++m) {
+        const int s = out.levelSize(m);
+        PrefilterPush push{s, dstOffset, int32_t(table.size()), 0, m == 0 ? kMirror : kGgx};
+        dstOffset += int32_t(out.floatCount(m));
+        if (m == 0 && copyLevel >= 0) continue;
+        for (const LodLookup& k : lookups[size_t(m)])
+            table.push_back({{k.h.x, k.h.y, k.h.z}, k.blend,
+                             int32_t(padded.offsets[size_t(k.l0)]), chain.levelSize(k.l0),
+                             int32_t(padded.offsets[size_t(k.l1)]), chain.levelSize(k.l1)});
+        push.count = int32_t(table.size()) - push.first;
+        pushes.push_back(push);
     }
+
+    size_t dstFloats = 0;
+    for (int l = 0; l < out.levels(); ++l) dstFloats += out.floatCount(l);
+    vk::Buffer src(&ctx, size_t(std::max<int64_t>(srcTexels, 1)) * 4 * sizeof(float),
+                   VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, vk::MemoryUsage::Upload);
+    vk::Buffer dst(&ctx, dstFloats * sizeof(float),
+                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                   vk::MemoryUsage::Readback);
+    vk::Buffer sampleBuffer(&ctx, std::max<size_t>(table.size(), 1) * sizeof(GpuSample),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::Upload);
+    writePadded(chain, padded, static_cast<float*>(src.mapped()));
+    if (!table.empty()) sampleBuffer.write(table.data(), table.size() * sizeof(GpuSample));
+    vk::Buffer mirror; // level 0 when it is a copy: that source level as it is laid out in `dst`
+    const VkDeviceSize mirrorBytes = out.floatCount(0) * sizeof(float);
+    if (copyLevel >= 0) {
+        mirror = vk::Buffer(&ctx, mirrorBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                            vk::MemoryUsage::Upload);
+        mirror.write(chain.data(copyLevel), mirrorBytes);
+    }
+
     vk::DescriptorSetLayout setLayout = vk::createComputeSetLayout(
-        ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+        ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+              {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
     vk::PipelineLayout layout = vk::createComputePipelineLayout(ctx, {setLayout},
                                                                 sizeof(PrefilterPush));
     vk::Pipeline pipeline = vk::createComputePipeline(ctx, "ibl/prefilter_ggx.comp", layout);
+    VkBufferViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+    viewInfo.buffer = src.get();
+    viewInfo.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    viewInfo.range = VK_WHOLE_SIZE;
+    VkBufferView viewHandle;
+    VK_CHECK(vkCreateBufferView(ctx.device(), &viewInfo, nullptr, &viewHandle));
+    const vk::Handle<VkBufferView> view(&ctx, viewHandle, vkDestroyBufferView);
     vk::DescriptorPool pool;
-    const VkDescriptorSet set = bindBuffers(ctx, pool, setLayout, src, dst);
+    const VkDescriptorSet set = bindBuffers(ctx, pool, setLayout, view, {&src, &dst, &sampleBuffer});
 
-    const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
     const auto start = std::chrono::steady_clock::now();
     ctx.immediate([&](VkCommandBuffer cmd) {
+        if (copyLevel >= 0) {
+            const VkBufferCopy region{0, 0, mirrorBytes};
+            vkCmdCopyBuffer(cmd, mirror.get(), dst.get(), 1, &region);
+        }
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0,
                                 nullptr);
-        int32_t dstOffset = 0;
-        for (int m = 0; m < levels; ++m) {
-            const int s = out.levelSize(m);
-            const float rough = levels > 1 ? float(m) / float(levels - 1) : 0.0f;
-            PrefilterPush push{radiance.size(), chain.levels(), s, dstOffset, m == 0 ? 0 : samples,
-                               std::max(rough * rough, 1e-3f),
-                               std::max(0.0f, std::log2(float(radiance.size()) / float(size))),
-                               texelOmega};
+        for (const PrefilterPush& push : pushes) {
             vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-            vkCmdDispatch(cmd, uint32_t((6 * s * s + 63) / 64), 1, 1);
-            dstOffset += int32_t(out.floatCount(m));
+            vkCmdDispatch(cmd, uint32_t((6 * push.outSize * push.outSize + 63) / 64), 1, 1);
         }
         VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
         barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                             0, 1, &barrier, 0, nullptr, 0, nullptr);
+        vkCmdPipelineBarrier(cmd,
+                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
     });
     if (dispatchMs) {
         const auto elapsed = std::chrono::steady_clock::now() - start;
         *dispatchMs = std::chrono::duration<double, std::milli>(elapsed).count();
     }
-    offset = 0;
+    size_t offset = 0;
     for (int m = 0; m < levels; ++m) {
         std::memcpy(out.data(m), static_cast<const float*>(dst.mapped()) + offset,
                     out.floatCount(m) * sizeof(float));
