@@ -9,6 +9,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
+
 
 def test_bench_ibl_quick(tmp_path: Path) -> None:
     out = tmp_path / "bench"
@@ -29,6 +31,9 @@ def test_bench_ibl_quick(tmp_path: Path) -> None:
     assert sky_sh["mean_err"] < 0.03
     for r in data["glossy"]["ggx_chain"]:
         assert r["cpu_s"] > 0 and 0 < r["gpu_dispatch_s"] <= r["gpu_total_s"]
+        # the compute chain is the CPU algorithm: the same error against the reference
+        np.testing.assert_allclose(r["gpu_level_mean_err_32"], r["level_mean_err_32"], rtol=1e-3,
+                                   atol=1e-6)
     threshold = data["lights"][0]
     assert threshold["dir_err_deg"] < 2.0 and threshold["power_err"] < 0.05
     dome = data["dome"]

@@ -239,16 +239,19 @@ def bench_glossy(samples: Sequence[int], sizes: Sequence[int], chain_size: int,
             gpu_total, (gpu_cube, gpu_ms) = timed(
                 lambda: ibl.prefilter_ggx_gpu(big, chain_size, 5, n), 1, 0.0)
             chain = ibl.prefilter_ggx(small_src, 32, 5, n)
-            errs = []
+            gpu_chain, _ = ibl.prefilter_ggx_gpu(small_src, 32, 5, n)
+            errs, gpu_errs = [], []
             for level in range(1, 5):
                 got = np.asarray(chain.level(level))
                 s = got.shape[1]
                 want = ref.ggx_prefilter(small_src, level / 4,
                                          ref.texel_directions(s).reshape(-1, 3))
                 errs.append(rel_error(got, want)[0])
+                gpu_errs.append(rel_error(np.asarray(gpu_chain.level(level)), want)[0])
             chain_rows.append(dict(env=env_name, size=chain_size, levels=5, samples=n,
                                    cpu_s=ms / 1e3, gpu_dispatch_s=gpu_ms / 1e3,
-                                   gpu_total_s=gpu_total / 1e3, level_mean_err_32=errs))
+                                   gpu_total_s=gpu_total / 1e3, level_mean_err_32=errs,
+                                   gpu_level_mean_err_32=gpu_errs))
     return dict(phong=phong_rows, ggx_chain=chain_rows)
 
 
@@ -448,9 +451,10 @@ def to_markdown(r: Dict[str, Any]) -> str:
               f"target {GLOSSY_TARGET_S} s for the compute version)", ""]
     lines.append(markdown_table(
         ["environment", "size", "samples", "CPU s", "compute s (dispatch)", "compute s (call)",
-         "mean rel. error, levels 1-4 (32^2 chain)"],
+         "mean rel. error, levels 1-4 (32^2 chain): CPU", "compute"],
         [[x["env"], x["size"], x["samples"], f3(x["cpu_s"]), f3(x["gpu_dispatch_s"]),
-          f3(x["gpu_total_s"]), ", ".join(pct(e) for e in x["level_mean_err_32"])]
+          f3(x["gpu_total_s"]), ", ".join(pct(e) for e in x["level_mean_err_32"]),
+          ", ".join(pct(e) for e in x["gpu_level_mean_err_32"])]
          for x in g["ggx_chain"]]))
     lines += ["", "## Light extraction (planted 2 degree sun)", ""]
     lines.append(markdown_table(["method", "cube", "ms", "lights", "direction error",
