@@ -22,24 +22,25 @@ import sys
 from typing import Any, Dict, List, Optional, Sequence
 
 
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {value}")
-    return value
+def _checked(convert, ok, expected: str):
+    """An argparse type: `convert` the text, then require `ok(value)`; errors say `expected`."""
+    def parse(text: str):
+        try:
+            value = convert(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}") from None
+        if not ok(value):
+            raise argparse.ArgumentTypeError(f"expected {expected}, got {value}")
+        return value
+
+    return parse
 
 
-def _non_negative_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {value}")
-    return value
+_positive_int = _checked(int, lambda v: v > 0, "a positive integer")
+_non_negative_int = _checked(int, lambda v: v >= 0, "an integer >= 0")
+_wrap_value = _checked(float, lambda v: 0.0 < v <= 1.0, "a number in (0, 1]")
+_dome_size = _checked(int, lambda v: 0 <= v <= 64 and v % 8 == 0,
+                      "0 or a multiple of 8 up to 64")
 
 
 #: Default --steps of ``render --scene cloth`` (weft.scenes.DEFAULT_STEPS; not imported here so
@@ -47,33 +48,13 @@ def _non_negative_int(text: str) -> int:
 _CLOTH_STEPS = 180
 
 
-def _wrap_value(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number in (0, 1], got {text!r}") from None
-    if not 0.0 < value <= 1.0:
-        raise argparse.ArgumentTypeError(f"expected a number in (0, 1], got {value}")
-    return value
-
-
-def _dome_size(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected 0 or a multiple of 8 up to 64, got "
-                                         f"{text!r}") from None
-    if value < 0 or value > 64 or value % 8:
-        raise argparse.ArgumentTypeError(f"expected 0 or a multiple of 8 up to 64, got {value}")
-    return value
-
-
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="python -m weft",
         description="weft: real-time cloth, hair and fur with BTF materials and image-based "
                     "lighting (Vulkan). Run the demo, list Vulkan devices, render the default "
-                    "scene to a PNG, synthesise or fit BTFs, convert and filter environments.",
+                    "or the cloth scene to a PNG (lit by a captured environment, composited "
+                    "over a photo), synthesise or fit BTFs, convert and filter environments.",
         epilog="Environment: WEFT_DEVICE=<index|name substring> picks the Vulkan device, "
                "WEFT_VALIDATION=1 enables the validation layers. Benchmarks: "
                "python -m weft.bench --help",

@@ -108,3 +108,15 @@ def _across(lum: np.ndarray, f: int, i: int, j: int, di: int, dj: int, step: int
     else:
         jj -= int(np.sign(vv[0])) * (step - 1)
     return float(lum[face[0], jj, ii])
+
+
+def mirror_ball_directions(size: int) -> np.ndarray:
+    """World direction seen at each pixel of a 360-degree mirror ball looking down -Z (row 0 at
+    the top, y up): normal N on the ball, reflected eye ray R = 2 (N.A) N - A, A = (0, 0, 1)."""
+    c = 2.0 * (np.arange(size) + 0.5) / size - 1.0
+    x, y = np.meshgrid(c, -c, indexing="xy")
+    z = np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
+    n = np.stack([x, y, z], -1)
+    n /= np.linalg.norm(n, axis=-1, keepdims=True)
+    return 2.0 * n[..., 2:3] * n - np.array([0.0, 0.0, 1.0])
+

@@ -15,6 +15,7 @@ import pytest
 import weft
 import weft.ibl as ibl
 from weft.reference import ibl as ref_ibl
+from ibl_envs import mirror_ball_directions
 
 av = pytest.importorskip("av")
 
@@ -25,17 +26,6 @@ SUNS = [np.array([np.cos(a) * 0.6, 0.55, np.sin(a) * 0.6]) for a in
         np.linspace(0.0, 2.0 * np.pi, FRAMES, endpoint=False)]
 SUNS = [s / np.linalg.norm(s) for s in SUNS]
 TINTS = [np.array([0.15 + 0.1 * k, 0.2, 0.45 - 0.05 * k]) for k in range(FRAMES)]
-
-
-def mirror_ball_directions(size: int) -> np.ndarray:
-    """World direction seen at each pixel of a 360-degree mirror ball looking down -Z (row 0 at
-    the top, y up): normal N on the ball, reflected eye ray R = 2 (N.A) N - A, A = (0, 0, 1)."""
-    c = 2.0 * (np.arange(size) + 0.5) / size - 1.0
-    x, y = np.meshgrid(c, -c, indexing="xy")
-    z = np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
-    n = np.stack([x, y, z], -1)
-    n /= np.linalg.norm(n, axis=-1, keepdims=True)
-    return 2.0 * n[..., 2:3] * n - np.array([0.0, 0.0, 1.0])
 
 
 def ball_frame(k: int, size: int = SIZE) -> np.ndarray:

@@ -17,6 +17,8 @@ import pytest
 import weft
 import weft.ibl
 import weft.scenes
+from ibl_envs import mirror_ball_directions, sky_gradient, sun_disc, to_faces
+from weft.reference import ibl as ref_ibl
 from weft.__main__ import _CLOTH_STEPS, main
 
 TIMEOUT_S = 300
@@ -35,21 +37,10 @@ def run(args: List[str]) -> subprocess.CompletedProcess:
     return proc
 
 
-def sky_directions(size: int) -> np.ndarray:
-    """World direction of each pixel of a 360-degree sphere map (mirror ball seen along -Z,
-    row 0 at the top, y up): R = 2 (N.A) N - A with A = (0, 0, 1)."""
-    c = 2.0 * (np.arange(size) + 0.5) / size - 1.0
-    x, y = np.meshgrid(c, -c, indexing="xy")
-    z = np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
-    n = np.stack([x, y, z], -1)
-    n /= np.linalg.norm(n, axis=-1, keepdims=True)
-    return 2.0 * n[..., 2:3] * n - np.array([0.0, 0.0, 1.0])
-
-
 @pytest.fixture(scope="module")
 def sky(tmp_path_factory) -> Path:
     """A sphere-map PNG: bright sky from above (brightest at the zenith), dark ground below."""
-    d = sky_directions(64)
+    d = mirror_ball_directions(64)
     up = d[..., 1:2]
     radiance = np.where(up > 0.0, np.array([0.9, 0.95, 1.0]) * (0.6 + 0.4 * up),
                         np.array([0.03, 0.025, 0.02]))
@@ -270,11 +261,6 @@ def test_extracted_sun_lights_exactly_and_casts_a_sharp_shadow() -> None:
     exact irradiance of the whole environment (NumPy cosine convolution) at every normal, which
     SH9 of the full environment misses (a sun is not band-limited: it rings on the far side),
     and the sphere's sharp sun shadow appears on the ground."""
-    import sys
-    sys.path.insert(0, str(Path(__file__).parent))
-    from ibl_envs import sky_gradient, sun_disc, to_faces
-    from weft.reference import ibl as ref_ibl
-
     sun_dir = np.array([0.4, 0.8, 0.3]) / np.linalg.norm([0.4, 0.8, 0.3])
     faces = to_faces(sun_disc(sun_dir, np.radians(3.0), 300.0, sky_gradient()), 64, supersample=2)
     camera = weft.Camera(position=(0.0, 6.0, 0.01), target=(0.0, 0.0, 0.0), fov_y=1.2)

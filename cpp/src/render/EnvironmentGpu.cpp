@@ -49,30 +49,25 @@ void toShaderRead(vk::Context& ctx, VkCommandBuffer cmd, vk::Image& image) {
     vk::transition(ctx, cmd, image, s.layout, s.stage, s.access);
 }
 
+// A 1x1 image (every layer) cleared to black, ready to be sampled: bound where nothing is.
+vk::Image blackImage(vk::Context& ctx, const vk::ImageDesc& desc) {
+    vk::Image image(&ctx, desc);
+    ctx.immediate([&](VkCommandBuffer cmd) {
+        vk::transition(ctx, cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        const VkClearColorValue black{};
+        const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, desc.layers};
+        vkCmdClearColorImage(cmd, image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1,
+                             &range);
+        toShaderRead(ctx, cmd, image);
+    });
+    return image;
+}
+
 } // namespace
 
-EnvironmentGpu::EnvironmentGpu(vk::Context& ctx) : mCtx(ctx) {
-    mBlack = vk::Image(&ctx, cubeDesc(1, 1));
-    ctx.immediate([&](VkCommandBuffer cmd) {
-        vk::transition(ctx, cmd, mBlack, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                       VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        const VkClearColorValue black{};
-        const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 6};
-        vkCmdClearColorImage(cmd, mBlack.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1,
-                             &range);
-        toShaderRead(ctx, cmd, mBlack);
-    });
-    mBlack2d = vk::Image(&ctx, imageDesc(1, 1));
-    ctx.immediate([&](VkCommandBuffer cmd) {
-        vk::transition(ctx, cmd, mBlack2d, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                       VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        const VkClearColorValue black{};
-        const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdClearColorImage(cmd, mBlack2d.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1,
-                             &range);
-        toShaderRead(ctx, cmd, mBlack2d);
-    });
-}
+EnvironmentGpu::EnvironmentGpu(vk::Context& ctx)
+    : mCtx(ctx), mBlack(blackImage(ctx, cubeDesc(1, 1))), mBlack2d(blackImage(ctx, imageDesc(1, 1))) {}
 
 bool EnvironmentGpu::prepare(const EnvironmentLighting& env, double& bakeMs) {
     bakeMs = 0.0;
