@@ -91,7 +91,7 @@ def build_parser() -> argparse.ArgumentParser:
     demo.add_argument("--environment", default="", metavar="FILE",
                       help="light the scene with a captured environment instead of the sun and "
                            "moon: an equirectangular (2:1) or sphere-map (square) .hdr/.exr/.png "
-                           "(SH9 diffuse, shadows from a dome of 16 lights)")
+                           "(SH9 diffuse, blurred shadows from a dome of 16 lights)")
     demo.add_argument("--script", default="", metavar="FILE",
                       help="scripted input: lines '<frame> key <K>', '<frame> grab <x> <y>', "
                            "'<frame> drag <x> <y>', '<frame> release'")
