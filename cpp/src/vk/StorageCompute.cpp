@@ -1,0 +1,68 @@
+#include "vk/StorageCompute.h"
+
+#include <chrono>
+
+#include "vk/ComputePipeline.h"
+
+namespace weft::vk {
+
+StorageCompute createStorageCompute(Context& ctx, const char* shader,
+                                    const std::vector<const Buffer*>& buffers,
+                                    uint32_t pushConstantBytes) {
+    const uint32_t n = uint32_t(buffers.size());
+    StorageCompute c;
+    std::vector<std::pair<uint32_t, VkDescriptorType>> bindings;
+    for (uint32_t k = 0; k < n; ++k) bindings.push_back({k, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+    c.setLayout = createComputeSetLayout(ctx, bindings);
+    c.layout = createComputePipelineLayout(ctx, {c.setLayout}, pushConstantBytes);
+    c.pipeline = createComputePipeline(ctx, shader, c.layout);
+
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, n};
+    VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    info.maxSets = 1;
+    info.poolSizeCount = 1;
+    info.pPoolSizes = &size;
+    VkDescriptorPool handle;
+    VK_CHECK(vkCreateDescriptorPool(ctx.device(), &info, nullptr, &handle));
+    c.pool = DescriptorPool(&ctx, handle, vkDestroyDescriptorPool);
+    const VkDescriptorSetLayout setLayout = c.setLayout;
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = c.pool;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &setLayout;
+    VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &alloc, &c.set));
+
+    std::vector<VkDescriptorBufferInfo> infos(n);
+    std::vector<VkWriteDescriptorSet> writes(n);
+    for (uint32_t k = 0; k < n; ++k) {
+        infos[k] = {buffers[k]->get(), 0, VK_WHOLE_SIZE};
+        writes[k] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[k].dstSet = c.set;
+        writes[k].dstBinding = k;
+        writes[k].descriptorCount = 1;
+        writes[k].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[k].pBufferInfo = &infos[k];
+    }
+    vkUpdateDescriptorSets(ctx.device(), n, writes.data(), 0, nullptr);
+    return c;
+}
+
+double runStorageCompute(Context& ctx, const StorageCompute& compute,
+                         const std::function<void(VkCommandBuffer)>& record) {
+    const auto start = std::chrono::steady_clock::now();
+    ctx.immediate([&](VkCommandBuffer cmd) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, compute.pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, compute.layout, 0, 1,
+                                &compute.set, 0, nullptr);
+        record(cmd);
+        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                             0, 1, &barrier, 0, nullptr, 0, nullptr);
+    });
+    const auto elapsed = std::chrono::steady_clock::now() - start;
+    return std::chrono::duration<double, std::milli>(elapsed).count();
+}
+
+} // namespace weft::vk
