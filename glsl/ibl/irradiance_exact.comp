@@ -1,4 +1,5 @@
 #version 450
+#extension GL_EXT_control_flow_attributes : require
 // Exact cosine convolution, the GPU twin of weft::irradianceExact
 // (cpp/src/ibl/IrradianceFilter.cpp): output texel with direction N gets the sum of
 // max(0, N.w) L(w) dw over every source texel. The source comes as two vec4 per texel, (w, dw)
@@ -11,20 +12,28 @@
 // memory serves OUTPUTS sums: lavapipe (Mesa 22) reads shared and storage memory lane by lane,
 // and that amortisation makes it ~5x faster there (a GPU is indifferent at this register cost).
 //
-// Accumulation is float in two levels: a partial sum per tile, added to the running total once
-// per tile, so the rounding error grows with TILE plus the number of tiles rather than with the
-// 6 sourceSize^2 texels (measured: ~3e-7 mean relative to a float64 sum of the same table, the
-// CPU's single running sum ~2e-6).
+// Accumulation is float: a partial sum per tile, added to the running total once per tile, so the
+// rounding error grows with TILE plus the number of tiles rather than with the 6 sourceSize^2
+// texels (measured: ~3e-7 mean relative to a float64 sum of the same table, the CPU's single
+// running sum ~2e-6).
+//
+// One dispatch sums the source texels [texelBegin, texelEnd); larger sources take several
+// dispatches, each adding to what the previous ones wrote. lavapipe (Mesa 22) silently ends a
+// shader's loops after 65535 iterations in all (its "loop limiter", shared by every loop of the
+// shader), so the host keeps each dispatch to at most 512 tiles and the loops over the outputs
+// are unrolled: about 65 counted iterations per tile, 33k per dispatch.
 #define TILE 64
 #define OUTPUTS 8
 layout(local_size_x = TILE) in;
 
 layout(std430, set = 0, binding = 0) readonly buffer Source { vec4 src[]; }; // 2 per texel
-layout(std430, set = 0, binding = 1) writeonly buffer Target { float dst[]; };
+layout(std430, set = 0, binding = 1) buffer Target { float dst[]; }; // read when accumulating
 
 layout(push_constant) uniform Params {
     int outSize;    // face size of the output
-    int texelCount; // source texels, 6 sourceSize^2
+    int texelBegin; // the source texels this dispatch sums (6 sourceSize^2 in all)
+    int texelEnd;
+    int accumulate; // 0: write the sums, 1: add them to dst (a later part of the source)
 } pc;
 
 shared vec4 tileDir[TILE];
@@ -52,34 +61,37 @@ void main() {
     // sums (of the last texel, clamped) are simply not written.
     vec3 n[OUTPUTS];
     vec3 total[OUTPUTS];
-    for (int q = 0; q < OUTPUTS; ++q) {
+    [[unroll]] for (int q = 0; q < OUTPUTS; ++q) {
         int o = min(first + q * TILE, outCount - 1);
         int face = o / (s * s), j = (o / s) % s, i = o % s;
         n[q] = faceDirection(face, 2.0 * (float(i) + 0.5) / float(s) - 1.0,
                              2.0 * (float(j) + 0.5) / float(s) - 1.0);
         total[q] = vec3(0.0);
     }
-    for (int base = 0; base < pc.texelCount; base += TILE) {
+    for (int base = pc.texelBegin; base < pc.texelEnd; base += TILE) {
         int k = base + lid;
-        bool inside = k < pc.texelCount;
+        bool inside = k < pc.texelEnd;
         tileDir[lid] = inside ? src[2 * k] : vec4(0.0); // zero radiance pads the last tile
         tileRad[lid] = inside ? src[2 * k + 1] : vec4(0.0);
         barrier();
         vec3 partial[OUTPUTS];
-        for (int q = 0; q < OUTPUTS; ++q) partial[q] = vec3(0.0);
-        for (int t = 0; t < TILE; ++t) {
+        [[unroll]] for (int q = 0; q < OUTPUTS; ++q) partial[q] = vec3(0.0);
+        for (int t = 0; t < TILE; ++t) { // not unrolled: ~20 ms more of lavapipe compile per call
             vec3 d = tileDir[t].xyz, r = tileRad[t].xyz;
-            for (int q = 0; q < OUTPUTS; ++q) partial[q] += max(0.0, dot(n[q], d)) * r;
+            [[unroll]] for (int q = 0; q < OUTPUTS; ++q) partial[q] += max(0.0, dot(n[q], d)) * r;
         }
-        for (int q = 0; q < OUTPUTS; ++q) total[q] += partial[q];
+        [[unroll]] for (int q = 0; q < OUTPUTS; ++q) total[q] += partial[q];
         barrier(); // everyone has read the tile before it is overwritten
     }
-    for (int q = 0; q < OUTPUTS; ++q) {
+    [[unroll]] for (int q = 0; q < OUTPUTS; ++q) {
         int index = first + q * TILE;
         if (index < outCount) {
-            dst[3 * index] = total[q].x;
-            dst[3 * index + 1] = total[q].y;
-            dst[3 * index + 2] = total[q].z;
+            vec3 e = total[q];
+            if (pc.accumulate != 0)
+                e += vec3(dst[3 * index], dst[3 * index + 1], dst[3 * index + 2]);
+            dst[3 * index] = e.x;
+            dst[3 * index + 1] = e.y;
+            dst[3 * index + 2] = e.z;
         }
     }
 }

@@ -81,6 +81,16 @@ def test_partial_tiles_and_workgroups(size: int, source: int) -> None:
     assert rel_diff(gpu, float64_irradiance(f, size)).max() < 2e-5
 
 
+@pytest.mark.parametrize("size,source", [(1, 128), (2, 256)])
+def test_large_sources_are_summed_to_the_end(size: int, source: int) -> None:
+    # 3 and 12 dispatches of 32768 texels each. One dispatch over all of them came out 20-100 %
+    # low on lavapipe, which silently ends a shader's loops after 65535 iterations in all.
+    f = np.random.default_rng(5).uniform(0.5, 1.5, (6, source, source, 3)).astype(np.float32)
+    gpu = faces(ibl.irradiance_exact_gpu(f, size, source))
+    cpu = faces(ibl.irradiance_exact(f, size, source))
+    assert rel_diff(gpu, cpu).max() < 1e-4
+
+
 def test_constant_environment_gives_pi_l() -> None:
     level = np.array([0.7, 0.5, 0.3])
     f = envs.to_faces(envs.constant(level), 32)

@@ -33,8 +33,8 @@ CubeMap irradianceFromSh(const Sh9& sh, int size);
 /// first mip level whose size is <= sourceSize. Cost ~ 6 size^2 x 6 sourceSize^2.
 CubeMap irradianceExact(const CubeMap& radiance, int size, int sourceSize = 64);
 /// irradianceExact as a Vulkan compute shader on the shared device (a GPU, or lavapipe): the same
-/// arguments, checks and sum (the same source table, accumulated in float per 64-texel tile),
-/// equal to the CPU result up to float rounding. `dispatchMs` (optional) receives the wall time
+/// arguments, checks and sum (the same source table, accumulated in float per 64-texel tile, one
+/// dispatch per 32768 source texels), equal to the CPU result up to float rounding. `dispatchMs` (optional) receives the wall time
 /// of the submission (building the source table, the upload and pipeline creation excluded).
 /// Throws InvalidArgument for bad arguments (as the CPU version) or a source / output larger
 /// than the device's storage buffer range, weft::Error when no Vulkan device is usable.

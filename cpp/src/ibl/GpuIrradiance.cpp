@@ -1,8 +1,9 @@
 // Exact irradiance on the GPU: the source texels (direction, solid angle, radiance x solid angle)
-// in one storage buffer, one compute dispatch over the output texels
-// (glsl/ibl/irradiance_exact.comp), read back into a CubeMap.
+// in one storage buffer, compute dispatches over the output texels (one per 32768 source
+// texels, glsl/ibl/irradiance_exact.comp), read back into a CubeMap.
 #include <weft/IblFilter.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -19,9 +20,13 @@ namespace {
 
 // Output texels per workgroup of irradiance_exact.comp: TILE invocations x OUTPUTS each.
 constexpr uint32_t kPerGroup = 64 * 8;
+// Source texels per dispatch: 512 tiles of 64. lavapipe ends a shader's loops after 65535
+// iterations in all, silently; the shader counts about 65 per tile (the loop over the tile's
+// texels; those over the outputs are unrolled), 33k per dispatch.
+constexpr int kTexelsPerDispatch = 512 * 64;
 
 struct IrradiancePush {
-    int32_t outSize, texelCount;
+    int32_t outSize, texelBegin, texelEnd, accumulate;
 };
 
 } // namespace
@@ -64,11 +69,15 @@ CubeMap irradianceExactGpu(const CubeMap& radiance, int size, int sourceSize,
 
     // At most 6 * 1024^2 / 512 = 12288 groups: within the 65535 every device allows in x.
     const uint32_t groups = uint32_t((out.floatCount() / 3 + kPerGroup - 1) / kPerGroup);
-    const IrradiancePush push{size, int32_t(n)};
     const double ms = vk::runStorageCompute(ctx, compute, [&](VkCommandBuffer cmd) {
-        vkCmdPushConstants(cmd, compute.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
-                           &push);
-        vkCmdDispatch(cmd, groups, 1, 1);
+        for (int begin = 0; begin < int(n); begin += kTexelsPerDispatch) {
+            if (begin > 0) vk::computeToComputeBarrier(cmd); // the next part adds to dst
+            const IrradiancePush push{size, begin, std::min(int(n), begin + kTexelsPerDispatch),
+                                      begin > 0 ? 1 : 0};
+            vkCmdPushConstants(cmd, compute.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
+                               &push);
+            vkCmdDispatch(cmd, groups, 1, 1);
+        }
     });
     if (dispatchMs) *dispatchMs = ms;
     std::memcpy(out.data(), dst.mapped(), dstBytes);

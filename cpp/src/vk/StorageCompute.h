@@ -30,4 +30,8 @@ StorageCompute createStorageCompute(Context& ctx, const char* shader,
 double runStorageCompute(Context& ctx, const StorageCompute& compute,
                          const std::function<void(VkCommandBuffer)>& record);
 
+/// Makes the shader writes of the dispatches recorded so far visible to the reads and writes of
+/// the next ones (a dispatch that adds to what the previous one wrote).
+void computeToComputeBarrier(VkCommandBuffer cmd);
+
 } // namespace weft::vk
