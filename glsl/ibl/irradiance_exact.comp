@@ -17,23 +17,24 @@
 // texels (measured: ~3e-7 mean relative to a float64 sum of the same table, the CPU's single
 // running sum ~2e-6).
 //
-// One dispatch sums the source texels [texelBegin, texelEnd); larger sources take several
-// dispatches, each adding to what the previous ones wrote. lavapipe (Mesa 22) silently ends a
+// One dispatch sums up to 32768 source texels, a 1 MiB window of the source buffer bound at a
+// dynamic offset (no descriptor exceeds maxStorageBufferRange, 128 MiB on lavapipe, while a
+// 1024^2 source is 192 MiB); larger sources take several dispatches, each adding to what the
+// previous ones wrote. The windows also keep lavapipe (Mesa 22) correct: it silently ends a
 // shader's loops after 65535 iterations in all (its "loop limiter", shared by every loop of the
-// shader), so the host keeps each dispatch to at most 512 tiles and the loops over the outputs
-// are unrolled: about 65 counted iterations per tile, 33k per dispatch.
+// shader); with the loops over the outputs unrolled a window counts about 65 iterations per
+// tile, 33k in all.
 #define TILE 64
 #define OUTPUTS 8
 layout(local_size_x = TILE) in;
 
-layout(std430, set = 0, binding = 0) readonly buffer Source { vec4 src[]; }; // 2 per texel
+layout(std430, set = 0, binding = 0) readonly buffer Source { vec4 src[]; }; // 2 per texel, window
 layout(std430, set = 0, binding = 1) buffer Target { float dst[]; }; // read when accumulating
 
 layout(push_constant) uniform Params {
     int outSize;    // face size of the output
-    int texelBegin; // the source texels this dispatch sums (6 sourceSize^2 in all)
-    int texelEnd;
-    int accumulate; // 0: write the sums, 1: add them to dst (a later part of the source)
+    int texelCount; // source texels in this dispatch's window (6 sourceSize^2 in all)
+    int accumulate; // 0: write the sums, 1: add them to dst (a later window of the source)
 } pc;
 
 shared vec4 tileDir[TILE];
@@ -68,9 +69,9 @@ void main() {
                              2.0 * (float(j) + 0.5) / float(s) - 1.0);
         total[q] = vec3(0.0);
     }
-    for (int base = pc.texelBegin; base < pc.texelEnd; base += TILE) {
+    for (int base = 0; base < pc.texelCount; base += TILE) {
         int k = base + lid;
-        bool inside = k < pc.texelEnd;
+        bool inside = k < pc.texelCount;
         tileDir[lid] = inside ? src[2 * k] : vec4(0.0); // zero radiance pads the last tile
         tileRad[lid] = inside ? src[2 * k + 1] : vec4(0.0);
         barrier();

@@ -34,10 +34,10 @@ CubeMap irradianceFromSh(const Sh9& sh, int size);
 CubeMap irradianceExact(const CubeMap& radiance, int size, int sourceSize = 64);
 /// irradianceExact as a Vulkan compute shader on the shared device (a GPU, or lavapipe): the same
 /// arguments, checks and sum (the same source table, accumulated in float per 64-texel tile, one
-/// dispatch per 32768 source texels), equal to the CPU result up to float rounding. `dispatchMs` (optional) receives the wall time
-/// of the submission (building the source table, the upload and pipeline creation excluded).
-/// Throws InvalidArgument for bad arguments (as the CPU version) or a source / output larger
-/// than the device's storage buffer range, weft::Error when no Vulkan device is usable.
+/// dispatch per 32768 source texels), equal to the CPU result up to float rounding. `dispatchMs`
+/// (optional) receives the wall time of the submission (building the source table, the upload
+/// and pipeline creation excluded). Throws InvalidArgument for bad arguments (as the CPU
+/// version), weft::Error when no Vulkan device is usable.
 CubeMap irradianceExactGpu(const CubeMap& radiance, int size, int sourceSize = 64,
                            double* dispatchMs = nullptr);
 /// The seed's 2D filter: cube -> sphere map (wrap 1, sphereSize^2), `passes` separable box blurs

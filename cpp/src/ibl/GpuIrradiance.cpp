@@ -25,8 +25,11 @@ constexpr uint32_t kPerGroup = 64 * 8;
 // texels; those over the outputs are unrolled), 33k per dispatch.
 constexpr int kTexelsPerDispatch = 512 * 64;
 
+constexpr VkDeviceSize kTexelBytes = 8 * sizeof(float);
+constexpr VkDeviceSize kWindowBytes = kTexelsPerDispatch * kTexelBytes; // 1 MiB
+
 struct IrradiancePush {
-    int32_t outSize, texelBegin, texelEnd, accumulate;
+    int32_t outSize, texelCount, accumulate;
 };
 
 } // namespace
@@ -37,9 +40,11 @@ CubeMap irradianceExactGpu(const CubeMap& radiance, int size, int sourceSize,
     // The very table the CPU version sums, interleaved as two vec4 per texel: (w, dw), (L dw, 0).
     const CubeMap source = reducedCube(radiance, sourceSize);
     const CubeTexels t = cubeTexels(source);
-    const size_t n = t.size();
-    std::vector<float> texels(n * 8, 0.0f);
-    for (size_t k = 0; k < n; ++k) {
+    const int n = int(t.size());
+    const int windows = (n + kTexelsPerDispatch - 1) / kTexelsPerDispatch;
+    // Whole windows (the last one zero-padded), each bound in turn at a dynamic offset.
+    std::vector<float> texels(size_t(windows) * kTexelsPerDispatch * 8, 0.0f);
+    for (size_t k = 0; k < size_t(n); ++k) {
         float* p = texels.data() + k * 8;
         p[0] = t.x[k];
         p[1] = t.y[k];
@@ -53,27 +58,27 @@ CubeMap irradianceExactGpu(const CubeMap& radiance, int size, int sourceSize,
 
     auto shared = vk::Context::shared();
     vk::Context& ctx = *shared;
+    // The output, at most 6 x 1024^2 x 12 bytes = 72 MiB, is bound whole: every device allows
+    // 128 MiB. The source is bound 1 MiB at a time, a multiple of any offset alignment.
     const VkDeviceSize srcBytes = texels.size() * sizeof(float);
     const VkDeviceSize dstBytes = out.floatCount() * sizeof(float);
-    const uint32_t range = ctx.properties().limits.maxStorageBufferRange;
-    if (srcBytes > range || dstBytes > range)
-        throw InvalidArgument("exact irradiance on the GPU: " + std::to_string(size) +
-                              "^2 output from a " + std::to_string(source.size()) +
-                              "^2 source exceeds this device's storage buffer range (" +
-                              std::to_string(range) + " bytes); reduce the sizes");
     vk::Buffer src(&ctx, srcBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::Upload);
     vk::Buffer dst(&ctx, dstBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::Readback);
     src.write(texels.data(), srcBytes);
     const vk::StorageCompute compute = vk::createStorageCompute(
-        ctx, "ibl/irradiance_exact.comp", {&src, &dst}, sizeof(IrradiancePush));
+        ctx, "ibl/irradiance_exact.comp", {{&src, kWindowBytes}, {&dst}},
+        sizeof(IrradiancePush));
 
     // At most 6 * 1024^2 / 512 = 12288 groups: within the 65535 every device allows in x.
     const uint32_t groups = uint32_t((out.floatCount() / 3 + kPerGroup - 1) / kPerGroup);
     const double ms = vk::runStorageCompute(ctx, compute, [&](VkCommandBuffer cmd) {
-        for (int begin = 0; begin < int(n); begin += kTexelsPerDispatch) {
-            if (begin > 0) vk::computeToComputeBarrier(cmd); // the next part adds to dst
-            const IrradiancePush push{size, begin, std::min(int(n), begin + kTexelsPerDispatch),
-                                      begin > 0 ? 1 : 0};
+        for (int w = 0; w < windows; ++w) {
+            if (w > 0) {
+                vk::computeToComputeBarrier(cmd); // this window adds to dst
+                vk::bindStorageCompute(cmd, compute, {uint32_t(w * kWindowBytes)});
+            }
+            const int begin = w * kTexelsPerDispatch;
+            const IrradiancePush push{size, std::min(n - begin, kTexelsPerDispatch), w > 0 ? 1 : 0};
             vkCmdPushConstants(cmd, compute.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
                                &push);
             vkCmdDispatch(cmd, groups, 1, 1);
