@@ -326,6 +326,12 @@ void bindIbl(py::module_& m) {
         py::gil_scoped_release release;
         return irradianceExact(c, size, sourceSize);
     }, py::arg("radiance"), py::arg("size") = 32, py::arg("source_size") = 64);
+    m.def("irradiance_exact_gpu", [](py::handle cube, int size, int sourceSize) {
+        const CubeArg c = toCube(cube, "radiance");
+        py::gil_scoped_release release;
+        return irradianceExactGpu(c, size, sourceSize);
+    }, py::arg("radiance"), py::arg("size") = 32, py::arg("source_size") = 64,
+       "irradiance_exact as a Vulkan compute shader on the selected device.");
     m.def("irradiance_box_blur", [](py::handle cube, int size, int sphereSize, int radius,
                                     int passes) {
         const CubeArg c = toCube(cube, "radiance");

@@ -1,6 +1,8 @@
-// IBL from C++: the face convention, texel solid angles, SH9 of analytic environments, the
-// capture conversions' argument checks and the dome's round-robin schedule.
+// IBL from C++: the face convention, texel solid angles, SH9 of analytic environments, the exact
+// irradiance on the GPU against the CPU, the capture conversions' argument checks and the dome's
+// round-robin schedule.
 #include <weft/CubeMap.h>
+#include <weft/Device.h>
 #include <weft/Environment.h>
 #include <weft/Error.h>
 #include <weft/IblConvert.h>
@@ -87,6 +89,26 @@ TEST(IblFilter, Sh9OfAConstantAndALinearEnvironment) {
     for (int k = 2; k < 9; ++k) EXPECT_NEAR(sh.coeffs[size_t(k)].y, 0.0, 2e-3) << k;
     EXPECT_NEAR(weft::shIrradiance(sh, {0, 1, 0}).x, kPi + 2.0 * kPi / 3.0, 5e-3);
     EXPECT_NEAR(weft::shIrradiance(sh, {1, 0, 0}).x, kPi, 5e-3);
+}
+
+TEST(IblFilter, ExactIrradianceOnTheGpuEqualsTheCpu) {
+    // Vulkan compute on the selected device (lavapipe on CI); a 128^2 source takes 3 dispatches.
+    weft::clearValidationMessages();
+    weft::CubeMap cube(128);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> value(0.5f, 1.5f);
+    for (size_t k = 0; k < cube.floatCount(); ++k) cube.data()[k] = value(rng);
+    double ms = 0.0;
+    const weft::CubeMap gpu = weft::irradianceExactGpu(cube, 2, 128, &ms);
+    const weft::CubeMap cpu = weft::irradianceExact(cube, 2, 128);
+    EXPECT_GT(ms, 0.0);
+    ASSERT_EQ(gpu.size(), 2);
+    for (size_t k = 0; k < cpu.floatCount(); ++k)
+        EXPECT_NEAR(gpu.data()[k], cpu.data()[k], 1e-4 * cpu.data()[k]) << k;
+    EXPECT_THROW(weft::irradianceExactGpu(cube, 0, 64), weft::InvalidArgument);
+    EXPECT_THROW(weft::irradianceExactGpu(cube, 1024, 1024), weft::InvalidArgument);
+    EXPECT_THROW(weft::irradianceExactGpu(weft::CubeMap(), 8, 64), weft::InvalidArgument);
+    for (const auto& m : weft::validationMessages()) ADD_FAILURE() << "validation: " << m;
 }
 
 TEST(IblFilter, EnvironmentCachesUntilTheRadianceChanges) {

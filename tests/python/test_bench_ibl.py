@@ -24,7 +24,15 @@ def test_bench_ibl_quick(tmp_path: Path) -> None:
         assert key in data, key
     rows = data["irradiance"]["rows"]
     assert {r["method"] for r in rows} >= {"SH9 (project + evaluate)", "seed box blur (sphere map)",
-                                           "seed 3-axis rotational blur"}
+                                           "seed 3-axis rotational blur", "exact (source 32^2)",
+                                           "exact (compute, source 32^2)"}
+    for cpu, gpu in zip([r for r in rows if r["method"] == "exact (source 32^2)"],
+                        [r for r in rows if r["method"] == "exact (compute, source 32^2)"]):
+        assert (gpu["env"], gpu["cube"]) == (cpu["env"], cpu["cube"])
+        assert abs(gpu["mean_err"] - cpu["mean_err"]) < 1e-4  # the same sum, float rounding apart
+    for x in data["irradiance"]["exact_compute"]:
+        assert x["cpu_ms"] > 0 and x["compute_ms"] > 0 and x["max_diff"] < 1e-4, x
+    assert set(data["summary"]["irradiance_exact_ms"]) == {"sky", "sun + sky"}
     for r in rows + data["glossy"]["phong"] + data["conversion"]:
         assert r["ms"] > 0 and math.isfinite(r["mean_err"])
     sky_sh = next(r for r in rows if r["env"] == "sky" and r["method"].startswith("SH9"))

@@ -32,6 +32,14 @@ CubeMap irradianceFromSh(const Sh9& sh, int size);
 /// Exact cosine convolution (the reference): every output texel sums all source texels of the
 /// first mip level whose size is <= sourceSize. Cost ~ 6 size^2 x 6 sourceSize^2.
 CubeMap irradianceExact(const CubeMap& radiance, int size, int sourceSize = 64);
+/// irradianceExact as a Vulkan compute shader on the shared device (a GPU, or lavapipe): the same
+/// arguments, checks and sum (the same source table, accumulated in float per 64-texel tile, one
+/// dispatch per 32768 source texels), equal to the CPU result up to float rounding. `dispatchMs`
+/// (optional) receives the wall time of the submission (building the source table, the upload
+/// and pipeline creation excluded). Throws InvalidArgument for bad arguments (as the CPU
+/// version), weft::Error when no Vulkan device is usable.
+CubeMap irradianceExactGpu(const CubeMap& radiance, int size, int sourceSize = 64,
+                           double* dispatchMs = nullptr);
 /// The seed's 2D filter: cube -> sphere map (wrap 1, sphereSize^2), `passes` separable box blurs
 /// of radius `radius` texels, -> cube of `size`, times pi.
 CubeMap irradianceBoxBlur(const CubeMap& radiance, int size, int sphereSize = 64,

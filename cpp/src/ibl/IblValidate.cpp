@@ -52,4 +52,11 @@ void requireGgxArguments(const CubeMap& radiance, int size, int levels, int samp
     requireAffordable(8.0 * size * size * samples * 16.0, "GGX prefilter");
 }
 
+void requireExactIrradianceArguments(const CubeMap& radiance, int size, int sourceSize) {
+    requireCube(radiance, "radiance cube map");
+    requireCount(size, 1024, "output size");
+    requireCount(sourceSize, 1024, "source size");
+    requireAffordable(36.0 * size * size * sourceSize * sourceSize, "exact irradiance");
+}
+
 } // namespace weft

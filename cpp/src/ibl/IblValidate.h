@@ -20,5 +20,8 @@ void requireAffordable(double steps, const char* what);
 /// The arguments of a GGX prefilter chain (CPU and GPU): a valid cube, size and sample counts,
 /// levels in [1, log2(size) + 1], an affordable job.
 void requireGgxArguments(const CubeMap& radiance, int size, int levels, int samples);
+/// The arguments of the exact irradiance convolution (CPU and GPU): a valid cube, output and
+/// source sizes in [1, 1024], an affordable job (36 size^2 sourceSize^2 steps).
+void requireExactIrradianceArguments(const CubeMap& radiance, int size, int sourceSize);
 
 } // namespace weft

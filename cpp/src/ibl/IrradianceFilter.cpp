@@ -137,10 +137,7 @@ CubeMap irradianceFromSh(const Sh9& sh, int size) {
 }
 
 CubeMap irradianceExact(const CubeMap& radiance, int size, int sourceSize) {
-    requireCube(radiance, "radiance cube map");
-    requireCount(size, 1024, "output size");
-    requireCount(sourceSize, 1024, "source size");
-    requireAffordable(36.0 * size * size * sourceSize * sourceSize, "exact irradiance");
+    requireExactIrradianceArguments(radiance, size, sourceSize);
     const CubeTexels t = cubeTexels(reducedCube(radiance, sourceSize));
     const size_t n = t.size();
     return mapTexels(size, [&](const glm::vec3& d) {

@@ -5,11 +5,13 @@ so every error has an independent reference:
 
 - conversion: equirectangular and mirror-ball sphere map -> cube map (time; mean relative error
   against the analytic environment at the texel centres), push-pull fill;
-- irradiance: exact cosine convolution, SH9 (alone, and of the sky with the extracted sun added
-  back as a directional light) and the seed's blurs at several input cube sizes, on the sky alone
-  and with the sun (per-texel relative errors are large on the sun's dark side), error against
-  the exact convolution of the 64^2 source at 32^2 output (the reference), and the SH9
-  projection alone (target <= 5 ms for 6 x 256^2 on 2 CPU cores);
+- irradiance: exact cosine convolution (CPU, and as a Vulkan compute shader on the selected
+  device), SH9 (alone, and of the sky with the extracted sun added back as a directional light)
+  and the seed's blurs at several input cube sizes, on the sky alone and with the sun (per-texel
+  relative errors are large on the sun's dark side), error against the exact convolution of the
+  64^2 source at 32^2 output (the reference); the reference itself timed on the CPU and as the
+  compute shader with their difference; and the SH9 projection alone (target <= 5 ms for
+  6 x 256^2 on 2 CPU cores);
 - glossy: Phong lobe by filtered importance sampling (samples x output size) against the exact
   Phong convolution, and the 5-level GGX chain: time at 256^2 on the CPU and as a Vulkan compute
   shader on the selected device (target 0.5 s for the compute version on lavapipe; the dispatch
@@ -153,15 +155,21 @@ ENVIRONMENTS = {"sky": sky, "sun + sky": sun_sky}
 
 
 def bench_irradiance(sizes: Sequence[int], out_size: int, ref_source: int) -> Dict[str, Any]:
-    rows = []
+    import weft.ibl as ibl
+
+    ibl.irradiance_exact_gpu(np.ones((6, 4, 4, 3), np.float32), 4, 4)  # the driver compiles
+    rows, compute = [], []
     for env_name, env in ENVIRONMENTS.items():
-        rows += _irradiance_rows(env_name, env, sizes, out_size, ref_source)
+        env_rows, env_compute = _irradiance_rows(env_name, env, sizes, out_size, ref_source)
+        rows += env_rows
+        compute.append(env_compute)
     projection = []
     for size in sizes:
         cube = ibl_cube(cube_faces(sky, size, 1))
         projection.append(dict(cube=size, ms=timed(lambda: _project(cube), 10, 0.5)[0]))
     return dict(rows=rows, sh9_projection=projection, output_size=out_size,
-                reference=f"exact cosine convolution of the {ref_source}^2 source at {out_size}^2")
+                reference=f"exact cosine convolution of the {ref_source}^2 source at {out_size}^2",
+                exact_compute=compute)
 
 
 def ibl_cube(faces: np.ndarray):
@@ -192,11 +200,18 @@ def sh9_with_lights(cube, size: int):
 
 
 def _irradiance_rows(env_name: str, env: Callable[[np.ndarray], np.ndarray], sizes: Sequence[int],
-                     out_size: int, ref_source: int) -> List[Dict[str, Any]]:
+                     out_size: int, ref_source: int) -> Tuple[List[Dict[str, Any]], Dict[str, Any]]:
+    """The table's rows, and the reference itself timed on the CPU and as the compute shader
+    (medians of the same run) with their difference."""
     import weft.ibl as ibl
 
     base = ibl.CubeMap(cube_faces(env, max(max(sizes), ref_source)))
-    reference = np.asarray(ibl.irradiance_exact(base, out_size, ref_source).faces)
+    cpu_ms, ref_cube = timed(lambda: ibl.irradiance_exact(base, out_size, ref_source), 3, 0.0)
+    gpu_ms, gpu_cube = timed(lambda: ibl.irradiance_exact_gpu(base, out_size, ref_source), 3, 0.0)
+    reference = np.asarray(ref_cube.faces)
+    mean_diff, max_diff = rel_error(gpu_cube.faces, reference)
+    compute = dict(env=env_name, size=out_size, source=ref_source, cpu_ms=cpu_ms,
+                   compute_ms=gpu_ms, mean_diff=mean_diff, max_diff=max_diff)
     rows = []
     for size in sizes:
         cube = ibl.CubeMap(cube_faces(env, size))
@@ -205,6 +220,7 @@ def _irradiance_rows(env_name: str, env: Callable[[np.ndarray], np.ndarray], siz
                                                                        out_size),
             "SH9 of the sky + extracted lights": lambda: sh9_with_lights(cube, out_size),
             "exact (source 32^2)": lambda: ibl.irradiance_exact(cube, out_size, 32),
+            "exact (compute, source 32^2)": lambda: ibl.irradiance_exact_gpu(cube, out_size, 32),
             "seed box blur (sphere map)": lambda: ibl.irradiance_box_blur(cube, out_size),
             "seed 3-axis rotational blur": lambda: ibl.irradiance_rotational_blur(cube, out_size),
         }
@@ -213,7 +229,7 @@ def _irradiance_rows(env_name: str, env: Callable[[np.ndarray], np.ndarray], siz
             mean, worst = rel_error(out.faces, reference)
             rows.append(dict(env=env_name, method=name, cube=size, ms=ms, mean_err=mean,
                              max_err=worst, norm_err=norm_error(out.faces, reference)))
-    return rows
+    return rows, compute
 
 
 def bench_glossy(samples: Sequence[int], sizes: Sequence[int], chain_size: int,
@@ -440,6 +456,14 @@ def to_markdown(r: Dict[str, Any]) -> str:
           pct(x["norm_err"])] for x in irr["rows"]]))
     lines += ["", f"SH9 projection alone (target <= {SH9_TARGET_MS} ms at 256^2): " + ", ".join(
         f"{x['cube']}^2: {x['ms']:.3f} ms" for x in irr["sh9_projection"])]
+    device = r["machine"].get("device", {}).get("name", "?")
+    lines += ["", f"The reference itself, CPU vs Vulkan compute on {device} (median ms; per-texel "
+              "relative difference of the compute result to the CPU one):", ""]
+    lines.append(markdown_table(
+        ["environment", "output", "source", "CPU ms", "compute ms", "mean rel. difference",
+         "max rel. difference"],
+        [[x["env"], x["size"], x["source"], f3(x["cpu_ms"]), f3(x["compute_ms"]),
+          f"{x['mean_diff']:.1e}", f"{x['max_diff']:.1e}"] for x in irr["exact_compute"]]))
     g = r["glossy"]
     lines += ["", "## Glossy: Phong lobe (s = 32) by filtered importance sampling vs exact", ""]
     lines.append(markdown_table(
@@ -529,6 +553,8 @@ def run(args: argparse.Namespace) -> int:
         "sh9_projection_256_ms": sh[0]["ms"] if sh else None,
         "sh9_target_ms": SH9_TARGET_MS,
         "sh9_target_met": (sh[0]["ms"] <= SH9_TARGET_MS) if sh else None,
+        "irradiance_exact_ms": {x["env"]: dict(cpu=x["cpu_ms"], compute=x["compute_ms"])
+                                for x in report["irradiance"]["exact_compute"]},
         "ggx_chain_cpu_s": {f'{x["env"]}, {x["samples"]} samples': x["cpu_s"]
                             for x in report["glossy"]["ggx_chain"]},
         "ggx_chain_compute_dispatch_s": {f'{x["env"]}, {x["samples"]} samples': x["gpu_dispatch_s"]
