@@ -267,3 +267,6 @@ def test_gpu_ggx_chain_rejects_bad_arguments() -> None:
     cube = ibl.CubeMap(envs.to_faces(ENVIRONMENTS["sun + sky"], 32, supersample=2))
     with pytest.raises(weft.InvalidArgument, match="levels"):
         ibl.prefilter_ggx_gpu(cube, 16, levels=6)
+    # more samples than a shader loop may run on lavapipe: refused, not silently truncated
+    with pytest.raises(weft.InvalidArgument, match="at most 16384 samples"):
+        ibl.prefilter_ggx_gpu(cube, 8, levels=2, samples=16385)

@@ -65,7 +65,9 @@ CubeMap prefilterGgx(const CubeMap& radiance, int size, int levels = 5, int samp
 /// when `size` is the size of a source mip level). `dispatchMs` (optional) receives the wall time
 /// of the recorded dispatches and copy (upload of the source chain and pipeline creation
 /// excluded). Throws weft::Error when no Vulkan device is usable, InvalidArgument when the
-/// source levels the samples read exceed the device's texel buffer size.
+/// source levels the samples read exceed the device's texel buffer size or `samples` exceeds
+/// kMaxGpuGgxSamples (lavapipe silently ends a shader's loops after 65535 iterations).
+constexpr int kMaxGpuGgxSamples = 16384;
 CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels = 5, int samples = 64,
                         double* dispatchMs = nullptr);
 /// Split-sum DFG table, `size` x `size` x 2 floats (scale, bias to F0): row j has perceptual

@@ -7,7 +7,7 @@
 #include <weft/Error.h>
 
 #include "hair/HairShadingGpu.h"
-#include "vk/ComputePipeline.h"
+#include "vk/StorageCompute.h"
 
 namespace weft {
 
@@ -58,51 +58,12 @@ std::vector<glm::vec3> evaluateHairShading(const HairMaterial& material,
     paramBuf.write(&params, sizeof params);
     inBuf.write(inputs.data(), n * sizeof(EvalInput));
 
-    const VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    vk::DescriptorSetLayout setLayout = vk::createComputeSetLayout(*ctx, {{0, type}, {1, type}, {2, type}});
-    vk::PipelineLayout layout = vk::createComputePipelineLayout(*ctx, {setLayout.get()}, 4);
-    vk::Pipeline pipeline = vk::createComputePipeline(*ctx, "hair/shade_eval.comp", layout);
-
-    VkDescriptorPoolSize poolSize{type, 3};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &poolSize;
-    VkDescriptorPool rawPool;
-    VK_CHECK(vkCreateDescriptorPool(ctx->device(), &poolInfo, nullptr, &rawPool));
-    vk::DescriptorPool pool(ctx.get(), rawPool, vkDestroyDescriptorPool);
-    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    alloc.descriptorPool = pool;
-    alloc.descriptorSetCount = 1;
-    VkDescriptorSetLayout rawLayout = setLayout.get();
-    alloc.pSetLayouts = &rawLayout;
-    VkDescriptorSet set;
-    VK_CHECK(vkAllocateDescriptorSets(ctx->device(), &alloc, &set));
-    VkDescriptorBufferInfo infos[3] = {{paramBuf.get(), 0, VK_WHOLE_SIZE},
-                                       {inBuf.get(), 0, VK_WHOLE_SIZE},
-                                       {outBuf.get(), 0, VK_WHOLE_SIZE}};
-    VkWriteDescriptorSet writes[3];
-    for (uint32_t b = 0; b < 3; ++b) {
-        writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        writes[b].dstSet = set;
-        writes[b].dstBinding = b;
-        writes[b].descriptorCount = 1;
-        writes[b].descriptorType = type;
-        writes[b].pBufferInfo = &infos[b];
-    }
-    vkUpdateDescriptorSets(ctx->device(), 3, writes, 0, nullptr);
-
+    const vk::StorageCompute compute = vk::createStorageCompute(
+        *ctx, "hair/shade_eval.comp", {{&paramBuf}, {&inBuf}, {&outBuf}}, sizeof(uint32_t));
     const uint32_t count = uint32_t(n);
-    ctx->immediate([&](VkCommandBuffer cmd) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-        vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 4, &count);
+    vk::runStorageCompute(*ctx, compute, [&](VkCommandBuffer cmd) {
+        vkCmdPushConstants(cmd, compute.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(count), &count);
         vkCmdDispatch(cmd, (count + kGroupSize - 1) / kGroupSize, 1, 1);
-        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-        barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0,
-                             1, &barrier, 0, nullptr, 0, nullptr);
     });
 
     std::vector<glm::vec3> out(n);

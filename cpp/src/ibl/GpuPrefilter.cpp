@@ -139,6 +139,10 @@ VkDescriptorSet bindBuffers(vk::Context& ctx, vk::DescriptorPool& pool,
 CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int samples,
                         double* dispatchMs) {
     requireGgxArguments(radiance, size, levels, samples);
+    if (samples > kMaxGpuGgxSamples) // the shader loops over a level's samples once per texel
+        throw InvalidArgument("GGX prefilter on the GPU: at most " +
+                              std::to_string(kMaxGpuGgxSamples) + " samples (got " +
+                              std::to_string(samples) + "); use prefilterGgx for more");
     CubeMap out(size);
     out.buildMips(); // allocates every level; the dispatches overwrite those kept
     out.keepLevels(levels);
