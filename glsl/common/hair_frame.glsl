@@ -29,6 +29,7 @@ layout(set = 2, binding = 2) uniform HairFrameUbo {
     ivec4 domLight;                     // scene light index of DOM slot i, -1 unused
     mat4 domViewProj[HAIR_MAX_DOMS];    // world -> DOM clip space (orthographic)
     vec4 domLayer[HAIR_MAX_DOMS];       // x: layer size d in stored-depth units
+    mat4 domMeshViewProj[HAIR_MAX_DOMS]; // same x, y; depth from the nearest caster (meshes)
 } hairFrame;
 // Pass 2 binds the DOM depth (z0) array here, the shading passes the opacity array.
 layout(set = 3, binding = 0) uniform sampler2DArray hairDom;

@@ -4,15 +4,24 @@
 #include "shading.glsl"
 #include "hair_frame.glsl"
 
+// The depth of the scene's mesh casters in each DOM's view (the meshes shadow hair too).
+layout(set = 3, binding = 1) uniform sampler2DArray hairDomMeshes;
+
 // exp(-occlusion) of DOM slot `slot` at world point p: occlusion interpolated linearly inside
 // the layer holding p's depth between the opacity at its start and at its end
-// (python/weft/reference/hair_shadow.py occlusion_at).
+// (python/weft/reference/hair_shadow.py occlusion_at); 0 behind a mesh caster (one tap, the
+// scene's constant + 45-degree slope bias: a fibre has no normal).
 float hairDomTransmittance(int slot, vec3 p) {
     vec4 clip = hairFrame.domViewProj[slot] * vec4(p, 1.0);
     vec2 uv = clip.xy * 0.5 + 0.5;
     if (uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0) return 1.0;
     int size = textureSize(hairDom, 0).x;
     ivec2 texel = clamp(ivec2(floor(uv * float(size))), ivec2(0), ivec2(size - 1));
+    float meshBias = min(frame.bias.x + frame.bias.y, frame.bias.z);
+    ivec2 meshTexel = min(texel, textureSize(hairDomMeshes, 0).xy - 1); // 1x1 when no mesh casts
+    float meshZ = (hairFrame.domMeshViewProj[slot] * vec4(p, 1.0)).z; // same x, y as clip
+    if (min(meshZ, 1.0) - meshBias > texelFetch(hairDomMeshes, ivec3(meshTexel, slot), 0).r)
+        return 0.0;
     vec4 o = texelFetch(hairDom, ivec3(texel, slot), 0);
     float rel = clip.z - o.a;
     if (rel <= 0.0) return 1.0;

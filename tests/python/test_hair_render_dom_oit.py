@@ -134,3 +134,32 @@ def test_wboit_composite_equals_the_reference(weight):
     got = img[14:18, 14:18, :3].reshape(-1, 3)
     np.testing.assert_allclose(got, np.tile(expected, (16, 1)), atol=2e-3)
     assert np.allclose(img[0, 0, :3], scene.background, atol=1e-6)  # no hair: background kept
+
+
+def test_meshes_shadow_hair_under_a_deep_opacity_map():
+    """A board between the light and half of the slab: with the DOM on, the hair under it is in
+    its shadow (visibility 0) while the other half keeps the DOM's transmittance; a board that
+    casts no shadow changes nothing, and without mesh casters the pass is skipped."""
+    cam = weft.Camera((0, 0.1, 2.0), (0, 0.1, 0), (0, 1, 0), 0.7)
+    r = slab_renderer("linear")
+    scene, _, _ = slab_scene()
+    bare = r.render_debug(scene, cam)
+    assert "hair_dom_meshes" not in [p["name"] for p in r.stats["passes"]]
+    board = np.eye(4, dtype=np.float32)
+    board[:3, 3] = (-0.35, 0.6, 0.0)  # above the slab's x < 0 half, well before the DOM's near
+    scene.add_mesh(weft.Mesh.box((0.7, 0.05, 1.4)), transform=board)
+    d = r.render_debug(scene, cam)
+    assert "hair_dom_meshes" in [p["name"] for p in r.stats["passes"]]
+    hair = (d["hair"] == 0) & (bare["hair"] == 0)
+    x = d["position"][..., 0]
+    under, free = hair & (x < -0.1), hair & (x > 0.1)
+    assert under.sum() > 50 and free.sum() > 50
+    assert d["shadow"][under].max() == 0.0
+    np.testing.assert_allclose(d["shadow"][free], bare["shadow"][free], atol=1e-6)
+    assert bare["shadow"][under].mean() > 0.3  # the DOM alone lets light through there
+    # the same board not casting shadows: the hair is lit as without it
+    scene, _, _ = slab_scene()
+    scene.add_mesh(weft.Mesh.box((0.7, 0.05, 1.4)), transform=board, cast_shadows=False)
+    d = r.render_debug(scene, cam)
+    assert "hair_dom_meshes" not in [p["name"] for p in r.stats["passes"]]
+    np.testing.assert_allclose(d["shadow"][under], bare["shadow"][under], atol=1e-6)

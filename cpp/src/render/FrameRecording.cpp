@@ -156,7 +156,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
 
     // Depth of every shadow caster (meshes, alpha-tested ones with holes, hair) seen by viewProj.
     auto drawCasters = [&](VkCommandBuffer cmd, VkImageView view, uint32_t size,
-                           const glm::mat4& viewProj) {
+                           const glm::mat4& viewProj, bool withHair) {
         VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         depth.imageView = view;
         depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -183,7 +183,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                                sizeof(push), &push);
             drawMesh(cmd, *d.mesh);
         }
-        if (hasHair) hair->drawDepth(cmd, viewProj);
+        if (hasHair && withHair) hair->drawDepth(cmd, viewProj);
         c.fn().cmdEndRendering(cmd);
     };
 
@@ -199,7 +199,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
         }
         g.addPass({name, {}, {{rShadow, Use::DepthWrite}}, [&, s](VkCommandBuffer cmd) {
                        drawCasters(cmd, shadowMaps.layerView(uint32_t(s.layer)),
-                                   settings.shadowMapSize, s.frustum.viewProj);
+                                   settings.shadowMapSize, s.frustum.viewProj, true);
                    }});
     }
     // The environment's dome of shadow lights: the layers due this frame, the rest reused.
@@ -216,7 +216,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
             }
             g.addPass({name, {}, {{rDome, Use::DepthWrite}}, [&, i](VkCommandBuffer cmd) {
                            drawCasters(cmd, dome.maps().layerView(uint32_t(i)), dome.mapSize(),
-                                       domeLights[i].viewProj);
+                                       domeLights[i].viewProj, true);
                        }});
         }
     }
@@ -380,7 +380,11 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
         hair->addPasses(g, {rShadow, rDepth, rHdr, debug ? rDebug : nullptr, &targets.hdr,
                             &targets.depth,
                             {&targets.position, &targets.normal, &targets.surface, &targets.albedo},
-                            frameSet});
+                            frameSet,
+                            [&](VkCommandBuffer cmd, VkImageView view, uint32_t size,
+                                const glm::mat4& viewProj) {
+                                drawCasters(cmd, view, size, viewProj, false);
+                            }});
 
     const VkPipeline outPipeline = pipes.outputPipeline(ldr->desc().format);
     g.addPass({"output", {{rHdr, Use::Sampled}}, {{rLdr, Use::ColorWrite}}, [&](VkCommandBuffer cmd) {

@@ -28,10 +28,12 @@ struct GpuHairFrame {
     glm::ivec4 domLight;                   // scene light index of DOM slot i, -1 unused
     glm::mat4 domViewProj[kMaxHairDoms];   // world -> DOM clip (orthographic, depth [0, 1])
     glm::vec4 domLayer[kMaxHairDoms];      // x: layer size d in stored-depth units
+    glm::mat4 domMeshViewProj[kMaxHairDoms]; // the same x, y; depth from the casters nearest the
+                                             // light to the DOM's far plane (mesh shadows)
 };
 
 static_assert(sizeof(GpuHairVertex) == 48, "GpuHairVertex must match hair_frame.glsl");
 static_assert(sizeof(GpuHairInstance) == 224, "GpuHairInstance must match hair_frame.glsl");
-static_assert(sizeof(GpuHairFrame) == 48 + 80 * kMaxHairDoms, "GpuHairFrame must match");
+static_assert(sizeof(GpuHairFrame) == 48 + 144 * kMaxHairDoms, "GpuHairFrame must match");
 
 } // namespace weft::render

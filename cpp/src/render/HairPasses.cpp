@@ -53,18 +53,25 @@ vk::Image makeImage(vk::Context& ctx, uint32_t w, uint32_t h, uint32_t layers, V
 
 HairPasses::HairPasses(vk::Context& ctx, const ScenePipelines& scene)
     : mCtx(ctx), mScene(scene), mPipes(ctx, scene), mCache(ctx) {
-    // Bound as the DOM opacity array when no light has a DOM: two layers (an array view), cleared.
-    mDummyDom = makeImage(ctx, 1, 1, 2, kDomOpacityFormat, VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    ctx.immediate([&](VkCommandBuffer cmd) {
-        vk::transition(ctx, cmd, mDummyDom, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                       VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        VkClearColorValue far{{0.0f, 0.0f, 0.0f, 1.0f}};
-        VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 2};
-        vkCmdClearColorImage(cmd, mDummyDom.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &far, 1,
-                             &range);
-        const UseState s = useState(Use::Sampled, false);
-        vk::transition(ctx, cmd, mDummyDom, s.layout, s.stage, s.access);
-    });
+    // 1x1 arrays (an array view per DOM slot) bound where nothing was rendered: as the DOM
+    // opacity when no light has a DOM (cleared), as the meshes' depth when no mesh casts (far).
+    auto cleared = [&](float value) {
+        vk::Image image = makeImage(ctx, 1, 1, kMaxHairDoms, kDomOpacityFormat,
+                                    VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+        ctx.immediate([&](VkCommandBuffer cmd) {
+            vk::transition(ctx, cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+            VkClearColorValue c{{value, value, value, 1.0f}};
+            VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, kMaxHairDoms};
+            vkCmdClearColorImage(cmd, image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &c, 1,
+                                 &range);
+            const UseState s = useState(Use::Sampled, false);
+            vk::transition(ctx, cmd, image, s.layout, s.stage, s.access);
+        });
+        return image;
+    };
+    mDummyDom = cleared(0.0f);
+    mNoMeshes = cleared(1.0f);
 }
 
 HairPasses::~HairPasses() = default;
@@ -85,6 +92,8 @@ void HairPasses::fitDoms(const Scene& scene, const RenderSettings& settings) {
         }
     }
     if (corners.empty()) return;
+    glm::vec3 casterLo, casterHi; // every caster: meshes between the light and the hair shadow it
+    scene.bounds(casterLo, casterHi, true);
     glm::vec3 lo(1e30f), hi(-1e30f);
     for (const glm::vec3& c : corners) {
         lo = glm::min(lo, c);
@@ -132,6 +141,14 @@ void HairPasses::fitDoms(const Scene& scene, const RenderSettings& settings) {
         row(2, f, 1.0f / (zFar - zNear), -zNear / (zFar - zNear));
         m[3][3] = 1.0f;
         dom.viewProj = m;
+        float meshNear = zNear;
+        for (int k = 0; k < 8; ++k) {
+            const glm::vec3 c((k & 1) ? casterHi.x : casterLo.x, (k & 2) ? casterHi.y : casterLo.y,
+                              (k & 4) ? casterHi.z : casterLo.z);
+            meshNear = std::min(meshNear, glm::dot(c - center, f) - 1e-3f);
+        }
+        row(2, f, 1.0f / (zFar - meshNear), -meshNear / (zFar - meshNear));
+        dom.meshViewProj = m;
         dom.layerNdc = d / (zFar - zNear);
         mDoms.push_back(dom);
     }
@@ -144,6 +161,8 @@ void HairPasses::ensureImages(const RenderSettings& settings, uint32_t width, ui
                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
         mDomOpacity = makeImage(mCtx, mDomSize, mDomSize, kMaxHairDoms, kDomOpacityFormat,
                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+        mDomMeshDepth = makeImage(mCtx, mDomSize, mDomSize, kMaxHairDoms, kDepthFormat,
+                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
     }
     if (mOit && (!mAccum || mWidth != width || mHeight != height)) {
         mWidth = width;
@@ -162,7 +181,7 @@ void HairPasses::allocateSets(Slot& slot, uint32_t draws) {
         const VkDescriptorPoolSize sizes[] = {
             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * slot.poolSets},
             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slot.poolSets},
-            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4}};
+            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6}};
         VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         info.maxSets = slot.poolSets;
         info.poolSizeCount = 3;
@@ -219,9 +238,13 @@ void HairPasses::writeSets(Slot& slot) {
          dom ? useState(Use::Sampled, true).layout : readOnly},
         {nearest, dom ? mDomOpacity.view() : mDummyDom.view(), readOnly},
         {nearest, mOit ? mAccum.view() : mDummyDom.view(), readOnly},
-        {nearest, mOit ? mWeight.view() : mDummyDom.view(), readOnly}};
+        {nearest, mOit ? mWeight.view() : mDummyDom.view(), readOnly},
+        {nearest, mMeshesShadowHair ? mDomMeshDepth.view() : mNoMeshes.view(),
+         mMeshesShadowHair ? useState(Use::Sampled, true).layout : readOnly}};
     write(mZ0Set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[0];
+    write(mZ0Set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[4];
     write(mOpacitySet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[1];
+    write(mOpacitySet, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[4];
     if (mOit) {
         write(mOitSet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[2];
         write(mOitSet, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[3];
@@ -246,6 +269,9 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
     }
     mOit = anyTransparent;
     fitDoms(scene, settings);
+    mMeshesShadowHair = !mDoms.empty() &&
+                        std::any_of(scene.instances().begin(), scene.instances().end(),
+                                    [](const MeshInstance& m) { return m.castShadows; });
     ensureImages(settings, width, height);
 
     GpuHairFrame f{};
@@ -257,6 +283,7 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
     for (size_t i = 0; i < mDoms.size(); ++i) {
         f.domLight[int(i)] = mDoms[i].light;
         f.domViewProj[i] = mDoms[i].viewProj;
+        f.domMeshViewProj[i] = mDoms[i].meshViewProj;
         f.domLayer[i] = glm::vec4(mDoms[i].layerNdc, 0, 0, 0);
     }
     Slot& slot = mSlots[slotIndex % mSlots.size()];
@@ -319,6 +346,17 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
         const int rZ0 = g.addResource("hair_dom_depth", &mDomDepth);
         const int rOpacity = g.addResource("hair_dom_opacity", &mDomOpacity);
         shadingReads.push_back({rOpacity, Use::Sampled});
+        // The mesh casters in each DOM's view: hair behind them is in their shadow.
+        if (mMeshesShadowHair) {
+            const int rMeshes = g.addResource("hair_dom_meshes", &mDomMeshDepth);
+            shadingReads.push_back({rMeshes, Use::Sampled});
+            g.addPass({"hair_dom_meshes", {}, {{rMeshes, Use::DepthWrite}},
+                       [this, t](VkCommandBuffer cmd) {
+                           for (size_t s = 0; s < mDoms.size(); ++s)
+                               t.meshDepth(cmd, mDomMeshDepth.layerView(uint32_t(s)), mDomSize,
+                                           mDoms[s].meshViewProj);
+                       }});
+        }
         g.addPass({"hair_dom_depth", {}, {{rZ0, Use::DepthWrite}}, [this](VkCommandBuffer cmd) {
                        for (size_t s = 0; s < mDoms.size(); ++s) {
                            VkRenderingAttachmentInfo depth =

@@ -5,6 +5,7 @@
 // Only what the scene needs is added: no hair, no passes; no transparent hair or OIT off, no
 // OIT passes; no shadow-casting directional light or DOM off, no DOM passes.
 #include <array>
+#include <functional>
 #include <vector>
 
 #include <weft/Renderer.h>
@@ -35,6 +36,9 @@ public:
         vk::Image *hdrImage, *depthImage;
         std::array<vk::Image*, 4> debugImages;
         VkDescriptorSet frameSet;
+        /// Renders the depth of the scene's mesh casters (no hair) seen by a view-projection into
+        /// a depth view of a size: the meshes that shadow hair under a deep opacity map.
+        std::function<void(VkCommandBuffer, VkImageView, uint32_t, const glm::mat4&)> meshDepth;
     };
     /// Adds the DOM, hair and OIT passes after the forward pass.
     void addPasses(FrameGraph& graph, const Targets& targets);
@@ -60,6 +64,7 @@ private:
         int light;
         HairDomInfo info;
         glm::mat4 viewProj;
+        glm::mat4 meshViewProj; // viewProj with depth from the nearest mesh caster
         float layerNdc;
     };
 
@@ -78,13 +83,14 @@ private:
     HairPipelines mPipes;
     HairGpuCache mCache;
     std::array<Slot, 2> mSlots;
-    vk::Image mDomDepth, mDomOpacity, mDummyDom, mAccum, mWeight;
+    vk::Image mDomDepth, mDomOpacity, mDomMeshDepth, mDummyDom, mNoMeshes, mAccum, mWeight;
     std::vector<HairDraw> mDraws;
     std::vector<Dom> mDoms;
     std::vector<HairDomInfo> mLastDoms; // by scene light, size 0 where none
     VkDescriptorSet mZ0Set = VK_NULL_HANDLE, mOpacitySet = VK_NULL_HANDLE;
     VkDescriptorSet mOitSet = VK_NULL_HANDLE;
     bool mRibbons = false, mOit = false;
+    bool mMeshesShadowHair = false; // DOMs and mesh casters this frame: the hair_dom_meshes pass
     uint32_t mWidth = 0, mHeight = 0, mDomSize = 0;
 };
 

@@ -29,7 +29,8 @@ HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) {
     hairSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                             {2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}});
-    domSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    domSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     oitSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                            {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     layout = vk::createPipelineLayout(
