@@ -90,3 +90,15 @@ def test_truncated_and_corrupt_files_raise_io_errors(tmp_path: Path,
     (tmp_path / "x.tiff").write_bytes(b"II*\x00")
     with pytest.raises(weft.InvalidArgument, match="unsupported"):
         ibl.load_environment(str(tmp_path / "x.tiff"))
+
+
+def test_exact_irradiance_on_the_gpu_from_the_cli(tmp_path: Path) -> None:
+    faces = envs.to_faces(envs.random_smooth(2), 16)
+    src = tmp_path / "faces.npy"
+    np.save(src, faces)
+    cpu, gpu = tmp_path / "cpu.npy", tmp_path / "gpu.npy"
+    for method, out in (("exact", cpu), ("exact-gpu", gpu)):
+        assert main(["ibl", "irradiance", str(src), str(out), "--method", method, "--size", "8",
+                     "--as", "faces"]) == 0
+    np.testing.assert_allclose(np.load(gpu), np.load(cpu), rtol=1e-4)
+    assert np.load(cpu).shape == (6, 8, 8, 3)

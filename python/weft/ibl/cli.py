@@ -44,7 +44,9 @@ def add_ibl_parser(sub: Any) -> None:
     irr = cmds.add_parser("irradiance", help="irradiance map (SH9, exact, or the seed's blurs)")
     common(irr)
     irr.add_argument("output", nargs="?", default="", help="irradiance map file (optional)")
-    irr.add_argument("--method", choices=("sh9", "exact", "box", "rotational"), default="sh9")
+    irr.add_argument("--method", choices=("sh9", "exact", "exact-gpu", "box", "rotational"),
+                     default="sh9", help="sh9 (default), exact cosine convolution on the CPU or "
+                                         "as a Vulkan compute shader, or the seed's blurs")
     irr.add_argument("--size", type=int, default=32, help="output face size (32)")
     irr.add_argument("--as", dest="layout", choices=("cross", "vertical-cross", "equirect",
                                                      "faces"), default="cross")
@@ -110,6 +112,8 @@ def cmd_irradiance(args: argparse.Namespace) -> int:
         out = ibl.irradiance_from_sh(sh, args.size)
     elif args.method == "exact":
         out = ibl.irradiance_exact(cube, args.size)
+    elif args.method == "exact-gpu":
+        out = ibl.irradiance_exact_gpu(cube, args.size)
     elif args.method == "box":
         out = ibl.irradiance_box_blur(cube, args.size)
     else:
