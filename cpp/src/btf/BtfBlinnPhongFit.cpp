@@ -42,6 +42,7 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
         lights[size_t(s)] = samples.light(s);
         halves[size_t(s)] = btfHalfVector(samples.light(s), samples.view(s));
     }
+    const BlinnPhongGeometry geometry(lights, halves);
     const double etaMin = std::log(double(options.minExponent));
     const double etaMax = std::log(double(options.maxExponent));
 
@@ -64,12 +65,13 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
         BlinnPhongTexel tx;
         tx.lights = &lights;
         tx.halves = &halves;
+        tx.geometry = &geometry;
         tx.values.resize(size_t(count) * 3);
         for (size_t t = size_t(b0) * 64; t < std::min(texels, size_t(b1) * 64); ++t) {
             for (int s = 0; s < count; ++s)
                 for (int c = 0; c < 3; ++c)
                     tx.values[size_t(s) * 3 + size_t(c)] = samples.plane(s, c)[t];
-            tx.updateSquares();
+            tx.prepare();
             tx.setSeedNormal(glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1],
                                        seed.normal[t * 3 + 2]));
             const float e0 = seed.exponentMap.empty() ? seed.exponent : seed.exponentMap[t];
