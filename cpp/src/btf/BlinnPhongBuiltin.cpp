@@ -56,13 +56,15 @@ glm::dvec3 BlinnPhongTexel::normal(double u, double v) const {
 
 namespace {
 
-// Eight floats (one AVX register, two SSE ones): the per-sample work runs on the padded
-// structure-of-arrays samples eight at a time, with a polynomial log/exp instead of libm calls.
-typedef float F8 __attribute__((vector_size(32)));
-typedef int I8 __attribute__((vector_size(32)));
+// Four floats (one SSE register; 32-byte vectors without AVX get their comparisons
+// scalarised): the per-sample work runs on the padded structure-of-arrays samples four at a
+// time, with a polynomial log/exp instead of libm calls.
+typedef float F8 __attribute__((vector_size(16)));
+typedef int I8 __attribute__((vector_size(16)));
 typedef double D4 __attribute__((vector_size(32)));
 typedef float F4 __attribute__((vector_size(16)));
-constexpr int kLanes = kBlinnPhongLanes;
+constexpr int kLanes = 4;
+static_assert(kBlinnPhongLanes % kLanes == 0, "padding must hold whole vectors");
 
 inline F8 load8(const float* p) {
     F8 v;
@@ -70,7 +72,7 @@ inline F8 load8(const float* p) {
     return v;
 }
 inline void store8(float* p, F8 v) { std::memcpy(p, &v, sizeof v); }
-inline F8 splat(float x) { return F8{x, x, x, x, x, x, x, x}; }
+inline F8 splat(float x) { return F8{x, x, x, x}; }
 inline F8 select(I8 mask, F8 a) { return F8(I8(a) & mask); } // mask ? a : 0
 inline F8 asFloat(I8 v) { return F8(v); }
 

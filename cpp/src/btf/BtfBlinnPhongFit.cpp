@@ -61,7 +61,7 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
     std::vector<double> iterations(texels, 0.0);
 
     const int blocks = int((texels + 63) / 64);
-    btfParallelFor(blocks, options.threads, [&](int b0, int b1) {
+    btfParallelForDynamic(blocks, options.threads, 1, [&](int b0, int b1) {
         BlinnPhongTexel tx;
         tx.lights = &lights;
         tx.halves = &halves;
