@@ -3,6 +3,7 @@
 // Kaufman's approximation J_c = -P⊥ (∂Φ/∂θ) c_c of the projected residual's Jacobian.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 #include "btf/BlinnPhongTexel.h"
@@ -56,77 +57,237 @@ glm::dvec3 BlinnPhongTexel::normal(double u, double v) const {
 
 namespace {
 
-// Four floats (one SSE register; 32-byte vectors without AVX get their comparisons
-// scalarised): the per-sample work runs on the padded structure-of-arrays samples four at a
-// time, with a polynomial log/exp instead of libm calls.
-typedef float F8 __attribute__((vector_size(16)));
-typedef int I8 __attribute__((vector_size(16)));
+// The per-sample work runs on the padded structure-of-arrays samples W floats at a time (GCC
+// vector extensions), with polynomial log/exp instead of libm calls: W = 4 (SSE, or any 16-byte
+// SIMD) everywhere, W = 8 in a copy compiled for AVX2 + FMA and chosen at run time on x86-64.
+// (32-byte vectors compiled without AVX get their comparisons scalarised.)
+template <int W> struct Vec;
+template <> struct Vec<4> {
+    typedef float F __attribute__((vector_size(16)));
+    typedef int I __attribute__((vector_size(16)));
+};
+template <> struct Vec<8> {
+    typedef float F __attribute__((vector_size(32)));
+    typedef int I __attribute__((vector_size(32)));
+};
 typedef double D4 __attribute__((vector_size(32)));
 typedef float F4 __attribute__((vector_size(16)));
-constexpr int kLanes = 4;
-static_assert(kBlinnPhongLanes % kLanes == 0, "padding must hold whole vectors");
+static_assert(kBlinnPhongLanes % 8 == 0, "padding must hold whole vectors");
 
-inline F8 load8(const float* p) {
-    F8 v;
+#define WEFT_INLINE inline __attribute__((always_inline))
+
+template <class F> WEFT_INLINE F load(const float* p) {
+    F v;
     std::memcpy(&v, p, sizeof v);
     return v;
 }
-inline void store8(float* p, F8 v) { std::memcpy(p, &v, sizeof v); }
-inline F8 splat(float x) { return F8{x, x, x, x}; }
-inline F8 select(I8 mask, F8 a) { return F8(I8(a) & mask); } // mask ? a : 0
-inline F8 asFloat(I8 v) { return F8(v); }
+template <class F> WEFT_INLINE void store(float* p, F v) { std::memcpy(p, &v, sizeof v); }
+template <class F> WEFT_INLINE F splat(float x) { return F{} + x; }
+template <class F, class I> WEFT_INLINE F select(I mask, F a) { return F(I(a) & mask); } // mask ? a : 0
 
 // Natural log for x > 0 (Cephes logf: mantissa in [√½, √2), degree-8 polynomial; ~1 ulp).
-inline F8 log8(F8 x) {
-    I8 bits = I8(x);
-    I8 ex = ((bits >> 23) & 0xff) - 126;
-    F8 m = asFloat((bits & 0x007fffff) | 0x3f000000); // [0.5, 1)
-    const I8 small = m < splat(0.707106781186547524f);
-    ex = ex + small;                                   // small is -1 where true
-    m = m + select(small, m) - splat(1.0f);
-    const F8 z = m * m;
-    F8 y = splat(7.0376836292e-2f);
-    y = y * m + splat(-1.1514610310e-1f);
-    y = y * m + splat(1.1676998740e-1f);
-    y = y * m + splat(-1.2420140846e-1f);
-    y = y * m + splat(1.4249322787e-1f);
-    y = y * m + splat(-1.6668057665e-1f);
-    y = y * m + splat(2.0000714765e-1f);
-    y = y * m + splat(-2.4999993993e-1f);
-    y = y * m + splat(3.3333331174e-1f);
+template <class F, class I> WEFT_INLINE F logv(F x) {
+    const I bits = I(x);
+    I ex = ((bits >> 23) & 0xff) - 126;
+    F m = F((bits & 0x007fffff) | 0x3f000000); // [0.5, 1)
+    const I small = m < splat<F>(0.707106781186547524f);
+    ex = ex + small;                            // small is -1 where true
+    m = m + select(small, m) - 1.0f;
+    const F z = m * m;
+    F y = splat<F>(7.0376836292e-2f);
+    y = y * m - 1.1514610310e-1f;
+    y = y * m + 1.1676998740e-1f;
+    y = y * m - 1.2420140846e-1f;
+    y = y * m + 1.4249322787e-1f;
+    y = y * m - 1.6668057665e-1f;
+    y = y * m + 2.0000714765e-1f;
+    y = y * m - 2.4999993993e-1f;
+    y = y * m + 3.3333331174e-1f;
     y = y * m * z;
-    const F8 fe = __builtin_convertvector(ex, F8);
-    y = y + fe * splat(-2.12194440e-4f) - splat(0.5f) * z;
-    return m + y + fe * splat(0.693359375f);
+    const F fe = __builtin_convertvector(ex, F);
+    y = y + fe * -2.12194440e-4f - 0.5f * z;
+    return m + y + fe * 0.693359375f;
 }
 
 // exp(x) for x <= 0 (Cephes expf: x = n ln2 + r, degree-5 polynomial; ~1 ulp); 0 below -87.
-inline F8 exp8(F8 x) {
-    const I8 alive = x > splat(-87.0f);
-    x = x < splat(-87.0f) ? splat(-87.0f) : x;
-    const F8 fx = x * splat(1.44269504088896341f) + splat(0.5f);
-    I8 n = __builtin_convertvector(fx, I8); // truncation towards 0; fx > 0 only near x = 0
-    F8 fn = __builtin_convertvector(n, F8);
-    const I8 over = fn > fx;
-    n = n + over;
-    fn = __builtin_convertvector(n, F8);
-    x = x - fn * splat(0.693359375f) - fn * splat(-2.12194440e-4f);
-    const F8 z = x * x;
-    F8 y = splat(1.9875691500e-4f);
-    y = y * x + splat(1.3981999507e-3f);
-    y = y * x + splat(8.3334519073e-3f);
-    y = y * x + splat(4.1665795894e-2f);
-    y = y * x + splat(1.6666665459e-1f);
-    y = y * x + splat(5.0000001201e-1f);
-    y = y * z + x + splat(1.0f);
-    return select(alive, y * asFloat((n + 127) << 23));
+template <class F, class I> WEFT_INLINE F expv(F x) {
+    const I alive = x > -87.0f;
+    x = alive ? x : splat<F>(-87.0f);
+    const F fx = x * 1.44269504088896341f + 0.5f;
+    I n = __builtin_convertvector(fx, I); // truncation towards 0, so one too high when fx < 0
+    n = n + (__builtin_convertvector(n, F) > fx);
+    const F fn = __builtin_convertvector(n, F);
+    x = x - fn * 0.693359375f - fn * -2.12194440e-4f;
+    const F z = x * x;
+    F y = splat<F>(1.9875691500e-4f);
+    y = y * x + 1.3981999507e-3f;
+    y = y * x + 8.3334519073e-3f;
+    y = y * x + 4.1665795894e-2f;
+    y = y * x + 1.6666665459e-1f;
+    y = y * x + 5.0000001201e-1f;
+    y = y * z + x + 1.0f;
+    return select(alive, y * F((n + 127) << 23));
 }
 
-inline double hsum(F8 v) {
+template <class F> WEFT_INLINE double hsum(F v) {
     double s = 0.0;
-    for (int i = 0; i < kLanes; ++i) s += double(v[i]);
+    for (size_t i = 0; i < sizeof(F) / sizeof(float); ++i) s += double(v[i]);
     return s;
 }
+
+struct CostInput {
+    const BlinnPhongGeometry* geo;
+    const float* p[3]; // planes
+    float n[3], e;
+    float *d, *g, *lg; // out, per padded sample
+};
+struct CostSums {
+    double sd, sg, sdd, sdg, sgg, sdp[3], sgp[3];
+};
+
+// d = max(n·l, 0), g = max(n·h, 0)^e, log(n·h) per sample; then the Gram and Φᵀp sums in double
+// (float x float is exact in double; the cost Σp² - Σ bᵀx cancels).
+template <int W> WEFT_INLINE void costKernel(const CostInput& in, CostSums& out) {
+    typedef typename Vec<W>::F F;
+    typedef typename Vec<W>::I I;
+    const BlinnPhongGeometry& geo = *in.geo;
+    const int np = geo.padded;
+    const F nx = splat<F>(in.n[0]), ny = splat<F>(in.n[1]), nz = splat<F>(in.n[2]);
+    const F ef = splat<F>(in.e);
+    for (int s = 0; s < np; s += W) {
+        const F nl = nx * load<F>(&geo.l[0][s]) + ny * load<F>(&geo.l[1][s]) +
+                     nz * load<F>(&geo.l[2][s]);
+        const F nh = nx * load<F>(&geo.h[0][s]) + ny * load<F>(&geo.h[1][s]) +
+                     nz * load<F>(&geo.h[2][s]);
+        const I hpos = nh > 0.0f;
+        const F lg = select(hpos, logv<F, I>(hpos ? nh : splat<F>(1.0f)));
+        store(in.d + s, select(nl > 0.0f, nl));
+        store(in.lg + s, lg);
+        store(in.g + s, select(hpos, expv<F, I>(ef * lg)));
+    }
+    D4 sd{}, sg{}, sdd{}, sdg{}, sgg{}, sdp[3] = {}, sgp[3] = {};
+    for (int s = 0; s < np; s += 4) {
+        const D4 dv = __builtin_convertvector(load<F4>(in.d + s), D4);
+        const D4 gv = __builtin_convertvector(load<F4>(in.g + s), D4);
+        sd += dv;
+        sg += gv;
+        sdd += dv * dv;
+        sdg += dv * gv;
+        sgg += gv * gv;
+        for (int c = 0; c < 3; ++c) {
+            const D4 pv = __builtin_convertvector(load<F4>(in.p[c] + s), D4);
+            sdp[c] += dv * pv;
+            sgp[c] += gv * pv;
+        }
+    }
+    auto sum4 = [](D4 v) { return (v[0] + v[1]) + (v[2] + v[3]); };
+    out.sd = sum4(sd);
+    out.sg = sum4(sg);
+    out.sdd = sum4(sdd);
+    out.sdg = sum4(sdg);
+    out.sgg = sum4(sgg);
+    for (int c = 0; c < 3; ++c) {
+        out.sdp[c] = sum4(sdp[c]);
+        out.sgp[c] = sum4(sgp[c]);
+    }
+}
+
+struct DerivInput {
+    const BlinnPhongGeometry* geo;
+    const float* p[3];
+    const float *d, *g, *lg;
+    float n[3], dn[2][3], e, x[3][3];
+};
+// D = (∂d_u, ∂d_v, ∂g_u, ∂g_v, ∂g_η): DᵀD, (d, 1, g)ᵀD, r_cᵀD with r_c = p_c - Φ x_c.
+struct DerivSums {
+    double dd[5][5], phiD[3][5], rD[3][5];
+};
+
+// float sums: no cancellation left (the residuals are formed per sample) and LM needs JᵀJ and
+// the gradient to a few digits only. Padded samples have D = 0.
+template <int W> WEFT_INLINE void derivKernel(const DerivInput& in, DerivSums& out) {
+    typedef typename Vec<W>::F F;
+    typedef typename Vec<W>::I I;
+    const BlinnPhongGeometry& geo = *in.geo;
+    const int np = geo.padded;
+    const F nx = splat<F>(in.n[0]), ny = splat<F>(in.n[1]), nz = splat<F>(in.n[2]);
+    F du[3], dv[3];
+    for (int k = 0; k < 3; ++k) {
+        du[k] = splat<F>(in.dn[0][k]);
+        dv[k] = splat<F>(in.dn[1][k]);
+    }
+    const F ef = splat<F>(in.e);
+    F x[3][3];
+    for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < 3; ++i) x[c][i] = splat<F>(in.x[c][i]);
+    F dd[5][5] = {}, phiD[3][5] = {}, rD[3][5] = {};
+    for (int s = 0; s < np; s += W) {
+        const F lx = load<F>(&geo.l[0][s]), ly = load<F>(&geo.l[1][s]), lz = load<F>(&geo.l[2][s]);
+        const F hx = load<F>(&geo.h[0][s]), hy = load<F>(&geo.h[1][s]), hz = load<F>(&geo.h[2][s]);
+        const F d = load<F>(in.d + s), g = load<F>(in.g + s), lg = load<F>(in.lg + s);
+        const F nl = nx * lx + ny * ly + nz * lz;
+        const F nh = nx * hx + ny * hy + nz * hz;
+        const I lpos = nl > 0.0f, hpos = nh > 0.0f;
+        const F q = select(hpos, ef * g / (hpos ? nh : splat<F>(1.0f)));
+        F D[5];
+        D[0] = select(lpos, lx * du[0] + ly * du[1] + lz * du[2]);
+        D[1] = select(lpos, lx * dv[0] + ly * dv[1] + lz * dv[2]);
+        D[2] = q * (hx * du[0] + hy * du[1] + hz * du[2]);
+        D[3] = q * (hx * dv[0] + hy * dv[1] + hz * dv[2]);
+        D[4] = g * ef * lg;
+        for (int j = 0; j < 5; ++j) {
+            for (int k = j; k < 5; ++k) dd[j][k] += D[j] * D[k];
+            phiD[0][j] += d * D[j];
+            phiD[1][j] += D[j];
+            phiD[2][j] += g * D[j];
+        }
+        for (int c = 0; c < 3; ++c) {
+            const F r = load<F>(in.p[c] + s) - x[c][0] * d - x[c][1] - x[c][2] * g;
+            for (int j = 0; j < 5; ++j) rD[c][j] += r * D[j];
+        }
+    }
+    for (int j = 0; j < 5; ++j) {
+        for (int k = j; k < 5; ++k) out.dd[j][k] = out.dd[k][j] = hsum(dd[j][k]);
+        for (int i = 0; i < 3; ++i) {
+            out.phiD[i][j] = hsum(phiD[i][j]);
+            out.rD[i][j] = hsum(rD[i][j]);
+        }
+    }
+}
+
+void costGeneric(const CostInput& in, CostSums& out) { costKernel<4>(in, out); }
+void derivGeneric(const DerivInput& in, DerivSums& out) { derivKernel<4>(in, out); }
+void (*chooseCost())(const CostInput&, CostSums&);
+void (*chooseDeriv())(const DerivInput&, DerivSums&);
+
+#if defined(__GNUC__) && defined(__x86_64__)
+__attribute__((target("avx2,fma"))) void costAvx2(const CostInput& in, CostSums& out) {
+    costKernel<8>(in, out);
+}
+__attribute__((target("avx2,fma"))) void derivAvx2(const DerivInput& in, DerivSums& out) {
+    derivKernel<8>(in, out);
+}
+bool haveAvx2() {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+}
+void (*chooseCost())(const CostInput&, CostSums&) { return haveAvx2() ? costAvx2 : costGeneric; }
+void (*chooseDeriv())(const DerivInput&, DerivSums&) {
+    return haveAvx2() ? derivAvx2 : derivGeneric;
+}
+#else
+void (*chooseCost())(const CostInput&, CostSums&) { return costGeneric; }
+void (*chooseDeriv())(const DerivInput&, DerivSums&) { return derivGeneric; }
+#endif
+
+// WEFT_BTF_SIMD=generic forces the 4-lane code (for comparisons and tests).
+bool forceGeneric() {
+    const char* v = std::getenv("WEFT_BTF_SIMD");
+    return v && std::strcmp(v, "generic") == 0;
+}
+void (*const costFn)(const CostInput&, CostSums&) = forceGeneric() ? costGeneric : chooseCost();
+void (*const derivFn)(const DerivInput&, DerivSums&) =
+    forceGeneric() ? derivGeneric : chooseDeriv();
 
 // Sums over the samples of products of the basis Φ = (d, 1, g), its derivatives ∂d_j (j = u, v;
 // ∂d/∂η = 0), ∂g_j (j = u, v, η) and the residuals r_c = p_c - Φ x_c: everything Kaufman's JᵀJ
@@ -138,7 +299,6 @@ struct Evaluation {
     double sdd[2][2] = {}, sdg[2][3] = {}, sgg[3][3] = {};
     double pd[3][2] = {}, pg[3][3] = {}; // Φᵀ ∂d, Φᵀ ∂g
     double rd[3][2] = {}, rg[3][3] = {}; // r_cᵀ ∂d, r_cᵀ ∂g
-    bool derivatives = false;
     Cholesky3 factor;
     std::vector<float> d, g, lg; // per padded sample
     glm::dvec3 nrm{0, 0, 1}, dn[2];
@@ -155,65 +315,38 @@ bool factorGram(const double g[3][3], Cholesky3& f) {
     return f.factor(r, 0.0);
 }
 
-// The cost at θ: d, g per sample (float, far below the data's precision), Gram matrix and Φᵀp
-// accumulated in double (the cost Σp² - Σ bᵀx cancels), the optimal x_c and the cost.
+const float* plane(const BlinnPhongTexel& tx, int c) {
+    return &tx.planes[size_t(c) * size_t(tx.geometry->padded)];
+}
+
+// The cost at θ: the optimal x_c for the basis there and Σ residual².
 void evaluateCost(const BlinnPhongTexel& tx, const double theta[3], Evaluation& ev) {
-    const BlinnPhongGeometry& geo = *tx.geometry;
-    const int np = geo.padded;
-    ev.derivatives = false;
-    ev.d.resize(size_t(np));
-    ev.g.resize(size_t(np));
-    ev.lg.resize(size_t(np));
+    const size_t np = size_t(tx.geometry->padded);
+    ev.d.resize(np);
+    ev.g.resize(np);
+    ev.lg.resize(np);
     const glm::dvec3 w = tx.n0 + theta[0] * tx.t1 + theta[1] * tx.t2;
     const double len = glm::length(w);
     ev.nrm = w / len;
     ev.dn[0] = (tx.t1 - ev.nrm * glm::dot(ev.nrm, tx.t1)) / len;
     ev.dn[1] = (tx.t2 - ev.nrm * glm::dot(ev.nrm, tx.t2)) / len;
     ev.e = std::exp(theta[2]);
-    const F8 nx = splat(float(ev.nrm.x)), ny = splat(float(ev.nrm.y)), nz = splat(float(ev.nrm.z));
-    const F8 ef = splat(float(ev.e));
-    for (int s = 0; s < np; s += kLanes) {
-        const F8 nl = nx * load8(&geo.l[0][s]) + ny * load8(&geo.l[1][s]) + nz * load8(&geo.l[2][s]);
-        const F8 nh = nx * load8(&geo.h[0][s]) + ny * load8(&geo.h[1][s]) + nz * load8(&geo.h[2][s]);
-        const I8 hpos = nh > splat(0.0f);
-        const F8 lg = select(hpos, log8(hpos ? nh : splat(1.0f)));
-        store8(&ev.d[size_t(s)], select(nl > splat(0.0f), nl));
-        store8(&ev.lg[size_t(s)], lg);
-        store8(&ev.g[size_t(s)], select(hpos, exp8(ef * lg)));
-    }
-    // float x float is exact in double: accumulate the products in double, four lanes at a time
-    D4 sd{}, sg{}, sdd{}, sdg{}, sgg{}, sdp[3] = {}, sgp[3] = {};
-    const float* p[3] = {&tx.planes[0], &tx.planes[size_t(np)], &tx.planes[2 * size_t(np)]};
-    for (int s = 0; s < np; s += 4) {
-        F4 d4, g4;
-        std::memcpy(&d4, &ev.d[size_t(s)], sizeof d4);
-        std::memcpy(&g4, &ev.g[size_t(s)], sizeof g4);
-        const D4 dv = __builtin_convertvector(d4, D4), gv = __builtin_convertvector(g4, D4);
-        sd += dv;
-        sg += gv;
-        sdd += dv * dv;
-        sdg += dv * gv;
-        sgg += gv * gv;
-        for (int c = 0; c < 3; ++c) {
-            F4 p4;
-            std::memcpy(&p4, p[c] + s, sizeof p4);
-            const D4 pv = __builtin_convertvector(p4, D4);
-            sdp[c] += dv * pv;
-            sgp[c] += gv * pv;
-        }
-    }
-    auto sum4 = [](D4 v) { return (v[0] + v[1]) + (v[2] + v[3]); };
+    CostInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)},
+                 {float(ev.nrm.x), float(ev.nrm.y), float(ev.nrm.z)}, float(ev.e),
+                 ev.d.data(), ev.g.data(), ev.lg.data()};
+    CostSums sums;
+    costFn(in, sums);
     double G[3][3];
-    G[0][0] = sum4(sdd);
-    G[0][1] = G[1][0] = sum4(sd);
-    G[0][2] = G[2][0] = sum4(sdg);
-    G[1][1] = double(geo.count);
-    G[1][2] = G[2][1] = sum4(sg);
-    G[2][2] = sum4(sgg);
+    G[0][0] = sums.sdd;
+    G[0][1] = G[1][0] = sums.sd;
+    G[0][2] = G[2][0] = sums.sdg;
+    G[1][1] = double(tx.geometry->count);
+    G[1][2] = G[2][1] = sums.sg;
+    G[2][2] = sums.sgg;
     for (int c = 0; c < 3; ++c) {
-        ev.b[c][0] = sum4(sdp[c]);
+        ev.b[c][0] = sums.sdp[c];
         ev.b[c][1] = tx.sums[c];
-        ev.b[c][2] = sum4(sgp[c]);
+        ev.b[c][2] = sums.sgp[c];
     }
     factorGram(G, ev.factor);
     double cost = 0.0; // Σ p² - Σ_c b_cᵀ x_c at the least-squares solution
@@ -226,69 +359,32 @@ void evaluateCost(const BlinnPhongTexel& tx, const double theta[3], Evaluation& 
     ev.result.cost = std::max(cost, 0.0);
 }
 
-// The derivative sums at the point of the last evaluateCost (float: no cancellation left, the
-// residuals are formed per sample; LM needs JᵀJ and the gradient to a few digits only).
+// The derivative sums at the point of the last evaluateCost.
 void evaluateDerivatives(const BlinnPhongTexel& tx, Evaluation& ev) {
-    const BlinnPhongGeometry& geo = *tx.geometry;
-    const int np = geo.padded;
-    const F8 nx = splat(float(ev.nrm.x)), ny = splat(float(ev.nrm.y)), nz = splat(float(ev.nrm.z));
-    F8 du[3], dv[3];
-    for (int k = 0; k < 3; ++k) {
-        du[k] = splat(float(ev.dn[0][k]));
-        dv[k] = splat(float(ev.dn[1][k]));
-    }
-    const F8 ef = splat(float(ev.e));
-    F8 x[3][3];
+    DerivInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)},
+                  ev.d.data(), ev.g.data(), ev.lg.data(),
+                  {float(ev.nrm.x), float(ev.nrm.y), float(ev.nrm.z)},
+                  {{float(ev.dn[0].x), float(ev.dn[0].y), float(ev.dn[0].z)},
+                   {float(ev.dn[1].x), float(ev.dn[1].y), float(ev.dn[1].z)}},
+                  float(ev.e), {}};
     for (int c = 0; c < 3; ++c)
-        for (int i = 0; i < 3; ++i) x[c][i] = splat(float(ev.result.coef[c][i]));
-    // D = (∂d_u, ∂d_v, ∂g_u, ∂g_v, ∂g_η); sums DᵀD (15), (d, 1, g)ᵀD (15), r_cᵀD (15)
-    F8 dd[5][5] = {}, phiD[3][5] = {}, rD[3][5] = {};
-    const size_t n = size_t(np);
-    for (int s = 0; s < np; s += kLanes) {
-        const F8 lx = load8(&geo.l[0][s]), ly = load8(&geo.l[1][s]), lz = load8(&geo.l[2][s]);
-        const F8 hx = load8(&geo.h[0][s]), hy = load8(&geo.h[1][s]), hz = load8(&geo.h[2][s]);
-        const F8 d = load8(&ev.d[size_t(s)]), g = load8(&ev.g[size_t(s)]);
-        const F8 lg = load8(&ev.lg[size_t(s)]);
-        const F8 nl = nx * lx + ny * ly + nz * lz;
-        const F8 nh = nx * hx + ny * hy + nz * hz;
-        const I8 lpos = nl > splat(0.0f), hpos = nh > splat(0.0f);
-        const F8 q = select(hpos, ef * g / (hpos ? nh : splat(1.0f)));
-        F8 D[5];
-        D[0] = select(lpos, lx * du[0] + ly * du[1] + lz * du[2]);
-        D[1] = select(lpos, lx * dv[0] + ly * dv[1] + lz * dv[2]);
-        D[2] = q * (hx * du[0] + hy * du[1] + hz * du[2]);
-        D[3] = q * (hx * dv[0] + hy * dv[1] + hz * dv[2]);
-        D[4] = g * ef * lg;
-        const F8 phi[3] = {d, splat(1.0f), g};
-        for (int j = 0; j < 5; ++j) {
-            for (int q2 = j; q2 < 5; ++q2) dd[j][q2] += D[j] * D[q2];
-            for (int i = 0; i < 3; ++i) phiD[i][j] += phi[i] * D[j];
-        }
-        for (int c = 0; c < 3; ++c) {
-            const F8 r = load8(&tx.planes[size_t(c) * n + size_t(s)]) - x[c][0] * d - x[c][1] -
-                         x[c][2] * g;
-            for (int j = 0; j < 5; ++j) rD[c][j] += r * D[j];
-        }
-    }
-    // padded samples: D = 0 there, so the constant basis adds nothing either
-    double sdd5[5][5];
-    for (int j = 0; j < 5; ++j)
-        for (int q2 = j; q2 < 5; ++q2) sdd5[j][q2] = sdd5[q2][j] = hsum(dd[j][q2]);
+        for (int i = 0; i < 3; ++i) in.x[c][i] = float(ev.result.coef[c][i]);
+    DerivSums s;
+    derivFn(in, s);
     for (int j = 0; j < 2; ++j) {
-        for (int q2 = 0; q2 < 2; ++q2) ev.sdd[j][q2] = sdd5[j][q2];
-        for (int q2 = 0; q2 < 3; ++q2) ev.sdg[j][q2] = sdd5[j][2 + q2];
+        for (int k = 0; k < 2; ++k) ev.sdd[j][k] = s.dd[j][k];
+        for (int k = 0; k < 3; ++k) ev.sdg[j][k] = s.dd[j][2 + k];
     }
     for (int j = 0; j < 3; ++j)
-        for (int q2 = 0; q2 < 3; ++q2) ev.sgg[j][q2] = sdd5[2 + j][2 + q2];
+        for (int k = 0; k < 3; ++k) ev.sgg[j][k] = s.dd[2 + j][2 + k];
     for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 2; ++j) ev.pd[i][j] = hsum(phiD[i][j]);
-        for (int j = 0; j < 3; ++j) ev.pg[i][j] = hsum(phiD[i][2 + j]);
+        for (int j = 0; j < 2; ++j) ev.pd[i][j] = s.phiD[i][j];
+        for (int j = 0; j < 3; ++j) ev.pg[i][j] = s.phiD[i][2 + j];
     }
     for (int c = 0; c < 3; ++c) {
-        for (int j = 0; j < 2; ++j) ev.rd[c][j] = hsum(rD[c][j]);
-        for (int j = 0; j < 3; ++j) ev.rg[c][j] = hsum(rD[c][2 + j]);
+        for (int j = 0; j < 2; ++j) ev.rd[c][j] = s.rD[c][j];
+        for (int j = 0; j < 3; ++j) ev.rg[c][j] = s.rD[c][2 + j];
     }
-    ev.derivatives = true;
 }
 
 void evaluate(const BlinnPhongTexel& tx, const double theta[3], bool derivatives, Evaluation& ev) {
