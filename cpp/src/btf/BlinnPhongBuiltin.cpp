@@ -38,16 +38,25 @@ BlinnPhongGeometry::BlinnPhongGeometry(const std::vector<glm::vec3>& lights,
 }
 
 void BlinnPhongTexel::prepare() {
-    updateSquares();
     const size_t n = size_t(geometry->count), np = size_t(geometry->padded);
-    planes.assign(3 * np, 0.0f);
+    planeStore.assign(3 * np, 0.0f);
+    for (int c = 0; c < 3; ++c)
+        for (size_t s = 0; s < n; ++s) planeStore[size_t(c) * np + s] = values[s * 3 + size_t(c)];
+    setPlanes(planeStore.data());
+}
+
+void BlinnPhongTexel::setPlanes(const float* p) {
+    planes = p;
+    const size_t n = size_t(geometry->count), np = size_t(geometry->padded);
     for (int c = 0; c < 3; ++c) {
-        double sum = 0.0;
+        double sum = 0.0, sq = 0.0;
         for (size_t s = 0; s < n; ++s) {
-            planes[size_t(c) * np + s] = values[s * 3 + size_t(c)];
-            sum += values[s * 3 + size_t(c)];
+            const double v = p[size_t(c) * np + s];
+            sum += v;
+            sq += v * v;
         }
         sums[c] = sum;
+        squares[c] = sq;
     }
 }
 
@@ -83,7 +92,8 @@ template <class F> WEFT_INLINE F load(const float* p) {
 }
 template <class F> WEFT_INLINE void store(float* p, F v) { std::memcpy(p, &v, sizeof v); }
 template <class F> WEFT_INLINE F splat(float x) { return F{} + x; }
-template <class F, class I> WEFT_INLINE F select(I mask, F a) { return F(I(a) & mask); } // mask ? a : 0
+// mask ? a : 0
+template <class F, class I> WEFT_INLINE F select(I mask, F a) { return F(I(a) & mask); }
 
 // Natural log for x > 0 (Cephes logf: mantissa in [√½, √2), degree-8 polynomial; ~1 ulp).
 template <class F, class I> WEFT_INLINE F logv(F x) {
@@ -316,7 +326,7 @@ bool factorGram(const double g[3][3], Cholesky3& f) {
 }
 
 const float* plane(const BlinnPhongTexel& tx, int c) {
-    return &tx.planes[size_t(c) * size_t(tx.geometry->padded)];
+    return tx.planes + size_t(c) * size_t(tx.geometry->padded);
 }
 
 // The cost at θ: the optimal x_c for the basis there and Σ residual².
@@ -410,6 +420,15 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
     int done = 0; // accepted steps
     for (int it = 0; it < maxIterations; ++it) {
         double jtj[3][3] = {}, grad[3] = {};
+        // G⁻¹ Φᵀ∂d_j and G⁻¹ Φᵀ∂g_j once: a channel's G⁻¹ ΦᵀD_j is m G⁻¹Φᵀ∂d_j + k G⁻¹Φᵀ∂g_j
+        double invPd[2][3], invPg[3][3];
+        for (int q = 0; q < 3; ++q) {
+            const double colG[3] = {cur.pg[0][q], cur.pg[1][q], cur.pg[2][q]};
+            cur.factor.solve(colG, invPg[q]);
+            if (q == 2) continue;
+            const double colD[3] = {cur.pd[0][q], cur.pd[1][q], cur.pd[2][q]};
+            cur.factor.solve(colD, invPd[q]);
+        }
         for (int c = 0; c < 3; ++c) {
             const double* x = cur.result.coef[c];
             const double m = x[0], k = x[2];
@@ -428,10 +447,9 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
             for (int j = 0; j < 3; ++j) // r_cᵀ D_j, D_j = m ∂d_j + k ∂g_j
                 grad[j] -= k * cur.rg[c][j] + (j < 2 ? m * cur.rd[c][j] : 0.0);
             double sol[3][3]; // G⁻¹ ΦᵀD, column per θ_j
-            for (int q = 0; q < 3; ++q) {
-                const double col[3] = {phiD[0][q], phiD[1][q], phiD[2][q]};
-                cur.factor.solve(col, sol[q]);
-            }
+            for (int q = 0; q < 3; ++q)
+                for (int i = 0; i < 3; ++i)
+                    sol[q][i] = k * invPg[q][i] + (q < 2 ? m * invPd[q][i] : 0.0);
             for (int j = 0; j < 3; ++j)
                 for (int q = 0; q < 3; ++q) {
                     double proj = 0.0;

@@ -23,15 +23,18 @@ struct BlinnPhongTexel {
     std::vector<float> values;                      ///< p, [sample][channel]
     double squares[3] = {0, 0, 0};                  ///< Σ_s p_sc² (set with the values)
     glm::dvec3 n0{0, 0, 1}, t1{1, 0, 0}, t2{0, 1, 0};
-    // For the built-in solver (prepare()): the values as [channel][padded sample], Σ_s p_sc.
+    // For the built-in solver: the values as [channel][padded sample] (zero padding), Σ_s p_sc.
     const BlinnPhongGeometry* geometry = nullptr;
-    std::vector<float> planes;
+    const float* planes = nullptr;
+    std::vector<float> planeStore;
     double sums[3] = {0, 0, 0};
 
     void setSeedNormal(glm::vec3 n);
     void updateSquares();
-    /// updateSquares() plus `planes` and `sums` from `values` (needs `geometry`).
+    /// updateSquares() plus `planes` (in planeStore) and `sums` from `values` (needs `geometry`).
     void prepare();
+    /// `planes`, `sums` and `squares` from planes laid out as above (values left alone).
+    void setPlanes(const float* p);
     glm::dvec3 normal(double u, double v) const;
 };
 
