@@ -70,6 +70,11 @@ namespace {
 // vector extensions), with polynomial log/exp instead of libm calls: W = 4 (SSE, or any 16-byte
 // SIMD) everywhere, W = 8 in a copy compiled for AVX2 + FMA and chosen at run time on x86-64.
 // (32-byte vectors compiled without AVX get their comparisons scalarised.)
+// The 8-lane helpers take and return 32-byte vectors but are always inlined into the AVX2
+// functions, so no call ever crosses the ABI GCC warns about.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 template <int W> struct Vec;
 template <> struct Vec<4> {
     typedef float F __attribute__((vector_size(16)));
