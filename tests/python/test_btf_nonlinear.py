@@ -97,3 +97,33 @@ def test_lafortune_uses_the_view_directions() -> None:
     assert btf.deviation(samples, one.errors(samples))["total"] < total(samples, spec.material)
     # with oblique views C_x, C_y move from their start (-1) towards the mirror lobe's values
     assert np.any(np.abs(one.lobe_shape[..., 0] + 1) > 1e-4)
+
+
+def test_auto_solver_is_the_builtin(wool) -> None:
+    samples, _, _, spec = wool
+    assert btf.fit_blinn_phong(samples, spec.material).solver == "builtin"
+
+
+def test_simd_paths_agree() -> None:
+    """The AVX2 kernels (picked at run time) and the 4-lane generic ones fit the same model."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    code = ("import json; from weft import btf; s, _ = btf.synthesize('corduroy', 16, "
+            "noise=0.002); sp = btf.fit_specular(s, btf.fit_linear(s)); "
+            "f = btf.fit_blinn_phong(s, sp.material); "
+            "print(json.dumps([f.material.normal.tolist(), f.material.exponent_map.tolist(), "
+            "float(btf.sample_errors(s, f.material).mean())]))")
+    runs = []
+    for simd in ("", "generic"):
+        env = dict(os.environ, WEFT_BTF_SIMD=simd)
+        out = subprocess.run([sys.executable, "-c", code], env=env, check=True,
+                             capture_output=True, text=True).stdout
+        runs.append(json.loads(out))
+    (n_a, e_a, err_a), (n_b, e_b, err_b) = runs
+    assert err_a == pytest.approx(err_b, rel=0.01)
+    angle = btf.angular_error_deg(np.asarray(n_a, np.float32), np.asarray(n_b, np.float32))
+    assert np.median(angle) < 0.01
+    assert np.median(np.abs(np.asarray(e_a) / np.asarray(e_b) - 1)) < 1e-3

@@ -2,7 +2,8 @@
 // Per-texel nonlinear Blinn-Phong fit seeded by the linear fit (SPEC §3.5):
 // P_c = m_c max(n·l, 0) + b_c + k_c max(n·h, 0)^e, unknowns n (2 dof), m, b, k (RGB), e.
 // Built-in: Levenberg-Marquardt over (n, log e) with m, b, k eliminated by variable projection
-// (Kaufman's Jacobian). Ceres (when built with it): the full 12-parameter problem, autodiff.
+// (Kaufman's Jacobian), the default. Ceres (when built with it and asked for): the full
+// 12-parameter problem, autodiff.
 #include <string>
 
 #include <weft/BtfFit.h>
@@ -12,7 +13,7 @@ namespace weft {
 enum class BtfSolver { Auto, Builtin, Ceres };
 
 struct BtfNonlinearOptions {
-    BtfSolver solver = BtfSolver::Auto; ///< Auto: Ceres when built with it, else built-in
+    BtfSolver solver = BtfSolver::Auto; ///< Auto: the built-in LM (fastest, as accurate)
     int maxIterations = 30;
     float minExponent = 1.0f, maxExponent = 4096.0f;
     int threads = 0;

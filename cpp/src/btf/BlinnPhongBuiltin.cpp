@@ -1,7 +1,10 @@
 // Built-in Levenberg-Marquardt for the per-texel Blinn-Phong fit by variable projection: the
 // linear coefficients (m, b, k per channel) are eliminated, LM runs over (u, v, η) with
 // Kaufman's approximation J_c = -P⊥ (∂Φ/∂θ) c_c of the projected residual's Jacobian.
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 
 #include "btf/BlinnPhongTexel.h"
 #include "btf/Cholesky3.h"
@@ -20,22 +23,301 @@ void BlinnPhongTexel::updateSquares() {
     for (size_t i = 0; i < values.size(); ++i) squares[i % 3] += double(values[i]) * values[i];
 }
 
+BlinnPhongGeometry::BlinnPhongGeometry(const std::vector<glm::vec3>& lights,
+                                       const std::vector<glm::vec3>& halves) {
+    count = int(lights.size());
+    padded = (count + kBlinnPhongLanes - 1) / kBlinnPhongLanes * kBlinnPhongLanes;
+    for (int k = 0; k < 3; ++k) {
+        l[k].assign(size_t(padded), 0.0f);
+        h[k].assign(size_t(padded), 0.0f);
+        for (int s = 0; s < count; ++s) {
+            l[k][size_t(s)] = lights[size_t(s)][k];
+            h[k][size_t(s)] = halves[size_t(s)][k];
+        }
+    }
+}
+
+void BlinnPhongTexel::prepare() {
+    const size_t n = size_t(geometry->count), np = size_t(geometry->padded);
+    planeStore.assign(3 * np, 0.0f);
+    for (int c = 0; c < 3; ++c)
+        for (size_t s = 0; s < n; ++s) planeStore[size_t(c) * np + s] = values[s * 3 + size_t(c)];
+    setPlanes(planeStore.data());
+}
+
+void BlinnPhongTexel::setPlanes(const float* p) {
+    planes = p;
+    const size_t n = size_t(geometry->count), np = size_t(geometry->padded);
+    for (int c = 0; c < 3; ++c) {
+        double sum = 0.0, sq = 0.0;
+        for (size_t s = 0; s < n; ++s) {
+            const double v = p[size_t(c) * np + s];
+            sum += v;
+            sq += v * v;
+        }
+        sums[c] = sum;
+        squares[c] = sq;
+    }
+}
+
 glm::dvec3 BlinnPhongTexel::normal(double u, double v) const {
     return glm::normalize(n0 + u * t1 + v * t2);
 }
 
 namespace {
 
+// The per-sample work runs on the padded structure-of-arrays samples W floats at a time (GCC
+// vector extensions), with polynomial log/exp instead of libm calls: W = 4 (SSE, or any 16-byte
+// SIMD) everywhere, W = 8 in a copy compiled for AVX2 + FMA and chosen at run time on x86-64.
+// (32-byte vectors compiled without AVX get their comparisons scalarised.)
+// The 8-lane helpers take and return 32-byte vectors but are always inlined into the AVX2
+// functions, so no call ever crosses the ABI GCC warns about.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+template <int W> struct Vec;
+template <> struct Vec<4> {
+    typedef float F __attribute__((vector_size(16)));
+    typedef int I __attribute__((vector_size(16)));
+};
+template <> struct Vec<8> {
+    typedef float F __attribute__((vector_size(32)));
+    typedef int I __attribute__((vector_size(32)));
+};
+typedef double D4 __attribute__((vector_size(32)));
+typedef float F4 __attribute__((vector_size(16)));
+static_assert(kBlinnPhongLanes % 8 == 0, "padding must hold whole vectors");
+
+#define WEFT_INLINE inline __attribute__((always_inline))
+
+template <class F> WEFT_INLINE F load(const float* p) {
+    F v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+template <class F> WEFT_INLINE void store(float* p, F v) { std::memcpy(p, &v, sizeof v); }
+template <class F> WEFT_INLINE F splat(float x) { return F{} + x; }
+// mask ? a : 0
+template <class F, class I> WEFT_INLINE F select(I mask, F a) { return F(I(a) & mask); }
+
+// Natural log for x > 0 (Cephes logf: mantissa in [√½, √2), degree-8 polynomial; ~1 ulp).
+template <class F, class I> WEFT_INLINE F logv(F x) {
+    const I bits = I(x);
+    I ex = ((bits >> 23) & 0xff) - 126;
+    F m = F((bits & 0x007fffff) | 0x3f000000); // [0.5, 1)
+    const I small = m < splat<F>(0.707106781186547524f);
+    ex = ex + small;                            // small is -1 where true
+    m = m + select(small, m) - 1.0f;
+    const F z = m * m;
+    F y = splat<F>(7.0376836292e-2f);
+    y = y * m - 1.1514610310e-1f;
+    y = y * m + 1.1676998740e-1f;
+    y = y * m - 1.2420140846e-1f;
+    y = y * m + 1.4249322787e-1f;
+    y = y * m - 1.6668057665e-1f;
+    y = y * m + 2.0000714765e-1f;
+    y = y * m - 2.4999993993e-1f;
+    y = y * m + 3.3333331174e-1f;
+    y = y * m * z;
+    const F fe = __builtin_convertvector(ex, F);
+    y = y + fe * -2.12194440e-4f - 0.5f * z;
+    return m + y + fe * 0.693359375f;
+}
+
+// exp(x) for x <= 0 (Cephes expf: x = n ln2 + r, degree-5 polynomial; ~1 ulp); 0 below -87.
+template <class F, class I> WEFT_INLINE F expv(F x) {
+    const I alive = x > -87.0f;
+    x = alive ? x : splat<F>(-87.0f);
+    const F fx = x * 1.44269504088896341f + 0.5f;
+    I n = __builtin_convertvector(fx, I); // truncation towards 0, so one too high when fx < 0
+    n = n + (__builtin_convertvector(n, F) > fx);
+    const F fn = __builtin_convertvector(n, F);
+    x = x - fn * 0.693359375f - fn * -2.12194440e-4f;
+    const F z = x * x;
+    F y = splat<F>(1.9875691500e-4f);
+    y = y * x + 1.3981999507e-3f;
+    y = y * x + 8.3334519073e-3f;
+    y = y * x + 4.1665795894e-2f;
+    y = y * x + 1.6666665459e-1f;
+    y = y * x + 5.0000001201e-1f;
+    y = y * z + x + 1.0f;
+    return select(alive, y * F((n + 127) << 23));
+}
+
+template <class F> WEFT_INLINE double hsum(F v) {
+    double s = 0.0;
+    for (size_t i = 0; i < sizeof(F) / sizeof(float); ++i) s += double(v[i]);
+    return s;
+}
+
+struct CostInput {
+    const BlinnPhongGeometry* geo;
+    const float* p[3]; // planes
+    float n[3], e;
+    float *d, *g, *lg; // out, per padded sample
+};
+struct CostSums {
+    double sd, sg, sdd, sdg, sgg, sdp[3], sgp[3];
+};
+
+// d = max(n·l, 0), g = max(n·h, 0)^e, log(n·h) per sample; then the Gram and Φᵀp sums in double
+// (float x float is exact in double; the cost Σp² - Σ bᵀx cancels).
+template <int W> WEFT_INLINE void costKernel(const CostInput& in, CostSums& out) {
+    typedef typename Vec<W>::F F;
+    typedef typename Vec<W>::I I;
+    const BlinnPhongGeometry& geo = *in.geo;
+    const int np = geo.padded;
+    const F nx = splat<F>(in.n[0]), ny = splat<F>(in.n[1]), nz = splat<F>(in.n[2]);
+    const F ef = splat<F>(in.e);
+    for (int s = 0; s < np; s += W) {
+        const F nl = nx * load<F>(&geo.l[0][s]) + ny * load<F>(&geo.l[1][s]) +
+                     nz * load<F>(&geo.l[2][s]);
+        const F nh = nx * load<F>(&geo.h[0][s]) + ny * load<F>(&geo.h[1][s]) +
+                     nz * load<F>(&geo.h[2][s]);
+        const I hpos = nh > 0.0f;
+        const F lg = select(hpos, logv<F, I>(hpos ? nh : splat<F>(1.0f)));
+        store(in.d + s, select(nl > 0.0f, nl));
+        store(in.lg + s, lg);
+        store(in.g + s, select(hpos, expv<F, I>(ef * lg)));
+    }
+    D4 sd{}, sg{}, sdd{}, sdg{}, sgg{}, sdp[3] = {}, sgp[3] = {};
+    for (int s = 0; s < np; s += 4) {
+        const D4 dv = __builtin_convertvector(load<F4>(in.d + s), D4);
+        const D4 gv = __builtin_convertvector(load<F4>(in.g + s), D4);
+        sd += dv;
+        sg += gv;
+        sdd += dv * dv;
+        sdg += dv * gv;
+        sgg += gv * gv;
+        for (int c = 0; c < 3; ++c) {
+            const D4 pv = __builtin_convertvector(load<F4>(in.p[c] + s), D4);
+            sdp[c] += dv * pv;
+            sgp[c] += gv * pv;
+        }
+    }
+    auto sum4 = [](D4 v) { return (v[0] + v[1]) + (v[2] + v[3]); };
+    out.sd = sum4(sd);
+    out.sg = sum4(sg);
+    out.sdd = sum4(sdd);
+    out.sdg = sum4(sdg);
+    out.sgg = sum4(sgg);
+    for (int c = 0; c < 3; ++c) {
+        out.sdp[c] = sum4(sdp[c]);
+        out.sgp[c] = sum4(sgp[c]);
+    }
+}
+
+struct DerivInput {
+    const BlinnPhongGeometry* geo;
+    const float* p[3];
+    const float *d, *g, *lg;
+    float n[3], dn[2][3], e, x[3][3];
+};
+// D = (∂d_u, ∂d_v, ∂g_u, ∂g_v, ∂g_η): DᵀD, (d, 1, g)ᵀD, r_cᵀD with r_c = p_c - Φ x_c.
+struct DerivSums {
+    double dd[5][5], phiD[3][5], rD[3][5];
+};
+
+// float sums: no cancellation left (the residuals are formed per sample) and LM needs JᵀJ and
+// the gradient to a few digits only. Padded samples have D = 0.
+template <int W> WEFT_INLINE void derivKernel(const DerivInput& in, DerivSums& out) {
+    typedef typename Vec<W>::F F;
+    typedef typename Vec<W>::I I;
+    const BlinnPhongGeometry& geo = *in.geo;
+    const int np = geo.padded;
+    const F nx = splat<F>(in.n[0]), ny = splat<F>(in.n[1]), nz = splat<F>(in.n[2]);
+    F du[3], dv[3];
+    for (int k = 0; k < 3; ++k) {
+        du[k] = splat<F>(in.dn[0][k]);
+        dv[k] = splat<F>(in.dn[1][k]);
+    }
+    const F ef = splat<F>(in.e);
+    F x[3][3];
+    for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < 3; ++i) x[c][i] = splat<F>(in.x[c][i]);
+    F dd[5][5] = {}, phiD[3][5] = {}, rD[3][5] = {};
+    for (int s = 0; s < np; s += W) {
+        const F lx = load<F>(&geo.l[0][s]), ly = load<F>(&geo.l[1][s]), lz = load<F>(&geo.l[2][s]);
+        const F hx = load<F>(&geo.h[0][s]), hy = load<F>(&geo.h[1][s]), hz = load<F>(&geo.h[2][s]);
+        const F d = load<F>(in.d + s), g = load<F>(in.g + s), lg = load<F>(in.lg + s);
+        const F nl = nx * lx + ny * ly + nz * lz;
+        const F nh = nx * hx + ny * hy + nz * hz;
+        const I lpos = nl > 0.0f, hpos = nh > 0.0f;
+        const F q = select(hpos, ef * g / (hpos ? nh : splat<F>(1.0f)));
+        F D[5];
+        D[0] = select(lpos, lx * du[0] + ly * du[1] + lz * du[2]);
+        D[1] = select(lpos, lx * dv[0] + ly * dv[1] + lz * dv[2]);
+        D[2] = q * (hx * du[0] + hy * du[1] + hz * du[2]);
+        D[3] = q * (hx * dv[0] + hy * dv[1] + hz * dv[2]);
+        D[4] = g * ef * lg;
+        for (int j = 0; j < 5; ++j) {
+            for (int k = j; k < 5; ++k) dd[j][k] += D[j] * D[k];
+            phiD[0][j] += d * D[j];
+            phiD[1][j] += D[j];
+            phiD[2][j] += g * D[j];
+        }
+        for (int c = 0; c < 3; ++c) {
+            const F r = load<F>(in.p[c] + s) - x[c][0] * d - x[c][1] - x[c][2] * g;
+            for (int j = 0; j < 5; ++j) rD[c][j] += r * D[j];
+        }
+    }
+    for (int j = 0; j < 5; ++j) {
+        for (int k = j; k < 5; ++k) out.dd[j][k] = out.dd[k][j] = hsum(dd[j][k]);
+        for (int i = 0; i < 3; ++i) {
+            out.phiD[i][j] = hsum(phiD[i][j]);
+            out.rD[i][j] = hsum(rD[i][j]);
+        }
+    }
+}
+
+void costGeneric(const CostInput& in, CostSums& out) { costKernel<4>(in, out); }
+void derivGeneric(const DerivInput& in, DerivSums& out) { derivKernel<4>(in, out); }
+void (*chooseCost())(const CostInput&, CostSums&);
+void (*chooseDeriv())(const DerivInput&, DerivSums&);
+
+#if defined(__GNUC__) && defined(__x86_64__)
+__attribute__((target("avx2,fma"))) void costAvx2(const CostInput& in, CostSums& out) {
+    costKernel<8>(in, out);
+}
+__attribute__((target("avx2,fma"))) void derivAvx2(const DerivInput& in, DerivSums& out) {
+    derivKernel<8>(in, out);
+}
+bool haveAvx2() {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+}
+void (*chooseCost())(const CostInput&, CostSums&) { return haveAvx2() ? costAvx2 : costGeneric; }
+void (*chooseDeriv())(const DerivInput&, DerivSums&) {
+    return haveAvx2() ? derivAvx2 : derivGeneric;
+}
+#else
+void (*chooseCost())(const CostInput&, CostSums&) { return costGeneric; }
+void (*chooseDeriv())(const DerivInput&, DerivSums&) { return derivGeneric; }
+#endif
+
+// WEFT_BTF_SIMD=generic forces the 4-lane code (for comparisons and tests).
+bool forceGeneric() {
+    const char* v = std::getenv("WEFT_BTF_SIMD");
+    return v && std::strcmp(v, "generic") == 0;
+}
+void (*const costFn)(const CostInput&, CostSums&) = forceGeneric() ? costGeneric : chooseCost();
+void (*const derivFn)(const DerivInput&, DerivSums&) =
+    forceGeneric() ? derivGeneric : chooseDeriv();
+
 // Sums over the samples of products of the basis Φ = (d, 1, g), its derivatives ∂d_j (j = u, v;
-// ∂d/∂η = 0), ∂g_j (j = u, v, η) and the data: everything Kaufman's JᵀJ and the gradient need,
-// independent of the channel, so a channel costs O(1) instead of O(samples).
+// ∂d/∂η = 0), ∂g_j (j = u, v, η) and the residuals r_c = p_c - Φ x_c: everything Kaufman's JᵀJ
+// and the gradient need, independent of the channel, so a channel costs O(1) instead of
+// O(samples). Per sample d, g, log(n·h) are kept for the derivative pass.
 struct Evaluation {
     BlinnPhongResult result;
     double b[3][3] = {};          // Φᵀ p_c per channel
     double sdd[2][2] = {}, sdg[2][3] = {}, sgg[3][3] = {};
     double pd[3][2] = {}, pg[3][3] = {}; // Φᵀ ∂d, Φᵀ ∂g
-    double yd[3][2] = {}, yg[3][3] = {}; // p_cᵀ ∂d, p_cᵀ ∂g
+    double rd[3][2] = {}, rg[3][3] = {}; // r_cᵀ ∂d, r_cᵀ ∂g
     Cholesky3 factor;
+    std::vector<float> d, g, lg; // per padded sample
+    glm::dvec3 nrm{0, 0, 1}, dn[2];
+    double e = 1.0;
 };
 
 // Solves the 3x3 Gram system with a tiny ridge when it is (nearly) singular.
@@ -48,55 +330,39 @@ bool factorGram(const double g[3][3], Cholesky3& f) {
     return f.factor(r, 0.0);
 }
 
-void evaluate(const BlinnPhongTexel& tx, const double theta[3], bool derivatives, Evaluation& ev) {
-    const std::vector<glm::vec3>& L = *tx.lights;
-    const std::vector<glm::vec3>& H = *tx.halves;
-    const size_t n = L.size();
-    ev = Evaluation();
+const float* plane(const BlinnPhongTexel& tx, int c) {
+    return tx.planes + size_t(c) * size_t(tx.geometry->padded);
+}
+
+// The cost at θ: the optimal x_c for the basis there and Σ residual².
+void evaluateCost(const BlinnPhongTexel& tx, const double theta[3], Evaluation& ev) {
+    const size_t np = size_t(tx.geometry->padded);
+    ev.d.resize(np);
+    ev.g.resize(np);
+    ev.lg.resize(np);
     const glm::dvec3 w = tx.n0 + theta[0] * tx.t1 + theta[1] * tx.t2;
     const double len = glm::length(w);
-    const glm::dvec3 nrm = w / len;
-    const glm::dvec3 dn[2] = {(tx.t1 - nrm * glm::dot(nrm, tx.t1)) / len,
-                              (tx.t2 - nrm * glm::dot(nrm, tx.t2)) / len};
-    const double e = std::exp(theta[2]);
-    double G[3][3] = {};
-    for (size_t s = 0; s < n; ++s) {
-        const glm::dvec3 l(L[s]), h(H[s]);
-        const double nl = glm::dot(nrm, l), nh = glm::dot(nrm, h);
-        const double d = nl > 0 ? nl : 0.0;
-        // float log/exp: twice as fast as double and far below the data's precision
-        const double lg = nh > 0 ? double(std::log(float(nh))) : 0.0;
-        const double g = nh > 0 ? double(std::exp(float(e * lg))) : 0.0;
-        const double phi[3] = {d, 1.0, g};
-        const double p[3] = {tx.values[s * 3], tx.values[s * 3 + 1], tx.values[s * 3 + 2]};
-        for (int i = 0; i < 3; ++i) {
-            for (int j = i; j < 3; ++j) G[i][j] += phi[i] * phi[j];
-            for (int c = 0; c < 3; ++c) ev.b[c][i] += phi[i] * p[c];
-        }
-        if (!derivatives) continue;
-        double dd[2], dg[3];
-        for (int j = 0; j < 2; ++j) {
-            dd[j] = nl > 0 ? glm::dot(l, dn[j]) : 0.0;
-            dg[j] = nh > 0 ? e * g / nh * glm::dot(h, dn[j]) : 0.0;
-        }
-        dg[2] = g * e * lg;
-        for (int j = 0; j < 2; ++j) {
-            for (int q = 0; q < 2; ++q) ev.sdd[j][q] += dd[j] * dd[q];
-            for (int q = 0; q < 3; ++q) ev.sdg[j][q] += dd[j] * dg[q];
-        }
-        for (int j = 0; j < 3; ++j)
-            for (int q = 0; q < 3; ++q) ev.sgg[j][q] += dg[j] * dg[q];
-        for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 2; ++j) ev.pd[i][j] += phi[i] * dd[j];
-            for (int j = 0; j < 3; ++j) ev.pg[i][j] += phi[i] * dg[j];
-        }
-        for (int c = 0; c < 3; ++c) {
-            for (int j = 0; j < 2; ++j) ev.yd[c][j] += p[c] * dd[j];
-            for (int j = 0; j < 3; ++j) ev.yg[c][j] += p[c] * dg[j];
-        }
+    ev.nrm = w / len;
+    ev.dn[0] = (tx.t1 - ev.nrm * glm::dot(ev.nrm, tx.t1)) / len;
+    ev.dn[1] = (tx.t2 - ev.nrm * glm::dot(ev.nrm, tx.t2)) / len;
+    ev.e = std::exp(theta[2]);
+    CostInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)},
+                 {float(ev.nrm.x), float(ev.nrm.y), float(ev.nrm.z)}, float(ev.e),
+                 ev.d.data(), ev.g.data(), ev.lg.data()};
+    CostSums sums;
+    costFn(in, sums);
+    double G[3][3];
+    G[0][0] = sums.sdd;
+    G[0][1] = G[1][0] = sums.sd;
+    G[0][2] = G[2][0] = sums.sdg;
+    G[1][1] = double(tx.geometry->count);
+    G[1][2] = G[2][1] = sums.sg;
+    G[2][2] = sums.sgg;
+    for (int c = 0; c < 3; ++c) {
+        ev.b[c][0] = sums.sdp[c];
+        ev.b[c][1] = tx.sums[c];
+        ev.b[c][2] = sums.sgp[c];
     }
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < i; ++j) G[i][j] = G[j][i];
     factorGram(G, ev.factor);
     double cost = 0.0; // Σ p² - Σ_c b_cᵀ x_c at the least-squares solution
     for (int c = 0; c < 3; ++c) {
@@ -106,6 +372,39 @@ void evaluate(const BlinnPhongTexel& tx, const double theta[3], bool derivatives
     }
     for (int i = 0; i < 3; ++i) ev.result.theta[i] = theta[i];
     ev.result.cost = std::max(cost, 0.0);
+}
+
+// The derivative sums at the point of the last evaluateCost.
+void evaluateDerivatives(const BlinnPhongTexel& tx, Evaluation& ev) {
+    DerivInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)},
+                  ev.d.data(), ev.g.data(), ev.lg.data(),
+                  {float(ev.nrm.x), float(ev.nrm.y), float(ev.nrm.z)},
+                  {{float(ev.dn[0].x), float(ev.dn[0].y), float(ev.dn[0].z)},
+                   {float(ev.dn[1].x), float(ev.dn[1].y), float(ev.dn[1].z)}},
+                  float(ev.e), {}};
+    for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < 3; ++i) in.x[c][i] = float(ev.result.coef[c][i]);
+    DerivSums s;
+    derivFn(in, s);
+    for (int j = 0; j < 2; ++j) {
+        for (int k = 0; k < 2; ++k) ev.sdd[j][k] = s.dd[j][k];
+        for (int k = 0; k < 3; ++k) ev.sdg[j][k] = s.dd[j][2 + k];
+    }
+    for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k) ev.sgg[j][k] = s.dd[2 + j][2 + k];
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 2; ++j) ev.pd[i][j] = s.phiD[i][j];
+        for (int j = 0; j < 3; ++j) ev.pg[i][j] = s.phiD[i][2 + j];
+    }
+    for (int c = 0; c < 3; ++c) {
+        for (int j = 0; j < 2; ++j) ev.rd[c][j] = s.rD[c][j];
+        for (int j = 0; j < 3; ++j) ev.rg[c][j] = s.rD[c][2 + j];
+    }
+}
+
+void evaluate(const BlinnPhongTexel& tx, const double theta[3], bool derivatives, Evaluation& ev) {
+    evaluateCost(tx, theta, ev);
+    if (derivatives) evaluateDerivatives(tx, ev);
 }
 
 } // namespace
@@ -118,13 +417,23 @@ BlinnPhongResult blinnPhongProject(const BlinnPhongTexel& texel, const double th
 
 BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, double etaMin,
                                    double etaMax, int maxIterations) {
-    Evaluation cur, trial;
+    // per-thread scratch: no allocation per texel once the sample arrays have their size
+    static thread_local Evaluation cur, trial;
     const double start[3] = {0.0, 0.0, std::min(std::max(eta0, etaMin), etaMax)};
     evaluate(tx, start, true, cur);
     double lambda = 1e-3;
     int done = 0; // accepted steps
     for (int it = 0; it < maxIterations; ++it) {
         double jtj[3][3] = {}, grad[3] = {};
+        // G⁻¹ Φᵀ∂d_j and G⁻¹ Φᵀ∂g_j once: a channel's G⁻¹ ΦᵀD_j is m G⁻¹Φᵀ∂d_j + k G⁻¹Φᵀ∂g_j
+        double invPd[2][3], invPg[3][3];
+        for (int q = 0; q < 3; ++q) {
+            const double colG[3] = {cur.pg[0][q], cur.pg[1][q], cur.pg[2][q]};
+            cur.factor.solve(colG, invPg[q]);
+            if (q == 2) continue;
+            const double colD[3] = {cur.pd[0][q], cur.pd[1][q], cur.pd[2][q]};
+            cur.factor.solve(colD, invPd[q]);
+        }
         for (int c = 0; c < 3; ++c) {
             const double* x = cur.result.coef[c];
             const double m = x[0], k = x[2];
@@ -140,17 +449,12 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j)
                     phiD[i][j] = k * cur.pg[i][j] + (j < 2 ? m * cur.pd[i][j] : 0.0);
-            for (int j = 0; j < 3; ++j) {
-                // r_cᵀ D_j = p_cᵀ D_j - x_cᵀ Φᵀ D_j
-                double rD = k * cur.yg[c][j] + (j < 2 ? m * cur.yd[c][j] : 0.0);
-                for (int i = 0; i < 3; ++i) rD -= x[i] * phiD[i][j];
-                grad[j] -= rD;
-            }
+            for (int j = 0; j < 3; ++j) // r_cᵀ D_j, D_j = m ∂d_j + k ∂g_j
+                grad[j] -= k * cur.rg[c][j] + (j < 2 ? m * cur.rd[c][j] : 0.0);
             double sol[3][3]; // G⁻¹ ΦᵀD, column per θ_j
-            for (int q = 0; q < 3; ++q) {
-                const double col[3] = {phiD[0][q], phiD[1][q], phiD[2][q]};
-                cur.factor.solve(col, sol[q]);
-            }
+            for (int q = 0; q < 3; ++q)
+                for (int i = 0; i < 3; ++i)
+                    sol[q][i] = k * invPg[q][i] + (q < 2 ? m * invPd[q][i] : 0.0);
             for (int j = 0; j < 3; ++j)
                 for (int q = 0; q < 3; ++q) {
                     double proj = 0.0;
@@ -174,7 +478,7 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
             f.solve(rhs, step);
             double next[3] = {cur.result.theta[0] + step[0], cur.result.theta[1] + step[1],
                               std::min(std::max(cur.result.theta[2] + step[2], etaMin), etaMax)};
-            evaluate(tx, next, true, trial);
+            evaluate(tx, next, false, trial); // derivatives only once accepted
             if (trial.result.cost < cur.result.cost) {
                 const double gain = cur.result.cost - trial.result.cost;
                 const double stepSize = std::sqrt(step[0] * step[0] + step[1] * step[1] +
@@ -187,6 +491,8 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
                 // 1e-6 (radians of normal tilt, relative exponent change).
                 if (gain <= 1e-6 * cur.result.cost + 1e-20 || stepSize < 1e-6)
                     it = maxIterations;
+                else
+                    evaluateDerivatives(tx, cur);
             } else {
                 lambda *= 4.0;
             }

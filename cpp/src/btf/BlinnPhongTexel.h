@@ -7,15 +7,34 @@
 
 namespace weft {
 
+/// The sample directions as structure-of-arrays floats, padded with zeros to a multiple of
+/// kBlinnPhongLanes (a padded sample has l = h = 0, so it adds nothing but to the constant
+/// basis function, which the solver counts separately). Built once per fit, shared by all texels.
+constexpr int kBlinnPhongLanes = 8;
+struct BlinnPhongGeometry {
+    int count = 0, padded = 0;
+    std::vector<float> l[3], h[3]; ///< [axis][sample]
+    BlinnPhongGeometry(const std::vector<glm::vec3>& lights, const std::vector<glm::vec3>& halves);
+};
+
 struct BlinnPhongTexel {
     const std::vector<glm::vec3>* lights = nullptr; ///< l_s
     const std::vector<glm::vec3>* halves = nullptr; ///< h_s
     std::vector<float> values;                      ///< p, [sample][channel]
     double squares[3] = {0, 0, 0};                  ///< Σ_s p_sc² (set with the values)
     glm::dvec3 n0{0, 0, 1}, t1{1, 0, 0}, t2{0, 1, 0};
+    // For the built-in solver: the values as [channel][padded sample] (zero padding), Σ_s p_sc.
+    const BlinnPhongGeometry* geometry = nullptr;
+    const float* planes = nullptr;
+    std::vector<float> planeStore;
+    double sums[3] = {0, 0, 0};
 
     void setSeedNormal(glm::vec3 n);
     void updateSquares();
+    /// updateSquares() plus `planes` (in planeStore) and `sums` from `values` (needs `geometry`).
+    void prepare();
+    /// `planes`, `sums` and `squares` from planes laid out as above (values left alone).
+    void setPlanes(const float* p);
     glm::dvec3 normal(double u, double v) const;
 };
 
