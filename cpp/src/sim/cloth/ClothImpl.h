@@ -21,6 +21,7 @@ struct Batch {
     ConstraintFamily family;
     int begin, end; // range in the constraint arrays
     int dx, dy;
+    int rowsBegin = 0, rowsEnd = 0; // its rows in batchRows (the SoA path)
 };
 
 } // namespace weft::cloth
@@ -49,6 +50,17 @@ struct Cloth::Impl {
     std::vector<uint8_t> family, active;
     std::vector<float> lambda;
     std::vector<cloth::Batch> batches;
+    // The structure-of-arrays path of the relaxation (CPUs with AVX-512, no colliders): the
+    // particles are copied into soa (x, y, z, w arrays of soaStride floats) after the
+    // integration and back after the sweeps. Batch b's constraints are dense rows there:
+    // denseRest[b * n + a] is the rest length of its active constraint starting at particle a,
+    // -1 where none does (denseLambda likewise); denseStale after constraints switch on or off.
+    bool useSoa = false;
+    size_t soaStride = 0;
+    std::vector<float> soa;
+    std::vector<float> denseRest, denseLambda;
+    std::vector<int> batchRows;
+    bool denseStale = true;
     // Long-range attachments |x_k - x_anchor| <= length (the rest distance), one-sided, stored
     // by slot: slot s of particle k at [s * n + k] (length +inf where k has fewer tethers).
     int tetherSlots = 0;
@@ -75,6 +87,14 @@ struct Cloth::Impl {
     void substep(float h, float damping);              // (ClothSolver.cpp)
     void relax(float h);                               // one sweep: batches, tethers, colliders
     void projectBatch(const cloth::Batch& batch, float alphaTilde);
+    cloth::SoaParticles soaParticles() {
+        float* base = soa.data();
+        return {base, base + soaStride, base + 2 * soaStride, base + 3 * soaStride};
+    }
+    void syncDense();                // denseRest from constraints and active
+    void toSoa();
+    void fromSoa();
+    void relaxSoa(float h);
     void collide(int begin, int end);
     void selfCollide();
     void computeNormals() const;

@@ -363,7 +363,136 @@ WEFT_AVX void avxTethers(Particle* ps, const TetherJob& job) {
 
 #endif
 
+#if defined(WEFT_CLOTH_X86) && defined(__GNUC__)
+#define WEFT_CLOTH_AVX512 1
+// AVX-512F implies FMA for GCC: no contraction, or a * b + c would round once instead of twice.
+#define WEFT_AVX512 __attribute__((target("avx512f"), optimize("fp-contract=off")))
+
+// The SoA kernels: 16 columns of a row per vector, masked loads and stores, so only the
+// particles of active constraints are read and written (no shuffles, no scatter). The float
+// operations per constraint are those of projectOne / scalarTethers in the same order.
+template <bool Compliant>
+WEFT_AVX512 void denseRows(const SoaParticles& p, const DenseBatchJob& job) {
+    const glm::vec3 u = job.restOffset * kUnfold;
+    const __m512 ux = _mm512_set1_ps(u.x), uy = _mm512_set1_ps(u.y), uz = _mm512_set1_ps(u.z);
+    const __m512 uLen2 = _mm512_set1_ps(glm::dot(u, u)), tiny = _mm512_set1_ps(kCoincident2);
+    const __m512 zero = _mm512_setzero_ps(), alpha = _mm512_set1_ps(job.alphaTilde);
+    const __m512i signBit = _mm512_set1_epi32(int(0x80000000u));
+    const int nx = job.nx;
+    const ptrdiff_t d = job.delta;
+    for (int r = 0; r < job.rowCount; ++r) {
+        const ptrdiff_t row = ptrdiff_t(job.rows[r]) * nx;
+        for (int i = 0; i < nx; i += 16) {
+            const __mmask16 inRow = nx - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (nx - i)) - 1u);
+            const ptrdiff_t a = row + i;
+            const __m512 rest = _mm512_maskz_loadu_ps(inRow, job.rest + a);
+            __mmask16 ok = _mm512_mask_cmp_ps_mask(inRow, rest, zero, _CMP_GE_OQ);
+            if (!ok) continue;
+            const __m512 aw = _mm512_maskz_loadu_ps(ok, p.w + a);
+            const __m512 bw = _mm512_maskz_loadu_ps(ok, p.w + a + d);
+            const __m512 wsum = _mm512_add_ps(aw, bw);
+            ok = _mm512_mask_cmp_ps_mask(ok, wsum, zero, _CMP_GT_OQ);
+            if (!ok) continue;
+            const __m512 ax = _mm512_maskz_loadu_ps(ok, p.x + a), bx = _mm512_maskz_loadu_ps(ok, p.x + a + d);
+            const __m512 ay = _mm512_maskz_loadu_ps(ok, p.y + a), by = _mm512_maskz_loadu_ps(ok, p.y + a + d);
+            const __m512 az = _mm512_maskz_loadu_ps(ok, p.z + a), bz = _mm512_maskz_loadu_ps(ok, p.z + a + d);
+            __m512 dx = _mm512_sub_ps(bx, ax), dy = _mm512_sub_ps(by, ay), dz = _mm512_sub_ps(bz, az);
+            __m512 len2 = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)),
+                                        _mm512_mul_ps(dz, dz));
+            const __mmask16 coincident = _mm512_mask_cmp_ps_mask(ok, len2, tiny, _CMP_LT_OQ);
+            if (coincident) {
+                dx = _mm512_mask_mov_ps(dx, coincident, ux);
+                dy = _mm512_mask_mov_ps(dy, coincident, uy);
+                dz = _mm512_mask_mov_ps(dz, coincident, uz);
+                len2 = _mm512_mask_mov_ps(len2, coincident, uLen2);
+            }
+            const __m512 len = _mm512_sqrt_ps(len2);
+            const __m512 negC = _mm512_castsi512_ps(
+                _mm512_xor_si512(_mm512_castps_si512(_mm512_sub_ps(len, rest)), signBit));
+            __m512 s; // dl / len
+            if (Compliant) {
+                const __m512 lam = _mm512_maskz_loadu_ps(ok, job.lambda + a);
+                const __m512 dl = _mm512_div_ps(_mm512_sub_ps(negC, _mm512_mul_ps(alpha, lam)),
+                                                _mm512_add_ps(wsum, alpha));
+                _mm512_mask_storeu_ps(job.lambda + a, ok, _mm512_add_ps(lam, dl));
+                s = _mm512_div_ps(dl, len);
+            } else {
+                s = _mm512_div_ps(negC, _mm512_mul_ps(wsum, len));
+            }
+            const __m512 cx = _mm512_mul_ps(dx, s), cy = _mm512_mul_ps(dy, s), cz = _mm512_mul_ps(dz, s);
+            _mm512_mask_storeu_ps(p.x + a, ok, _mm512_sub_ps(ax, _mm512_mul_ps(aw, cx)));
+            _mm512_mask_storeu_ps(p.y + a, ok, _mm512_sub_ps(ay, _mm512_mul_ps(aw, cy)));
+            _mm512_mask_storeu_ps(p.z + a, ok, _mm512_sub_ps(az, _mm512_mul_ps(aw, cz)));
+            _mm512_mask_storeu_ps(p.x + a + d, ok, _mm512_add_ps(bx, _mm512_mul_ps(bw, cx)));
+            _mm512_mask_storeu_ps(p.y + a + d, ok, _mm512_add_ps(by, _mm512_mul_ps(bw, cy)));
+            _mm512_mask_storeu_ps(p.z + a + d, ok, _mm512_add_ps(bz, _mm512_mul_ps(bw, cz)));
+        }
+    }
+}
+
+WEFT_AVX512 void tethersSoa(const SoaParticles& p, const TetherJob& job) {
+    const __m512 zero = _mm512_setzero_ps();
+    for (int k = job.begin; k < job.end; k += 16) {
+        const __mmask16 in = job.end - k >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (job.end - k)) - 1u);
+        const __m512 w = _mm512_maskz_loadu_ps(in, p.w + k);
+        const __mmask16 free = _mm512_mask_cmp_ps_mask(in, w, zero, _CMP_NEQ_UQ);
+        if (!free) continue;
+        __m512 x = _mm512_maskz_loadu_ps(free, p.x + k);
+        __m512 y = _mm512_maskz_loadu_ps(free, p.y + k);
+        __m512 z = _mm512_maskz_loadu_ps(free, p.z + k);
+        for (int s = 0; s < job.slots; ++s) {
+            const size_t t = size_t(s) * size_t(job.n) + size_t(k);
+            const __m512i idx = _mm512_maskz_loadu_epi32(free, job.anchor + t);
+            const __m512 ax = _mm512_mask_i32gather_ps(zero, free, idx, p.x, 4);
+            const __m512 ay = _mm512_mask_i32gather_ps(zero, free, idx, p.y, 4);
+            const __m512 az = _mm512_mask_i32gather_ps(zero, free, idx, p.z, 4);
+            const __m512 length = _mm512_maskz_loadu_ps(free, job.length + t);
+            const __m512 dx = _mm512_sub_ps(x, ax), dy = _mm512_sub_ps(y, ay), dz = _mm512_sub_ps(z, az);
+            const __m512 len2 = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)),
+                                              _mm512_mul_ps(dz, dz));
+            const __mmask16 pull = _mm512_mask_cmp_ps_mask(free, len2, _mm512_mul_ps(length, length), _CMP_GT_OQ);
+            if (!pull) continue;
+            const __m512 scale = _mm512_div_ps(length, _mm512_sqrt_ps(len2));
+            x = _mm512_mask_mov_ps(x, pull, _mm512_add_ps(ax, _mm512_mul_ps(dx, scale)));
+            y = _mm512_mask_mov_ps(y, pull, _mm512_add_ps(ay, _mm512_mul_ps(dy, scale)));
+            z = _mm512_mask_mov_ps(z, pull, _mm512_add_ps(az, _mm512_mul_ps(dz, scale)));
+        }
+        _mm512_mask_storeu_ps(p.x + k, free, x);
+        _mm512_mask_storeu_ps(p.y + k, free, y);
+        _mm512_mask_storeu_ps(p.z + k, free, z);
+    }
+}
+#endif
+
 } // namespace
+
+bool hasSoaKernels() {
+#ifdef WEFT_CLOTH_AVX512
+    static const bool has = __builtin_cpu_supports("avx512f");
+    return has;
+#else
+    return false;
+#endif
+}
+
+void projectDense(const SoaParticles& p, const DenseBatchJob& job) {
+#ifdef WEFT_CLOTH_AVX512
+    if (job.alphaTilde != 0.0f) denseRows<true>(p, job);
+    else denseRows<false>(p, job);
+#else
+    (void)p;
+    (void)job;
+#endif
+}
+
+void projectTethersSoa(const SoaParticles& p, const TetherJob& job) {
+#ifdef WEFT_CLOTH_AVX512
+    tethersSoa(p, job);
+#else
+    (void)p;
+    (void)job;
+#endif
+}
 
 Isa bestIsa() {
 #ifdef WEFT_CLOTH_X86

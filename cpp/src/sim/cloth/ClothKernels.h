@@ -55,6 +55,40 @@ struct IntegrateJob {
 
 enum class Isa { Scalar, Sse, Avx };
 
+/// Positions and inverse masses as a structure of arrays (the relaxation's layout when the CPU
+/// has AVX-512): particle k is (x[k], y[k], z[k]) with inverse mass w[k]. Each array holds at
+/// least kSoaPad floats after the last particle, so a row's last vector may read past it.
+struct SoaParticles {
+    float* x;
+    float* y;
+    float* z;
+    float* w;
+};
+constexpr int kSoaPad = 80;
+
+/// One batch in dense row form: the constraint whose particle a is (row j, column i) joins it
+/// with particle a + delta; rest[j * nx + i] is its rest length, or -1 where no active
+/// constraint of the batch starts at (j, i). Rows rows[0 .. rowCount) are projected; a vector
+/// of 16 columns projects the constraints starting there at once (no two share a particle)
+/// and writes only their particles, so rows may be split between threads.
+struct DenseBatchJob {
+    int nx;
+    const int* rows;
+    int rowCount;
+    int delta;
+    const float* rest;
+    float* lambda;        // same layout; read and written only when alphaTilde > 0
+    float alphaTilde;
+    glm::vec3 restOffset; // rest offset b - a: direction for coincident ends
+};
+
+/// Whether this build and CPU have the AVX-512 kernels of the structure-of-arrays layout.
+bool hasSoaKernels();
+/// The same float operations as projectBatch, per constraint, on the SoA layout (AVX-512).
+void projectDense(const SoaParticles& p, const DenseBatchJob& job);
+/// projectTethers on the SoA layout (AVX-512).
+void projectTethersSoa(const SoaParticles& p, const TetherJob& job);
+
 /// The widest instruction set this build and this CPU support.
 Isa bestIsa();
 /// Projects the job's constraints with the given instruction set (at most bestIsa()).

@@ -2,6 +2,7 @@
 // conflict-free batches (graph colouring of the regular grid), tethers, inverse masses.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -80,6 +81,7 @@ void Cloth::Impl::build() {
     constraints.clear();
     family.clear();
     batches.clear();
+    batchRows.clear();
     for (const Offset& o : offsets) {
         for (int parity = 0; parity < 2; ++parity) {
             cloth::Batch batch{o.family, int(constraints.size()), 0, o.dx, o.dy};
@@ -94,7 +96,16 @@ void Cloth::Impl::build() {
                     family.push_back(uint8_t(o.family));
                 }
             batch.end = int(constraints.size());
+            batch.rowsBegin = int(batchRows.size());
+            for (int j = 0; j < p.ny; ++j) {
+                const int j2 = j + o.dy;
+                if (j2 < 0 || j2 >= p.ny || p.nx <= o.dx) continue;
+                if (o.dx == 0 && (j / std::abs(o.dy)) % 2 != parity) continue;
+                batchRows.push_back(j);
+            }
+            batch.rowsEnd = int(batchRows.size());
             if (batch.end > batch.begin) batches.push_back(std::move(batch));
+            else batchRows.resize(size_t(batch.rowsBegin));
         }
     }
     endA.resize(constraints.size());
@@ -105,6 +116,27 @@ void Cloth::Impl::build() {
     }
     active.assign(constraints.size(), 1);
     lambda.assign(constraints.size(), 0.0f);
+    // WEFT_CLOTH_AOS=1 keeps the record layout (for A/B timings and the identity tests)
+    const char* aos = std::getenv("WEFT_CLOTH_AOS");
+    useSoa = cloth::hasSoaKernels() && !(aos && *aos && *aos != '0');
+    if (useSoa) {
+        soaStride = (size_t(n) + cloth::kSoaPad + 15) / 16 * 16;
+        soa.assign(4 * soaStride, 0.0f);
+        // one row of slack after the last batch: a row's vectors read up to 15 columns on
+        denseRest.assign(batches.size() * size_t(n) + size_t(p.nx) + cloth::kSoaPad, -1.0f);
+        denseLambda.assign(denseRest.size(), 0.0f);
+    }
+    denseStale = true;
+}
+
+void Cloth::Impl::syncDense() {
+    if (!useSoa) return;
+    std::fill(denseRest.begin(), denseRest.end(), -1.0f);
+    for (size_t b = 0; b < batches.size(); ++b)
+        for (int c = batches[b].begin; c < batches[b].end; ++c)
+            if (active[size_t(c)])
+                denseRest[b * size_t(n) + size_t(constraints[size_t(c)].a)] = constraints[size_t(c)].rest;
+    denseStale = false;
 }
 
 void Cloth::Impl::applyInverseMasses() {
@@ -116,6 +148,7 @@ void Cloth::Impl::applyInverseMasses() {
     // Constraints touching a hole are gone for good (the mesh leaves them out too).
     for (size_t c = 0; c < constraints.size(); ++c)
         if (hole[size_t(constraints[c].a)] || hole[size_t(constraints[c].b)]) active[c] = 0;
+    denseStale = true;
     rebuildTethers();
 }
 

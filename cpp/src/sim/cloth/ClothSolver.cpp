@@ -97,6 +97,53 @@ void Cloth::Impl::relax(float h) {
     if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b); }, 1024);
 }
 
+void Cloth::Impl::toSoa() {
+    const cloth::SoaParticles s = soaParticles();
+    pool->parallelFor(n, [&](int k0, int k1) {
+        for (int k = k0; k < k1; ++k) {
+            const Particle& p = particles[size_t(k)];
+            s.x[k] = p.x.x;
+            s.y[k] = p.x.y;
+            s.z[k] = p.x.z;
+            s.w[k] = p.w;
+        }
+    }, kMinParallelParticles);
+}
+
+void Cloth::Impl::fromSoa() {
+    const cloth::SoaParticles s = soaParticles();
+    pool->parallelFor(n, [&](int k0, int k1) {
+        for (int k = k0; k < k1; ++k) particles[size_t(k)].x = glm::vec3(s.x[k], s.y[k], s.z[k]);
+    }, kMinParallelParticles);
+}
+
+void Cloth::Impl::relaxSoa(float h) {
+    const float h2 = h * h;
+    const cloth::SoaParticles s = soaParticles();
+    for (size_t b = 0; b < batches.size(); ++b) {
+        const cloth::Batch& batch = batches[b];
+        const cloth::Constraint& first = constraints[size_t(batch.begin)];
+        const cloth::DenseBatchJob job{params.nx, batchRows.data() + batch.rowsBegin,
+                                       batch.rowsEnd - batch.rowsBegin, batch.dy * params.nx + batch.dx,
+                                       denseRest.data() + b * size_t(n), denseLambda.data() + b * size_t(n),
+                                       compliance(params, batch.family) / h2,
+                                       rest[size_t(first.b)] - rest[size_t(first.a)]};
+        // rows of about kMinParallelConstraints constraints at least per thread
+        const int minRows = std::max(1, kMinParallelConstraints / std::max(1, params.nx / (batch.dx ? 2 : 1)));
+        pool->parallelFor(job.rowCount, [&](int r0, int r1) {
+            cloth::DenseBatchJob part = job;
+            part.rows += r0;
+            part.rowCount = r1 - r0;
+            cloth::projectDense(s, part);
+        }, minRows);
+    }
+    if (tetherSlots > 0) {
+        pool->parallelFor(n, [&](int k0, int k1) {
+            cloth::projectTethersSoa(s, {k0, k1, tetherSlots, n, tetherAnchor.data(), tetherLength.data()});
+        }, kMinParallelParticles);
+    }
+}
+
 void Cloth::Impl::selfCollide() {
     const float spacingU = params.nx > 1 ? params.size.x / float(params.nx - 1) : params.size.y;
     const float spacingV = params.ny > 1 ? params.size.y / float(params.ny - 1) : params.size.x;
@@ -182,8 +229,17 @@ void Cloth::Impl::substep(float h, float damping) {
     }, kMinParallelParticles);
     const bool compliant = params.complianceStretch > 0 || params.complianceShear > 0 ||
                            params.complianceBend > 0;
-    if (compliant) std::fill(lambda.begin(), lambda.end(), 0.0f);
-    for (int it = 0; it < params.iterations; ++it) relax(h);
+    if (useSoa && colliders.empty()) {
+        // the same sweeps on the structure-of-arrays layout (bit-identical results)
+        if (denseStale) syncDense();
+        if (compliant) std::fill(denseLambda.begin(), denseLambda.end(), 0.0f);
+        toSoa();
+        for (int it = 0; it < params.iterations; ++it) relaxSoa(h);
+        fromSoa();
+    } else {
+        if (compliant) std::fill(lambda.begin(), lambda.end(), 0.0f);
+        for (int it = 0; it < params.iterations; ++it) relax(h);
+    }
     if (params.selfCollision) selfCollide();
 }
 
@@ -193,7 +249,10 @@ void Cloth::Impl::afterStep(float dt) {
             if (!active[c]) continue;
             const cloth::Constraint& k = constraints[c];
             const float len = glm::length(particles[size_t(k.b)].x - particles[size_t(k.a)].x);
-            if (std::abs(len - k.rest) > params.tearStrain * k.rest) active[c] = 0;
+            if (std::abs(len - k.rest) > params.tearStrain * k.rest) {
+                active[c] = 0;
+                denseStale = true;
+            }
         }
     }
     if (params.sleepThreshold > 0.0f) {
