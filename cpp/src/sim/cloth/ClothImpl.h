@@ -22,6 +22,7 @@ struct Batch {
     int begin, end; // range in the constraint arrays
     int dx, dy;
     int rowsBegin = 0, rowsEnd = 0; // its rows in batchRows (the SoA path)
+    int segmentsBegin = 0, segmentsEnd = 0; // its segments in batchSegments
 };
 
 } // namespace weft::cloth
@@ -51,15 +52,21 @@ struct Cloth::Impl {
     std::vector<float> lambda;
     std::vector<cloth::Batch> batches;
     // The structure-of-arrays path of the relaxation (CPUs with AVX-512, no colliders): the
-    // particles are copied into soa (x, y, z, w arrays of soaStride floats) after the
-    // integration and back after the sweeps. Batch b's constraints are dense rows there:
-    // denseRest[b * n + a] is the rest length of its active constraint starting at particle a,
-    // -1 where none does (denseLambda likewise); denseStale after constraints switch on or off.
+    // particles are copied into soa (x, y, z, w arrays of soaStride floats, slots as in
+    // cloth::SoaParticles: soaSlot[k] is particle k's) after the integration and back after
+    // the sweeps. denseRest[b * soaSlots + a]: rest length of batch b's active constraint
+    // starting at slot a, -1 where none does (denseLambda likewise); tethers by slot likewise.
+    // denseStale after constraints, inverse masses or tethers change.
     bool useSoa = false;
+    int soaSegment = 0, soaRowStride = 0, soaSlots = 0;
     size_t soaStride = 0;
+    std::vector<int> soaSlot;
     std::vector<float> soa;
     std::vector<float> denseRest, denseLambda;
     std::vector<int> batchRows;
+    std::vector<cloth::DenseSegment> batchSegments;
+    std::vector<int> tetherAnchorSoa;
+    std::vector<float> tetherLengthSoa;
     bool denseStale = true;
     // Long-range attachments |x_k - x_anchor| <= length (the rest distance), one-sided, stored
     // by slot: slot s of particle k at [s * n + k] (length +inf where k has fewer tethers).
@@ -91,7 +98,7 @@ struct Cloth::Impl {
         float* base = soa.data();
         return {base, base + soaStride, base + 2 * soaStride, base + 3 * soaStride};
     }
-    void syncDense();                // denseRest from constraints and active
+    void syncDense();                // dense arrays, w and tethers of the SoA path
     void toSoa();
     void fromSoa();
     void relaxSoa(float h);

@@ -378,13 +378,14 @@ WEFT_AVX512 void denseRows(const SoaParticles& p, const DenseBatchJob& job) {
     const __m512 uLen2 = _mm512_set1_ps(glm::dot(u, u)), tiny = _mm512_set1_ps(kCoincident2);
     const __m512 zero = _mm512_setzero_ps(), alpha = _mm512_set1_ps(job.alphaTilde);
     const __m512i signBit = _mm512_set1_epi32(int(0x80000000u));
-    const int nx = job.nx;
-    const ptrdiff_t d = job.delta;
+    const int L = job.length;
     for (int r = 0; r < job.rowCount; ++r) {
-        const ptrdiff_t row = ptrdiff_t(job.rows[r]) * nx;
-        for (int i = 0; i < nx; i += 16) {
-            const __mmask16 inRow = nx - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (nx - i)) - 1u);
-            const ptrdiff_t a = row + i;
+        for (int g = 0; g < job.segmentCount; ++g) {
+        const ptrdiff_t seg = ptrdiff_t(job.rows[r]) + job.segments[g].offset;
+        const ptrdiff_t d = job.segments[g].delta;
+        for (int i = 0; i < L; i += 16) {
+            const __mmask16 inRow = L - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (L - i)) - 1u);
+            const ptrdiff_t a = seg + i;
             const __m512 rest = _mm512_maskz_loadu_ps(inRow, job.rest + a);
             __mmask16 ok = _mm512_mask_cmp_ps_mask(inRow, rest, zero, _CMP_GE_OQ);
             if (!ok) continue;
@@ -426,6 +427,7 @@ WEFT_AVX512 void denseRows(const SoaParticles& p, const DenseBatchJob& job) {
             _mm512_mask_storeu_ps(p.x + a + d, ok, _mm512_add_ps(bx, _mm512_mul_ps(bw, cx)));
             _mm512_mask_storeu_ps(p.y + a + d, ok, _mm512_add_ps(by, _mm512_mul_ps(bw, cy)));
             _mm512_mask_storeu_ps(p.z + a + d, ok, _mm512_add_ps(bz, _mm512_mul_ps(bw, cz)));
+        }
         }
     }
 }

@@ -56,8 +56,12 @@ struct IntegrateJob {
 enum class Isa { Scalar, Sse, Avx };
 
 /// Positions and inverse masses as a structure of arrays (the relaxation's layout when the CPU
-/// has AVX-512): particle k is (x[k], y[k], z[k]) with inverse mass w[k]. Each array holds at
-/// least kSoaPad floats after the last particle, so a row's last vector may read past it.
+/// has AVX-512). Each row of the grid is stored as m = 2 k segments of L slots (k: the bend
+/// distance): column i of row j is slot j * (m L) + (i mod m) L + i / m. Every batch offset
+/// (dx in {0, 1, k}) then maps a segment's particles a onto one segment's particles b at a
+/// fixed slot distance, so a batch is contiguous runs of slots, all of whose lanes are
+/// constraints of the batch. Unused slots have w = 0. Each array holds at least kSoaPad
+/// floats after the last slot, so a segment's last vector may read past it.
 struct SoaParticles {
     float* x;
     float* y;
@@ -66,16 +70,23 @@ struct SoaParticles {
 };
 constexpr int kSoaPad = 80;
 
-/// One batch in dense row form: the constraint whose particle a is (row j, column i) joins it
-/// with particle a + delta; rest[j * nx + i] is its rest length, or -1 where no active
-/// constraint of the batch starts at (j, i). Rows rows[0 .. rowCount) are projected; a vector
-/// of 16 columns projects the constraints starting there at once (no two share a particle)
-/// and writes only their particles, so rows may be split between threads.
+/// A run of slots of one batch in each row: particles a at row + offset + t (t < length),
+/// b = a + delta.
+struct DenseSegment {
+    int offset, delta;
+};
+
+/// One batch in the SoA layout: for each row in rows[0 .. rowCount) (slot of its first
+/// column), each segment; rest[a] is the rest length of the active constraint of the batch
+/// whose first particle is slot a, or -1 where there is none. A vector of 16 slots projects
+/// the constraints starting there at once (no two share a particle) and reads and writes
+/// only their particles, so rows may be split between threads.
 struct DenseBatchJob {
-    int nx;
     const int* rows;
     int rowCount;
-    int delta;
+    const DenseSegment* segments;
+    int segmentCount;
+    int length;           // slots per segment (L)
     const float* rest;
     float* lambda;        // same layout; read and written only when alphaTilde > 0
     float alphaTilde;

@@ -81,7 +81,6 @@ void Cloth::Impl::build() {
     constraints.clear();
     family.clear();
     batches.clear();
-    batchRows.clear();
     for (const Offset& o : offsets) {
         for (int parity = 0; parity < 2; ++parity) {
             cloth::Batch batch{o.family, int(constraints.size()), 0, o.dx, o.dy};
@@ -96,16 +95,7 @@ void Cloth::Impl::build() {
                     family.push_back(uint8_t(o.family));
                 }
             batch.end = int(constraints.size());
-            batch.rowsBegin = int(batchRows.size());
-            for (int j = 0; j < p.ny; ++j) {
-                const int j2 = j + o.dy;
-                if (j2 < 0 || j2 >= p.ny || p.nx <= o.dx) continue;
-                if (o.dx == 0 && (j / std::abs(o.dy)) % 2 != parity) continue;
-                batchRows.push_back(j);
-            }
-            batch.rowsEnd = int(batchRows.size());
             if (batch.end > batch.begin) batches.push_back(std::move(batch));
-            else batchRows.resize(size_t(batch.rowsBegin));
         }
     }
     endA.resize(constraints.size());
@@ -120,11 +110,40 @@ void Cloth::Impl::build() {
     const char* aos = std::getenv("WEFT_CLOTH_AOS");
     useSoa = cloth::hasSoaKernels() && !(aos && *aos && *aos != '0');
     if (useSoa) {
-        soaStride = (size_t(n) + cloth::kSoaPad + 15) / 16 * 16;
+        const int m = 2 * k; // dx in {0, 1, k}: the colour of column i is that of i mod m
+        soaSegment = (p.nx + m - 1) / m;
+        soaRowStride = m * soaSegment;
+        soaSlots = p.ny * soaRowStride;
+        soaSlot.resize(size_t(n));
+        for (int j = 0; j < p.ny; ++j)
+            for (int i = 0; i < p.nx; ++i)
+                soaSlot[size_t(j * p.nx + i)] = j * soaRowStride + (i % m) * soaSegment + i / m;
+        soaStride = (size_t(soaSlots) + cloth::kSoaPad + 15) / 16 * 16;
         soa.assign(4 * soaStride, 0.0f);
-        // one row of slack after the last batch: a row's vectors read up to 15 columns on
-        denseRest.assign(batches.size() * size_t(n) + size_t(p.nx) + cloth::kSoaPad, -1.0f);
+        denseRest.assign(batches.size() * size_t(soaSlots) + cloth::kSoaPad, -1.0f);
         denseLambda.assign(denseRest.size(), 0.0f);
+        batchRows.clear();
+        batchSegments.clear();
+        for (cloth::Batch& b : batches) {
+            const int parity = (b.dx != 0 ? constraints[size_t(b.begin)].a % p.nx / b.dx
+                                          : constraints[size_t(b.begin)].a / p.nx / std::abs(b.dy)) % 2;
+            b.rowsBegin = int(batchRows.size());
+            for (int j = 0; j < p.ny; ++j) {
+                const int j2 = j + b.dy;
+                if (j2 < 0 || j2 >= p.ny) continue;
+                if (b.dx == 0 && (j / std::abs(b.dy)) % 2 != parity) continue;
+                batchRows.push_back(j * soaRowStride);
+            }
+            b.rowsEnd = int(batchRows.size());
+            b.segmentsBegin = int(batchSegments.size());
+            for (int c = 0; c < m; ++c) {
+                if (b.dx != 0 && (c / b.dx) % 2 != parity) continue;
+                const int cb = (c + b.dx) % m, shift = (c + b.dx) / m;
+                batchSegments.push_back({c * soaSegment,
+                                         b.dy * soaRowStride + (cb - c) * soaSegment + shift});
+            }
+            b.segmentsEnd = int(batchSegments.size());
+        }
     }
     denseStale = true;
 }
@@ -135,9 +154,24 @@ void Cloth::Impl::syncDense() {
     for (size_t b = 0; b < batches.size(); ++b)
         for (int c = batches[b].begin; c < batches[b].end; ++c)
             if (active[size_t(c)])
-                denseRest[b * size_t(n) + size_t(constraints[size_t(c)].a)] = constraints[size_t(c)].rest;
+                denseRest[b * size_t(soaSlots) + size_t(soaSlot[size_t(constraints[size_t(c)].a)])] =
+                    constraints[size_t(c)].rest;
+    const cloth::SoaParticles s = soaParticles();
+    std::fill(s.w, s.w + soaStride, 0.0f); // unused slots: fixed
+    for (int q = 0; q < n; ++q) s.w[soaSlot[size_t(q)]] = particles[size_t(q)].w;
+    tetherAnchorSoa.assign(size_t(tetherSlots) * size_t(soaSlots), 0);
+    tetherLengthSoa.assign(size_t(tetherSlots) * size_t(soaSlots), std::numeric_limits<float>::infinity());
+    for (int s2 = 0; s2 < tetherSlots; ++s2)
+        for (int q = 0; q < n; ++q) {
+            const size_t from = size_t(s2) * size_t(n) + size_t(q);
+            const size_t to = size_t(s2) * size_t(soaSlots) + size_t(soaSlot[size_t(q)]);
+            tetherAnchorSoa[to] = soaSlot[size_t(tetherAnchor[from])];
+            tetherLengthSoa[to] = tetherLength[from];
+        }
     denseStale = false;
 }
+
+
 
 void Cloth::Impl::applyInverseMasses() {
     for (int k = 0; k < n; ++k) {
@@ -153,6 +187,7 @@ void Cloth::Impl::applyInverseMasses() {
 }
 
 void Cloth::Impl::rebuildTethers() {
+    denseStale = true;
     // Every free particle is tied to its nearest anchors (pinned or grabbed particles) at their
     // rest distance: an inextensible cloth never gets farther from any anchor than that, so
     // the tethers only remove stretch the constraints have not resolved yet. Tying to one

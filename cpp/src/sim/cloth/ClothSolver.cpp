@@ -102,10 +102,11 @@ void Cloth::Impl::toSoa() {
     pool->parallelFor(n, [&](int k0, int k1) {
         for (int k = k0; k < k1; ++k) {
             const Particle& p = particles[size_t(k)];
-            s.x[k] = p.x.x;
-            s.y[k] = p.x.y;
-            s.z[k] = p.x.z;
-            s.w[k] = p.w;
+            const int q = soaSlot[size_t(k)];
+            s.x[q] = p.x.x;
+            s.y[q] = p.x.y;
+            s.z[q] = p.x.z;
+            s.w[q] = p.w;
         }
     }, kMinParallelParticles);
 }
@@ -113,7 +114,10 @@ void Cloth::Impl::toSoa() {
 void Cloth::Impl::fromSoa() {
     const cloth::SoaParticles s = soaParticles();
     pool->parallelFor(n, [&](int k0, int k1) {
-        for (int k = k0; k < k1; ++k) particles[size_t(k)].x = glm::vec3(s.x[k], s.y[k], s.z[k]);
+        for (int k = k0; k < k1; ++k) {
+            const int q = soaSlot[size_t(k)];
+            particles[size_t(k)].x = glm::vec3(s.x[q], s.y[q], s.z[q]);
+        }
     }, kMinParallelParticles);
 }
 
@@ -123,23 +127,26 @@ void Cloth::Impl::relaxSoa(float h) {
     for (size_t b = 0; b < batches.size(); ++b) {
         const cloth::Batch& batch = batches[b];
         const cloth::Constraint& first = constraints[size_t(batch.begin)];
-        const cloth::DenseBatchJob job{params.nx, batchRows.data() + batch.rowsBegin,
-                                       batch.rowsEnd - batch.rowsBegin, batch.dy * params.nx + batch.dx,
-                                       denseRest.data() + b * size_t(n), denseLambda.data() + b * size_t(n),
+        const cloth::DenseBatchJob job{batchRows.data() + batch.rowsBegin, batch.rowsEnd - batch.rowsBegin,
+                                       batchSegments.data() + batch.segmentsBegin,
+                                       batch.segmentsEnd - batch.segmentsBegin, soaSegment,
+                                       denseRest.data() + b * size_t(soaSlots),
+                                       denseLambda.data() + b * size_t(soaSlots),
                                        compliance(params, batch.family) / h2,
                                        rest[size_t(first.b)] - rest[size_t(first.a)]};
-        // rows of about kMinParallelConstraints constraints at least per thread
-        const int minRows = std::max(1, kMinParallelConstraints / std::max(1, params.nx / (batch.dx ? 2 : 1)));
+        // at least about kMinParallelConstraints constraints per thread
+        const int perRow = std::max(1, job.segmentCount * soaSegment);
         pool->parallelFor(job.rowCount, [&](int r0, int r1) {
             cloth::DenseBatchJob part = job;
             part.rows += r0;
             part.rowCount = r1 - r0;
             cloth::projectDense(s, part);
-        }, minRows);
+        }, std::max(1, kMinParallelConstraints / perRow));
     }
     if (tetherSlots > 0) {
-        pool->parallelFor(n, [&](int k0, int k1) {
-            cloth::projectTethersSoa(s, {k0, k1, tetherSlots, n, tetherAnchor.data(), tetherLength.data()});
+        pool->parallelFor(soaSlots, [&](int k0, int k1) {
+            cloth::projectTethersSoa(s, {k0, k1, tetherSlots, soaSlots, tetherAnchorSoa.data(),
+                                         tetherLengthSoa.data()});
         }, kMinParallelParticles);
     }
 }
