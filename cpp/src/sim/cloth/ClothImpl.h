@@ -65,7 +65,8 @@ struct Cloth::Impl {
     std::vector<float> denseRest, denseLambda;
     std::vector<int> batchRows;
     std::vector<cloth::DenseSegment> batchSegments;
-    std::vector<int> tetherAnchorSoa;
+    std::vector<int> tetherAnchorSoa; // into tetherTable when that is not empty
+    std::vector<int> tetherTable;     // the anchors' slots, when at most kTetherTable
     std::vector<float> tetherLengthSoa;
     bool denseStale = true;
     // Long-range attachments |x_k - x_anchor| <= length (the rest distance), one-sided, stored

@@ -432,8 +432,22 @@ WEFT_AVX512 void denseRows(const SoaParticles& p, const DenseBatchJob& job) {
     }
 }
 
-WEFT_AVX512 void tethersSoa(const SoaParticles& p, const TetherJob& job) {
+template <bool Table>
+WEFT_AVX512 void tethersSoa(const SoaParticles& p, const SoaTetherJob& tj) {
+    const TetherJob& job = tj.tethers;
     const __m512 zero = _mm512_setzero_ps();
+    __m512 tx = zero, ty = zero, tz = zero; // the anchors' positions, when Table
+    if (Table) {
+        alignas(64) float bx[16] = {}, by[16] = {}, bz[16] = {};
+        for (int e = 0; e < tj.tableSize; ++e) {
+            bx[e] = p.x[tj.table[e]];
+            by[e] = p.y[tj.table[e]];
+            bz[e] = p.z[tj.table[e]];
+        }
+        tx = _mm512_load_ps(bx);
+        ty = _mm512_load_ps(by);
+        tz = _mm512_load_ps(bz);
+    }
     for (int k = job.begin; k < job.end; k += 16) {
         const __mmask16 in = job.end - k >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (job.end - k)) - 1u);
         const __m512 w = _mm512_maskz_loadu_ps(in, p.w + k);
@@ -445,9 +459,16 @@ WEFT_AVX512 void tethersSoa(const SoaParticles& p, const TetherJob& job) {
         for (int s = 0; s < job.slots; ++s) {
             const size_t t = size_t(s) * size_t(job.n) + size_t(k);
             const __m512i idx = _mm512_maskz_loadu_epi32(free, job.anchor + t);
-            const __m512 ax = _mm512_mask_i32gather_ps(zero, free, idx, p.x, 4);
-            const __m512 ay = _mm512_mask_i32gather_ps(zero, free, idx, p.y, 4);
-            const __m512 az = _mm512_mask_i32gather_ps(zero, free, idx, p.z, 4);
+            __m512 ax, ay, az;
+            if (Table) {
+                ax = _mm512_permutexvar_ps(idx, tx);
+                ay = _mm512_permutexvar_ps(idx, ty);
+                az = _mm512_permutexvar_ps(idx, tz);
+            } else {
+                ax = _mm512_mask_i32gather_ps(zero, free, idx, p.x, 4);
+                ay = _mm512_mask_i32gather_ps(zero, free, idx, p.y, 4);
+                az = _mm512_mask_i32gather_ps(zero, free, idx, p.z, 4);
+            }
             const __m512 length = _mm512_maskz_loadu_ps(free, job.length + t);
             const __m512 dx = _mm512_sub_ps(x, ax), dy = _mm512_sub_ps(y, ay), dz = _mm512_sub_ps(z, az);
             const __m512 len2 = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)),
@@ -487,9 +508,10 @@ void projectDense(const SoaParticles& p, const DenseBatchJob& job) {
 #endif
 }
 
-void projectTethersSoa(const SoaParticles& p, const TetherJob& job) {
+void projectTethersSoa(const SoaParticles& p, const SoaTetherJob& job) {
 #ifdef WEFT_CLOTH_AVX512
-    tethersSoa(p, job);
+    if (job.table) tethersSoa<true>(p, job);
+    else tethersSoa<false>(p, job);
 #else
     (void)p;
     (void)job;

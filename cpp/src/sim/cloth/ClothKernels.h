@@ -97,8 +97,17 @@ struct DenseBatchJob {
 bool hasSoaKernels();
 /// The same float operations as projectBatch, per constraint, on the SoA layout (AVX-512).
 void projectDense(const SoaParticles& p, const DenseBatchJob& job);
+/// Tethers on the SoA layout: TetherJob over slots, where with table != nullptr anchor[t] is
+/// an index into table[0 .. tableSize), tableSize <= 16 (the anchors' slots: their positions
+/// are then read once per call and picked from a register instead of gathered).
+struct SoaTetherJob {
+    TetherJob tethers;
+    const int* table;
+    int tableSize;
+};
+constexpr int kTetherTable = 16;
 /// projectTethers on the SoA layout (AVX-512).
-void projectTethersSoa(const SoaParticles& p, const TetherJob& job);
+void projectTethersSoa(const SoaParticles& p, const SoaTetherJob& job);
 
 /// The widest instruction set this build and this CPU support.
 Isa bestIsa();

@@ -161,13 +161,28 @@ void Cloth::Impl::syncDense() {
     for (int q = 0; q < n; ++q) s.w[soaSlot[size_t(q)]] = particles[size_t(q)].w;
     tetherAnchorSoa.assign(size_t(tetherSlots) * size_t(soaSlots), 0);
     tetherLengthSoa.assign(size_t(tetherSlots) * size_t(soaSlots), std::numeric_limits<float>::infinity());
+    tetherTable.clear();
+    bool small = true;
     for (int s2 = 0; s2 < tetherSlots; ++s2)
         for (int q = 0; q < n; ++q) {
             const size_t from = size_t(s2) * size_t(n) + size_t(q);
             const size_t to = size_t(s2) * size_t(soaSlots) + size_t(soaSlot[size_t(q)]);
-            tetherAnchorSoa[to] = soaSlot[size_t(tetherAnchor[from])];
+            const int anchor = soaSlot[size_t(tetherAnchor[from])];
+            tetherAnchorSoa[to] = anchor;
             tetherLengthSoa[to] = tetherLength[from];
+            if (!small || tetherLength[from] == std::numeric_limits<float>::infinity()) continue;
+            if (std::find(tetherTable.begin(), tetherTable.end(), anchor) == tetherTable.end()) {
+                if (tetherTable.size() < size_t(cloth::kTetherTable)) tetherTable.push_back(anchor);
+                else small = false;
+            }
         }
+    if (!small) tetherTable.clear();
+    if (!tetherTable.empty()) {
+        // slots without a tether (length +inf) keep anchor index 0: never pulled
+        for (size_t t = 0; t < tetherAnchorSoa.size(); ++t)
+            tetherAnchorSoa[t] = tetherLengthSoa[t] == std::numeric_limits<float>::infinity()
+                ? 0 : int(std::find(tetherTable.begin(), tetherTable.end(), tetherAnchorSoa[t]) - tetherTable.begin());
+    }
     denseStale = false;
 }
 

@@ -145,8 +145,10 @@ void Cloth::Impl::relaxSoa(float h) {
     }
     if (tetherSlots > 0) {
         pool->parallelFor(soaSlots, [&](int k0, int k1) {
-            cloth::projectTethersSoa(s, {k0, k1, tetherSlots, soaSlots, tetherAnchorSoa.data(),
-                                         tetherLengthSoa.data()});
+            cloth::projectTethersSoa(s, {{k0, k1, tetherSlots, soaSlots, tetherAnchorSoa.data(),
+                                          tetherLengthSoa.data()},
+                                         tetherTable.empty() ? nullptr : tetherTable.data(),
+                                         int(tetherTable.size())});
         }, kMinParallelParticles);
     }
 }
