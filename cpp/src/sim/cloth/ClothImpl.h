@@ -100,7 +100,6 @@ struct Cloth::Impl {
         return {base, base + soaStride, base + 2 * soaStride, base + 3 * soaStride};
     }
     void syncDense();                // dense arrays, w and tethers of the SoA path
-    void toSoa();
     void fromSoa();
     void relaxSoa(float h);
     void collide(int begin, int end);

@@ -107,6 +107,26 @@ void scalarIntegrate(Particle* ps, Particle* prev, const IntegrateJob& job) {
     }
 }
 
+template <bool Windy>
+void scalarIntegrateToSoa(const Particle* ps, Particle* prev, const IntegrateJob& job,
+                          const SoaParticles& s, const int* slot) {
+    for (int k = job.begin; k < job.end; ++k) {
+        const Particle p = ps[k];
+        const int q = slot[k];
+        s.w[q] = p.w;
+        glm::vec3 next = p.x;
+        if (p.w == 0.0f) {
+            if (job.pinned[k] && !job.hole[k]) prev[k].x = p.x;
+        } else {
+            next = p.x + job.damping * (p.x - prev[k].x) + acceleration<Windy>(job, k);
+            prev[k].x = p.x;
+        }
+        s.x[q] = next.x;
+        s.y[q] = next.y;
+        s.z[q] = next.z;
+    }
+}
+
 #ifdef WEFT_CLOTH_X86
 
 inline __m128 select(__m128 mask, __m128 a, __m128 b) {
@@ -485,9 +505,170 @@ WEFT_AVX512 void tethersSoa(const SoaParticles& p, const SoaTetherJob& tj) {
         _mm512_mask_storeu_ps(p.z + k, free, z);
     }
 }
+
+// 16 records (x, y, z, w) in r[0..3] (4 per register) <-> x, y, z, w of the 16 particles.
+WEFT_AVX512 inline void recordsToColumns(const __m512* r, __m512& X, __m512& Y, __m512& Z, __m512& W) {
+    const __m512i ixy = _mm512_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28, 1, 5, 9, 13, 17, 21, 25, 29);
+    const __m512i izw = _mm512_setr_epi32(2, 6, 10, 14, 18, 22, 26, 30, 3, 7, 11, 15, 19, 23, 27, 31);
+    const __m512 t0 = _mm512_permutex2var_ps(r[0], ixy, r[1]); // x0..7, y0..7
+    const __m512 t1 = _mm512_permutex2var_ps(r[0], izw, r[1]); // z0..7, w0..7
+    const __m512 t2 = _mm512_permutex2var_ps(r[2], ixy, r[3]); // x8..15, y8..15
+    const __m512 t3 = _mm512_permutex2var_ps(r[2], izw, r[3]);
+    X = _mm512_shuffle_f32x4(t0, t2, 0x44);
+    Y = _mm512_shuffle_f32x4(t0, t2, 0xEE);
+    Z = _mm512_shuffle_f32x4(t1, t3, 0x44);
+    W = _mm512_shuffle_f32x4(t1, t3, 0xEE);
+}
+
+WEFT_AVX512 inline void columnsToRecords(__m512 X, __m512 Y, __m512 Z, __m512 W, __m512* r) {
+    const __m512 t0 = _mm512_shuffle_f32x4(X, Y, 0x44); // x0..7, y0..7
+    const __m512 t2 = _mm512_shuffle_f32x4(X, Y, 0xEE); // x8..15, y8..15
+    const __m512 t1 = _mm512_shuffle_f32x4(Z, W, 0x44);
+    const __m512 t3 = _mm512_shuffle_f32x4(Z, W, 0xEE);
+    const __m512i lo = _mm512_setr_epi32(0, 8, 16, 24, 1, 9, 17, 25, 2, 10, 18, 26, 3, 11, 19, 27);
+    const __m512i hi = _mm512_setr_epi32(4, 12, 20, 28, 5, 13, 21, 29, 6, 14, 22, 30, 7, 15, 23, 31);
+    r[0] = _mm512_permutex2var_ps(t0, lo, t1);
+    r[1] = _mm512_permutex2var_ps(t0, hi, t1);
+    r[2] = _mm512_permutex2var_ps(t2, lo, t3);
+    r[3] = _mm512_permutex2var_ps(t2, hi, t3);
+}
+
+// Columns i .. i + 15 of a row (i a multiple of m, m dividing 16) lie in segment c = l mod m
+// at index i / m + l / m: lanes grouped by segment, g = 16 / m lanes each.
+struct SegmentShuffle {
+    __m512i toSegments, fromSegments;
+    int m, g;
+    WEFT_AVX512 explicit SegmentShuffle(int m_) : m(m_), g(16 / m_) {
+        alignas(64) int to[16], from[16];
+        for (int l = 0; l < 16; ++l) {
+            const int pos = (l % m) * g + l / m; // lane l goes to position pos
+            to[pos] = l;
+            from[l] = pos;
+        }
+        toSegments = _mm512_load_si512(to);
+        fromSegments = _mm512_load_si512(from);
+    }
+    // v holds columns i..i+15; row: slot of the row's first column; L: segment length.
+    WEFT_AVX512 void store(float* base, ptrdiff_t row, int L, int i, __m512 v) const {
+        const __m512 grouped = _mm512_permutexvar_ps(toSegments, v);
+        for (int c = 0; c < m; ++c) {
+            const __mmask16 lanes = __mmask16(((1u << g) - 1u) << (c * g));
+            _mm512_mask_storeu_ps(base + row + ptrdiff_t(c) * L + i / m - c * g, lanes, grouped);
+        }
+    }
+    WEFT_AVX512 __m512 load(const float* base, ptrdiff_t row, int L, int i) const {
+        __m512 grouped = _mm512_setzero_ps();
+        for (int c = 0; c < m; ++c) {
+            const __mmask16 lanes = __mmask16(((1u << g) - 1u) << (c * g));
+            grouped = _mm512_mask_loadu_ps(grouped, lanes, base + row + ptrdiff_t(c) * L + i / m - c * g);
+        }
+        return _mm512_permutexvar_ps(fromSegments, grouped);
+    }
+};
+
+// Bits of the 16 bytes at p that are non-zero.
+inline unsigned nonZero16(const uint8_t* p) {
+    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+    return ~unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_setzero_si128()))) & 0xFFFFu;
+}
+
+WEFT_AVX512 void integrateRows(const Particle* ps, Particle* prev, const IntegrateJob& job,
+                               const SoaParticles& s, const SoaGrid& grid, const int* slot) {
+    const SegmentShuffle seg(grid.m);
+    const glm::vec3 g = acceleration<false>(job, 0);
+    const __m512 ax = _mm512_set1_ps(g.x), ay = _mm512_set1_ps(g.y), az = _mm512_set1_ps(g.z);
+    const __m512 damping = _mm512_set1_ps(job.damping), zero = _mm512_setzero_ps();
+    const int rowStride = grid.m * grid.L;
+    for (int j = job.begin; j < job.end; ++j) {
+        const int k0 = j * grid.nx;
+        const ptrdiff_t row = ptrdiff_t(j) * rowStride;
+        int i = 0;
+        for (; i + 16 <= grid.nx; i += 16) {
+            const int k = k0 + i;
+            const float* pf = &ps[k].x.x;
+            float* qf = &prev[k].x.x;
+            __m512 r[4], q[4];
+            for (int t = 0; t < 4; ++t) {
+                r[t] = _mm512_loadu_ps(pf + 16 * t);
+                q[t] = _mm512_loadu_ps(qf + 16 * t);
+            }
+            __m512 X, Y, Z, W, PX, PY, PZ, PW;
+            recordsToColumns(r, X, Y, Z, W);
+            recordsToColumns(q, PX, PY, PZ, PW);
+            const __mmask16 free = _mm512_cmp_ps_mask(W, zero, _CMP_NEQ_UQ);
+            const __mmask16 stay = __mmask16(nonZero16(job.pinned + k) & ~nonZero16(job.hole + k));
+            const __m512 nx_ = _mm512_add_ps(_mm512_add_ps(X, _mm512_mul_ps(damping, _mm512_sub_ps(X, PX))), ax);
+            const __m512 ny_ = _mm512_add_ps(_mm512_add_ps(Y, _mm512_mul_ps(damping, _mm512_sub_ps(Y, PY))), ay);
+            const __m512 nz_ = _mm512_add_ps(_mm512_add_ps(Z, _mm512_mul_ps(damping, _mm512_sub_ps(Z, PZ))), az);
+            const __mmask16 moved = free | stay; // x_prev becomes x
+            columnsToRecords(_mm512_mask_mov_ps(PX, moved, X), _mm512_mask_mov_ps(PY, moved, Y),
+                             _mm512_mask_mov_ps(PZ, moved, Z), PW, q);
+            for (int t = 0; t < 4; ++t) _mm512_storeu_ps(qf + 16 * t, q[t]);
+            seg.store(s.x, row, grid.L, i, _mm512_mask_mov_ps(X, free, nx_));
+            seg.store(s.y, row, grid.L, i, _mm512_mask_mov_ps(Y, free, ny_));
+            seg.store(s.z, row, grid.L, i, _mm512_mask_mov_ps(Z, free, nz_));
+            seg.store(s.w, row, grid.L, i, W);
+        }
+        IntegrateJob rest = job;
+        rest.begin = k0 + i;
+        rest.end = k0 + grid.nx;
+        scalarIntegrateToSoa<false>(ps, prev, rest, s, slot);
+    }
+}
+
+WEFT_AVX512 void soaRows(const SoaParticles& s, Particle* ps, int rowBegin, int rowEnd,
+                         const SoaGrid& grid, const int* slot) {
+    const SegmentShuffle seg(grid.m);
+    const int rowStride = grid.m * grid.L;
+    for (int j = rowBegin; j < rowEnd; ++j) {
+        const int k0 = j * grid.nx;
+        const ptrdiff_t row = ptrdiff_t(j) * rowStride;
+        int i = 0;
+        for (; i + 16 <= grid.nx; i += 16) {
+            __m512 r[4];
+            columnsToRecords(seg.load(s.x, row, grid.L, i), seg.load(s.y, row, grid.L, i),
+                             seg.load(s.z, row, grid.L, i), _mm512_setzero_ps(), r);
+            float* pf = &ps[k0 + i].x.x;
+            for (int t = 0; t < 4; ++t) _mm512_mask_storeu_ps(pf + 16 * t, 0x7777, r[t]); // w stays
+        }
+        for (; i < grid.nx; ++i) {
+            const int q = slot[k0 + i];
+            ps[k0 + i].x = glm::vec3(s.x[q], s.y[q], s.z[q]);
+        }
+    }
+}
 #endif
 
 } // namespace
+
+void integrateToSoa(const Particle* particles, Particle* previous, const IntegrateJob& job,
+                    const SoaParticles& soa, const int* slot) {
+    if (job.normals) scalarIntegrateToSoa<true>(particles, previous, job, soa, slot);
+    else scalarIntegrateToSoa<false>(particles, previous, job, soa, slot);
+}
+
+void integrateRowsToSoa(const Particle* particles, Particle* previous, const IntegrateJob& job,
+                        const SoaParticles& soa, const SoaGrid& grid, const int* slot) {
+#ifdef WEFT_CLOTH_AVX512
+    if (!job.normals && 16 % grid.m == 0 && hasSoaKernels())
+        return integrateRows(particles, previous, job, soa, grid, slot);
+#endif
+    IntegrateJob part = job;
+    part.begin = job.begin * grid.nx;
+    part.end = job.end * grid.nx;
+    integrateToSoa(particles, previous, part, soa, slot);
+}
+
+void soaRowsToRecords(const SoaParticles& soa, Particle* particles, int rowBegin, int rowEnd,
+                      const SoaGrid& grid, const int* slot) {
+#ifdef WEFT_CLOTH_AVX512
+    if (16 % grid.m == 0 && hasSoaKernels()) return soaRows(soa, particles, rowBegin, rowEnd, grid, slot);
+#endif
+    for (int k = rowBegin * grid.nx; k < rowEnd * grid.nx; ++k) {
+        const int q = slot[k];
+        particles[k].x = glm::vec3(soa.x[q], soa.y[q], soa.z[q]);
+    }
+}
 
 bool hasSoaKernels() {
 #ifdef WEFT_CLOTH_AVX512

@@ -93,6 +93,23 @@ struct DenseBatchJob {
     glm::vec3 restOffset; // rest offset b - a: direction for coincident ends
 };
 
+/// integrate() whose new positions (and inverse masses) go to the SoA slots slot[k] instead of
+/// the records; previous is updated as there. The same float operations as integrate().
+void integrateToSoa(const Particle* particles, Particle* previous, const IntegrateJob& job,
+                    const SoaParticles& soa, const int* slot);
+
+/// The SoA slots of a grid (see SoaParticles): m = 2k segments of L slots per row.
+struct SoaGrid {
+    int nx, m, L;
+};
+/// integrateToSoa over the rows [job.begin, job.end) of the grid (job.begin and job.end are
+/// rows here), 16 columns at a time with AVX-512 where m divides 16 and there is no wind.
+void integrateRowsToSoa(const Particle* particles, Particle* previous, const IntegrateJob& job,
+                        const SoaParticles& soa, const SoaGrid& grid, const int* slot);
+/// Copies the positions of rows [rowBegin, rowEnd) from the SoA slots back to the records.
+void soaRowsToRecords(const SoaParticles& soa, Particle* particles, int rowBegin, int rowEnd,
+                      const SoaGrid& grid, const int* slot);
+
 /// Whether this build and CPU have the AVX-512 kernels of the structure-of-arrays layout.
 bool hasSoaKernels();
 /// The same float operations as projectBatch, per constraint, on the SoA layout (AVX-512).

@@ -97,28 +97,12 @@ void Cloth::Impl::relax(float h) {
     if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b); }, 1024);
 }
 
-void Cloth::Impl::toSoa() {
-    const cloth::SoaParticles s = soaParticles();
-    pool->parallelFor(n, [&](int k0, int k1) {
-        for (int k = k0; k < k1; ++k) {
-            const Particle& p = particles[size_t(k)];
-            const int q = soaSlot[size_t(k)];
-            s.x[q] = p.x.x;
-            s.y[q] = p.x.y;
-            s.z[q] = p.x.z;
-            s.w[q] = p.w;
-        }
-    }, kMinParallelParticles);
-}
-
 void Cloth::Impl::fromSoa() {
     const cloth::SoaParticles s = soaParticles();
-    pool->parallelFor(n, [&](int k0, int k1) {
-        for (int k = k0; k < k1; ++k) {
-            const int q = soaSlot[size_t(k)];
-            particles[size_t(k)].x = glm::vec3(s.x[q], s.y[q], s.z[q]);
-        }
-    }, kMinParallelParticles);
+    const cloth::SoaGrid grid{params.nx, 2 * params.bendDistance, soaSegment};
+    pool->parallelFor(params.ny, [&](int j0, int j1) {
+        cloth::soaRowsToRecords(s, particles.data(), j0, j1, grid, soaSlot.data());
+    }, std::max(1, kMinParallelParticles / params.nx));
 }
 
 void Cloth::Impl::relaxSoa(float h) {
@@ -230,22 +214,30 @@ void Cloth::Impl::substep(float h, float damping) {
     }
     const cloth::IntegrateJob job{0, 0, pinned.data(), hole.data(), g, h, damping,
                                   windy ? normals.data() : nullptr, r, wind.strength};
-    pool->parallelFor(n, [&](int k0, int k1) {
-        cloth::IntegrateJob part = job;
-        part.begin = k0;
-        part.end = k1;
-        cloth::integrate(particles.data(), previous.data(), part, isa);
-    }, kMinParallelParticles);
     const bool compliant = params.complianceStretch > 0 || params.complianceShear > 0 ||
                            params.complianceBend > 0;
     if (useSoa && colliders.empty()) {
-        // the same sweeps on the structure-of-arrays layout (bit-identical results)
+        // the same integration and sweeps on the structure-of-arrays layout (bit-identical
+        // results); the integration writes the new positions there directly
         if (denseStale) syncDense();
         if (compliant) std::fill(denseLambda.begin(), denseLambda.end(), 0.0f);
-        toSoa();
+        const cloth::SoaParticles s = soaParticles();
+        const cloth::SoaGrid grid{params.nx, 2 * params.bendDistance, soaSegment};
+        pool->parallelFor(params.ny, [&](int j0, int j1) {
+            cloth::IntegrateJob part = job;
+            part.begin = j0;
+            part.end = j1;
+            cloth::integrateRowsToSoa(particles.data(), previous.data(), part, s, grid, soaSlot.data());
+        }, std::max(1, kMinParallelParticles / params.nx));
         for (int it = 0; it < params.iterations; ++it) relaxSoa(h);
         fromSoa();
     } else {
+        pool->parallelFor(n, [&](int k0, int k1) {
+            cloth::IntegrateJob part = job;
+            part.begin = k0;
+            part.end = k1;
+            cloth::integrate(particles.data(), previous.data(), part, isa);
+        }, kMinParallelParticles);
         if (compliant) std::fill(lambda.begin(), lambda.end(), 0.0f);
         for (int it = 0; it < params.iterations; ++it) relax(h);
     }
