@@ -95,3 +95,13 @@ def test_soa_matches_records_holes_and_anchors(monkeypatch: pytest.MonkeyPatch,
     got = run(monkeypatch, False, 40, 33, 40, setup=setup, **settings)
     np.testing.assert_array_equal(got, base)
     assert np.all(np.isfinite(got))
+
+
+def test_soa_matches_records_in_parallel(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A grid large enough that batches, tethers, integration and copies split across
+    threads (the small grids above run on one)."""
+    settings = dict(tethers=True, substeps=2, compliance_shear=1e-3, tear_strain=0.3)
+    base = run(monkeypatch, True, 150, 97, 12, threads=1, **settings)
+    for threads in (2, 3):
+        got = run(monkeypatch, False, 150, 97, 12, threads=threads, **settings)
+        np.testing.assert_array_equal(got, base, err_msg=f"threads={threads}")
