@@ -21,7 +21,7 @@ struct Batch {
     ConstraintFamily family;
     int begin, end; // range in the constraint arrays
     int dx, dy;
-    int rowsBegin = 0, rowsEnd = 0; // its rows in batchRows (the SoA path)
+    int rowBegin = 0, rowEnd = 0, parity = 0; // rows of particle a, colour (the SoA path)
     int segmentsBegin = 0, segmentsEnd = 0; // its segments in batchSegments
 };
 
@@ -58,12 +58,11 @@ struct Cloth::Impl {
     // starting at slot a, -1 where none does (denseLambda likewise); tethers by slot likewise.
     // denseStale after constraints, inverse masses or tethers change.
     bool useSoa = false;
-    int soaSegment = 0, soaRowStride = 0, soaSlots = 0;
+    int soaSegment = 0, soaSlots = 0; // L, m * ny * L
     size_t soaStride = 0;
     std::vector<int> soaSlot;
     std::vector<float> soa;
     std::vector<float> denseRest, denseLambda;
-    std::vector<int> batchRows;
     std::vector<cloth::DenseSegment> batchSegments;
     std::vector<int> tetherAnchorSoa; // into tetherTable when that is not empty
     std::vector<int> tetherTable;     // the anchors' slots, when at most kTetherTable

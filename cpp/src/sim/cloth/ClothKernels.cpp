@@ -399,12 +399,17 @@ WEFT_AVX512 void denseRows(const SoaParticles& p, const DenseBatchJob& job) {
     const __m512 zero = _mm512_setzero_ps(), alpha = _mm512_set1_ps(job.alphaTilde);
     const __m512i signBit = _mm512_set1_epi32(int(0x80000000u));
     const int L = job.length;
-    for (int r = 0; r < job.rowCount; ++r) {
-        for (int g = 0; g < job.segmentCount; ++g) {
-        const ptrdiff_t seg = ptrdiff_t(job.rows[r]) + job.segments[g].offset;
-        const ptrdiff_t d = job.segments[g].delta;
-        for (int i = 0; i < L; i += 16) {
-            const __mmask16 inRow = L - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (L - i)) - 1u);
+    // the runs of slots to project: [begin, begin + count) of each class
+    for (int g = 0; g < job.segmentCount; ++g) {
+    const ptrdiff_t d = job.segments[g].delta;
+    const bool byRow = job.colourRows > 0 && L >= 16;
+    for (int j = job.rowBegin; j < job.rowEnd; ++j) {
+        if (byRow && (j / job.colourRows) % 2 != job.parity) continue;
+        const ptrdiff_t seg = job.segments[g].offset + ptrdiff_t(j) * L;
+        const int count = byRow ? L : (job.rowEnd - job.rowBegin) * L;
+        if (!byRow) j = job.rowEnd; // one run over all rows
+        for (int i = 0; i < count; i += 16) {
+            const __mmask16 inRow = count - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (count - i)) - 1u);
             const ptrdiff_t a = seg + i;
             const __m512 rest = _mm512_maskz_loadu_ps(inRow, job.rest + a);
             __mmask16 ok = _mm512_mask_cmp_ps_mask(inRow, rest, zero, _CMP_GE_OQ);
@@ -548,19 +553,19 @@ struct SegmentShuffle {
         toSegments = _mm512_load_si512(to);
         fromSegments = _mm512_load_si512(from);
     }
-    // v holds columns i..i+15; row: slot of the row's first column; L: segment length.
-    WEFT_AVX512 void store(float* base, ptrdiff_t row, int L, int i, __m512 v) const {
+    // v holds columns i..i+15 of the row whose column 0 is slot row; stride: slots per class.
+    WEFT_AVX512 void store(float* base, ptrdiff_t row, ptrdiff_t stride, int i, __m512 v) const {
         const __m512 grouped = _mm512_permutexvar_ps(toSegments, v);
         for (int c = 0; c < m; ++c) {
             const __mmask16 lanes = __mmask16(((1u << g) - 1u) << (c * g));
-            _mm512_mask_storeu_ps(base + row + ptrdiff_t(c) * L + i / m - c * g, lanes, grouped);
+            _mm512_mask_storeu_ps(base + row + ptrdiff_t(c) * stride + i / m - c * g, lanes, grouped);
         }
     }
-    WEFT_AVX512 __m512 load(const float* base, ptrdiff_t row, int L, int i) const {
+    WEFT_AVX512 __m512 load(const float* base, ptrdiff_t row, ptrdiff_t stride, int i) const {
         __m512 grouped = _mm512_setzero_ps();
         for (int c = 0; c < m; ++c) {
             const __mmask16 lanes = __mmask16(((1u << g) - 1u) << (c * g));
-            grouped = _mm512_mask_loadu_ps(grouped, lanes, base + row + ptrdiff_t(c) * L + i / m - c * g);
+            grouped = _mm512_mask_loadu_ps(grouped, lanes, base + row + ptrdiff_t(c) * stride + i / m - c * g);
         }
         return _mm512_permutexvar_ps(fromSegments, grouped);
     }
@@ -578,10 +583,10 @@ WEFT_AVX512 void integrateRows(const Particle* ps, Particle* prev, const Integra
     const glm::vec3 g = acceleration<false>(job, 0);
     const __m512 ax = _mm512_set1_ps(g.x), ay = _mm512_set1_ps(g.y), az = _mm512_set1_ps(g.z);
     const __m512 damping = _mm512_set1_ps(job.damping), zero = _mm512_setzero_ps();
-    const int rowStride = grid.m * grid.L;
+    const ptrdiff_t stride = ptrdiff_t(grid.ny) * grid.L;
     for (int j = job.begin; j < job.end; ++j) {
         const int k0 = j * grid.nx;
-        const ptrdiff_t row = ptrdiff_t(j) * rowStride;
+        const ptrdiff_t row = ptrdiff_t(j) * grid.L;
         int i = 0;
         for (; i + 16 <= grid.nx; i += 16) {
             const int k = k0 + i;
@@ -604,10 +609,10 @@ WEFT_AVX512 void integrateRows(const Particle* ps, Particle* prev, const Integra
             columnsToRecords(_mm512_mask_mov_ps(PX, moved, X), _mm512_mask_mov_ps(PY, moved, Y),
                              _mm512_mask_mov_ps(PZ, moved, Z), PW, q);
             for (int t = 0; t < 4; ++t) _mm512_storeu_ps(qf + 16 * t, q[t]);
-            seg.store(s.x, row, grid.L, i, _mm512_mask_mov_ps(X, free, nx_));
-            seg.store(s.y, row, grid.L, i, _mm512_mask_mov_ps(Y, free, ny_));
-            seg.store(s.z, row, grid.L, i, _mm512_mask_mov_ps(Z, free, nz_));
-            seg.store(s.w, row, grid.L, i, W);
+            seg.store(s.x, row, stride, i, _mm512_mask_mov_ps(X, free, nx_));
+            seg.store(s.y, row, stride, i, _mm512_mask_mov_ps(Y, free, ny_));
+            seg.store(s.z, row, stride, i, _mm512_mask_mov_ps(Z, free, nz_));
+            seg.store(s.w, row, stride, i, W);
         }
         IntegrateJob rest = job;
         rest.begin = k0 + i;
@@ -619,15 +624,15 @@ WEFT_AVX512 void integrateRows(const Particle* ps, Particle* prev, const Integra
 WEFT_AVX512 void soaRows(const SoaParticles& s, Particle* ps, int rowBegin, int rowEnd,
                          const SoaGrid& grid, const int* slot) {
     const SegmentShuffle seg(grid.m);
-    const int rowStride = grid.m * grid.L;
+    const ptrdiff_t stride = ptrdiff_t(grid.ny) * grid.L;
     for (int j = rowBegin; j < rowEnd; ++j) {
         const int k0 = j * grid.nx;
-        const ptrdiff_t row = ptrdiff_t(j) * rowStride;
+        const ptrdiff_t row = ptrdiff_t(j) * grid.L;
         int i = 0;
         for (; i + 16 <= grid.nx; i += 16) {
             __m512 r[4];
-            columnsToRecords(seg.load(s.x, row, grid.L, i), seg.load(s.y, row, grid.L, i),
-                             seg.load(s.z, row, grid.L, i), _mm512_setzero_ps(), r);
+            columnsToRecords(seg.load(s.x, row, stride, i), seg.load(s.y, row, stride, i),
+                             seg.load(s.z, row, stride, i), _mm512_setzero_ps(), r);
             float* pf = &ps[k0 + i].x.x;
             for (int t = 0; t < 4; ++t) _mm512_mask_storeu_ps(pf + 16 * t, 0x7777, r[t]); // w stays
         }

@@ -56,12 +56,14 @@ struct IntegrateJob {
 enum class Isa { Scalar, Sse, Avx };
 
 /// Positions and inverse masses as a structure of arrays (the relaxation's layout when the CPU
-/// has AVX-512). Each row of the grid is stored as m = 2 k segments of L slots (k: the bend
-/// distance): column i of row j is slot j * (m L) + (i mod m) L + i / m. Every batch offset
-/// (dx in {0, 1, k}) then maps a segment's particles a onto one segment's particles b at a
-/// fixed slot distance, so a batch is contiguous runs of slots, all of whose lanes are
-/// constraints of the batch. Unused slots have w = 0. Each array holds at least kSoaPad
-/// floats after the last slot, so a segment's last vector may read past it.
+/// has AVX-512). The grid's columns are split into m = 2 k classes by i mod m (k: the bend
+/// distance), each stored segment-major: column i of row j is slot
+/// (i mod m) * ny * L + j * L + i / m, with L = ceil(nx / m). Every batch offset (dx in
+/// {0, 1, k}) then maps the particles a of one class onto those b of one class at a fixed slot
+/// distance, and a class holds only a's of a batch (dx > 0) or whole rows of alternating
+/// colour (dx = 0): a batch is a few long contiguous runs of slots across rows, whose vectors
+/// stay full even for narrow grids. Unused slots have w = 0. Each array holds at least kSoaPad
+/// floats after the last slot.
 struct SoaParticles {
     float* x;
     float* y;
@@ -70,23 +72,23 @@ struct SoaParticles {
 };
 constexpr int kSoaPad = 80;
 
-/// A run of slots of one batch in each row: particles a at row + offset + t (t < length),
-/// b = a + delta.
+/// One class of a batch: particles a at offset + j * L + t (t < L), b = a + delta.
 struct DenseSegment {
     int offset, delta;
 };
 
-/// One batch in the SoA layout: for each row in rows[0 .. rowCount) (slot of its first
-/// column), each segment; rest[a] is the rest length of the active constraint of the batch
-/// whose first particle is slot a, or -1 where there is none. A vector of 16 slots projects
-/// the constraints starting there at once (no two share a particle) and reads and writes
-/// only their particles, so rows may be split between threads.
+/// One batch, rows [rowBegin, rowEnd) of particle a, in the SoA layout: rest[a] is the rest
+/// length of the active constraint of the batch whose first particle is slot a, or -1 where
+/// there is none. A vector of 16 slots projects the constraints starting there at once (no two
+/// share a particle) and reads and writes only their particles, so rows may be split between
+/// threads. With colourRows > 0 (dx = 0) only rows j with (j / colourRows) % 2 == parity hold
+/// constraints; they are visited row by row when a row fills a vector, else masked.
 struct DenseBatchJob {
-    const int* rows;
-    int rowCount;
+    int rowBegin, rowEnd;
+    int length;           // L: slots per row of a class
     const DenseSegment* segments;
     int segmentCount;
-    int length;           // slots per segment (L)
+    int colourRows, parity;
     const float* rest;
     float* lambda;        // same layout; read and written only when alphaTilde > 0
     float alphaTilde;
@@ -98,9 +100,9 @@ struct DenseBatchJob {
 void integrateToSoa(const Particle* particles, Particle* previous, const IntegrateJob& job,
                     const SoaParticles& soa, const int* slot);
 
-/// The SoA slots of a grid (see SoaParticles): m = 2k segments of L slots per row.
+/// The SoA slots of a grid (see SoaParticles): m classes of ny * L slots.
 struct SoaGrid {
-    int nx, m, L;
+    int nx, ny, m, L;
 };
 /// integrateToSoa over the rows [job.begin, job.end) of the grid (job.begin and job.end are
 /// rows here), 16 columns at a time with AVX-512 where m divides 16 and there is no wind.

@@ -112,35 +112,27 @@ void Cloth::Impl::build() {
     if (useSoa) {
         const int m = 2 * k; // dx in {0, 1, k}: the colour of column i is that of i mod m
         soaSegment = (p.nx + m - 1) / m;
-        soaRowStride = m * soaSegment;
-        soaSlots = p.ny * soaRowStride;
+        const int stride = p.ny * soaSegment; // slots per class
+        soaSlots = m * stride;
         soaSlot.resize(size_t(n));
         for (int j = 0; j < p.ny; ++j)
             for (int i = 0; i < p.nx; ++i)
-                soaSlot[size_t(j * p.nx + i)] = j * soaRowStride + (i % m) * soaSegment + i / m;
+                soaSlot[size_t(j * p.nx + i)] = (i % m) * stride + j * soaSegment + i / m;
         soaStride = (size_t(soaSlots) + cloth::kSoaPad + 15) / 16 * 16;
         soa.assign(4 * soaStride, 0.0f);
         denseRest.assign(batches.size() * size_t(soaSlots) + cloth::kSoaPad, -1.0f);
         denseLambda.assign(denseRest.size(), 0.0f);
-        batchRows.clear();
         batchSegments.clear();
         for (cloth::Batch& b : batches) {
-            const int parity = (b.dx != 0 ? constraints[size_t(b.begin)].a % p.nx / b.dx
-                                          : constraints[size_t(b.begin)].a / p.nx / std::abs(b.dy)) % 2;
-            b.rowsBegin = int(batchRows.size());
-            for (int j = 0; j < p.ny; ++j) {
-                const int j2 = j + b.dy;
-                if (j2 < 0 || j2 >= p.ny) continue;
-                if (b.dx == 0 && (j / std::abs(b.dy)) % 2 != parity) continue;
-                batchRows.push_back(j * soaRowStride);
-            }
-            b.rowsEnd = int(batchRows.size());
+            b.parity = (b.dx != 0 ? constraints[size_t(b.begin)].a % p.nx / b.dx
+                                  : constraints[size_t(b.begin)].a / p.nx / std::abs(b.dy)) % 2;
+            b.rowBegin = std::max(0, -b.dy);
+            b.rowEnd = std::min(p.ny, p.ny - b.dy);
             b.segmentsBegin = int(batchSegments.size());
             for (int c = 0; c < m; ++c) {
-                if (b.dx != 0 && (c / b.dx) % 2 != parity) continue;
+                if (b.dx != 0 && (c / b.dx) % 2 != b.parity) continue;
                 const int cb = (c + b.dx) % m, shift = (c + b.dx) / m;
-                batchSegments.push_back({c * soaSegment,
-                                         b.dy * soaRowStride + (cb - c) * soaSegment + shift});
+                batchSegments.push_back({c * stride, (cb - c) * stride + b.dy * soaSegment + shift});
             }
             b.segmentsEnd = int(batchSegments.size());
         }

@@ -99,7 +99,7 @@ void Cloth::Impl::relax(float h) {
 
 void Cloth::Impl::fromSoa() {
     const cloth::SoaParticles s = soaParticles();
-    const cloth::SoaGrid grid{params.nx, 2 * params.bendDistance, soaSegment};
+    const cloth::SoaGrid grid{params.nx, params.ny, 2 * params.bendDistance, soaSegment};
     pool->parallelFor(params.ny, [&](int j0, int j1) {
         cloth::soaRowsToRecords(s, particles.data(), j0, j1, grid, soaSlot.data());
     }, std::max(1, kMinParallelParticles / params.nx));
@@ -111,19 +111,20 @@ void Cloth::Impl::relaxSoa(float h) {
     for (size_t b = 0; b < batches.size(); ++b) {
         const cloth::Batch& batch = batches[b];
         const cloth::Constraint& first = constraints[size_t(batch.begin)];
-        const cloth::DenseBatchJob job{batchRows.data() + batch.rowsBegin, batch.rowsEnd - batch.rowsBegin,
+        const cloth::DenseBatchJob job{batch.rowBegin, batch.rowEnd, soaSegment,
                                        batchSegments.data() + batch.segmentsBegin,
-                                       batch.segmentsEnd - batch.segmentsBegin, soaSegment,
+                                       batch.segmentsEnd - batch.segmentsBegin,
+                                       batch.dx == 0 ? std::abs(batch.dy) : 0, batch.parity,
                                        denseRest.data() + b * size_t(soaSlots),
                                        denseLambda.data() + b * size_t(soaSlots),
                                        compliance(params, batch.family) / h2,
                                        rest[size_t(first.b)] - rest[size_t(first.a)]};
         // at least about kMinParallelConstraints constraints per thread
-        const int perRow = std::max(1, job.segmentCount * soaSegment);
-        pool->parallelFor(job.rowCount, [&](int r0, int r1) {
+        const int perRow = std::max(1, params.nx / (batch.dx == 0 ? 2 : 1));
+        pool->parallelFor(job.rowEnd - job.rowBegin, [&](int r0, int r1) {
             cloth::DenseBatchJob part = job;
-            part.rows += r0;
-            part.rowCount = r1 - r0;
+            part.rowBegin = job.rowBegin + r0;
+            part.rowEnd = job.rowBegin + r1;
             cloth::projectDense(s, part);
         }, std::max(1, kMinParallelConstraints / perRow));
     }
@@ -222,7 +223,7 @@ void Cloth::Impl::substep(float h, float damping) {
         if (denseStale) syncDense();
         if (compliant) std::fill(denseLambda.begin(), denseLambda.end(), 0.0f);
         const cloth::SoaParticles s = soaParticles();
-        const cloth::SoaGrid grid{params.nx, 2 * params.bendDistance, soaSegment};
+        const cloth::SoaGrid grid{params.nx, params.ny, 2 * params.bendDistance, soaSegment};
         pool->parallelFor(params.ny, [&](int j0, int j1) {
             cloth::IntegrateJob part = job;
             part.begin = j0;
