@@ -101,6 +101,7 @@ struct Cloth::Impl {
     void syncDense();                // dense arrays, w and tethers of the SoA path
     void fromSoa();
     void relaxSoa(float h);
+    int soaSplit() const;            // minParallel of the SoA passes over rows: all or none
     void collide(int begin, int end);
     void selfCollide();
     void computeNormals() const;

@@ -388,72 +388,82 @@ WEFT_AVX void avxTethers(Particle* ps, const TetherJob& job) {
 // AVX-512F implies FMA for GCC: no contraction, or a * b + c would round once instead of twice.
 #define WEFT_AVX512 __attribute__((target("avx512f"), optimize("fp-contract=off")))
 
-// The SoA kernels: 16 columns of a row per vector, masked loads and stores, so only the
-// particles of active constraints are read and written (no shuffles, no scatter). The float
-// operations per constraint are those of projectOne / scalarTethers in the same order.
+// The SoA kernels: 16 slots per vector, masked loads and stores, so only the particles of
+// active constraints are read and written (no shuffles, no scatter). The float operations per
+// constraint are those of projectOne / scalarTethers in the same order.
+
+// Projects the constraints of the slots [begin, begin + count) of a batch (b = a + d).
 template <bool Compliant>
-WEFT_AVX512 void denseRows(const SoaParticles& p, const DenseBatchJob& job) {
+WEFT_AVX512 void denseRun(const SoaParticles& p, const DenseBatchJob& job, ptrdiff_t begin,
+                          int count, ptrdiff_t d) {
     const glm::vec3 u = job.restOffset * kUnfold;
     const __m512 ux = _mm512_set1_ps(u.x), uy = _mm512_set1_ps(u.y), uz = _mm512_set1_ps(u.z);
     const __m512 uLen2 = _mm512_set1_ps(glm::dot(u, u)), tiny = _mm512_set1_ps(kCoincident2);
     const __m512 zero = _mm512_setzero_ps(), alpha = _mm512_set1_ps(job.alphaTilde);
     const __m512i signBit = _mm512_set1_epi32(int(0x80000000u));
+    for (int i = 0; i < count; i += 16) {
+        const __mmask16 inRow = count - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (count - i)) - 1u);
+        const ptrdiff_t a = begin + i;
+        const __m512 rest = _mm512_maskz_loadu_ps(inRow, job.rest + a);
+        __mmask16 ok = _mm512_mask_cmp_ps_mask(inRow, rest, zero, _CMP_GE_OQ);
+        if (!ok) continue;
+        const __m512 aw = _mm512_maskz_loadu_ps(ok, p.w + a);
+        const __m512 bw = _mm512_maskz_loadu_ps(ok, p.w + a + d);
+        const __m512 wsum = _mm512_add_ps(aw, bw);
+        ok = _mm512_mask_cmp_ps_mask(ok, wsum, zero, _CMP_GT_OQ);
+        if (!ok) continue;
+        const __m512 ax = _mm512_maskz_loadu_ps(ok, p.x + a), bx = _mm512_maskz_loadu_ps(ok, p.x + a + d);
+        const __m512 ay = _mm512_maskz_loadu_ps(ok, p.y + a), by = _mm512_maskz_loadu_ps(ok, p.y + a + d);
+        const __m512 az = _mm512_maskz_loadu_ps(ok, p.z + a), bz = _mm512_maskz_loadu_ps(ok, p.z + a + d);
+        __m512 dx = _mm512_sub_ps(bx, ax), dy = _mm512_sub_ps(by, ay), dz = _mm512_sub_ps(bz, az);
+        __m512 len2 = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)),
+                                    _mm512_mul_ps(dz, dz));
+        const __mmask16 coincident = _mm512_mask_cmp_ps_mask(ok, len2, tiny, _CMP_LT_OQ);
+        if (coincident) {
+            dx = _mm512_mask_mov_ps(dx, coincident, ux);
+            dy = _mm512_mask_mov_ps(dy, coincident, uy);
+            dz = _mm512_mask_mov_ps(dz, coincident, uz);
+            len2 = _mm512_mask_mov_ps(len2, coincident, uLen2);
+        }
+        const __m512 len = _mm512_sqrt_ps(len2);
+        const __m512 negC = _mm512_castsi512_ps(
+            _mm512_xor_si512(_mm512_castps_si512(_mm512_sub_ps(len, rest)), signBit));
+        __m512 s; // dl / len
+        if (Compliant) {
+            const __m512 lam = _mm512_maskz_loadu_ps(ok, job.lambda + a);
+            const __m512 dl = _mm512_div_ps(_mm512_sub_ps(negC, _mm512_mul_ps(alpha, lam)),
+                                            _mm512_add_ps(wsum, alpha));
+            _mm512_mask_storeu_ps(job.lambda + a, ok, _mm512_add_ps(lam, dl));
+            s = _mm512_div_ps(dl, len);
+        } else {
+            s = _mm512_div_ps(negC, _mm512_mul_ps(wsum, len));
+        }
+        const __m512 cx = _mm512_mul_ps(dx, s), cy = _mm512_mul_ps(dy, s), cz = _mm512_mul_ps(dz, s);
+        _mm512_mask_storeu_ps(p.x + a, ok, _mm512_sub_ps(ax, _mm512_mul_ps(aw, cx)));
+        _mm512_mask_storeu_ps(p.y + a, ok, _mm512_sub_ps(ay, _mm512_mul_ps(aw, cy)));
+        _mm512_mask_storeu_ps(p.z + a, ok, _mm512_sub_ps(az, _mm512_mul_ps(aw, cz)));
+        _mm512_mask_storeu_ps(p.x + a + d, ok, _mm512_add_ps(bx, _mm512_mul_ps(bw, cx)));
+        _mm512_mask_storeu_ps(p.y + a + d, ok, _mm512_add_ps(by, _mm512_mul_ps(bw, cy)));
+        _mm512_mask_storeu_ps(p.z + a + d, ok, _mm512_add_ps(bz, _mm512_mul_ps(bw, cz)));
+    }
+}
+
+// A batch's runs: per class, all its rows at once, or (dx = 0 and rows of at least a vector)
+// only the rows of the batch's colour.
+template <bool Compliant>
+WEFT_AVX512 void denseRows(const SoaParticles& p, const DenseBatchJob& job) {
     const int L = job.length;
-    // the runs of slots to project: [begin, begin + count) of each class
-    for (int g = 0; g < job.segmentCount; ++g) {
-    const ptrdiff_t d = job.segments[g].delta;
     const bool byRow = job.colourRows > 0 && L >= 16;
-    for (int j = job.rowBegin; j < job.rowEnd; ++j) {
-        if (byRow && (j / job.colourRows) % 2 != job.parity) continue;
-        const ptrdiff_t seg = job.segments[g].offset + ptrdiff_t(j) * L;
-        const int count = byRow ? L : (job.rowEnd - job.rowBegin) * L;
-        if (!byRow) j = job.rowEnd; // one run over all rows
-        for (int i = 0; i < count; i += 16) {
-            const __mmask16 inRow = count - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (count - i)) - 1u);
-            const ptrdiff_t a = seg + i;
-            const __m512 rest = _mm512_maskz_loadu_ps(inRow, job.rest + a);
-            __mmask16 ok = _mm512_mask_cmp_ps_mask(inRow, rest, zero, _CMP_GE_OQ);
-            if (!ok) continue;
-            const __m512 aw = _mm512_maskz_loadu_ps(ok, p.w + a);
-            const __m512 bw = _mm512_maskz_loadu_ps(ok, p.w + a + d);
-            const __m512 wsum = _mm512_add_ps(aw, bw);
-            ok = _mm512_mask_cmp_ps_mask(ok, wsum, zero, _CMP_GT_OQ);
-            if (!ok) continue;
-            const __m512 ax = _mm512_maskz_loadu_ps(ok, p.x + a), bx = _mm512_maskz_loadu_ps(ok, p.x + a + d);
-            const __m512 ay = _mm512_maskz_loadu_ps(ok, p.y + a), by = _mm512_maskz_loadu_ps(ok, p.y + a + d);
-            const __m512 az = _mm512_maskz_loadu_ps(ok, p.z + a), bz = _mm512_maskz_loadu_ps(ok, p.z + a + d);
-            __m512 dx = _mm512_sub_ps(bx, ax), dy = _mm512_sub_ps(by, ay), dz = _mm512_sub_ps(bz, az);
-            __m512 len2 = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)),
-                                        _mm512_mul_ps(dz, dz));
-            const __mmask16 coincident = _mm512_mask_cmp_ps_mask(ok, len2, tiny, _CMP_LT_OQ);
-            if (coincident) {
-                dx = _mm512_mask_mov_ps(dx, coincident, ux);
-                dy = _mm512_mask_mov_ps(dy, coincident, uy);
-                dz = _mm512_mask_mov_ps(dz, coincident, uz);
-                len2 = _mm512_mask_mov_ps(len2, coincident, uLen2);
-            }
-            const __m512 len = _mm512_sqrt_ps(len2);
-            const __m512 negC = _mm512_castsi512_ps(
-                _mm512_xor_si512(_mm512_castps_si512(_mm512_sub_ps(len, rest)), signBit));
-            __m512 s; // dl / len
-            if (Compliant) {
-                const __m512 lam = _mm512_maskz_loadu_ps(ok, job.lambda + a);
-                const __m512 dl = _mm512_div_ps(_mm512_sub_ps(negC, _mm512_mul_ps(alpha, lam)),
-                                                _mm512_add_ps(wsum, alpha));
-                _mm512_mask_storeu_ps(job.lambda + a, ok, _mm512_add_ps(lam, dl));
-                s = _mm512_div_ps(dl, len);
-            } else {
-                s = _mm512_div_ps(negC, _mm512_mul_ps(wsum, len));
-            }
-            const __m512 cx = _mm512_mul_ps(dx, s), cy = _mm512_mul_ps(dy, s), cz = _mm512_mul_ps(dz, s);
-            _mm512_mask_storeu_ps(p.x + a, ok, _mm512_sub_ps(ax, _mm512_mul_ps(aw, cx)));
-            _mm512_mask_storeu_ps(p.y + a, ok, _mm512_sub_ps(ay, _mm512_mul_ps(aw, cy)));
-            _mm512_mask_storeu_ps(p.z + a, ok, _mm512_sub_ps(az, _mm512_mul_ps(aw, cz)));
-            _mm512_mask_storeu_ps(p.x + a + d, ok, _mm512_add_ps(bx, _mm512_mul_ps(bw, cx)));
-            _mm512_mask_storeu_ps(p.y + a + d, ok, _mm512_add_ps(by, _mm512_mul_ps(bw, cy)));
-            _mm512_mask_storeu_ps(p.z + a + d, ok, _mm512_add_ps(bz, _mm512_mul_ps(bw, cz)));
+    for (int g = 0; g < job.segmentCount; ++g) {
+        const DenseSegment& seg = job.segments[g];
+        if (!byRow) {
+            denseRun<Compliant>(p, job, seg.offset + ptrdiff_t(job.rowBegin) * L,
+                                (job.rowEnd - job.rowBegin) * L, seg.delta);
+            continue;
         }
-        }
+        for (int j = job.rowBegin; j < job.rowEnd; ++j)
+            if ((j / job.colourRows) % 2 == job.parity)
+                denseRun<Compliant>(p, job, seg.offset + ptrdiff_t(j) * L, L, seg.delta);
     }
 }
 

@@ -3,7 +3,9 @@
 // constraints (eq. 3.3/3.4 when compliance is 0) over conflict-free batches, tethers and
 // collider projections (eq. 3.7), self-collision, tearing and sleeping.
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdlib>
 #include <unordered_map>
 
 #include "sim/cloth/ClothImpl.h"
@@ -17,6 +19,14 @@ namespace {
 // cache lines that move between cores cost more than the work.
 constexpr int kMinParallelConstraints = 4096;
 constexpr int kMinParallelParticles = 4096;
+// The SoA path splits every pass of a substep by the same rows (integration, each batch, the
+// tethers, the copy back), so each thread keeps its part of the cloth in its own cache; it
+// splits all of them or none (a pass that ran on one thread would pull the other's part
+// over). Below this many particles one thread is faster than the fork-joins.
+int soaMinParallel() {
+    static const int v = std::getenv("WEFT_CLOTH_SOA_MIN") ? std::atoi(std::getenv("WEFT_CLOTH_SOA_MIN")) : 8192;
+    return v;
+}
 
 float compliance(const ClothParams& p, ConstraintFamily f) {
     switch (f) {
@@ -97,12 +107,14 @@ void Cloth::Impl::relax(float h) {
     if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b); }, 1024);
 }
 
+int Cloth::Impl::soaSplit() const { return n >= soaMinParallel() ? 1 : INT_MAX; }
+
 void Cloth::Impl::fromSoa() {
     const cloth::SoaParticles s = soaParticles();
     const cloth::SoaGrid grid{params.nx, params.ny, 2 * params.bendDistance, soaSegment};
     pool->parallelFor(params.ny, [&](int j0, int j1) {
         cloth::soaRowsToRecords(s, particles.data(), j0, j1, grid, soaSlot.data());
-    }, std::max(1, kMinParallelParticles / params.nx));
+    }, soaSplit());
 }
 
 void Cloth::Impl::relaxSoa(float h) {
@@ -119,22 +131,23 @@ void Cloth::Impl::relaxSoa(float h) {
                                        denseLambda.data() + b * size_t(soaSlots),
                                        compliance(params, batch.family) / h2,
                                        rest[size_t(first.b)] - rest[size_t(first.a)]};
-        // at least about kMinParallelConstraints constraints per thread
-        const int perRow = std::max(1, params.nx / (batch.dx == 0 ? 2 : 1));
-        pool->parallelFor(job.rowEnd - job.rowBegin, [&](int r0, int r1) {
+        pool->parallelFor(params.ny, [&](int j0, int j1) {
             cloth::DenseBatchJob part = job;
-            part.rowBegin = job.rowBegin + r0;
-            part.rowEnd = job.rowBegin + r1;
-            cloth::projectDense(s, part);
-        }, std::max(1, kMinParallelConstraints / perRow));
+            part.rowBegin = std::max(job.rowBegin, j0);
+            part.rowEnd = std::min(job.rowEnd, j1);
+            if (part.rowEnd > part.rowBegin) cloth::projectDense(s, part);
+        }, soaSplit());
     }
     if (tetherSlots > 0) {
-        pool->parallelFor(soaSlots, [&](int k0, int k1) {
-            cloth::projectTethersSoa(s, {{k0, k1, tetherSlots, soaSlots, tetherAnchorSoa.data(),
-                                          tetherLengthSoa.data()},
-                                         tetherTable.empty() ? nullptr : tetherTable.data(),
-                                         int(tetherTable.size())});
-        }, kMinParallelParticles);
+        const int m = 2 * params.bendDistance, stride = params.ny * soaSegment;
+        pool->parallelFor(params.ny, [&](int j0, int j1) {
+            for (int c = 0; c < m; ++c)
+                cloth::projectTethersSoa(s, {{c * stride + j0 * soaSegment, c * stride + j1 * soaSegment,
+                                              tetherSlots, soaSlots, tetherAnchorSoa.data(),
+                                              tetherLengthSoa.data()},
+                                             tetherTable.empty() ? nullptr : tetherTable.data(),
+                                             int(tetherTable.size())});
+        }, soaSplit());
     }
 }
 
@@ -229,7 +242,7 @@ void Cloth::Impl::substep(float h, float damping) {
             part.begin = j0;
             part.end = j1;
             cloth::integrateRowsToSoa(particles.data(), previous.data(), part, s, grid, soaSlot.data());
-        }, std::max(1, kMinParallelParticles / params.nx));
+        }, soaSplit());
         for (int it = 0; it < params.iterations; ++it) relaxSoa(h);
         fromSoa();
     } else {
