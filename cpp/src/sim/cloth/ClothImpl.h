@@ -51,10 +51,10 @@ struct Cloth::Impl {
     std::vector<uint8_t> family, active;
     std::vector<float> lambda;
     std::vector<cloth::Batch> batches;
-    // The structure-of-arrays path of the relaxation (CPUs with AVX-512, no colliders): the
-    // particles are copied into soa (x, y, z, w arrays of soaStride floats, slots as in
-    // cloth::SoaParticles: soaSlot[k] is particle k's) after the integration and back after
-    // the sweeps. denseRest[b * soaSlots + a]: rest length of batch b's active constraint
+    // The structure-of-arrays path of the relaxation (CPUs with AVX-512, no colliders,
+    // WEFT_CLOTH_AOS unset): the integration writes the new positions into soa (x, y, z, w
+    // arrays of soaStride floats, slots as in cloth::SoaParticles: soaSlot[k] is particle
+    // k's), the sweeps run there, and fromSoa copies them back to the records. denseRest[b * soaSlots + a]: rest length of batch b's active constraint
     // starting at slot a, -1 where none does (denseLambda likewise); tethers by slot likewise.
     // denseStale after constraints, inverse masses or tethers change.
     bool useSoa = false;
