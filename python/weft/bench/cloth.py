@@ -7,11 +7,27 @@ setting (iterations, substeps, XPBD compliance, tethers) it measures
 
 - speed: steps per second, the median of repeated timed runs after a warm-up run;
 - constraint error: mean and max relative strain ``|len - rest| / rest`` over all constraints
-  after 120 steps from rest (SPEC §2.6 (a));
+  after 120 steps from rest (SPEC §2.6 (a)), and weft's float32 trajectory spread of the mean
+  strain (below);
 - equilibrium error: the cloth is stepped until it is at rest (kinetic energy below
   ``REST_ENERGY`` J, at most ``--rest-steps`` steps) and compared with a converged reference
   (many iterations and substeps, same scene, also at rest): mean vertex distance divided by
   the cloth size (SPEC §2.6 (b)).
+
+Equal accuracy: at every mean strain a peer reaches, weft's fastest setting with a mean strain
+at most the peer's (plus a slack) is compared with the peer's steps/s. After 120 steps the
+cloth still swings, and in the cheap settings its motion amplifies rounding: the same
+algorithm in another float32 implementation (Warp) ends at a measurably different strain. The
+slack is therefore measured, not assumed: for every setting weft also runs the 120 steps from
+the rest state moved by one float32 ulp of 1 m (±2^-23 m at random in x and y of every
+particle, ``SPREAD_RUNS`` seeds), and the largest relative change of the mean strain is that
+setting's ``strain_spread``; a peer point at setting S allows weft ``max(STRAIN_SLACK,
+spread(S))`` more strain. The perturbation stays in the cloth's plane on purpose: the scene
+starts exactly planar and every engine keeps it planar (no force leaves the plane), while an
+out-of-plane nudge lets the cloth buckle and roughly halves the strain (a different motion,
+not rounding). Where the motion is settled the spread is ~1e-4 and the 1% floor applies; in
+the 2026 runs it reached ~1-4% only for the 256² tethers and tethers-sub2 settings, where
+Warp's strain differed from weft's at the same setting by 2.6%.
 
 Peers in the same run, at the same settings: the NumPy implementation of the same algorithm
 (:class:`weft.reference.cloth.ClothReference`, what a user would otherwise write; its strain is
@@ -52,6 +68,8 @@ PEER_RATIO_TARGET = 4.0
 #: Two runs of the same setting differ in strain by float rounding (weft and Warp in float32,
 #: NumPy in float64); "at most the peer's strain" allows this relative slack.
 STRAIN_SLACK = 0.01
+#: Perturbed weft runs per setting that measure the float32 trajectory spread of the strain.
+SPREAD_RUNS = 3
 NUMPY_RATIO_TARGET = 50.0
 
 
@@ -235,6 +253,26 @@ def strain_after(engine: Engine, n: int, setting: Setting, steps: int = STRAIN_S
     return engine.strain(cloth)
 
 
+def strain_spread(n: int, setting: Setting, mean: float, threads: int = 0,
+                  runs: int = SPREAD_RUNS) -> float:
+    """The largest relative change of weft's mean strain after :data:`STRAIN_STEPS` steps when
+    the rest state is moved by ±1 float32 ulp of 1 m in x and y (the cloth's plane), over
+    ``runs`` seeds: how far rounding alone moves this setting's strain."""
+    engine = WeftEngine(threads)
+    spread = 0.0
+    for seed in range(1, runs + 1):
+        cloth = engine.make(n, setting)
+        x = np.array(cloth.positions, dtype=np.float32)
+        sign = np.random.default_rng(seed).choice([-1.0, 1.0], size=x.shape).astype(np.float32)
+        sign[:, 2] = 0.0
+        cloth.set_positions(x + sign * np.spacing(np.float32(1.0)))
+        for _ in range(STRAIN_STEPS):
+            engine.step(cloth, DT)
+        m, _ = engine.strain(cloth)
+        spread = max(spread, abs(m - mean) / mean if mean > 0 else 0.0)
+    return float(spread)
+
+
 def run_to_rest(engine: Engine, n: int, setting: Setting, max_steps: int,
                 chunk: int = 30) -> Tuple[np.ndarray, int, float]:
     """Steps until the kinetic energy is below :data:`REST_ENERGY` (checked every ``chunk``
@@ -269,11 +307,20 @@ def pareto_front(points: Sequence[Tuple[float, float]]) -> List[int]:
     return front
 
 
-def weft_speed_at(results: Sequence[Dict[str, Any]], n: int, mean_strain: float
-                  ) -> Optional[Dict[str, Any]]:
+def slack_for(results: Sequence[Dict[str, Any]], n: int, setting: str) -> float:
+    """The relative strain slack at a peer's point: :data:`STRAIN_SLACK`, or weft's measured
+    float32 trajectory spread at that setting and size when larger."""
+    mine = next((r for r in results if r["engine"] == "weft" and r["n"] == n
+                 and r["setting"] == setting), None)
+    spread = (mine or {}).get("strain_spread") or 0.0
+    return max(STRAIN_SLACK, float(spread))
+
+
+def weft_speed_at(results: Sequence[Dict[str, Any]], n: int, mean_strain: float,
+                  slack: float = STRAIN_SLACK) -> Optional[Dict[str, Any]]:
     """weft's fastest setting at size n whose mean strain is at most ``mean_strain`` (with
-    :data:`STRAIN_SLACK` relative slack for rounding)."""
-    limit = mean_strain * (1.0 + STRAIN_SLACK)
+    ``slack`` relative slack for rounding)."""
+    limit = mean_strain * (1.0 + slack)
     ok = [r for r in results if r["engine"] == "weft" and r["n"] == n
           and r["mean_strain"] is not None and r["mean_strain"] <= limit]
     return max(ok, key=lambda r: r["steps_per_s"]) if ok else None
@@ -307,9 +354,10 @@ def summarize(results: List[Dict[str, Any]], sizes: Sequence[int]) -> Dict[str, 
         for r in results:
             if r["engine"] == "weft" or r["n"] != n or r["mean_strain"] is None:
                 continue
-            best = weft_speed_at(results, n, r["mean_strain"])
+            slack = slack_for(results, n, r["setting"])
+            best = weft_speed_at(results, n, r["mean_strain"], slack)
             rows.append({"peer": r["engine"], "setting": r["setting"],
-                         "peer_mean_strain": r["mean_strain"],
+                         "peer_mean_strain": r["mean_strain"], "slack": slack,
                          "peer_steps_per_s": r["steps_per_s"],
                          "weft_setting": best["setting"] if best else None,
                          "weft_steps_per_s": best["steps_per_s"] if best else None,
@@ -379,13 +427,15 @@ def to_markdown(report: Dict[str, Any]) -> str:
         "(stretch/shear/bend m/N) "
         + "/".join(f"{c:g}" for c in XPBD) + " (its strain includes that intended give); "
         "rest steps = steps until the kinetic energy fell below the threshold (the maximum: "
-        "never at rest).",
+        "never at rest); strain spread = largest relative change of weft's mean strain when "
+        "the rest state moves by ±1 float32 ulp in the cloth's plane (rounding alone; the "
+        "equal-accuracy slack where above 1%).",
         "",
     ]
-    header = ["N", "setting", "sweeps/step", "weft steps/s", "mean strain", "max strain",
-              "equilibrium err", "rest steps", "NumPy steps/s", "weft/NumPy"]
+    header = ["N", "setting", "sweeps/step", "weft steps/s", "mean strain", "strain spread",
+              "max strain", "equilibrium err", "rest steps", "NumPy steps/s", "weft/NumPy"]
     if any(r["engine"] == "warp" for r in report["results"]):
-        header += ["Warp steps/s", "weft/Warp"]
+        header += ["Warp steps/s", "weft/Warp", "Warp mean strain"]
     rows = []
     for r in report["results"]:
         if r["engine"] != "weft":
@@ -393,7 +443,8 @@ def to_markdown(report: Dict[str, Any]) -> str:
         peer = {p["engine"]: p for p in report["results"] if p["engine"] != "weft"
                 and p["n"] == r["n"] and p["setting"] == r["setting"]}
         row = [f"{r['n']}²", r["setting"], r["sweeps"], _num(r["steps_per_s"]),
-               _pct(r["mean_strain"]), _pct(r["max_strain"]), _num(r["equilibrium_error"], ".2e"),
+               _pct(r["mean_strain"]), _pct(r.get("strain_spread")), _pct(r["max_strain"]),
+               _num(r["equilibrium_error"], ".2e"),
                r["equilibrium_steps"]]
         np_r = peer.get("numpy")
         row += [_num(np_r["steps_per_s"], ".2f") if np_r else "—",
@@ -401,7 +452,8 @@ def to_markdown(report: Dict[str, Any]) -> str:
         if "Warp steps/s" in header:
             wr = peer.get("warp")
             row += [_num(wr["steps_per_s"]) if wr else "—",
-                    _num(r["steps_per_s"] / wr["steps_per_s"], ".1f") + "x" if wr else "—"]
+                    _num(r["steps_per_s"] / wr["steps_per_s"], ".1f") + "x" if wr else "—",
+                    _pct(wr["mean_strain"]) if wr else "—"]
         rows.append(row)
     lines.append(markdown_table(header, rows))
 
@@ -419,10 +471,16 @@ def to_markdown(report: Dict[str, Any]) -> str:
                     key=lambda p: p["ratio"], default=None)
         detail = (f"; tightest: {worst['peer']} {worst['setting']} at "
                   f"{_pct(worst['peer_mean_strain'])}, {worst['peer_steps_per_s']:.1f} steps/s vs "
-                  f"weft {worst['weft_setting']} {worst['weft_steps_per_s']:.1f} steps/s"
+                  f"weft {worst['weft_setting']} {worst['weft_steps_per_s']:.1f} steps/s "
+                  f"(slack {100 * worst.get('slack', STRAIN_SLACK):.2g}%)"
                   if worst else "")
+        wide = sorted({f"{p['setting']} {100 * p['slack']:.2g}%" for p in v["points"]
+                       if p.get("slack", STRAIN_SLACK) > STRAIN_SLACK})
+        spread_note = (f"; measured spread above {100 * STRAIN_SLACK:g}%: " + ", ".join(wide)
+                       if wide else "")
         lines.append(f"- {n}²: at every mean strain a peer reaches, weft's fastest setting at "
-                     f"that strain or lower (±{100 * STRAIN_SLACK:g}% rounding slack) runs "
+                     f"that strain or lower (slack: the larger of {100 * STRAIN_SLACK:g}% and "
+                     f"weft's float32 trajectory spread at the peer's setting{spread_note}) runs "
                      f"≥ {_num(v['min_ratio'], '.1f')}x the peer's steps/s "
                      f"(target ≥ {PEER_RATIO_TARGET:g}x){detail}")
     t = s["target_128"]
@@ -551,10 +609,12 @@ def run(args: argparse.Namespace) -> int:
             progress.update(f"{label}: weft")
             timing = time_steps(weft_engine, n, setting, repeats, run_seconds)
             mean, mx = strain_after(weft_engine, n, setting)
+            spread = strain_spread(n, setting, mean, args.threads)
             x, steps, energy = run_to_rest(weft_engine, n, setting, rest_steps)
             results.append({"engine": "weft", "n": n, "setting": setting.name,
                             "label": setting.label(), "sweeps": setting.sweeps, **timing,
                             "mean_strain": mean, "max_strain": mx, "strain_source": "weft",
+                            "strain_spread": spread,
                             "equilibrium_error": mean_distance(x, ref_x),
                             "equilibrium_steps": steps, "equilibrium_kinetic_energy": energy,
                             "at_rest": energy < REST_ENERGY})

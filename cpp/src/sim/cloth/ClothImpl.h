@@ -21,6 +21,8 @@ struct Batch {
     ConstraintFamily family;
     int begin, end; // range in the constraint arrays
     int dx, dy;
+    int rowBegin = 0, rowEnd = 0, parity = 0; // rows of particle a, colour (the SoA path)
+    int segmentsBegin = 0, segmentsEnd = 0; // its segments in batchSegments
 };
 
 } // namespace weft::cloth
@@ -49,6 +51,23 @@ struct Cloth::Impl {
     std::vector<uint8_t> family, active;
     std::vector<float> lambda;
     std::vector<cloth::Batch> batches;
+    // The structure-of-arrays path of the relaxation (CPUs with AVX-512, no colliders,
+    // WEFT_CLOTH_AOS unset): the integration writes the new positions into soa (x, y, z, w
+    // arrays of soaStride floats, slots as in cloth::SoaParticles: soaSlot[k] is particle
+    // k's), the sweeps run there, and fromSoa copies them back to the records. denseRest[b * soaSlots + a]: rest length of batch b's active constraint
+    // starting at slot a, -1 where none does (denseLambda likewise); tethers by slot likewise.
+    // denseStale after constraints, inverse masses or tethers change.
+    bool useSoa = false;
+    int soaSegment = 0, soaSlots = 0; // L, m * ny * L
+    size_t soaStride = 0;
+    std::vector<int> soaSlot;
+    std::vector<float> soa;
+    std::vector<float> denseRest, denseLambda;
+    std::vector<cloth::DenseSegment> batchSegments;
+    std::vector<int> tetherAnchorSoa; // into tetherTable when that is not empty
+    std::vector<int> tetherTable;     // the anchors' slots, when at most kTetherTable
+    std::vector<float> tetherLengthSoa;
+    bool denseStale = true;
     // Long-range attachments |x_k - x_anchor| <= length (the rest distance), one-sided, stored
     // by slot: slot s of particle k at [s * n + k] (length +inf where k has fewer tethers).
     int tetherSlots = 0;
@@ -75,6 +94,14 @@ struct Cloth::Impl {
     void substep(float h, float damping);              // (ClothSolver.cpp)
     void relax(float h);                               // one sweep: batches, tethers, colliders
     void projectBatch(const cloth::Batch& batch, float alphaTilde);
+    cloth::SoaParticles soaParticles() {
+        float* base = soa.data();
+        return {base, base + soaStride, base + 2 * soaStride, base + 3 * soaStride};
+    }
+    void syncDense();                // dense arrays, w and tethers of the SoA path
+    void fromSoa();
+    void relaxSoa(float h);
+    int soaSplit() const;            // minParallel of the SoA passes over rows: all or none
     void collide(int begin, int end);
     void selfCollide();
     void computeNormals() const;

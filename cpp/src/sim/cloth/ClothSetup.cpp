@@ -2,6 +2,7 @@
 // conflict-free batches (graph colouring of the regular grid), tethers, inverse masses.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -105,7 +106,79 @@ void Cloth::Impl::build() {
     }
     active.assign(constraints.size(), 1);
     lambda.assign(constraints.size(), 0.0f);
+    // WEFT_CLOTH_AOS=1 keeps the record layout (for A/B timings and the identity tests)
+    const char* aos = std::getenv("WEFT_CLOTH_AOS");
+    useSoa = cloth::hasSoaKernels() && !(aos && *aos && *aos != '0');
+    if (useSoa) {
+        const int m = 2 * k; // dx in {0, 1, k}: the colour of column i is that of i mod m
+        soaSegment = (p.nx + m - 1) / m;
+        const int stride = p.ny * soaSegment; // slots per class
+        soaSlots = m * stride;
+        soaSlot.resize(size_t(n));
+        for (int j = 0; j < p.ny; ++j)
+            for (int i = 0; i < p.nx; ++i)
+                soaSlot[size_t(j * p.nx + i)] = (i % m) * stride + j * soaSegment + i / m;
+        soaStride = (size_t(soaSlots) + cloth::kSoaPad + 15) / 16 * 16;
+        soa.assign(4 * soaStride, 0.0f);
+        denseRest.assign(batches.size() * size_t(soaSlots) + cloth::kSoaPad, -1.0f);
+        denseLambda.assign(denseRest.size(), 0.0f);
+        batchSegments.clear();
+        for (cloth::Batch& b : batches) {
+            b.parity = (b.dx != 0 ? constraints[size_t(b.begin)].a % p.nx / b.dx
+                                  : constraints[size_t(b.begin)].a / p.nx / std::abs(b.dy)) % 2;
+            b.rowBegin = std::max(0, -b.dy);
+            b.rowEnd = std::min(p.ny, p.ny - b.dy);
+            b.segmentsBegin = int(batchSegments.size());
+            for (int c = 0; c < m; ++c) {
+                if (b.dx != 0 && (c / b.dx) % 2 != b.parity) continue;
+                const int cb = (c + b.dx) % m, shift = (c + b.dx) / m;
+                batchSegments.push_back({c * stride, (cb - c) * stride + b.dy * soaSegment + shift});
+            }
+            b.segmentsEnd = int(batchSegments.size());
+        }
+    }
+    denseStale = true;
 }
+
+void Cloth::Impl::syncDense() {
+    if (!useSoa) return;
+    std::fill(denseRest.begin(), denseRest.end(), -1.0f);
+    for (size_t b = 0; b < batches.size(); ++b)
+        for (int c = batches[b].begin; c < batches[b].end; ++c)
+            if (active[size_t(c)])
+                denseRest[b * size_t(soaSlots) + size_t(soaSlot[size_t(constraints[size_t(c)].a)])] =
+                    constraints[size_t(c)].rest;
+    const cloth::SoaParticles s = soaParticles();
+    std::fill(s.w, s.w + soaStride, 0.0f); // unused slots: fixed
+    for (int q = 0; q < n; ++q) s.w[soaSlot[size_t(q)]] = particles[size_t(q)].w;
+    tetherAnchorSoa.assign(size_t(tetherSlots) * size_t(soaSlots), 0);
+    tetherLengthSoa.assign(size_t(tetherSlots) * size_t(soaSlots), std::numeric_limits<float>::infinity());
+    tetherTable.clear();
+    bool small = true;
+    for (int s2 = 0; s2 < tetherSlots; ++s2)
+        for (int q = 0; q < n; ++q) {
+            const size_t from = size_t(s2) * size_t(n) + size_t(q);
+            const size_t to = size_t(s2) * size_t(soaSlots) + size_t(soaSlot[size_t(q)]);
+            const int anchor = soaSlot[size_t(tetherAnchor[from])];
+            tetherAnchorSoa[to] = anchor;
+            tetherLengthSoa[to] = tetherLength[from];
+            if (!small || tetherLength[from] == std::numeric_limits<float>::infinity()) continue;
+            if (std::find(tetherTable.begin(), tetherTable.end(), anchor) == tetherTable.end()) {
+                if (tetherTable.size() < size_t(cloth::kTetherTable)) tetherTable.push_back(anchor);
+                else small = false;
+            }
+        }
+    if (!small) tetherTable.clear();
+    if (!tetherTable.empty()) {
+        // slots without a tether (length +inf) keep anchor index 0: never pulled
+        for (size_t t = 0; t < tetherAnchorSoa.size(); ++t)
+            tetherAnchorSoa[t] = tetherLengthSoa[t] == std::numeric_limits<float>::infinity()
+                ? 0 : int(std::find(tetherTable.begin(), tetherTable.end(), tetherAnchorSoa[t]) - tetherTable.begin());
+    }
+    denseStale = false;
+}
+
+
 
 void Cloth::Impl::applyInverseMasses() {
     for (int k = 0; k < n; ++k) {
@@ -116,10 +189,12 @@ void Cloth::Impl::applyInverseMasses() {
     // Constraints touching a hole are gone for good (the mesh leaves them out too).
     for (size_t c = 0; c < constraints.size(); ++c)
         if (hole[size_t(constraints[c].a)] || hole[size_t(constraints[c].b)]) active[c] = 0;
+    denseStale = true;
     rebuildTethers();
 }
 
 void Cloth::Impl::rebuildTethers() {
+    denseStale = true;
     // Every free particle is tied to its nearest anchors (pinned or grabbed particles) at their
     // rest distance: an inextensible cloth never gets farther from any anchor than that, so
     // the tethers only remove stretch the constraints have not resolved yet. Tying to one

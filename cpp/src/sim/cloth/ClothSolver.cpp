@@ -3,7 +3,9 @@
 // constraints (eq. 3.3/3.4 when compliance is 0) over conflict-free batches, tethers and
 // collider projections (eq. 3.7), self-collision, tearing and sleeping.
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdlib>
 #include <unordered_map>
 
 #include "sim/cloth/ClothImpl.h"
@@ -17,6 +19,14 @@ namespace {
 // cache lines that move between cores cost more than the work.
 constexpr int kMinParallelConstraints = 4096;
 constexpr int kMinParallelParticles = 4096;
+// The SoA path splits every pass of a substep by the same rows (integration, each batch, the
+// tethers, the copy back), so each thread keeps its part of the cloth in its own cache; it
+// splits all of them or none (a pass that ran on one thread would pull the other's part
+// over). Below this many particles one thread is faster than the fork-joins.
+int soaMinParallel() {
+    static const int v = std::getenv("WEFT_CLOTH_SOA_MIN") ? std::atoi(std::getenv("WEFT_CLOTH_SOA_MIN")) : 8192;
+    return v;
+}
 
 float compliance(const ClothParams& p, ConstraintFamily f) {
     switch (f) {
@@ -97,6 +107,50 @@ void Cloth::Impl::relax(float h) {
     if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b); }, 1024);
 }
 
+int Cloth::Impl::soaSplit() const { return n >= soaMinParallel() ? 1 : INT_MAX; }
+
+void Cloth::Impl::fromSoa() {
+    const cloth::SoaParticles s = soaParticles();
+    const cloth::SoaGrid grid{params.nx, params.ny, 2 * params.bendDistance, soaSegment};
+    pool->parallelFor(params.ny, [&](int j0, int j1) {
+        cloth::soaRowsToRecords(s, particles.data(), j0, j1, grid, soaSlot.data());
+    }, soaSplit());
+}
+
+void Cloth::Impl::relaxSoa(float h) {
+    const float h2 = h * h;
+    const cloth::SoaParticles s = soaParticles();
+    for (size_t b = 0; b < batches.size(); ++b) {
+        const cloth::Batch& batch = batches[b];
+        const cloth::Constraint& first = constraints[size_t(batch.begin)];
+        const cloth::DenseBatchJob job{batch.rowBegin, batch.rowEnd, soaSegment,
+                                       batchSegments.data() + batch.segmentsBegin,
+                                       batch.segmentsEnd - batch.segmentsBegin,
+                                       batch.dx == 0 ? std::abs(batch.dy) : 0, batch.parity,
+                                       denseRest.data() + b * size_t(soaSlots),
+                                       denseLambda.data() + b * size_t(soaSlots),
+                                       compliance(params, batch.family) / h2,
+                                       rest[size_t(first.b)] - rest[size_t(first.a)]};
+        pool->parallelFor(params.ny, [&](int j0, int j1) {
+            cloth::DenseBatchJob part = job;
+            part.rowBegin = std::max(job.rowBegin, j0);
+            part.rowEnd = std::min(job.rowEnd, j1);
+            if (part.rowEnd > part.rowBegin) cloth::projectDense(s, part);
+        }, soaSplit());
+    }
+    if (tetherSlots > 0) {
+        const int m = 2 * params.bendDistance, stride = params.ny * soaSegment;
+        pool->parallelFor(params.ny, [&](int j0, int j1) {
+            for (int c = 0; c < m; ++c)
+                cloth::projectTethersSoa(s, {{c * stride + j0 * soaSegment, c * stride + j1 * soaSegment,
+                                              tetherSlots, soaSlots, tetherAnchorSoa.data(),
+                                              tetherLengthSoa.data()},
+                                             tetherTable.empty() ? nullptr : tetherTable.data(),
+                                             int(tetherTable.size())});
+        }, soaSplit());
+    }
+}
+
 void Cloth::Impl::selfCollide() {
     const float spacingU = params.nx > 1 ? params.size.x / float(params.nx - 1) : params.size.y;
     const float spacingV = params.ny > 1 ? params.size.y / float(params.ny - 1) : params.size.x;
@@ -174,16 +228,33 @@ void Cloth::Impl::substep(float h, float damping) {
     }
     const cloth::IntegrateJob job{0, 0, pinned.data(), hole.data(), g, h, damping,
                                   windy ? normals.data() : nullptr, r, wind.strength};
-    pool->parallelFor(n, [&](int k0, int k1) {
-        cloth::IntegrateJob part = job;
-        part.begin = k0;
-        part.end = k1;
-        cloth::integrate(particles.data(), previous.data(), part, isa);
-    }, kMinParallelParticles);
     const bool compliant = params.complianceStretch > 0 || params.complianceShear > 0 ||
                            params.complianceBend > 0;
-    if (compliant) std::fill(lambda.begin(), lambda.end(), 0.0f);
-    for (int it = 0; it < params.iterations; ++it) relax(h);
+    if (useSoa && colliders.empty()) {
+        // the same integration and sweeps on the structure-of-arrays layout (bit-identical
+        // results); the integration writes the new positions there directly
+        if (denseStale) syncDense();
+        if (compliant) std::fill(denseLambda.begin(), denseLambda.end(), 0.0f);
+        const cloth::SoaParticles s = soaParticles();
+        const cloth::SoaGrid grid{params.nx, params.ny, 2 * params.bendDistance, soaSegment};
+        pool->parallelFor(params.ny, [&](int j0, int j1) {
+            cloth::IntegrateJob part = job;
+            part.begin = j0;
+            part.end = j1;
+            cloth::integrateRowsToSoa(particles.data(), previous.data(), part, s, grid, soaSlot.data());
+        }, soaSplit());
+        for (int it = 0; it < params.iterations; ++it) relaxSoa(h);
+        fromSoa();
+    } else {
+        pool->parallelFor(n, [&](int k0, int k1) {
+            cloth::IntegrateJob part = job;
+            part.begin = k0;
+            part.end = k1;
+            cloth::integrate(particles.data(), previous.data(), part, isa);
+        }, kMinParallelParticles);
+        if (compliant) std::fill(lambda.begin(), lambda.end(), 0.0f);
+        for (int it = 0; it < params.iterations; ++it) relax(h);
+    }
     if (params.selfCollision) selfCollide();
 }
 
@@ -193,7 +264,10 @@ void Cloth::Impl::afterStep(float dt) {
             if (!active[c]) continue;
             const cloth::Constraint& k = constraints[c];
             const float len = glm::length(particles[size_t(k.b)].x - particles[size_t(k.a)].x);
-            if (std::abs(len - k.rest) > params.tearStrain * k.rest) active[c] = 0;
+            if (std::abs(len - k.rest) > params.tearStrain * k.rest) {
+                active[c] = 0;
+                denseStale = true;
+            }
         }
     }
     if (params.sleepThreshold > 0.0f) {
