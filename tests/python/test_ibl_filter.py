@@ -35,16 +35,19 @@ def test_constant_environment_gives_pi_l_for_every_method() -> None:
                                    np.broadcast_to(expected, (6 * 64, 3)), rtol=2e-3)
 
 
-def test_single_bright_texel_gives_the_clamped_cosine_lobe() -> None:
+@pytest.mark.parametrize("exact", [ibl.irradiance_exact, ibl.irradiance_exact_gpu],
+                         ids=["cpu", "compute"])
+def test_single_bright_texel_gives_the_clamped_cosine_lobe(exact) -> None:
     size = 16
     f = np.zeros((6, size, size, 3), np.float32)
     f[4, 7, 9] = (100.0, 50.0, 25.0)
     d_t = ref.texel_directions(size)[4, 7, 9]
     w_t = ibl.cube_texel_solid_angles(size)[7, 9]
-    out = faces(ibl.irradiance_exact(f, 8, size)).reshape(-1, 3)
+    out = faces(exact(f, 8, size)).reshape(-1, 3)
     normals = ref.texel_directions(8).reshape(-1, 3)
     expected = np.maximum(normals @ d_t, 0.0)[:, None] * w_t * np.array([100.0, 50.0, 25.0])
     np.testing.assert_allclose(out, expected, rtol=1e-4, atol=1e-6)
+    assert (out[normals @ d_t <= 0.0] == 0.0).all()  # nothing leaks past the horizon
 
 
 def test_exact_irradiance_matches_the_reference() -> None:
