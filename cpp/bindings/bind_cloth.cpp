@@ -196,6 +196,9 @@ void bindCloth(py::module_& m) {
         "Grid cloth simulated with position-based dynamics (SPEC §2): Verlet + XPBD distance\n"
         "constraints over a graph-coloured parallel Gauss-Seidel, colliders, wind, grabbing,\n"
         "holes, tearing, self-collision, sleeping. Particle p = j * nx + i.")
+        .def_static("soa_kernels_available", &Cloth::soaKernelsAvailable,
+                    "Whether this CPU runs the structure-of-arrays relaxation (AVX-512; cloths\n"
+                    "without colliders, unless WEFT_CLOTH_AOS=1); results are bit-identical.")
         .def(py::init([](int nx, int ny, py::handle size, py::handle origin, py::handle axisU,
                          py::handle axisV, float mass, int bendDistance, bool extraAxial,
                          float damping, py::handle gravity, int iterations, int substeps,

@@ -90,6 +90,10 @@ struct ClothStats {
 
 class Cloth {
 public:
+    /// Whether this CPU runs the structure-of-arrays relaxation (AVX-512; cloths without
+    /// colliders, unless WEFT_CLOTH_AOS=1). Results are bit-identical either way.
+    static bool soaKernelsAvailable();
+
     explicit Cloth(const ClothParams& params = {});
     ~Cloth();
     Cloth(Cloth&&) noexcept;

@@ -36,6 +36,8 @@ Cloth::Cloth(const ClothParams& params) : mImpl(std::make_unique<Impl>()) {
 }
 
 Cloth::~Cloth() = default;
+
+bool Cloth::soaKernelsAvailable() { return cloth::hasSoaKernels(); }
 Cloth::Cloth(Cloth&&) noexcept = default;
 Cloth& Cloth::operator=(Cloth&&) noexcept = default;
 
