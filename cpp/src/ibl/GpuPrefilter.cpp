@@ -215,12 +215,14 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
         mirror.write(chain.data(copyLevel), mirrorBytes);
     }
 
-    vk::DescriptorSetLayout setLayout = vk::createComputeSetLayout(
-        ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-              {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
-    vk::PipelineLayout layout = vk::createComputePipelineLayout(ctx, {setLayout},
-                                                                sizeof(PrefilterPush));
-    vk::Pipeline pipeline = vk::createComputePipeline(ctx, "ibl/prefilter_ggx.comp", layout);
+    const vk::ComputeProgram& program = vk::cachedComputeProgram(
+        ctx, "ibl/prefilter_ggx.comp",
+        {{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+         {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+        sizeof(PrefilterPush));
+    const VkPipelineLayout layout = program.layout;
+    const VkPipeline pipeline = program.pipeline;
+    const VkDescriptorSetLayout setLayout = program.setLayout;
     VkBufferViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
     viewInfo.buffer = src.get();
     viewInfo.format = VK_FORMAT_R32G32B32A32_SFLOAT;

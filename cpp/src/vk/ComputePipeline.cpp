@@ -1,5 +1,9 @@
 #include "vk/ComputePipeline.h"
 
+#include <string>
+
+#include <weft/ShaderReload.h>
+
 #include "vk/Pipeline.h"
 
 namespace weft::vk {
@@ -22,6 +26,23 @@ DescriptorSetLayout createComputeSetLayout(
     std::vector<SetBinding> b;
     for (auto [binding, type] : bindings) b.push_back({binding, type});
     return createSetLayout(ctx, b, 0, VK_SHADER_STAGE_COMPUTE_BIT);
+}
+
+const ComputeProgram& cachedComputeProgram(
+    Context& ctx, const char* shader,
+    const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings, uint32_t pushConstantBytes) {
+    std::string key = std::string("compute:") + shader + ":" + std::to_string(pushConstantBytes) +
+                      ":" + std::to_string(shaderGeneration());
+    for (auto [binding, type] : bindings)
+        key += ":" + std::to_string(binding) + "=" + std::to_string(int(type));
+    const std::shared_ptr<void> program = ctx.cached(key, [&] {
+        auto p = std::make_shared<ComputeProgram>();
+        p->setLayout = createComputeSetLayout(ctx, bindings);
+        p->layout = createComputePipelineLayout(ctx, {p->setLayout}, pushConstantBytes);
+        p->pipeline = createComputePipeline(ctx, shader, p->layout);
+        return std::shared_ptr<void>(p);
+    });
+    return *static_cast<const ComputeProgram*>(program.get());
 }
 
 PipelineLayout createComputePipelineLayout(Context& ctx, const std::vector<VkDescriptorSetLayout>& sets,

@@ -7,6 +7,19 @@
 
 namespace weft::vk {
 
+/// A compute shader's set-0 layout, pipeline layout and pipeline.
+struct ComputeProgram {
+    DescriptorSetLayout setLayout;
+    PipelineLayout layout;
+    Pipeline pipeline;
+};
+
+/// The program of `shader` with these set-0 (binding, type) pairs and push-constant bytes, made
+/// once per context (again after a shader hot reload) and kept until the context goes.
+const ComputeProgram& cachedComputeProgram(
+    Context& ctx, const char* shader,
+    const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings, uint32_t pushConstantBytes);
+
 /// A compute pipeline from the embedded shader `shader` (path relative to glsl/).
 Pipeline createComputePipeline(Context& ctx, const char* shader, VkPipelineLayout layout);
 

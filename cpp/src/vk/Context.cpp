@@ -201,6 +201,7 @@ Context::Context() {
 }
 
 Context::~Context() {
+    mCache.clear(); // its Vulkan objects retire into the queue emptied below
     if (mDevice) {
         vkDeviceWaitIdle(mDevice); // teardown only, never in a frame loop
         collectGarbage();
@@ -456,6 +457,14 @@ void Context::immediate(const std::function<void(VkCommandBuffer)>& record) {
     VK_CHECK(vkEndCommandBuffer(cmd));
     waitFor(submit(cmd));
     vkFreeCommandBuffers(mDevice, mCommandPool, 1, &cmd);
+}
+
+std::shared_ptr<void> Context::cached(const std::string& key,
+                                      const std::function<std::shared_ptr<void>()>& make) {
+    std::lock_guard<std::mutex> lock(mCacheMutex);
+    std::shared_ptr<void>& slot = mCache[key];
+    if (!slot) slot = make();
+    return slot;
 }
 
 } // namespace weft::vk

@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "vk/Allocator.h"
@@ -55,6 +56,10 @@ public:
 
     /// Runs `destroy` once the GPU has finished everything submitted so far.
     void retire(std::function<void()> destroy);
+    /// An object made by `make` on the first request for `key` and kept until the context goes
+    /// (e.g. the compute pipelines of the offline tools, so repeated calls do not compile them).
+    std::shared_ptr<void> cached(const std::string& key,
+                                 const std::function<std::shared_ptr<void>()>& make);
     /// Runs the retired destructors whose submissions completed.
     void collectGarbage();
 
@@ -78,6 +83,8 @@ private:
     double mTimestampPeriodNs = 0.0;
     DeviceFunctions mFn;
     std::unique_ptr<Allocator> mAllocator;
+    std::mutex mCacheMutex;
+    std::unordered_map<std::string, std::shared_ptr<void>> mCache; // see cached()
 
     // Thread safety: the queue and the immediate-upload pool are locked; each Renderer records
     // into command buffers from its own pool.

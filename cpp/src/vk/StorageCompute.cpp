@@ -26,9 +26,9 @@ StorageCompute createStorageCompute(Context& ctx, const char* shader,
         types.push_back({k, typeOf(bindings[k])});
         (bindings[k].dynamicRange > 0 ? c.dynamicCount : plain) += 1;
     }
-    c.setLayout = createComputeSetLayout(ctx, types);
-    c.layout = createComputePipelineLayout(ctx, {c.setLayout}, pushConstantBytes);
-    c.pipeline = createComputePipeline(ctx, shader, c.layout);
+    const ComputeProgram& program = cachedComputeProgram(ctx, shader, types, pushConstantBytes);
+    c.layout = program.layout;
+    c.pipeline = program.pipeline;
 
     std::vector<VkDescriptorPoolSize> sizes;
     if (plain) sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, plain});
@@ -41,7 +41,7 @@ StorageCompute createStorageCompute(Context& ctx, const char* shader,
     VkDescriptorPool handle;
     VK_CHECK(vkCreateDescriptorPool(ctx.device(), &info, nullptr, &handle));
     c.pool = DescriptorPool(&ctx, handle, vkDestroyDescriptorPool);
-    const VkDescriptorSetLayout setLayout = c.setLayout;
+    const VkDescriptorSetLayout setLayout = program.setLayout;
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = c.pool;
     alloc.descriptorSetCount = 1;

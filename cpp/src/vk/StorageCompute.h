@@ -20,9 +20,8 @@ struct StorageBinding {
 };
 
 struct StorageCompute {
-    DescriptorSetLayout setLayout;
-    PipelineLayout layout;
-    Pipeline pipeline;
+    VkPipelineLayout layout = VK_NULL_HANDLE; // of the context's cached program (cachedComputeProgram)
+    VkPipeline pipeline = VK_NULL_HANDLE;
     DescriptorPool pool;
     VkDescriptorSet set = VK_NULL_HANDLE; // bindings[k] at binding k
     uint32_t dynamicCount = 0;            // bindings with a dynamic offset
