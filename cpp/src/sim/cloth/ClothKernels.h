@@ -138,4 +138,22 @@ void projectTethers(Particle* particles, const TetherJob& job, Isa isa);
 /// particle record.
 void integrate(Particle* particles, Particle* previous, const IntegrateJob& job, Isa isa);
 
+// Shared by the record (ClothKernels.cpp) and SoA (ClothKernelsSoa.cpp) kernels.
+
+/// Coincident particles have no direction: they are separated along their rest offset, so a
+/// collapsed cloth unfolds instead of staying stuck.
+constexpr float kCoincident2 = 1e-24f;
+constexpr float kUnfold = 1e-6f;
+
+/// The Verlet step's acceleration term of particle k times h^2 (gravity, plus wind when Windy).
+template <bool Windy>
+inline glm::vec3 acceleration(const IntegrateJob& job, int k) {
+    glm::vec3 a = job.gravity;
+    if (Windy) {
+        const glm::vec3 nn(job.normals[k]);
+        a += job.windStrength * glm::dot(nn, job.windDirection) * nn;
+    }
+    return a * (job.h * job.h);
+}
+
 } // namespace weft::cloth
