@@ -125,28 +125,19 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
         rDebug[2] = g.addResource("surface", &targets.surface);
         rDebug[3] = g.addResource("albedo", &targets.albedo);
     }
-    auto viewportScissor = [](VkCommandBuffer cmd, uint32_t w, uint32_t h) {
-        VkViewport vp{0, 0, float(w), float(h), 0.0f, 1.0f};
-        VkRect2D sc{{0, 0}, {w, h}};
-        vkCmdSetViewport(cmd, 0, 1, &vp);
-        vkCmdSetScissor(cmd, 0, 1, &sc);
-    };
     // One full-screen triangle into a single colour target of the output's size.
     auto fullscreen = [&](VkCommandBuffer cmd, VkImageView target, VkAttachmentLoadOp load,
                           VkPipeline pipeline, VkPipelineLayout layout, VkDescriptorSet set,
                           const void* push, uint32_t pushBytes) {
-        VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        a.imageView = target;
-        a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        VkRenderingAttachmentInfo a = render::attachment(target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
         a.loadOp = load;
-        a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
         VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
         info.renderArea = {{0, 0}, {targets.width, targets.height}};
         info.layerCount = 1;
         info.colorAttachmentCount = 1;
         info.pColorAttachments = &a;
         c.fn().cmdBeginRendering(cmd, &info);
-        viewportScissor(cmd, targets.width, targets.height);
+        render::setViewport(cmd, targets.width, targets.height);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
         if (pushBytes) vkCmdPushConstants(cmd, layout, vk::kGraphicsStages, 0, pushBytes, push);
@@ -157,18 +148,13 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     // Depth of every shadow caster (meshes, alpha-tested ones with holes, hair) seen by viewProj.
     auto drawCasters = [&](VkCommandBuffer cmd, VkImageView view, uint32_t size,
                            const glm::mat4& viewProj, bool withHair) {
-        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        depth.imageView = view;
-        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        depth.clearValue.depthStencil = {1.0f, 0};
+        const VkRenderingAttachmentInfo depth = render::clearedDepth(view);
         VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
         info.renderArea = {{0, 0}, {size, size}};
         info.layerCount = 1;
         info.pDepthAttachment = &depth;
         c.fn().cmdBeginRendering(cmd, &info);
-        viewportScissor(cmd, size, size);
+        render::setViewport(cmd, size, size);
         VkPipeline bound = VK_NULL_HANDLE;
         for (const Draw& d : draws) {
             if (!d.castShadows || d.mesh->indexCount == 0) continue;
@@ -240,19 +226,10 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                        {{rProbe, Use::ColorWrite}, {rProbeDepth, Use::DepthWrite}},
                        [&, f, faceSet](VkCommandBuffer cmd) {
                            const uint32_t size = probe.cube().desc().width;
-                           VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-                           color.imageView = probe.cube().layerView(f);
-                           color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-                           color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-                           color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-                           const glm::vec4 clear(scene.background(), 1.0f);
-                           std::memcpy(color.clearValue.color.float32, &clear, sizeof(clear));
-                           VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-                           depth.imageView = probe.depth().view();
-                           depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-                           depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-                           depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-                           depth.clearValue.depthStencil = {1.0f, 0};
+                           const VkRenderingAttachmentInfo color = render::clearedColor(
+                               probe.cube().layerView(f), glm::vec4(scene.background(), 1.0f));
+                           const VkRenderingAttachmentInfo depth =
+                               render::clearedDepth(probe.depth().view(), false);
                            VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
                            info.renderArea = {{0, 0}, {size, size}};
                            info.layerCount = 1;
@@ -260,7 +237,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                            info.pColorAttachments = &color;
                            info.pDepthAttachment = &depth;
                            c.fn().cmdBeginRendering(cmd, &info);
-                           viewportScissor(cmd, size, size);
+                           render::setViewport(cmd, size, size);
                            VkPipeline bound = VK_NULL_HANDLE;
                            for (const Draw& d : draws) {
                                if (d.mesh->indexCount == 0 || int(d.instance) == probe.instance() ||
@@ -302,14 +279,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     if (rProbe >= 0) forwardReads.push_back({rProbe, Use::Sampled});
     g.addPass({"forward", forwardReads, forwardWrites, [&](VkCommandBuffer cmd) {
                    std::vector<VkRenderingAttachmentInfo> colors;
-                   auto color = [&](VkImageView view, glm::vec4 clear) {
-                       VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-                       a.imageView = view;
-                       a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-                       a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-                       a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-                       std::memcpy(a.clearValue.color.float32, &clear, sizeof(clear));
-                       colors.push_back(a);
+                   auto color = [&](VkImageView view, const glm::vec4& clear) {
+                       colors.push_back(render::clearedColor(view, clear));
                    };
                    color(targets.hdr.view(), glm::vec4(scene.background(), 1.0f));
                    if (background) colors.back().loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
@@ -321,13 +292,9 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    }
                    if (domeBlur) // a < 0: no surface
                        color(targets.dome.view(), glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
-                   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-                   depth.imageView = targets.depth.view();
-                   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-                   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-                   depth.storeOp = hasHair || domeBlur ? VK_ATTACHMENT_STORE_OP_STORE // hair tests
-                                                       : VK_ATTACHMENT_STORE_OP_DONT_CARE; // against it
-                   depth.clearValue.depthStencil = {1.0f, 0};
+                   // kept when hair tests against it or the dome blur reads it
+                   const VkRenderingAttachmentInfo depth =
+                       render::clearedDepth(targets.depth.view(), hasHair || domeBlur);
                    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
                    info.renderArea = {{0, 0}, {targets.width, targets.height}};
                    info.layerCount = 1;
@@ -335,7 +302,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                    info.pColorAttachments = colors.data();
                    info.pDepthAttachment = &depth;
                    c.fn().cmdBeginRendering(cmd, &info);
-                   viewportScissor(cmd, targets.width, targets.height);
+                   render::setViewport(cmd, targets.width, targets.height);
                    VkPipeline bound = VK_NULL_HANDLE;
                    for (const Draw& d : draws) {
                        if (d.mesh->indexCount == 0) continue; // e.g. a cloth torn to pieces

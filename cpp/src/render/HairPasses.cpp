@@ -6,28 +6,13 @@
 #include <string>
 
 #include "hair/HairShadingGpu.h"
+#include "render/PassSetup.h"
 #include "render/RenderTargets.h"
 #include "render/ScenePipelines.h"
 
 namespace weft::render {
 
 namespace {
-
-void viewportScissor(VkCommandBuffer cmd, uint32_t w, uint32_t h) {
-    VkViewport vp{0, 0, float(w), float(h), 0.0f, 1.0f};
-    VkRect2D sc{{0, 0}, {w, h}};
-    vkCmdSetViewport(cmd, 0, 1, &vp);
-    vkCmdSetScissor(cmd, 0, 1, &sc);
-}
-
-VkRenderingAttachmentInfo attachment(VkImageView view, VkImageLayout layout, bool clear) {
-    VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    a.imageView = view;
-    a.imageLayout = layout;
-    a.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
-    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    return a;
-}
 
 constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
@@ -368,7 +353,7 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                            info.layerCount = 1;
                            info.pDepthAttachment = &depth;
                            mCtx.fn().cmdBeginRendering(cmd, &info);
-                           viewportScissor(cmd, mDomSize, mDomSize);
+                           setViewport(cmd, mDomSize, mDomSize);
                            drawFromLight(cmd, mPipes.lightDepth, mDoms[s].viewProj,
                                          glm::vec4(0.0f));
                            mCtx.fn().cmdEndRendering(cmd);
@@ -387,7 +372,7 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                            info.colorAttachmentCount = 1;
                            info.pColorAttachments = &color;
                            mCtx.fn().cmdBeginRendering(cmd, &info);
-                           viewportScissor(cmd, mDomSize, mDomSize);
+                           setViewport(cmd, mDomSize, mDomSize);
                            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                                                    mPipes.layout, 3, 1, &mZ0Set, 0, nullptr);
                            drawFromLight(cmd, mPipes.domOpacity, mDoms[s].viewProj,
@@ -421,7 +406,7 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                        info.pColorAttachments = colors.data();
                        info.pDepthAttachment = &depth;
                        mCtx.fn().cmdBeginRendering(cmd, &info);
-                       viewportScissor(cmd, desc.width, desc.height);
+                       setViewport(cmd, desc.width, desc.height);
                        const VkPipeline pipeline =
                            debug ? mPipes.debug[ribbons].get() : mPipes.opaque[ribbons].get();
                        drawCamera(cmd, t, pipeline, mOpacitySet, false);
@@ -448,7 +433,7 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                    info.pColorAttachments = colors;
                    info.pDepthAttachment = &depth;
                    mCtx.fn().cmdBeginRendering(cmd, &info);
-                   viewportScissor(cmd, mWidth, mHeight);
+                   setViewport(cmd, mWidth, mHeight);
                    drawCamera(cmd, t, mPipes.oit[ribbons], mOpacitySet, true);
                    mCtx.fn().cmdEndRendering(cmd);
                }});
@@ -462,7 +447,7 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                    info.colorAttachmentCount = 1;
                    info.pColorAttachments = &color;
                    mCtx.fn().cmdBeginRendering(cmd, &info);
-                   viewportScissor(cmd, mWidth, mHeight);
+                   setViewport(cmd, mWidth, mHeight);
                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.composite);
                    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                                            mPipes.compositeLayout, 0, 1, &mOitSet, 0, nullptr);

@@ -18,6 +18,7 @@
 #include "render/GpuCache.h"
 #include "render/GpuTypes.h"
 #include "render/HairPasses.h"
+#include "render/PassSetup.h"
 #include "render/RenderTargets.h"
 #include "render/ScenePipelines.h"
 #include "render/ShadowFit.h"
