@@ -160,12 +160,12 @@ BtfMaterialMaps btfDrawnMaps(const BtfMaterialMaps& maps) {
             d.ambient[i] = d.albedo[i] > 0.0f ? constant / d.albedo[i] : 0.0f;
             if (e.hasSpecular) d.specular[i] = e.ks[c] * decode(e.specular[t * 4 + size_t(c)]);
         }
-        if (!d.exponentMap.empty())
+        if (!d.exponentMap.empty()) {
+            const float alpha = decode(e.specular[t * 4 + 3]);
             d.exponentMap[t] = e.exponentInAlpha
-                                   ? std::min(e.shininess * std::exp2(decode(e.specular[t * 4 + 3]) *
-                                                                      log2Ratio),
-                                              e.shininessMax)
+                                   ? std::min(e.shininess * std::exp2(alpha * log2Ratio), e.shininessMax)
                                    : e.shininess;
+        }
     }
     d.validate();
     return d;
