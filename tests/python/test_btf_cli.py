@@ -36,7 +36,8 @@ def test_synth_then_fit_writes_maps_metrics_and_report(tmp_path: Path) -> None:
     assert set(models) == {"linear", "specular_eq4.29", "specular_eq4.30", "blinn_phong",
                            "lafortune_2"}
     assert (out / "maps" / "lafortune_2" / "lobe1_shape.exr").is_file()
-    assert models["specular_eq4.30"]["deviation"]["groups"]["0"] < 1e-10
+    # scored as drawn (8-bit maps): eq. 4.30 reproduces the θ_l = 0 group up to quantisation
+    assert models["specular_eq4.30"]["deviation"]["groups"]["0"] < 1e-4
     assert models["blinn_phong"]["deviation"]["total"] < models["linear"]["deviation"]["total"]
     assert len(models["linear"]["sample_deviation"]) == 81
     assert metrics["truth"]["linear"]["mean_deg"] < 5.0

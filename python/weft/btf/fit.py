@@ -159,10 +159,14 @@ def have_ceres() -> bool:
 
 
 def sample_errors(samples: Any, material: BtfMaterial, reconstruct: bool = False,
-                  threads: int = 0) -> Any:
-    """Per-sample mean squared error (S,) of the material; with ``reconstruct`` also the
-    reconstruction (S, 3, H, W)."""
-    return _core.btf_sample_errors(samples, material.core_maps(), bool(reconstruct), int(threads))
+                  threads: int = 0, drawn: bool = True) -> Any:
+    """Per-sample mean squared error (S,) over texels and channels of the material against the
+    samples; with ``reconstruct`` also the reconstruction (S, 3, H, W). ``drawn`` (default):
+    the material as the renderer draws it, :meth:`BtfMaterial.as_drawn` (8-bit maps with
+    their scales, decoded normals, n.l clamped at 0 with no highlight where n.l <= 0, the
+    exponent map drawn); False: the float model as given (its own ``clamp_diffuse``)."""
+    maps = material.as_drawn() if drawn else material
+    return _core.btf_sample_errors(samples, maps.core_maps(), bool(reconstruct), int(threads))
 
 
 def deviation(samples: Any, errors: np.ndarray) -> Dict[str, Any]:
