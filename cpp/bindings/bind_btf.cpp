@@ -363,9 +363,11 @@ void bindBtf(py::module_& m) {
     m.def("btf_have_ceres", &btfHaveCeres);
     m.def("btf_fit_blinn_phong", [](const BtfSamples& s, py::dict seed, const std::string& solver,
                                     int maxIterations, float minExponent, float maxExponent,
-                                    int threads) {
+                                    int threads, bool flatSpecularNormal, bool visibility) {
         const BtfMaterialMaps mm = mapsFrom(s, seed);
         BtfNonlinearOptions o;
+        o.flatSpecularNormal = flatSpecularNormal;
+        o.visibility = visibility;
         o.solver = solverFrom(solver);
         o.maxIterations = maxIterations;
         o.minExponent = minExponent;
@@ -380,10 +382,12 @@ void bindBtf(py::module_& m) {
         d["maps"] = mapsTo(r.maps);
         d["mean_iterations"] = r.meanIterations;
         d["solver"] = r.solver;
+        d["shadowed_fraction"] = r.shadowedFraction;
         return d;
     }, py::arg("samples"), py::arg("seed"), py::arg("solver") = "auto",
        py::arg("max_iterations") = 30, py::arg("min_exponent") = 1.0f,
-       py::arg("max_exponent") = 4096.0f, py::arg("threads") = 0);
+       py::arg("max_exponent") = 4096.0f, py::arg("threads") = 0,
+       py::arg("flat_specular_normal") = false, py::arg("visibility") = true);
 }
 
 } // namespace weft::py_bind

@@ -37,8 +37,9 @@ BtfLinearFit solveBtfLinear(const BtfSamples& samples, const std::vector<float>&
                             const BtfLinearOptions& options = {});
 
 /// A per-texel reflectance model the renderer can consume: P = ρ ⊙ (a + d(n·l)) +
-/// k (max(n_s·h, 0))^e, d(x) = x (linear, the seed) or max(x, 0) (clamped), h = normalise(l + v),
-/// n_s = n (eq. 4.29) or (0, 0, 1) (eq. 4.30). A linear fit maps to ρ = T|n|, a = I_A/|n|, n/|n|.
+/// k (max(n_s·h, 0))^e, d(x) = x (linear, the seed) or, with clampDiffuse, the renderer's model:
+/// d(x) = max(x, 0) and no highlight where n·l <= 0. h = normalise(l + v), n_s = n (eq. 4.29)
+/// or (0, 0, 1) (eq. 4.30). A linear fit maps to ρ = T|n|, a = I_A/|n|, n/|n|.
 struct BtfMaterialMaps {
     int width = 0, height = 0;
     std::vector<float> normal;   ///< unit normals (H, W, 3)

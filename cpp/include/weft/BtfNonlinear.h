@@ -1,9 +1,15 @@
 #pragma once
-// Per-texel nonlinear Blinn-Phong fit seeded by the linear fit (SPEC §3.5):
-// P_c = m_c max(n·l, 0) + b_c + k_c max(n·h, 0)^e, unknowns n (2 dof), m, b, k (RGB), e.
+// Per-texel nonlinear Blinn-Phong fit seeded by the linear fit (SPEC §3.5), in the model the
+// renderer draws: P_c = m_c max(n·l, 0) + b_c + k_c [n·l > 0] max(n_s·h, 0)^e, n_s = n or
+// (0, 0, 1) (seed eq. 4.30). Unknowns n (2 dof), m, b, k (RGB), e, all inside the physical
+// space: n = normalise(u, v, 1) (n_z > 0), m, b, k >= 0 (non-negative least squares), e in
+// [minExponent, maxExponent] (projected steps).
 // Built-in: Levenberg-Marquardt over (n, log e) with m, b, k eliminated by variable projection
 // (Kaufman's Jacobian), the default. Ceres (when built with it and asked for): the full
-// 12-parameter problem, autodiff.
+// 12-parameter problem, autodiff, bounds on m, b, k and log e.
+// Cast shadows: with `visibility`, samples much darker than the fitted model (closer to the
+// constant term than to the lit prediction, by more than the texel's noise) are taken as
+// shadowed and left out, and the texel is fitted again (a few rounds, until the set is stable).
 #include <string>
 
 #include <weft/BtfFit.h>
@@ -16,13 +22,16 @@ struct BtfNonlinearOptions {
     BtfSolver solver = BtfSolver::Auto; ///< Auto: the built-in LM (fastest, as accurate)
     int maxIterations = 30;
     float minExponent = 1.0f, maxExponent = 4096.0f;
+    bool flatSpecularNormal = false; ///< n_s = (0, 0, 1) (eq. 4.30) instead of n
+    bool visibility = true;          ///< estimate cast shadows per sample and leave them out
     int threads = 0;
 };
 
 struct BtfNonlinearFit {
-    BtfMaterialMaps maps; ///< clamped diffuse, n_s = n, per-texel exponent
+    BtfMaterialMaps maps; ///< clamped diffuse, per-texel exponent; ρ = max(m, 1e-3 b, 1e-6), a = b/ρ
     double meanIterations = 0;
     std::string solver;   ///< "builtin" or "ceres"
+    double shadowedFraction = 0; ///< samples left out as cast shadows / all samples
 };
 
 /// True when weft was built with Ceres Solver.

@@ -1,6 +1,7 @@
 // Built-in Levenberg-Marquardt for the per-texel Blinn-Phong fit by variable projection: the
-// linear coefficients (m, b, k per channel) are eliminated, LM runs over (u, v, η) with
-// Kaufman's approximation J_c = -P⊥ (∂Φ/∂θ) c_c of the projected residual's Jacobian.
+// linear coefficients (m, b, k per channel) are eliminated by non-negative least squares, LM
+// runs over (u, v, η) with Kaufman's approximation J_c = -P⊥ (∂Φ/∂θ) c_c of the projected
+// residual's Jacobian, P⊥ projecting out the columns of Φ whose coefficient is free (> 0).
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -12,10 +13,17 @@
 namespace weft {
 
 void BlinnPhongTexel::setSeedNormal(glm::vec3 n) {
-    n0 = glm::normalize(glm::dvec3(n));
-    const glm::dvec3 a = std::fabs(n0.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-    t1 = glm::normalize(a - n0 * glm::dot(a, n0));
-    t2 = glm::cross(n0, t1);
+    // n = normalise(u, v, 1): every (u, v) is a normal of the upper hemisphere, so the search
+    // never leaves the physical space and needs no bound on the normal.
+    n0 = glm::dvec3(0, 0, 1);
+    t1 = glm::dvec3(1, 0, 0);
+    t2 = glm::dvec3(0, 1, 0);
+    glm::dvec3 s(n);
+    const double len = glm::length(s);
+    s = len > 1e-12 && std::isfinite(len) ? s / len : glm::dvec3(0, 0, 1);
+    const double z = std::max(s.z, 0.05);
+    start[0] = s.x / z;
+    start[1] = s.y / z;
 }
 
 void BlinnPhongTexel::updateSquares() {
@@ -27,6 +35,8 @@ BlinnPhongGeometry::BlinnPhongGeometry(const std::vector<glm::vec3>& lights,
                                        const std::vector<glm::vec3>& halves) {
     count = int(lights.size());
     padded = (count + kBlinnPhongLanes - 1) / kBlinnPhongLanes * kBlinnPhongLanes;
+    ones.assign(size_t(padded), 0.0f);
+    std::fill(ones.begin(), ones.begin() + count, 1.0f);
     for (int k = 0; k < 3; ++k) {
         l[k].assign(size_t(padded), 0.0f);
         h[k].assign(size_t(padded), 0.0f);
@@ -45,13 +55,16 @@ void BlinnPhongTexel::prepare() {
     setPlanes(planeStore.data());
 }
 
-void BlinnPhongTexel::setPlanes(const float* p) {
+void BlinnPhongTexel::setPlanes(const float* p, const float* w) {
     planes = p;
+    weights = w ? w : geometry->ones.data();
     const size_t n = size_t(geometry->count), np = size_t(geometry->padded);
+    used = 0.0;
+    for (size_t s = 0; s < n; ++s) used += weights[s];
     for (int c = 0; c < 3; ++c) {
         double sum = 0.0, sq = 0.0;
         for (size_t s = 0; s < n; ++s) {
-            const double v = p[size_t(c) * np + s];
+            const double v = double(p[size_t(c) * np + s]) * weights[s];
             sum += v;
             sq += v * v;
         }
@@ -153,6 +166,7 @@ template <class F> WEFT_INLINE double hsum(F v) {
 struct CostInput {
     const BlinnPhongGeometry* geo;
     const float* p[3]; // planes
+    const float* w;    // sample weights
     float n[3], e;
     float *d, *g, *lg; // out, per padded sample
 };
@@ -160,8 +174,9 @@ struct CostSums {
     double sd, sg, sdd, sdg, sgg, sdp[3], sgp[3];
 };
 
-// d = max(n·l, 0), g = max(n·h, 0)^e, log(n·h) per sample; then the Gram and Φᵀp sums in double
-// (float x float is exact in double; the cost Σp² - Σ bᵀx cancels).
+// d = w max(n·l, 0), g = w [n·l > 0] max(n_s·h, 0)^e, log(n_s·h) per sample; then the Gram and
+// Φᵀp sums in double (float x float is exact in double; the cost Σp² - Σ bᵀx cancels). The
+// constant column of Φ is w, and w² = w, so the sums need no other weighting.
 template <int W> WEFT_INLINE void costKernel(const CostInput& in, CostSums& out) {
     typedef typename Vec<W>::F F;
     typedef typename Vec<W>::I I;
@@ -169,16 +184,20 @@ template <int W> WEFT_INLINE void costKernel(const CostInput& in, CostSums& out)
     const int np = geo.padded;
     const F nx = splat<F>(in.n[0]), ny = splat<F>(in.n[1]), nz = splat<F>(in.n[2]);
     const F ef = splat<F>(in.e);
+    const bool flat = geo.flatSpecular;
     for (int s = 0; s < np; s += W) {
+        const F w = load<F>(in.w + s);
         const F nl = nx * load<F>(&geo.l[0][s]) + ny * load<F>(&geo.l[1][s]) +
                      nz * load<F>(&geo.l[2][s]);
-        const F nh = nx * load<F>(&geo.h[0][s]) + ny * load<F>(&geo.h[1][s]) +
-                     nz * load<F>(&geo.h[2][s]);
+        const F nh = flat ? load<F>(&geo.h[2][s])
+                          : nx * load<F>(&geo.h[0][s]) + ny * load<F>(&geo.h[1][s]) +
+                                nz * load<F>(&geo.h[2][s]);
+        const I lpos = nl > 0.0f;
         const I hpos = nh > 0.0f;
         const F lg = select(hpos, logv<F, I>(hpos ? nh : splat<F>(1.0f)));
-        store(in.d + s, select(nl > 0.0f, nl));
+        store(in.d + s, select(lpos, nl) * w);
         store(in.lg + s, lg);
-        store(in.g + s, select(hpos, expv<F, I>(ef * lg)));
+        store(in.g + s, select(hpos & lpos, expv<F, I>(ef * lg)) * w);
     }
     D4 sd{}, sg{}, sdd{}, sdg{}, sgg{}, sdp[3] = {}, sgp[3] = {};
     for (int s = 0; s < np; s += 4) {
@@ -210,6 +229,7 @@ template <int W> WEFT_INLINE void costKernel(const CostInput& in, CostSums& out)
 struct DerivInput {
     const BlinnPhongGeometry* geo;
     const float* p[3];
+    const float* w;
     const float *d, *g, *lg;
     float n[3], dn[2][3], e, x[3][3];
 };
@@ -219,7 +239,8 @@ struct DerivSums {
 };
 
 // float sums: no cancellation left (the residuals are formed per sample) and LM needs JᵀJ and
-// the gradient to a few digits only. Padded samples have D = 0.
+// the gradient to a few digits only. Padded and left-out samples have D = 0 (d and g carry w;
+// ∂d needs it explicitly), so r_cᵀD and ΦᵀD need no weighting either.
 template <int W> WEFT_INLINE void derivKernel(const DerivInput& in, DerivSums& out) {
     typedef typename Vec<W>::F F;
     typedef typename Vec<W>::I I;
@@ -232,6 +253,7 @@ template <int W> WEFT_INLINE void derivKernel(const DerivInput& in, DerivSums& o
         dv[k] = splat<F>(in.dn[1][k]);
     }
     const F ef = splat<F>(in.e);
+    const bool flat = geo.flatSpecular;
     F x[3][3];
     for (int c = 0; c < 3; ++c)
         for (int i = 0; i < 3; ++i) x[c][i] = splat<F>(in.x[c][i]);
@@ -240,13 +262,16 @@ template <int W> WEFT_INLINE void derivKernel(const DerivInput& in, DerivSums& o
         const F lx = load<F>(&geo.l[0][s]), ly = load<F>(&geo.l[1][s]), lz = load<F>(&geo.l[2][s]);
         const F hx = load<F>(&geo.h[0][s]), hy = load<F>(&geo.h[1][s]), hz = load<F>(&geo.h[2][s]);
         const F d = load<F>(in.d + s), g = load<F>(in.g + s), lg = load<F>(in.lg + s);
+        const F w = load<F>(in.w + s);
         const F nl = nx * lx + ny * ly + nz * lz;
         const F nh = nx * hx + ny * hy + nz * hz;
         const I lpos = nl > 0.0f, hpos = nh > 0.0f;
-        const F q = select(hpos, ef * g / (hpos ? nh : splat<F>(1.0f)));
+        // g = 0 where n·l <= 0 or n·h <= 0 (the renderer's gate), so q is too; with n_s = (0,0,1)
+        // the highlight does not move with n
+        const F q = flat ? F{} : select(hpos, ef * g / (hpos ? nh : splat<F>(1.0f)));
         F D[5];
-        D[0] = select(lpos, lx * du[0] + ly * du[1] + lz * du[2]);
-        D[1] = select(lpos, lx * dv[0] + ly * dv[1] + lz * dv[2]);
+        D[0] = select(lpos, lx * du[0] + ly * du[1] + lz * du[2]) * w;
+        D[1] = select(lpos, lx * dv[0] + ly * dv[1] + lz * dv[2]) * w;
         D[2] = q * (hx * du[0] + hy * du[1] + hz * du[2]);
         D[3] = q * (hx * dv[0] + hy * dv[1] + hz * dv[2]);
         D[4] = g * ef * lg;
@@ -257,7 +282,7 @@ template <int W> WEFT_INLINE void derivKernel(const DerivInput& in, DerivSums& o
             phiD[2][j] += g * D[j];
         }
         for (int c = 0; c < 3; ++c) {
-            const F r = load<F>(in.p[c] + s) - x[c][0] * d - x[c][1] - x[c][2] * g;
+            const F r = load<F>(in.p[c] + s) - x[c][0] * d - x[c][1] * w - x[c][2] * g;
             for (int j = 0; j < 5; ++j) rD[c][j] += r * D[j];
         }
     }
@@ -311,30 +336,93 @@ void (*const derivFn)(const DerivInput&, DerivSums&) =
 struct Evaluation {
     BlinnPhongResult result;
     double b[3][3] = {};          // Φᵀ p_c per channel
+    double gram[3][3] = {};       // ΦᵀΦ
+    double inv[3][3][3] = {};     // per channel: (Φ_FᵀΦ_F)⁻¹ on the free coefficients F, else 0
     double sdd[2][2] = {}, sdg[2][3] = {}, sgg[3][3] = {};
     double pd[3][2] = {}, pg[3][3] = {}; // Φᵀ ∂d, Φᵀ ∂g
     double rd[3][2] = {}, rg[3][3] = {}; // r_cᵀ ∂d, r_cᵀ ∂g
-    Cholesky3 factor;
     std::vector<float> d, g, lg; // per padded sample
     glm::dvec3 nrm{0, 0, 1}, dn[2];
     double e = 1.0;
 };
 
-// Solves the 3x3 Gram system with a tiny ridge when it is (nearly) singular.
-bool factorGram(const double g[3][3], Cholesky3& f) {
-    if (f.factor(g, 1e-12)) return true;
-    double r[3][3];
-    const double ridge = 1e-9 * (g[0][0] + g[1][1] + g[2][2]) + 1e-30;
+// Inverse of the submatrix of g on the coefficients in `mask` (bit i = coefficient i), written
+// into inv (zeros elsewhere). False when that submatrix is (nearly) singular.
+bool invertSubset(const double g[3][3], int mask, double inv[3][3]) {
+    int idx[3], n = 0;
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) r[i][j] = g[i][j] + (i == j ? ridge : 0.0);
-    return f.factor(r, 0.0);
+        if (mask & (1 << i)) idx[n++] = i;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) inv[i][j] = 0.0;
+    const double scale = std::max({g[0][0], g[1][1], g[2][2]});
+    if (!(scale > 0.0) || !std::isfinite(scale)) return false;
+    const double tiny = 1e-12 * scale;
+    if (n == 1) {
+        const double a = g[idx[0]][idx[0]];
+        if (!(a > tiny)) return false;
+        inv[idx[0]][idx[0]] = 1.0 / a;
+        return true;
+    }
+    if (n == 2) {
+        const int i = idx[0], j = idx[1];
+        const double det = g[i][i] * g[j][j] - g[i][j] * g[i][j];
+        if (!(det > tiny * std::max(g[i][i], g[j][j]))) return false;
+        inv[i][i] = g[j][j] / det;
+        inv[j][j] = g[i][i] / det;
+        inv[i][j] = inv[j][i] = -g[i][j] / det;
+        return true;
+    }
+    Cholesky3 f;
+    if (!f.factor(g, 1e-12)) return false;
+    for (int k = 0; k < 3; ++k) {
+        const double e[3] = {double(k == 0), double(k == 1), double(k == 2)};
+        double col[3];
+        f.solve(e, col);
+        for (int i = 0; i < 3; ++i) inv[i][k] = col[i];
+    }
+    return true;
+}
+
+// Non-negative least squares for 3 coefficients: min Σp² - 2 bᵀx + xᵀGx over x >= 0. The
+// optimum is the unconstrained solution on its free set, so of the (at most 7) subsets whose
+// unconstrained solution is positive the cheapest is the optimum; the full set is tried first
+// and is the answer whenever its solution is feasible. Returns the cost; x and inv (see
+// Evaluation::inv) describe the optimum.
+double nnls3(const double g[3][3], const double b[3], double squares, double x[3],
+             double inv[3][3]) {
+    double best = squares, tmp[3][3];
+    int bestMask = 0;
+    x[0] = x[1] = x[2] = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) inv[i][j] = 0.0;
+    for (int mask = 7; mask >= 1; --mask) {
+        if (!invertSubset(g, mask, tmp)) continue;
+        double y[3], gain = 0.0;
+        bool feasible = true;
+        for (int i = 0; i < 3; ++i) {
+            y[i] = tmp[i][0] * b[0] + tmp[i][1] * b[1] + tmp[i][2] * b[2];
+            if ((mask & (1 << i)) && !(y[i] > 0.0)) feasible = false;
+            gain += b[i] * y[i];
+        }
+        if (!feasible) continue;
+        if (squares - gain < best || bestMask == 0) {
+            best = squares - gain;
+            bestMask = mask;
+            for (int i = 0; i < 3; ++i) {
+                x[i] = y[i];
+                for (int j = 0; j < 3; ++j) inv[i][j] = tmp[i][j];
+            }
+        }
+        if (mask == 7) break; // the unconstrained optimum is feasible
+    }
+    return std::max(best, 0.0);
 }
 
 const float* plane(const BlinnPhongTexel& tx, int c) {
     return tx.planes + size_t(c) * size_t(tx.geometry->padded);
 }
 
-// The cost at θ: the optimal x_c for the basis there and Σ residual².
+// The cost at θ: the optimal x_c >= 0 for the basis there and Σ residual².
 void evaluateCost(const BlinnPhongTexel& tx, const double theta[3], Evaluation& ev) {
     const size_t np = size_t(tx.geometry->padded);
     ev.d.resize(np);
@@ -346,37 +434,32 @@ void evaluateCost(const BlinnPhongTexel& tx, const double theta[3], Evaluation& 
     ev.dn[0] = (tx.t1 - ev.nrm * glm::dot(ev.nrm, tx.t1)) / len;
     ev.dn[1] = (tx.t2 - ev.nrm * glm::dot(ev.nrm, tx.t2)) / len;
     ev.e = std::exp(theta[2]);
-    CostInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)},
+    CostInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)}, tx.weights,
                  {float(ev.nrm.x), float(ev.nrm.y), float(ev.nrm.z)}, float(ev.e),
                  ev.d.data(), ev.g.data(), ev.lg.data()};
     CostSums sums;
     costFn(in, sums);
-    double G[3][3];
+    double(&G)[3][3] = ev.gram;
     G[0][0] = sums.sdd;
     G[0][1] = G[1][0] = sums.sd;
     G[0][2] = G[2][0] = sums.sdg;
-    G[1][1] = double(tx.geometry->count);
+    G[1][1] = tx.used;
     G[1][2] = G[2][1] = sums.sg;
     G[2][2] = sums.sgg;
+    double cost = 0.0;
     for (int c = 0; c < 3; ++c) {
         ev.b[c][0] = sums.sdp[c];
         ev.b[c][1] = tx.sums[c];
         ev.b[c][2] = sums.sgp[c];
-    }
-    factorGram(G, ev.factor);
-    double cost = 0.0; // Σ p² - Σ_c b_cᵀ x_c at the least-squares solution
-    for (int c = 0; c < 3; ++c) {
-        ev.factor.solve(ev.b[c], ev.result.coef[c]);
-        cost += tx.squares[c];
-        for (int i = 0; i < 3; ++i) cost -= ev.b[c][i] * ev.result.coef[c][i];
+        cost += nnls3(G, ev.b[c], tx.squares[c], ev.result.coef[c], ev.inv[c]);
     }
     for (int i = 0; i < 3; ++i) ev.result.theta[i] = theta[i];
-    ev.result.cost = std::max(cost, 0.0);
+    ev.result.cost = cost;
 }
 
 // The derivative sums at the point of the last evaluateCost.
 void evaluateDerivatives(const BlinnPhongTexel& tx, Evaluation& ev) {
-    DerivInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)},
+    DerivInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)}, tx.weights,
                   ev.d.data(), ev.g.data(), ev.lg.data(),
                   {float(ev.nrm.x), float(ev.nrm.y), float(ev.nrm.z)},
                   {{float(ev.dn[0].x), float(ev.dn[0].y), float(ev.dn[0].z)},
@@ -409,6 +492,22 @@ void evaluate(const BlinnPhongTexel& tx, const double theta[3], bool derivatives
 
 } // namespace
 
+void blinnPhongTerms(const BlinnPhongTexel& tx, const double theta[3], std::vector<double>& d,
+                     std::vector<double>& g) {
+    const BlinnPhongGeometry& geo = *tx.geometry;
+    const glm::dvec3 n = tx.normal(theta[0], theta[1]);
+    const glm::dvec3 ns = geo.flatSpecular ? glm::dvec3(0, 0, 1) : n;
+    const double e = std::exp(theta[2]);
+    d.resize(size_t(geo.count));
+    g.resize(size_t(geo.count));
+    for (size_t s = 0; s < size_t(geo.count); ++s) {
+        const double nl = n.x * geo.l[0][s] + n.y * geo.l[1][s] + n.z * geo.l[2][s];
+        const double nh = ns.x * geo.h[0][s] + ns.y * geo.h[1][s] + ns.z * geo.h[2][s];
+        d[s] = std::max(nl, 0.0);
+        g[s] = nl > 0.0 && nh > 0.0 ? std::pow(nh, e) : 0.0;
+    }
+}
+
 BlinnPhongResult blinnPhongProject(const BlinnPhongTexel& texel, const double theta[3]) {
     Evaluation ev;
     evaluate(texel, theta, false, ev);
@@ -419,21 +518,12 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
                                    double etaMax, int maxIterations) {
     // per-thread scratch: no allocation per texel once the sample arrays have their size
     static thread_local Evaluation cur, trial;
-    const double start[3] = {0.0, 0.0, std::min(std::max(eta0, etaMin), etaMax)};
+    const double start[3] = {tx.start[0], tx.start[1], std::min(std::max(eta0, etaMin), etaMax)};
     evaluate(tx, start, true, cur);
     double lambda = 1e-3;
     int done = 0; // accepted steps
     for (int it = 0; it < maxIterations; ++it) {
         double jtj[3][3] = {}, grad[3] = {};
-        // G⁻¹ Φᵀ∂d_j and G⁻¹ Φᵀ∂g_j once: a channel's G⁻¹ ΦᵀD_j is m G⁻¹Φᵀ∂d_j + k G⁻¹Φᵀ∂g_j
-        double invPd[2][3], invPg[3][3];
-        for (int q = 0; q < 3; ++q) {
-            const double colG[3] = {cur.pg[0][q], cur.pg[1][q], cur.pg[2][q]};
-            cur.factor.solve(colG, invPg[q]);
-            if (q == 2) continue;
-            const double colD[3] = {cur.pd[0][q], cur.pd[1][q], cur.pd[2][q]};
-            cur.factor.solve(colD, invPd[q]);
-        }
         for (int c = 0; c < 3; ++c) {
             const double* x = cur.result.coef[c];
             const double m = x[0], k = x[2];
@@ -451,10 +541,12 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
                     phiD[i][j] = k * cur.pg[i][j] + (j < 2 ? m * cur.pd[i][j] : 0.0);
             for (int j = 0; j < 3; ++j) // r_cᵀ D_j, D_j = m ∂d_j + k ∂g_j
                 grad[j] -= k * cur.rg[c][j] + (j < 2 ? m * cur.rd[c][j] : 0.0);
-            double sol[3][3]; // G⁻¹ ΦᵀD, column per θ_j
+            // Kaufman: JᵀJ = DᵀD - (Φ_FᵀD)ᵀ (Φ_FᵀΦ_F)⁻¹ Φ_FᵀD over the free coefficients F
+            double sol[3][3]; // inv ΦᵀD, column per θ_j
             for (int q = 0; q < 3; ++q)
                 for (int i = 0; i < 3; ++i)
-                    sol[q][i] = k * invPg[q][i] + (q < 2 ? m * invPd[q][i] : 0.0);
+                    sol[q][i] = cur.inv[c][i][0] * phiD[0][q] + cur.inv[c][i][1] * phiD[1][q] +
+                                cur.inv[c][i][2] * phiD[2][q];
             for (int j = 0; j < 3; ++j)
                 for (int q = 0; q < 3; ++q) {
                     double proj = 0.0;

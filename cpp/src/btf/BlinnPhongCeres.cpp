@@ -1,5 +1,6 @@
 // The per-texel Blinn-Phong problem with Ceres Solver (full 12 parameters, automatic
-// derivatives); compiled to a stub that throws when weft is built without Ceres.
+// derivatives, m, b, k >= 0 and η in [η_min, η_max] as parameter bounds); compiled to a stub
+// that throws when weft is built without Ceres.
 #include <weft/Error.h>
 
 #include "btf/BlinnPhongTexel.h"
@@ -7,6 +8,8 @@
 #ifdef WEFT_HAVE_CERES
 #include <ceres/ceres.h>
 #endif
+
+#include <algorithm>
 
 namespace weft {
 
@@ -17,6 +20,7 @@ namespace {
 struct SampleResidual {
     glm::dvec3 l, h, n0, t1, t2;
     double p[3];
+    bool flat;
 
     template <typename T>
     bool operator()(const T* uv, const T* m, const T* b, const T* k, const T* eta, T* r) const {
@@ -32,9 +36,10 @@ struct SampleResidual {
             nh += w[i] * T(h[i]);
         }
         nl /= len;
-        nh /= len;
+        nh = flat ? T(h[2]) : nh / len;
+        // the renderer's model: no highlight where n·l <= 0
         const T d = nl > T(0) ? nl : T(0);
-        const T g = nh > T(0) ? ceres::exp(ceres::exp(eta[0]) * ceres::log(nh)) : T(0);
+        const T g = nl > T(0) && nh > T(0) ? ceres::exp(ceres::exp(eta[0]) * ceres::log(nh)) : T(0);
         for (int c = 0; c < 3; ++c) r[c] = m[c] * d + b[c] + k[c] * g - T(p[c]);
         return true;
     }
@@ -53,14 +58,21 @@ BlinnPhongResult blinnPhongCeres(const BlinnPhongTexel& tx, const BlinnPhongResu
     }
     ceres::Problem problem;
     for (size_t s = 0; s < tx.lights->size(); ++s) {
+        if (tx.weights && !(tx.weights[s] > 0.0f)) continue; // left out (cast shadow)
         auto* cost = new SampleResidual{glm::dvec3((*tx.lights)[s]), glm::dvec3((*tx.halves)[s]),
                                         tx.n0, tx.t1, tx.t2,
                                         {tx.values[s * 3], tx.values[s * 3 + 1],
-                                         tx.values[s * 3 + 2]}};
+                                         tx.values[s * 3 + 2]},
+                                        tx.geometry && tx.geometry->flatSpecular};
         problem.AddResidualBlock(
             new ceres::AutoDiffCostFunction<SampleResidual, 3, 2, 3, 3, 3, 1>(cost), nullptr, uv, m,
             b, k, &eta);
     }
+    for (double* coef : {m, b, k})
+        for (int c = 0; c < 3; ++c) {
+            coef[c] = std::max(coef[c], 0.0);
+            problem.SetParameterLowerBound(coef, c, 0.0);
+        }
     problem.SetParameterLowerBound(&eta, 0, etaMin);
     problem.SetParameterUpperBound(&eta, 0, etaMax);
     ceres::Solver::Options options;

@@ -3,13 +3,79 @@
 #include <weft/BtfNonlinear.h>
 #include <weft/Error.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "btf/BlinnPhongTexel.h"
 #include "btf/BtfModel.h"
 #include "btf/BtfParallel.h"
 
 namespace weft {
+
+namespace {
+
+// Cast-shadow classification of a texel's samples for the fit r (SPEC §3.5 robustness): a cast
+// shadow removes the diffuse and specular light and leaves the constant term, so a sample is
+// taken as shadowed when it lies below b + m d / 2 (half the diffuse light; channel sums) and
+// below the prediction by more than 4 robust standard deviations of the texel's
+// residuals under steep light (and 2% of the prediction): noise and model error stay in. Writes
+// the new weights (1 used, 0 left out; all used when fewer than 12 would remain) and returns the
+// number left out; `misfit` counts the samples off the prediction by more than 3 σ either way (a fit pulled by shadows may hide them from the first test).
+int classifyShadows(const BlinnPhongTexel& tx, const BlinnPhongResult& r, const float* planes,
+                    size_t np, std::vector<double>& d, std::vector<double>& g,
+                    std::vector<float>& weights, int& misfit) {
+    const BlinnPhongGeometry& geo = *tx.geometry;
+    const size_t count = size_t(geo.count);
+    blinnPhongTerms(tx, r.theta, d, g);
+    double base = 0.0;
+    for (int c = 0; c < 3; ++c) base += r.coef[c][1];
+    std::vector<double> lit(count), diffuse(count), seen(count), res;
+    res.reserve(count);
+    for (size_t s = 0; s < count; ++s) {
+        double l = 0.0, p = 0.0, m = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            l += r.coef[c][0] * d[s] + r.coef[c][2] * g[s];
+            m += r.coef[c][0] * d[s];
+            p += planes[size_t(c) * np + s];
+        }
+        lit[s] = l;
+        diffuse[s] = m;
+        seen[s] = p - base;
+        // σ from the steep lights (θ_l <= 31°), which cast shadows rarely reach: a fit pulled
+        // by shadowed grazing samples misses all samples by more than the noise
+        if (tx.weights[s] > 0.0f && geo.l[2][s] >= 0.85f) res.push_back(std::fabs(seen[s] - l));
+    }
+    if (res.size() < 5)
+        for (size_t s = 0; s < count; ++s)
+            if (tx.weights[s] > 0.0f) res.push_back(std::fabs(seen[s] - lit[s]));
+    // robust σ of those residuals (median absolute residual / 0.6745)
+    double sigma = 0.0;
+    if (!res.empty()) {
+        std::nth_element(res.begin(), res.begin() + long(res.size() / 2), res.end());
+        sigma = res[res.size() / 2] / 0.6745;
+    }
+    std::fill(weights.begin(), weights.end(), 0.0f);
+    int left = 0;
+    misfit = 0;
+    for (size_t s = 0; s < count; ++s) {
+        const double margin = std::max(4.0 * sigma, 0.02 * (lit[s] + base));
+        const bool below = lit[s] - seen[s] > margin;
+        // half the diffuse light, not of the whole prediction: a highlight that overshoots a
+        // sample must not make it look shadowed (it would then be left out and never corrected)
+        const bool dark = below && seen[s] < 0.5 * diffuse[s];
+        weights[s] = dark ? 0.0f : 1.0f;
+        left += dark ? 1 : 0;
+        misfit += std::fabs(lit[s] - seen[s]) > 0.75 * margin ? 1 : 0;
+    }
+    if (int(count) - left < 12) { // too few left to fit 7 unknowns well: use them all
+        std::copy(geo.ones.begin(), geo.ones.end(), weights.begin());
+        return 0;
+    }
+    return left;
+}
+
+} // namespace
 
 bool btfHaveCeres() {
 #ifdef WEFT_HAVE_CERES
@@ -43,7 +109,8 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
         lights[size_t(s)] = samples.light(s);
         halves[size_t(s)] = btfHalfVector(samples.light(s), samples.view(s));
     }
-    const BlinnPhongGeometry geometry(lights, halves);
+    BlinnPhongGeometry geometry(lights, halves);
+    geometry.flatSpecular = options.flatSpecularNormal;
     const double etaMin = std::log(double(options.minExponent));
     const double etaMax = std::log(double(options.maxExponent));
 
@@ -58,8 +125,8 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
     maps.specular.resize(texels * 3);
     maps.exponentMap.resize(texels);
     maps.clampDiffuse = true;
-    maps.flatSpecularNormal = false;
-    std::vector<double> iterations(texels, 0.0);
+    maps.flatSpecularNormal = options.flatSpecularNormal;
+    std::vector<double> iterations(texels, 0.0), shadowed(texels, 0.0);
 
     const int blocks = int((texels + 63) / 64);
     btfParallelForDynamic(blocks, options.threads, 1, [&](int b0, int b1) {
@@ -71,7 +138,8 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
         // A block's samples transposed to [texel][channel][padded sample]: reading each plane
         // contiguously for 64 texels instead of 243 strided loads per texel.
         const size_t np = size_t(geometry.padded);
-        std::vector<float> block(64 * 3 * np, 0.0f);
+        std::vector<float> block(64 * 3 * np, 0.0f), weights(np, 0.0f), next(np, 0.0f);
+        std::vector<double> d, g;
         for (int b = b0; b < b1; ++b) {
             const size_t first = size_t(b) * 64, last = std::min(texels, first + 64);
             for (int s = 0; s < count; ++s)
@@ -91,34 +159,74 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                 tx.setSeedNormal(glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1],
                                            seed.normal[t * 3 + 2]));
                 const float e0 = seed.exponentMap.empty() ? seed.exponent : seed.exponentMap[t];
-                const double eta0 = std::log(std::max(double(e0), 1e-2));
-                BlinnPhongResult r;
-                if (ceres) {
-                    const double theta0[3] = {0.0, 0.0, std::min(std::max(eta0, etaMin), etaMax)};
-                    r = blinnPhongCeres(tx, blinnPhongProject(tx, theta0), etaMin, etaMax,
-                                        options.maxIterations);
-                } else {
-                    r = blinnPhongBuiltin(tx, eta0, etaMin, etaMax, options.maxIterations);
+                const double eta0 =
+                    std::min(std::max(std::log(std::max(double(e0), 1e-2)), etaMin), etaMax);
+                auto solve = [&](const double start[3]) {
+                    if (!ceres) return blinnPhongBuiltin(tx, start[2], etaMin, etaMax,
+                                                         options.maxIterations);
+                    return blinnPhongCeres(tx, blinnPhongProject(tx, start), etaMin, etaMax,
+                                           options.maxIterations);
+                };
+                const double start[3] = {tx.start[0], tx.start[1], eta0};
+                BlinnPhongResult r = solve(start);
+                int iters = r.iterations, left = 0;
+                if (options.visibility) {
+                    // A texel with samples off its fit by more than the noise is fitted again from its steep
+                    // lights (θ_l <= 46°) alone, then from every sample not classified as
+                    // shadowed against that fit, until the classification is stable.
+                    std::copy(geometry.ones.begin(), geometry.ones.end(), weights.begin());
+                    int misfit = 0;
+                    left = classifyShadows(tx, r, planes, np, d, g, next, misfit);
+                    // a fit with no diffuse term in some channel may be a highlight posing as
+                    // the diffuse lobe of a texel shadowed from every grazing light
+                    const bool noDiffuse =
+                        r.coef[0][0] <= 0.0 || r.coef[1][0] <= 0.0 || r.coef[2][0] <= 0.0;
+                    if (misfit > 0 || noDiffuse) {
+                        for (int s = 0; s < count; ++s)
+                            next[size_t(s)] = geometry.l[2][size_t(s)] >= 0.69f ? 1.0f : 0.0f;
+                        for (int round = 0; round < 5; ++round) {
+                            weights.swap(next);
+                            tx.setPlanes(planes, weights.data());
+                            tx.start[0] = r.theta[0];
+                            tx.start[1] = r.theta[1];
+                            r = solve(r.theta);
+                            iters += r.iterations;
+                            left = classifyShadows(tx, r, planes, np, d, g, next, misfit);
+                            if (std::equal(next.begin(), next.end(), weights.begin())) break;
+                        }
+                    }
+                    tx.weights = nullptr;
                 }
                 const glm::dvec3 n = tx.normal(r.theta[0], r.theta[1]);
                 maps.exponentMap[t] = float(std::exp(r.theta[2]));
                 for (int c = 0; c < 3; ++c) {
                     maps.normal[t * 3 + size_t(c)] = float(n[c]);
-                    // ρ (a + d) + k g with ρ = m, ρ a = b; keep ρ away from 0 so a stays finite.
-                    double m = r.coef[c][0];
-                    if (std::fabs(m) < 1e-6) m = m < 0 ? -1e-6 : 1e-6;
-                    maps.albedo[t * 3 + size_t(c)] = float(m);
-                    maps.ambient[t * 3 + size_t(c)] = float(r.coef[c][1] / m);
+                    // ρ (a + d) + k g with ρ = m, ρ a = b (m, b >= 0). A texel without diffuse
+                    // reflection (m = 0) keeps ρ = max(1e-3 b, 1e-6), so a = b / ρ stays finite
+                    // and ρ d adds at most 1e-3 b.
+                    const double m = r.coef[c][0], bc = r.coef[c][1];
+                    const double rho = std::max({m, 1e-3 * bc, 1e-6});
+                    maps.albedo[t * 3 + size_t(c)] = float(rho);
+                    maps.ambient[t * 3 + size_t(c)] = float(bc / rho);
                     maps.specular[t * 3 + size_t(c)] = float(r.coef[c][2]);
                 }
-                iterations[t] = r.iterations;
+                iterations[t] = iters;
+                shadowed[t] = left;
             }
         }
     });
     double sum = 0.0;
     for (double v : iterations) sum += v;
     out.meanIterations = sum / double(texels);
-    maps.validate();
+    double left = 0.0;
+    for (double v : shadowed) left += v;
+    out.shadowedFraction = left / (double(texels) * double(count));
+    try {
+        maps.validate();
+    } catch (const InvalidArgument& e) {
+        throw InvalidArgument(std::string("the Blinn-Phong fit produced invalid maps (") +
+                              e.what() + "); are the sample values in a sane range?");
+    }
     return out;
 }
 

@@ -1,6 +1,8 @@
 // Per-texel diffuse + Lafortune lobes (seed eq. 4.10/4.11) by variable projection: the model is
 // linear in (m, b, ρ_1.., per channel) and nonlinear in θ = (u, v, C_x1, C_y1, η_1, ...), where
-// n = normalise(n0 + u t1 + v t2) and e_j = exp(η_j). Every θ_k moves one basis function only,
+// n = normalise(u, v, 1) and e_j = exp(η_j). The physical space is kept by construction:
+// n_z > 0, C_z = 1, η_j in [0, log 4096] (projected steps) and m, b, ρ_j >= 0 (non-negative
+// least squares per channel; the projection of Kaufman's Jacobian uses the free coefficients). Every θ_k moves one basis function only,
 // so Kaufman's JᵀJ and the gradient come from channel-independent sample sums as in the
 // Blinn-Phong solver.
 #include <weft/BtfNonlinear.h>
@@ -71,8 +73,56 @@ struct Eval {
     double cost = 0;
     double b[3][kMaxBasis] = {};
     double sdd[kMaxTheta][kMaxTheta] = {}, pd[kMaxBasis][kMaxTheta] = {}, yd[3][kMaxTheta] = {};
-    CholeskyN gram;
+    double inv[3][kMaxBasis][kMaxBasis] = {}; // (G_FF)⁻¹ on the free coefficients F, else 0
 };
+
+// Non-negative least squares over M <= 4 coefficients: of the subsets whose unconstrained
+// solution is positive, the cheapest is the optimum (the full set first: when its solution is
+// feasible it is the answer). Returns the cost Σp² - bᵀx; x and inv describe the optimum.
+double nnlsN(const double G[kMaxTheta][kMaxTheta], int M, const double* b, double squares,
+             double* x, double inv[kMaxBasis][kMaxBasis]) {
+    double best = squares;
+    int bestMask = 0;
+    for (int i = 0; i < M; ++i) x[i] = 0.0;
+    for (int mask = (1 << M) - 1; mask >= 1; --mask) {
+        int idx[kMaxBasis], n = 0;
+        for (int i = 0; i < M; ++i)
+            if (mask & (1 << i)) idx[n++] = i;
+        double sub[kMaxTheta][kMaxTheta] = {}, rhs[kMaxTheta], y[kMaxTheta];
+        for (int i = 0; i < n; ++i) {
+            rhs[i] = b[idx[i]];
+            for (int j = 0; j < n; ++j) sub[i][j] = G[idx[i]][idx[j]];
+        }
+        CholeskyN f;
+        if (!f.factor(sub, n, 1e-12)) continue;
+        f.solve(rhs, y);
+        bool feasible = true;
+        double gain = 0.0;
+        for (int i = 0; i < n; ++i) {
+            feasible = feasible && y[i] > 0.0;
+            gain += rhs[i] * y[i];
+        }
+        if (feasible && (bestMask == 0 || squares - gain < best)) {
+            best = squares - gain;
+            bestMask = mask;
+            for (int i = 0; i < M; ++i) x[i] = 0.0;
+            for (int i = 0; i < n; ++i) x[idx[i]] = y[i];
+            for (int i = 0; i < M; ++i)
+                for (int j = 0; j < M; ++j) inv[i][j] = 0.0;
+            for (int k = 0; k < n; ++k) {
+                double e[kMaxTheta] = {}, col[kMaxTheta];
+                e[k] = 1.0;
+                f.solve(e, col);
+                for (int i = 0; i < n; ++i) inv[idx[i]][idx[k]] = col[i];
+            }
+        }
+        if (mask == (1 << M) - 1 && feasible) break;
+    }
+    if (bestMask == 0)
+        for (int i = 0; i < M; ++i)
+            for (int j = 0; j < M; ++j) inv[i][j] = 0.0;
+    return std::max(best, 0.0);
+}
 
 void basisAt(const Texel& tx, const double* theta, const glm::dvec3& nrm, const glm::dvec3 dn[2],
              glm::dvec3 l, glm::dvec3 v, double* phi, double* delta) {
@@ -122,22 +172,11 @@ void evaluate(const Texel& tx, const double* theta, bool derivatives, Eval& ev) 
             for (int c = 0; c < 3; ++c) ev.yd[c][k] += p[c] * delta[k];
         }
     }
-    double trace = 0.0;
-    for (int i = 0; i < M; ++i) {
-        trace += G[i][i];
+    for (int i = 0; i < M; ++i)
         for (int j = 0; j < i; ++j) G[i][j] = G[j][i];
-    }
-    if (!ev.gram.factor(G, M, 1e-12)) {
-        for (int i = 0; i < M; ++i) G[i][i] += 1e-9 * trace + 1e-30;
-        ev.gram.factor(G, M, 0.0);
-    }
     double cost = 0.0;
-    for (int c = 0; c < 3; ++c) {
-        ev.gram.solve(ev.b[c], ev.coef[c]);
-        cost += b.squares[c];
-        for (int i = 0; i < M; ++i) cost -= ev.b[c][i] * ev.coef[c][i];
-    }
-    ev.cost = std::max(cost, 0.0);
+    for (int c = 0; c < 3; ++c) cost += nnlsN(G, M, ev.b[c], b.squares[c], ev.coef[c], ev.inv[c]);
+    ev.cost = cost;
 }
 
 int solveTexel(const Texel& tx, double* theta, int maxIterations, double etaMax, Eval& cur) {
@@ -158,12 +197,13 @@ int solveTexel(const Texel& tx, double* theta, int maxIterations, double etaMax,
                 for (int i = 0; i < M; ++i) rD -= x[i] * phiD[i][k];
                 grad[k] -= rD;
             }
-            double sol[kMaxTheta][kMaxBasis];
-            for (int q = 0; q < K; ++q) {
-                double col[kMaxBasis];
-                for (int i = 0; i < M; ++i) col[i] = phiD[i][q];
-                cur.gram.solve(col, sol[q]);
-            }
+            double sol[kMaxTheta][kMaxBasis]; // inv ΦᵀD, column per θ_q
+            for (int q = 0; q < K; ++q)
+                for (int i = 0; i < M; ++i) {
+                    double v = 0.0;
+                    for (int j = 0; j < M; ++j) v += cur.inv[c][i][j] * phiD[j][q];
+                    sol[q][i] = v;
+                }
             for (int k = 0; k < K; ++k)
                 for (int q = 0; q < K; ++q) {
                     double proj = 0.0;
@@ -266,7 +306,7 @@ BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps
             tx.base.setSeedNormal(glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1],
                                             seed.normal[t * 3 + 2]));
             const float e0 = seed.exponentMap.empty() ? seed.exponent : seed.exponentMap[t];
-            double theta[kMaxTheta] = {0.0, 0.0};
+            double theta[kMaxTheta] = {tx.base.start[0], tx.base.start[1]};
             for (int j = 0; j < lobes; ++j) {
                 theta[2 + 3 * j] = -1.0; // mirror direction about +z
                 theta[3 + 3 * j] = -1.0;
@@ -295,6 +335,12 @@ BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps
     double sum = 0.0;
     for (int v : iterations) sum += v;
     fit.meanIterations = sum / double(texels);
+    for (const std::vector<float>* map : {&fit.normal, &fit.diffuse, &fit.ambient,
+                                          &fit.lobeAlbedo, &fit.lobeShape})
+        for (float v : *map)
+            if (!std::isfinite(v))
+                throw InvalidArgument("the Lafortune fit produced non-finite values; are the "
+                                      "sample values in a sane range?");
     return fit;
 }
 

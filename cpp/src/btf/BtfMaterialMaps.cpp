@@ -72,11 +72,11 @@ void btfEvaluateSample(const BtfMaterialMaps& maps, glm::vec3 l, glm::vec3 v,
     for (size_t i = begin; i < end; ++i) {
         const float* n = &maps.normal[i * 3];
         const float vis = visible ? float(visible[i]) : 1.0f;
-        float d = n[0] * l.x + n[1] * l.y + n[2] * l.z;
-        if (maps.clampDiffuse) d = std::max(d, 0.0f);
-        d *= vis;
+        const float nl = n[0] * l.x + n[1] * l.y + n[2] * l.z;
+        const float d = (maps.clampDiffuse ? std::max(nl, 0.0f) : nl) * vis;
         float g = 0.0f;
-        if (spec) {
+        // clampDiffuse is the renderer's model: no highlight where n·l <= 0 either
+        if (spec && (!maps.clampDiffuse || nl > 0.0f)) {
             const float u = maps.flatSpecularNormal
                                 ? flatDot
                                 : std::max(n[0] * h.x + n[1] * h.y + n[2] * h.z, 0.0f);

@@ -97,17 +97,28 @@ class NonlinearFit:
     material: BtfMaterial
     solver: str
     mean_iterations: float
+    shadowed_fraction: float = 0.0  # samples left out as cast shadows / all samples
 
 
 def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
                     max_iterations: int = 30, min_exponent: float = 1.0,
-                    max_exponent: float = 4096.0, threads: int = 0) -> NonlinearFit:
-    """Per-texel Blinn-Phong (n, ambient, diffuse, specular RGB, exponent), seeded by ``seed``
-    (normal and exponent). ``solver``: "auto" (= "builtin", the fastest and as accurate),
-    "builtin" (Levenberg-Marquardt by variable projection), "ceres" (when built with it)."""
+                    max_exponent: float = 4096.0, threads: int = 0,
+                    flat_specular_normal: bool = False, visibility: bool = True) -> NonlinearFit:
+    """Per-texel Blinn-Phong in the renderer's model, seeded by ``seed`` (normal, exponent):
+    ``P = albedo (ambient + max(n.l, 0)) + specular [n.l > 0] max(n_s.h, 0)^e``.
+
+    Every texel stays physically valid: albedo, ambient, specular >= 0, unit normals with
+    n_z > 0, ``min_exponent <= e <= max_exponent`` (the solver searches inside that space).
+    ``flat_specular_normal``: the highlight around n_s = (0, 0, 1) (seed eq. 4.30) instead of
+    the fitted normal. ``visibility``: samples far darker than the fit (cast shadows) are left
+    out and the texel refitted; ``shadowed_fraction`` says how many. ``solver``: "auto"
+    (= "builtin", the fastest and as accurate), "builtin" (Levenberg-Marquardt by variable
+    projection with non-negative least squares), "ceres" (when built with it)."""
     r = _core.btf_fit_blinn_phong(samples, seed.core_maps(), solver, int(max_iterations),
-                                  float(min_exponent), float(max_exponent), int(threads))
-    return NonlinearFit(BtfMaterial.from_core(r["maps"]), r["solver"], r["mean_iterations"])
+                                  float(min_exponent), float(max_exponent), int(threads),
+                                  bool(flat_specular_normal), bool(visibility))
+    return NonlinearFit(BtfMaterial.from_core(r["maps"]), r["solver"], r["mean_iterations"],
+                        float(r["shadowed_fraction"]))
 
 
 @dataclass
