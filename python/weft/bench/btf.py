@@ -136,7 +136,8 @@ def model_row(case: Case, name: str, solver: str, scored: Any, truth: Any, floor
     drawn = scored.drawn["total"] if scored.drawn else None
     fitted = scored.fitted["total"]
     return {"case": case.name, "source": case.source, "seed": case.seed, "format": case.fmt,
-            "specular": case.specular, "shadows": bool(extra.pop("shadows")), "model": name,
+            "specular": case.specular, "shadows": bool(extra.pop("shadows")),
+            "truth_flat": bool(truth.flat_specular_normal), "model": name,
             "solver": solver, "drawable": scored.drawable, "texels": texels,
             "seconds": scored.seconds, "texels_per_s": texels / max(scored.seconds, 1e-12),
             "outside": scoring.physical_violations(scored.model)["texels"],
@@ -234,7 +235,8 @@ def speed_rows(repeats: int, numpy_peer: bool, size: int) -> Dict[str, Any]:
     for key, seed, flat_ns in (("n", fitted, False), ("flat", flat, True)):
         t, _ = best_time(lambda: btf.fit_blinn_phong(samples, seed, "builtin",
                                                      threads=SPEED_THREADS,
-                                                     flat_specular_normal=flat_ns))
+                                                     flat_specular_normal=flat_ns),
+                         min(repeats, 2))
         out[f"blinn_phong_{key}_texels_per_s"] = size * size / t
     if numpy_peer:
         from weft.reference import btf as ref

@@ -67,8 +67,8 @@ class Fitter:
 
 
 def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[str, Any],
-                                                               btf_fit.LinearFit, float]:
-    """Fits every model; returns (scored models, Blinn-Phong choice, linear fit, load time)."""
+                                                               btf_fit.LinearFit]:
+    """Fits every model; returns (scored models, Blinn-Phong choice, plain linear fit)."""
     lobes = sorted({int(v) for v in args.lafortune if int(v) > 0})
     steps = 4 + int(args.robust) + 2 * int(args.nonlinear) + len(lobes)
     f = Fitter(samples, steps, args.progress)
@@ -104,7 +104,7 @@ def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[
                        btf_fit.fit_lafortune, samples, flat.material, count)
         f.add(f"lafortune_{count}", laf, t, mean_iterations=laf.mean_iterations)
     f.progress.close()
-    return f.scored, choice, linear, 0.0
+    return f.scored, choice, linear
 
 
 def model_results(scored: List[Scored], best: Scored) -> Dict[str, Dict[str, Any]]:
@@ -173,7 +173,7 @@ def cmd_fit(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     samples = btf_fit.load(args.path, parse_views(args.views), args.gamma)
     load_s = time.perf_counter() - t0
-    scored, choice, linear, _ = fit_all(samples, args)
+    scored, choice, linear = fit_all(samples, args)
     best = scoring.best_of(scored)
     accurate = scoring.best_of(scored, drawable_only=False)
     ordered = [best] + [s for s in scored if s is not best]
@@ -231,7 +231,7 @@ def write_outputs(args: argparse.Namespace, samples: Any, ordered: List[Scored],
                          report.model_maps(s.model))
         figures.setdefault("maps", {})[s.name] = name
     bins = report.plot_histogram(os.path.join(out, "figures", "histogram.png"),
-                                 {s.name: s.errors * 100 for s in ordered}, best.name)
+                                 {s.label: s.errors * 100 for s in ordered}, best.label)
     h, w = samples.height, samples.width
     metrics = {"path": os.path.abspath(args.path), "samples": samples.count, "size": [w, h],
                "gamma": args.gamma, "robust": args.robust, "best": best.name,

@@ -15,7 +15,7 @@ import numpy as np
 import weft
 
 LUMA = np.array([0.2126, 0.7152, 0.0722])
-PREVIEW_PERCENTILE = 99.5
+PREVIEW_PERCENTILE = 98.0
 
 
 def pyplot() -> Any:
@@ -32,8 +32,9 @@ def to_u8(img: np.ndarray) -> np.ndarray:
 
 
 def tone_scale(values: np.ndarray, percentile: float = PREVIEW_PERCENTILE) -> float:
-    """The value shown as white: a high percentile of the finite values (a few outliers, e.g. a
-    large exponent on one texel, would otherwise turn the rest black); 1 for an all-zero map."""
+    """The value shown as white: the 98th percentile of the finite |values|. Scaling by the
+    maximum turned maps black: fits leave ~1% of texels far out (an ambient of 1000 where the
+    albedo is ~0, one huge exponent), and the rest then rounds to 0-3 of 255. 1 for a zero map."""
     v = np.asarray(values, np.float64)
     v = np.abs(v[np.isfinite(v)])
     top = float(np.percentile(v, percentile)) if v.size else 0.0
