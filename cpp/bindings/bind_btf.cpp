@@ -151,6 +151,11 @@ void bindBtf(py::module_& m) {
         if (!normal || normal.ndim() != 3) throw InvalidArgument("normal must be (H, W, 3)");
         return btfRenderMaterial(mapsFrom(normal.shape(0), normal.shape(1), maps));
     }, py::arg("maps"), "The renderer's Material for BTF maps (BtfMaterial.core_maps()).");
+    m.def("btf_drawn_maps", [](py::dict maps) {
+        py::array normal = py::array::ensure(maps["normal"]);
+        if (!normal || normal.ndim() != 3) throw InvalidArgument("normal must be (H, W, 3)");
+        return mapsTo(btfDrawnMaps(mapsFrom(normal.shape(0), normal.shape(1), maps)));
+    }, py::arg("maps"), "BTF maps as the renderer draws them (BtfMaterial.as_drawn()).");
 
     py::class_<BtfSamples>(m, "BtfSamples",
                            "BTF measurements: per sample (light, view) an RGB image; values "

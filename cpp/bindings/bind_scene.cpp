@@ -231,6 +231,17 @@ void bindScene(py::module_& m) {
                       "shadows it receives (lit / unshadowed diffuse light), nothing else.")
         .def_property("alpha_cutoff", [](const Material& x) { return x.alphaCutoff; },
                       [](Material& x, float v) { setChecked(x, [&](Material& y) { y.alphaCutoff = v; }); })
+        .def_property("normal_scale", [](const Material& x) { return x.normalScale; },
+                      [](Material& x, float v) { setChecked(x, [&](Material& y) { y.normalScale = v; }); },
+                      "Scale of the normal map's x and y before normalisation (glTF), > 0.")
+        .def_property("shininess_max", [](const Material& x) { return x.shininessMax; },
+                      [](Material& x, float v) { setChecked(x, [&](Material& y) { y.shininessMax = v; }); },
+                      "> 0: the specular map's alpha a holds the exponent per texel,\n"
+                      "shininess * (shininess_max / shininess)^a; 0: unused.")
+        .def_property("ambient_map_is_radiance", [](const Material& x) { return x.ambientMapIsRadiance; },
+                      [](Material& x, bool v) {
+                          setChecked(x, [&](Material& y) { y.ambientMapIsRadiance = v; });
+                      }, "The ambient term is ka * ambient_map (not times T or the scene's ambient).")
         .def("__repr__", [](const Material& x) {
             return "<weft.Material kd=" + vecRepr(x.kd) + " ks=" + vecRepr(x.ks) +
                    " shininess=" + std::to_string(x.shininess) +

@@ -24,10 +24,13 @@ struct Instance {
     mat4 normalMatrix; // inverse transpose of the model matrix (upper 3x3 used)
     vec4 ka;        // w: alpha cutoff (0: opaque)
     vec4 kd;        // w: bits 1 normal map, 2 ambient map, 4 specular from the vertex normal,
-                    //    8 gloss in the base texture's alpha, 16 phantom
+                    //    8 gloss in the base texture's alpha, 16 phantom, 32 ambient map is
+                    //    radiance
     vec4 ks;        // w: shininess
     vec4 baseColor;
     vec4 environment; // rgb: reflectivity (Fresnel F0), w: environment-diffuse weight
+    vec4 maps;      // x: log2(shininess max / shininess), exponent in the specular map's
+                    //    alpha; 0: none. y: normal-map scale of x and y
 };
 
 layout(set = 0, binding = 0) uniform FrameUbo {

@@ -6,14 +6,16 @@
 
 layout(set = 1, binding = 0) uniform sampler2D baseTexture;
 layout(set = 1, binding = 1) uniform sampler2D normalMap;   // linear, tangent space
-layout(set = 1, binding = 2) uniform sampler2D specularMap; // linear, multiplies K_S
-layout(set = 1, binding = 3) uniform sampler2D ambientMap;  // linear, replaces I_A
+layout(set = 1, binding = 2) uniform sampler2D specularMap; // linear, multiplies K_S; alpha:
+                                                            // log-encoded exponent (optional)
+layout(set = 1, binding = 3) uniform sampler2D ambientMap;  // linear, replaces I_A (or I_A K_A T)
 
 const int MAP_NORMAL = 1;
 const int MAP_AMBIENT = 2;
 const int SPECULAR_VERTEX_NORMAL = 4;
 const int GLOSS_IN_ALPHA = 8;
 const int PHANTOM = 16;
+const int AMBIENT_RADIANCE = 32;
 
 bool hasFlag(Instance ins, int flag) { return (int(ins.kd.w) & flag) != 0; }
 
@@ -127,20 +129,23 @@ bool alphaDiscarded(vec2 uv, Instance ins) {
 
 // What eq. 2.10 needs at a fragment: position, shading normal n (normal-mapped, eq. 2.11-2.12),
 // the normal of the specular term (n, or the vertex normal for n_s = (0, 0, 1), eq. 4.30),
-// T, K_S and the ambient I_A (the scene's, or the material's ambient map).
+// T, K_S, the exponent and the ambient I_A (the scene's, or the material's ambient map; with
+// AMBIENT_RADIANCE the map is the ambient term itself, before K_A).
 struct Surface {
     vec3 p;
     vec3 n;
     vec3 ns;
     vec3 T;
     vec3 ks;
+    float shininess;
     vec3 ambient;
     float alpha; // the base texture's alpha (the decal's gloss with GLOSS_IN_ALPHA)
 };
 
 // The shading normal: the interpolated vertex normal, perturbed by the tangent-space normal
-// map (eq. 2.11: m = texel * 2 - 1; eq. 2.12: the frame t, b = w (n x t), n). `vertexOut`
-// returns the (possibly flipped) vertex normal.
+// map (eq. 2.11: m = texel * 2 - 1, x and y times Material::normalScale as glTF's
+// normalTexture.scale; eq. 2.12: the frame t, b = w (n x t), n). `vertexOut` returns the
+// (possibly flipped) vertex normal.
 vec3 shadingNormal(vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins, bool frontFacing,
                    out vec3 vertexOut) {
     vec3 n = normalize(vertexNormal);
@@ -158,12 +163,9 @@ vec3 shadingNormal(vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins, bool 
     if (tl < 1e-12) return n;
     t /= tl;
     vec3 b = tangent.w * cross(n, t);
-    vec3 m = texture(normalMap, uv).rgb * 2.0 - 1.0;
+    vec3 m = (texture(normalMap, uv).rgb * 2.0 - 1.0) * vec3(ins.maps.yy, 1.0);
     return normalize(t * m.x + b * m.y + n * m.z);
 }
-
-// K_S at uv: the material's coefficient times its specular map.
-vec3 specular(vec2 uv, Instance ins) { return ins.ks.rgb * texture(specularMap, uv).rgb; }
 
 Surface surfaceAt(vec3 p, vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins,
                   bool frontFacing) {
@@ -175,7 +177,11 @@ Surface surfaceAt(vec3 p, vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins
     vec4 base = texture(baseTexture, uv);
     s.T = ins.baseColor.rgb * base.rgb;
     s.alpha = base.a;
-    s.ks = specular(uv, ins);
+    // K_S times the specular map; a fitted BTF's per-texel exponent is in the map's alpha,
+    // e = shininess * 2^(alpha * log2(max / shininess)) (Material::shininessMax)
+    vec4 spec = texture(specularMap, uv);
+    s.ks = ins.ks.rgb * spec.rgb;
+    s.shininess = ins.maps.x > 0.0 ? ins.ks.w * exp2(spec.a * ins.maps.x) : ins.ks.w;
     s.ambient = hasFlag(ins, MAP_AMBIENT) ? texture(ambientMap, uv).rgb : frame.ambient.rgb;
     return s;
 }
@@ -194,7 +200,7 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     vec3 p = sf.p, n = sf.n;
     vec3 v = normalize(frame.cameraPos.xyz - p);
     Shading sh;
-    sh.ambient = sf.ambient * ins.ka.rgb * sf.T;
+    sh.ambient = sf.ambient * ins.ka.rgb * (hasFlag(ins, AMBIENT_RADIANCE) ? vec3(1.0) : sf.T);
     sh.diffuse = sh.diffuseUnshadowed = sh.specular = vec3(0.0);
     debugVis = 1.0;
     debugDepth = 0.0;
@@ -213,7 +219,7 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
         }
         if (ndl > 0.0) {
             vec3 h = normalize(l + v);
-            float s = pow(max(dot(sf.ns, h), 0.0), ins.ks.w);
+            float s = pow(max(dot(sf.ns, h), 0.0), sf.shininess);
             vec3 d = ndl * L * ins.kd.rgb * sf.T;
             sh.diffuseUnshadowed += d;
             sh.diffuse += vis * d;

@@ -13,14 +13,28 @@ struct Material {
     float shininess = 32.0f;    // Blinn-Phong exponent n, > 0
     glm::vec3 baseColor{1.0f};  // multiplies the texture: T = baseColor * texture(uv)
     TexturePtr texture;         // base-colour texture (sRGB), none = white
+    /// Per-texel exponent (a fitted BTF's exponent map, SPEC §3.5): when > 0, the specular
+    /// map's alpha a holds the exponent log-encoded, e = shininess (shininessMax / shininess)^a
+    /// (8 bits spread the ratio's logarithm evenly: constant relative precision, which is what
+    /// the lobe width ~ 1/sqrt(e) needs). Needs a specular map and shininessMax >= shininess.
+    /// 0 = the specular map's alpha is unused and `shininess` holds everywhere.
+    float shininessMax = 0.0f;
     /// Tangent-space normal map (linear, not sRGB): n = texel / 255 * 2 - 1 (eq. 2.11) in the
     /// frame of computeTangents(); none = the interpolated vertex normal.
     TexturePtr normalMap;
+    /// Scale of the normal map's x and y before normalisation (glTF's normalTexture.scale),
+    /// > 0: n = normalise((texel / 255 * 2 - 1) * (s, s, 1)). A fitted BTF's mildly tilted
+    /// normals stored as x / s, y / s use all 8 bits (s = their largest |x|, |y|).
+    float normalScale = 1.0f;
     /// Specular map: its RGB (linear) multiplies K_S per texel; none = 1.
     TexturePtr specularMap;
     /// Ambient map (linear): its RGB replaces the scene's ambient I_A per texel (a BTF fit's
     /// I_A map, SPEC §3.2); none = the scene's ambient.
     TexturePtr ambientMap;
+    /// The ambient map is the ambient radiance itself: the ambient term is K_A * map, not
+    /// multiplied by T (a fitted BTF's constant term ρ·a, which 8 bits hold far better than
+    /// the product of two quantised maps when ρ is tiny and a large). Needs an ambient map.
+    bool ambientMapIsRadiance = false;
     /// Specular highlights use the interpolated vertex normal instead of the normal-mapped one
     /// (the BTF fit's n_s = (0, 0, 1), seed eq. 4.30).
     bool specularVertexNormal = false;

@@ -3,7 +3,8 @@
 // libjpeg reports fatal errors through error_exit, which here longjmps back. As in the PNG file
 // code (core/Image.cpp), every libjpeg call that can fail runs inside a small guarded function
 // whose frame owns no C++ object; buffers it fills belong to the caller, so a longjmp skips no
-// destructor. PNG uses libpng's simplified memory API, which reports errors by return value.
+// destructor. PNG decoding lives in BtfPngDecode.cpp; PNG encoding uses libpng's simplified
+// memory API, which reports errors by return value.
 #include "btf/BtfImageCodec.h"
 
 #include <weft/Error.h>
@@ -84,6 +85,9 @@ DecodedImage decodeJpeg(const std::vector<uint8_t>& bytes, const std::string& na
     if (uint64_t(img.width) * uint64_t(img.height) > 4096ull * bytes.size() + (1u << 20))
         throw IoError("JPEG '" + name + "' claims a size impossible for its " +
                       std::to_string(bytes.size()) + " bytes (corrupt)");
+    if (uint64_t(img.width) * uint64_t(img.height) * uint64_t(img.channels) > kMaxBtfImageBytes)
+        throw IoError("JPEG '" + name + "' is " + std::to_string(img.width) + "x" +
+                      std::to_string(img.height) + ", larger than a BTF image can be");
     const size_t rowBytes = size_t(img.width) * size_t(img.channels);
     img.pixels.resize(rowBytes * size_t(img.height));
     if (!jpegReadRows(d, img.pixels.data(), rowBytes))
@@ -91,29 +95,6 @@ DecodedImage decodeJpeg(const std::vector<uint8_t>& bytes, const std::string& na
                       d.error.message);
     if (d.error.mgr.num_warnings > 0)
         throw IoError("JPEG '" + name + "' is truncated or corrupt (libjpeg warnings)");
-    return img;
-}
-
-DecodedImage decodePng(const std::vector<uint8_t>& bytes, const std::string& name) {
-    png_image image;
-    std::memset(&image, 0, sizeof image);
-    image.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size()))
-        throw IoError("cannot read PNG '" + name + "' (corrupt): " + image.message);
-    const bool grey = (image.format & PNG_FORMAT_FLAG_COLOR) == 0;
-    image.format = grey ? PNG_FORMAT_GRAY : PNG_FORMAT_RGB;
-    DecodedImage img;
-    img.width = int(image.width);
-    img.height = int(image.height);
-    img.channels = grey ? 1 : 3;
-    if (img.width <= 0 || img.height <= 0 || img.width > 65536 || img.height > 65536 ||
-        uint64_t(img.width) * img.height > 1100ull * bytes.size() + 4096) {
-        png_image_free(&image);
-        throw IoError("PNG '" + name + "' claims a size impossible for its file size (corrupt)");
-    }
-    img.pixels.resize(PNG_IMAGE_SIZE(image));
-    if (!png_image_finish_read(&image, nullptr, img.pixels.data(), 0, nullptr))
-        throw IoError("cannot read PNG '" + name + "' (truncated or corrupt): " + image.message);
     return img;
 }
 

@@ -1,19 +1,31 @@
 #pragma once
-// In-memory image codecs for BTF files: JPEG (libjpeg) and PNG (libpng) decoding and encoding
-// of 8-bit grey/RGB images. Errors throw IoError naming `name`.
+// In-memory image codecs for BTF files: JPEG (libjpeg) and PNG (libpng) decoding of grey/RGB
+// images (8-bit, and 16-bit PNG), encoding of 8-bit RGB. Errors throw IoError naming `name`.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace weft {
 
+/// Largest decoded image (width * height * channels * bytes per value) and largest zip entry a
+/// BTF reader accepts: 16x a 4096^2 RGB 8-bit image, far beyond any measured BTF, small enough
+/// that a forged header cannot make the reader allocate gigabytes.
+constexpr uint64_t kMaxBtfImageBytes = uint64_t(256) << 20;
+
 struct DecodedImage {
     int width = 0, height = 0, channels = 0; ///< channels 1 (grey) or 3 (RGB)
-    std::vector<uint8_t> pixels;
+    std::vector<uint8_t> pixels;    ///< 8-bit values, interleaved (empty for 16-bit PNG)
+    std::vector<uint16_t> pixels16; ///< 16-bit PNG values as stored, interleaved
 };
 
-/// Decodes JPEG or PNG by signature; alpha is dropped, 16-bit PNG reduced to 8 bits.
+/// Decodes JPEG or PNG by signature. Values are returned as stored (no gamma conversion, 16-bit
+/// PNG kept at 16 bits). An alpha channel that is opaque everywhere is dropped; any alpha below
+/// full opacity (including a tRNS colour key) is refused with IoError, because compositing on a
+/// background would change the measured radiance.
 DecodedImage decodeBtfImage(const std::vector<uint8_t>& bytes, const std::string& name);
+
+/// PNG only (BtfPngDecode.cpp); same contract as decodeBtfImage.
+DecodedImage decodePng(const std::vector<uint8_t>& bytes, const std::string& name);
 
 /// Encodes interleaved RGB as JPEG (quality 1..100) or PNG.
 std::vector<uint8_t> encodeJpeg(const uint8_t* rgb, int width, int height, int quality);

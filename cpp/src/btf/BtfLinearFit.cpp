@@ -17,6 +17,7 @@
 #include <cmath>
 
 #include "btf/BtfParallel.h"
+#include "btf/BtfFiniteCheck.h"
 #include "btf/Cholesky3.h"
 
 namespace weft {
@@ -262,6 +263,9 @@ BtfLinearFit solve(const BtfSamples& samples, const std::vector<float>* texture,
             }
         }
     });
+    requireFiniteFit(fit.texture, "linear fit", "texture", samples);
+    requireFiniteFit(fit.normal, "linear fit", "normal map", samples);
+    requireFiniteFit(fit.ambient, "linear fit", "ambient map", samples);
     for (int d : darkChannels) fit.darkChannels += d;
     for (uint8_t d : fit.dark) fit.darkTexels += d;
     fit.darkChannels -= 3 * fit.darkTexels;

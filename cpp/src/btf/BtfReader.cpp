@@ -82,6 +82,11 @@ ImageF loadExrBytes(const std::vector<uint8_t>& bytes, const std::string& name) 
 }
 
 std::vector<uint8_t> readFile(const std::string& path) {
+    std::error_code ec;
+    const uintmax_t size = fs::file_size(path, ec);
+    if (!ec && size > kMaxBtfImageBytes)
+        throw IoError("BTF image '" + path + "' has " + std::to_string(size) +
+                      " bytes, more than a BTF image may have");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError("cannot open BTF image '" + path + "'");
     std::vector<uint8_t> data((std::istreambuf_iterator<char>(in)),
@@ -90,6 +95,127 @@ std::vector<uint8_t> readFile(const std::string& path) {
     return data;
 }
 
+
+// macOS adds `__MACOSX/` folders and `._name` AppleDouble files (resource forks) when it zips
+// or copies to foreign file systems; they carry the image names but are not images.
+bool isMacMetadata(const std::string& name) {
+    const fs::path p(name);
+    if (p.filename().string().rfind("._", 0) == 0) return true;
+    for (const fs::path& part : p)
+        if (part == "__MACOSX") return true;
+    return false;
+}
+
+// One decoded image: 8/16-bit values (JPEG, PNG) or floats (EXR).
+struct Decoded {
+    DecodedImage image;
+    ImageF exr;
+    bool isExr = false;
+    int width() const { return isExr ? exr.width : image.width; }
+    int height() const { return isExr ? exr.height : image.height; }
+};
+
+Decoded decodeEntry(const Entry& e, const ZipReader* zip, std::mutex& zipMutex) {
+    Decoded d;
+    d.isExr = isExr(e.name);
+    if (d.isExr && !zip) {
+        d.exr = loadExr(e.name);
+    } else {
+        std::vector<uint8_t> bytes;
+        if (zip) {
+            std::lock_guard<std::mutex> lock(zipMutex); // one libzip handle: sequential access
+            bytes = zip->read(e.source, kMaxBtfImageBytes);
+        } else {
+            bytes = readFile(e.name);
+        }
+        if (d.isExr) d.exr = loadExrBytes(bytes, e.name);
+        else d.image = decodeBtfImage(bytes, e.name);
+    }
+    if (d.isExr) {
+        try {
+            d.exr.requireFinite("EXR '" + e.name + "'");
+        } catch (const InvalidArgument& err) {
+            throw IoError(err.what());
+        }
+    }
+    return d;
+}
+
+BtfSamples allocateSamples(int width, int height, std::vector<BtfAngles> angles,
+                           const std::string& path) {
+    const double bytes = double(width) * height * 3.0 * 4.0 * double(angles.size());
+    const double memory = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGESIZE));
+    if (memory > 0 && bytes > memory)
+        throw IoError("the BTF in '" + path + "' (" + std::to_string(angles.size()) +
+                      " images of " + std::to_string(width) + "x" + std::to_string(height) +
+                      ") needs " + std::to_string(int64_t(bytes / (1 << 20))) +
+                      " MiB of float samples, more than this machine's memory");
+    try {
+        return BtfSamples(width, height, std::move(angles));
+    } catch (const std::bad_alloc&) {
+        throw IoError("out of memory allocating the samples of the BTF in '" + path + "'");
+    }
+}
+
+// Converts decoded values into sample planes. 8- and 16-bit values follow the same rule:
+// Raw = value / max, Linear = (value / max)^2.2; EXR floats are used as stored.
+class SampleStore {
+public:
+    explicit SampleStore(BtfGamma gamma) : mGamma(gamma) {
+        for (int k = 0; k < 256; ++k) mLut8[k] = convert(k / 255.0);
+    }
+
+    void put(const Decoded& d, const Entry& entry, const Entry& first, BtfSamples& samples,
+             int s) {
+        if (d.width() != samples.width() || d.height() != samples.height())
+            throw IoError("BTF image '" + entry.name + "' is " + std::to_string(d.width()) +
+                          "x" + std::to_string(d.height()) + ", but '" + first.name + "' is " +
+                          std::to_string(samples.width()) + "x" +
+                          std::to_string(samples.height()));
+        const size_t texels = samples.texels();
+        if (d.isExr) {
+            for (int c = 0; c < 3; ++c)
+                copyPlane(d.exr.pixels.data(), d.exr.channels, d.exr.channels < 3 ? 0 : c, texels,
+                          samples.plane(s, c), [](float v) { return v; });
+            return;
+        }
+        const DecodedImage& img = d.image;
+        const int src = img.channels == 1 ? 0 : 1; // channel step: grey repeats channel 0
+        if (!img.pixels16.empty()) {
+            const float* lut = lut16();
+            for (int c = 0; c < 3; ++c)
+                copyPlane(img.pixels16.data(), img.channels, c * src, texels, samples.plane(s, c),
+                          [lut](uint16_t v) { return lut[v]; });
+            return;
+        }
+        for (int c = 0; c < 3; ++c)
+            copyPlane(img.pixels.data(), img.channels, c * src, texels, samples.plane(s, c),
+                      [this](uint8_t v) { return mLut8[v]; });
+    }
+
+private:
+    float convert(double v) const {
+        return mGamma == BtfGamma::Raw ? float(v) : float(std::pow(v, 2.2));
+    }
+    const float* lut16() {
+        std::call_once(mLut16Once, [this] {
+            mLut16.resize(65536);
+            for (int k = 0; k < 65536; ++k) mLut16[size_t(k)] = convert(k / 65535.0);
+        });
+        return mLut16.data();
+    }
+    template <typename T, typename F>
+    static void copyPlane(const T* pixels, int channels, int channel, size_t texels, float* dst,
+                          F value) {
+        for (size_t t = 0; t < texels; ++t)
+            dst[t] = value(pixels[t * size_t(channels) + size_t(channel)]);
+    }
+
+    BtfGamma mGamma;
+    float mLut8[256];
+    std::once_flag mLut16Once;
+    std::vector<float> mLut16;
+};
 } // namespace
 
 bool parseBtfFileName(const std::string& name, BtfAngles& out) {
@@ -130,7 +256,7 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
     for (const glm::vec2& v : options.views)
         if (!std::isfinite(v.x) || !std::isfinite(v.y) || v.x < 0 || v.x >= 90)
             throw InvalidArgument("view angles must be finite with θ_v in [0, 90) degrees");
-    if (options.threads < 0) throw InvalidArgument("threads must be >= 0");
+    checkBtfThreads(options.threads);
 
     std::unique_ptr<ZipReader> zip;
     std::vector<Entry> entries;
@@ -138,7 +264,9 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
     if (fs::is_directory(path, ec)) {
         for (fs::recursive_directory_iterator it(path, ec), end; !ec && it != end;
              it.increment(ec)) {
-            if (!it->is_regular_file(ec) || !isImageName(it->path().string())) continue;
+            if (!it->is_regular_file(ec) || !isImageName(it->path().string()) ||
+                isMacMetadata(it->path().string()))
+                continue;
             Entry e;
             e.name = it->path().string();
             if (parseBtfFileName(e.name, e.angles)) entries.push_back(e);
@@ -150,7 +278,9 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
             Entry e;
             e.name = zip->names()[i];
             e.source = i;
-            if (isImageName(e.name) && parseBtfFileName(e.name, e.angles)) entries.push_back(e);
+            if (isImageName(e.name) && !isMacMetadata(e.name) &&
+                parseBtfFileName(e.name, e.angles))
+                entries.push_back(e);
         }
     } else {
         throw IoError("BTF path '" + path + "' is neither a folder nor a zip file");
@@ -206,78 +336,41 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
                       "')");
     }
 
-    // Compressed bytes first (zip access is sequential), then parallel decoding.
-    std::vector<std::vector<uint8_t>> bytes(chosen.size());
-    if (zip) {
-        for (size_t i = 0; i < chosen.size(); ++i) bytes[i] = zip->read(chosen[i]->source);
+    // Angles are known from the names; the image size from the first image.
+    std::vector<BtfAngles> angles;
+    for (size_t i = 0; i < chosen.size(); ++i) {
+        const glm::vec2 v = views[i / lights.size()], l = lights[i % lights.size()];
+        angles.push_back({l.x, l.y, v.x, v.y});
     }
-    std::vector<DecodedImage> images(chosen.size());
-    std::vector<ImageF> floats(chosen.size()); // EXR samples (linear, used as they are)
+    SampleStore store(options.gamma);
+    std::mutex zipMutex;
+    auto decode = [&](size_t i) {
+        return decodeEntry(*chosen[i], zip.get(), zipMutex);
+    };
+    BtfSamples samples;
+    {
+        const Decoded first = decode(0);
+        samples = allocateSamples(first.width(), first.height(), std::move(angles), path);
+        store.put(first, *chosen[0], *chosen[0], samples, 0);
+    }
+    // Every other image is read, decoded and converted by one thread, then freed: memory holds
+    // the samples plus one image per thread, never the whole archive.
     std::mutex errorMutex;
     std::exception_ptr firstError;
-    btfParallelFor(int(chosen.size()), options.threads, [&](int b, int e) {
-        for (int i = b; i < e; ++i) {
+    std::atomic<bool> failed{false};
+    btfParallelForDynamic(int(chosen.size()) - 1, options.threads, 1, [&](int b, int e) {
+        for (int k = b; k < e && !failed.load(); ++k) {
+            const size_t i = size_t(k) + 1;
             try {
-                const std::string& name = chosen[size_t(i)]->name;
-                if (isExr(name)) {
-                    floats[size_t(i)] = zip ? loadExrBytes(bytes[size_t(i)], name) : loadExr(name);
-                    try {
-                        floats[size_t(i)].requireFinite("EXR '" + name + "'");
-                    } catch (const InvalidArgument& e) {
-                        throw IoError(e.what());
-                    }
-                    images[size_t(i)].width = floats[size_t(i)].width;
-                    images[size_t(i)].height = floats[size_t(i)].height;
-                    images[size_t(i)].channels = floats[size_t(i)].channels;
-                    continue;
-                }
-                if (!zip) bytes[size_t(i)] = readFile(name);
-                images[size_t(i)] = decodeBtfImage(bytes[size_t(i)], name);
-                std::vector<uint8_t>().swap(bytes[size_t(i)]);
+                store.put(decode(i), *chosen[i], *chosen[0], samples, int(i));
             } catch (...) {
                 std::lock_guard<std::mutex> lock(errorMutex);
                 if (!firstError) firstError = std::current_exception();
+                failed = true;
             }
         }
     });
     if (firstError) std::rethrow_exception(firstError);
-
-    const int width = images[0].width, height = images[0].height;
-    std::vector<BtfAngles> angles;
-    for (size_t i = 0; i < chosen.size(); ++i) {
-        const DecodedImage& img = images[i];
-        if (img.width != width || img.height != height)
-            throw IoError("BTF image '" + chosen[i]->name + "' is " + std::to_string(img.width) +
-                          "x" + std::to_string(img.height) + ", but '" + chosen[0]->name +
-                          "' is " + std::to_string(width) + "x" + std::to_string(height));
-        const glm::vec2 v = views[i / lights.size()], l = lights[i % lights.size()];
-        angles.push_back({l.x, l.y, v.x, v.y});
-    }
-    float lut[256];
-    for (int k = 0; k < 256; ++k)
-        lut[k] = options.gamma == BtfGamma::Raw ? float(k) / 255.0f
-                                                : float(std::pow(k / 255.0, 2.2));
-    BtfSamples samples(width, height, std::move(angles));
-    const size_t texels = samples.texels();
-    btfParallelFor(samples.count(), options.threads, [&](int b, int e) {
-        for (int s = b; s < e; ++s) {
-            const DecodedImage& img = images[size_t(s)];
-            const ImageF& exr = floats[size_t(s)];
-            for (int c = 0; c < 3; ++c) {
-                if (!exr.pixels.empty()) {
-                    float* dst = samples.plane(s, c);
-                    const int src = exr.channels < 3 ? 0 : c;
-                    for (size_t t = 0; t < texels; ++t)
-                        dst[t] = exr.pixels[t * size_t(exr.channels) + size_t(src)];
-                    continue;
-                }
-                float* dst = samples.plane(s, c);
-                const int src = img.channels == 1 ? 0 : c;
-                for (size_t t = 0; t < texels; ++t)
-                    dst[t] = lut[img.pixels[t * size_t(img.channels) + size_t(src)]];
-            }
-        }
-    });
     return samples;
 }
 

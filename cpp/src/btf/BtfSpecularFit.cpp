@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 
+#include "btf/BtfFiniteCheck.h"
 #include "btf/BtfModel.h"
 #include "btf/BtfParallel.h"
 
@@ -180,6 +181,11 @@ BtfSpecularFit fitBtfSpecular(const BtfSamples& samples, const BtfLinearFit& fit
     const bool storeAlpha = !options.flatSpecularNormal || options.perTexel;
     const Residuals r = residuals(samples, out.maps, !options.flatSpecularNormal, storeAlpha, a,
                                   options.threads);
+    requireFiniteFit(out.maps.specular, "specular fit", "specular map", samples);
+    bool finite = std::isfinite(r.total);
+    for (double v : a) finite = finite && std::isfinite(v);
+    for (float v : r.beta) finite = finite && std::isfinite(v);
+    if (!finite) throwBtfOverflow("specular fit", "residual", samples);
     const int maxE = options.maxExponent;
     out.curve.assign(size_t(maxE), std::numeric_limits<double>::quiet_NaN());
 
@@ -195,6 +201,7 @@ BtfSpecularFit fitBtfSpecular(const BtfSamples& samples, const BtfLinearFit& fit
                 g[s] *= hz[s]; // g_s(e) = hz_s^e, one product per candidate
                 err += g[s] * (g[s] * b - 2.0 * a[s]);
             }
+            if (!std::isfinite(err)) throwBtfOverflow("specular fit", "error curve", samples);
             out.curve[size_t(e - 1)] = err;
         }
     } else {
@@ -203,6 +210,7 @@ BtfSpecularFit fitBtfSpecular(const BtfSamples& samples, const BtfLinearFit& fit
         auto eval = [&](int e) {
             double& slot = out.curve[size_t(e - 1)];
             if (std::isnan(slot)) slot = fittedError(r, texels, count, e, options.threads);
+            if (!std::isfinite(slot)) throwBtfOverflow("specular fit", "error curve", samples);
             return slot;
         };
         size_t best = 0;

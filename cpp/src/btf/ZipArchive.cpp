@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <new>
 
 #include <zip.h>
 
@@ -23,6 +25,9 @@ std::string zipErrorText(int code) {
 } // namespace
 
 ZipReader::ZipReader(const std::string& path) : mPath(path) {
+    std::error_code ec;
+    mFileSize = uint64_t(std::filesystem::file_size(path, ec));
+    if (ec) throw IoError("cannot open zip '" + path + "': " + ec.message());
     int code = 0;
     mArchive = zip_open(path.c_str(), ZIP_RDONLY | ZIP_CHECKCONS, &code);
     if (!mArchive) throw IoError("cannot open zip '" + path + "': " + zipErrorText(code));
@@ -41,23 +46,54 @@ ZipReader::~ZipReader() {
     if (mArchive) zip_discard(mArchive);
 }
 
-std::vector<uint8_t> ZipReader::read(size_t index) const {
+uint64_t ZipReader::checkedSize(size_t index, uint64_t limit) const {
     const std::string& name = mNames.at(index);
+    const std::string where = "'" + name + "' in zip '" + mPath + "'";
     zip_stat_t st;
     zip_stat_init(&st);
     if (zip_stat_index(mArchive, mIndex[index], 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE))
-        throw IoError("cannot stat '" + name + "' in zip '" + mPath + "'");
-    if (st.size > (uint64_t(1) << 31))
-        throw IoError("entry '" + name + "' in zip '" + mPath + "' is implausibly large");
+        throw IoError("cannot stat " + where);
+    if (st.valid & ZIP_STAT_COMP_SIZE) {
+        if (st.comp_size > mFileSize)
+            throw IoError(where + " declares " + std::to_string(st.comp_size) +
+                          " compressed bytes in a " + std::to_string(mFileSize) +
+                          "-byte archive (corrupt)");
+        const bool method = (st.valid & ZIP_STAT_COMP_METHOD) != 0;
+        if (method && st.comp_method == ZIP_CM_STORE && st.size != st.comp_size)
+            throw IoError(where + " is stored uncompressed but declares two different sizes "
+                          "(corrupt)");
+        // Deflate cannot do better than about 1032:1.
+        if (method && st.comp_method == ZIP_CM_DEFLATE && st.size > 1100 * st.comp_size + 4096)
+            throw IoError(where + " declares " + std::to_string(st.size) + " bytes from " +
+                          std::to_string(st.comp_size) +
+                          " deflated bytes, impossible for deflate (corrupt)");
+    }
+    if (st.size > limit)
+        throw IoError(where + " declares " + std::to_string(st.size) +
+                      " bytes uncompressed, more than the " + std::to_string(limit) +
+                      " a BTF image may have (a zip bomb or not a BTF)");
+    return st.size;
+}
+
+std::vector<uint8_t> ZipReader::read(size_t index, uint64_t limit) const {
+    const std::string& name = mNames.at(index);
+    const uint64_t size = checkedSize(index, limit);
     zip_file_t* file = zip_fopen_index(mArchive, mIndex[index], 0);
     if (!file)
         throw IoError("cannot open '" + name + "' in zip '" + mPath + "': " +
                       zip_strerror(mArchive));
-    std::vector<uint8_t> data(static_cast<size_t>(st.size));
-    const zip_int64_t got = data.empty() ? 0 : zip_fread(file, data.data(), st.size);
+    std::vector<uint8_t> data;
+    try {
+        data.resize(static_cast<size_t>(size));
+    } catch (const std::bad_alloc&) {
+        zip_fclose(file);
+        throw IoError("out of memory reading '" + name + "' (" + std::to_string(size) +
+                      " bytes) in zip '" + mPath + "'");
+    }
+    const zip_int64_t got = data.empty() ? 0 : zip_fread(file, data.data(), size);
     std::string error = got < 0 ? zip_file_strerror(file) : "";
     zip_fclose(file);
-    if (got < 0 || uint64_t(got) != st.size)
+    if (got < 0 || uint64_t(got) != size)
         throw IoError("cannot read '" + name + "' in zip '" + mPath + "' (truncated or corrupt)" +
                       (error.empty() ? "" : ": " + error));
     return data;

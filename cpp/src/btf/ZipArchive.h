@@ -18,11 +18,18 @@ public:
 
     /// Entry names (directories excluded), by index.
     const std::vector<std::string>& names() const { return mNames; }
-    /// Whole entry; throws IoError when it cannot be inflated (corrupt, truncated).
-    std::vector<uint8_t> read(size_t index) const;
+    /// Uncompressed size the archive declares for an entry, checked before anything is inflated:
+    /// throws IoError when it exceeds `limit`, or when the declared sizes are impossible for the
+    /// archive (compressed data larger than the file, more than deflate's ~1032:1 ratio, a stored
+    /// entry whose two sizes differ).
+    uint64_t checkedSize(size_t index, uint64_t limit) const;
+    /// Whole entry (at most `limit` bytes, see checkedSize); throws IoError when it cannot be
+    /// inflated (corrupt, truncated).
+    std::vector<uint8_t> read(size_t index, uint64_t limit) const;
 
 private:
     std::string mPath;
+    uint64_t mFileSize = 0;
     zip* mArchive = nullptr;
     std::vector<std::string> mNames;
     std::vector<uint64_t> mIndex;

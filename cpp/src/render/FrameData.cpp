@@ -115,7 +115,8 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
         const Material& m = inst.material;
         const int maps = (m.normalMap ? kFlagNormalMap : 0) | (m.ambientMap ? kFlagAmbientMap : 0) |
                          (m.specularVertexNormal ? kFlagSpecularVertexNormal : 0) |
-                         (m.glossInAlpha ? kFlagGlossInAlpha : 0) | (m.phantom ? kFlagPhantom : 0);
+                         (m.glossInAlpha ? kFlagGlossInAlpha : 0) | (m.phantom ? kFlagPhantom : 0) |
+                         (m.ambientMapIsRadiance ? kFlagAmbientRadiance : 0);
         g.kd = glm::vec4(inst.material.kd, float(maps));
         g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
         const bool mirrored = glm::determinant(glm::mat3(inst.transform)) < 0.0f;
@@ -125,6 +126,8 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
                                 float((inst.material.twoSided ? 1 : 0) | (mirrored ? 2 : 0) |
                                       (inst.material.dynamicReflection ? 4 : 0)));
         g.environment = glm::vec4(inst.material.reflectivity, inst.material.environmentDiffuse);
+        g.maps = glm::vec4(m.shininessMax > 0.0f ? std::log2(m.shininessMax / m.shininess) : 0.0f,
+                           m.normalScale, 0.0f, 0.0f);
         const MeshGpu* mesh = nullptr;
         if (inst.cloth) {
             const uint64_t before = f.uploadBytes;

@@ -37,10 +37,12 @@ struct GpuInstance {
     glm::mat4 normalMatrix;
     glm::vec4 ka; // w: alpha cutoff (0: opaque)
     glm::vec4 kd; // w: bits 1 normal map, 2 ambient map, 4 specular from the vertex normal,
-                  //    8 gloss in the base texture's alpha, 16 phantom
+                  //    8 gloss in the base texture's alpha, 16 phantom, 32 ambient map is radiance
     glm::vec4 ks; // w: shininess
     glm::vec4 baseColor;
     glm::vec4 environment; // rgb: reflectivity (Fresnel F0), w: environment-diffuse weight
+    glm::vec4 maps; // x: log2(shininessMax / shininess) with the exponent in the specular map's
+                    // alpha, else 0; y: normal-map scale of x and y; zw: unused
 };
 
 struct GpuFrame {
@@ -67,6 +69,7 @@ enum GpuInstanceFlag : int {
     kFlagSpecularVertexNormal = 4,
     kFlagGlossInAlpha = 8,
     kFlagPhantom = 16,
+    kFlagAmbientRadiance = 32,
 };
 
 /// Push constants of the dome-shadow blur (glsl/render/dome_blur.frag).
@@ -77,7 +80,7 @@ struct DomeBlurPush {
 static_assert(sizeof(GpuLight) == 80, "GpuLight must match frame.glsl");
 static_assert(sizeof(GpuShadowLayer) == 80, "GpuShadowLayer must match frame.glsl");
 static_assert(sizeof(GpuDomeLight) == 96, "GpuDomeLight must match environment.glsl");
-static_assert(sizeof(GpuInstance) == 208, "GpuInstance must match frame.glsl");
+static_assert(sizeof(GpuInstance) == 224, "GpuInstance must match frame.glsl");
 static_assert(sizeof(GpuFrame) == 64 + 48 + 32 + 16 + 144 + 64 + 32, "GpuFrame must match frame.glsl");
 
 } // namespace weft::render

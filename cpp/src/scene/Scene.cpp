@@ -21,6 +21,17 @@ void Material::validate() const {
         throw InvalidArgument("Material.ambient_map must be a linear texture (Texture(..., srgb=False))");
     if (normalMap && normalMap->srgb())
         throw InvalidArgument("Material.normal_map must be a linear texture (Texture(..., srgb=False))");
+    if (ambientMapIsRadiance && !ambientMap)
+        throw InvalidArgument("Material.ambient_map_is_radiance needs an ambient map");
+    requireFinite(shininessMax, "Material.shininess_max");
+    requirePositive(normalScale, "Material.normal_scale");
+    if (shininessMax != 0.0f) {
+        if (!specularMap)
+            throw InvalidArgument("Material.shininess_max (exponent in the specular map's alpha) "
+                                  "needs a specular map");
+        if (shininessMax < shininess)
+            throw InvalidArgument("Material.shininess_max must be 0 or >= shininess");
+    }
     requireNonNegative(reflectivity, "Material.reflectivity");
     if (glm::any(glm::greaterThan(reflectivity, glm::vec3(1.0f))))
         throw InvalidArgument("Material.reflectivity (Fresnel F0) must be in [0, 1]");

@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from typing import Any, Dict, Sequence, Union
 
@@ -21,10 +22,21 @@ from weft.btf.material import BtfMaterial
 Views = Union[str, Sequence[Sequence[float]]]
 
 
-def load(path: str, views: Views = "frontal", gamma: str = "raw", threads: int = 0) -> Any:
+def load(path: "str | os.PathLike[str]", views: Views = "frontal", gamma: str = "raw",
+         threads: int = 0) -> Any:
     """Reads a Bonn-layout folder or zip. ``views``: "frontal" (θ_v = 0, 81 images), "all", or a
-    list of (θ_v, φ_v) degrees. ``gamma``: "raw" (value / 255, as the seed) or "linear"
-    ((value / 255)^2.2). EXR samples are used as stored."""
+    list of (θ_v, φ_v) degrees. ``gamma``: "raw" (value / 255, as the seed; value / 65535 for
+    16-bit PNG) or "linear" ((value / 255)^2.2, (value / 65535)^2.2). File values are taken as
+    stored: gAMA/sRGB chunks are ignored (as for JPEG), a PNG with any alpha below opaque is
+    refused (IoError). EXR samples are used as stored. macOS ``__MACOSX/`` and ``._*`` entries
+    are skipped. ``threads``: 0 = all cores, else 1..256."""
+    try:
+        path = os.fspath(path)
+    except TypeError:
+        raise weft.InvalidArgument(f"path must be a str or os.PathLike, got "
+                                   f"{type(path).__name__}") from None
+    if not isinstance(path, str):
+        raise weft.InvalidArgument(f"path must be a str or os.PathLike, got {type(path).__name__}")
     if isinstance(views, str):
         if views not in ("frontal", "all"):
             raise weft.InvalidArgument(f"views must be 'frontal', 'all' or a list, got {views!r}")
@@ -159,10 +171,14 @@ def have_ceres() -> bool:
 
 
 def sample_errors(samples: Any, material: BtfMaterial, reconstruct: bool = False,
-                  threads: int = 0) -> Any:
-    """Per-sample mean squared error (S,) of the material; with ``reconstruct`` also the
-    reconstruction (S, 3, H, W)."""
-    return _core.btf_sample_errors(samples, material.core_maps(), bool(reconstruct), int(threads))
+                  threads: int = 0, drawn: bool = True) -> Any:
+    """Per-sample mean squared error (S,) over texels and channels of the material against the
+    samples; with ``reconstruct`` also the reconstruction (S, 3, H, W). ``drawn`` (default):
+    the material as the renderer draws it, :meth:`BtfMaterial.as_drawn` (8-bit maps with
+    their scales, decoded normals, n.l clamped at 0 with no highlight where n.l <= 0, the
+    exponent map drawn); False: the float model as given (its own ``clamp_diffuse``)."""
+    maps = material.as_drawn() if drawn else material
+    return _core.btf_sample_errors(samples, maps.core_maps(), bool(reconstruct), int(threads))
 
 
 def deviation(samples: Any, errors: np.ndarray) -> Dict[str, Any]:

@@ -96,18 +96,41 @@ class BtfMaterial:
                 f"{'clamped' if self.clamp_diffuse else 'linear'} diffuse>")
 
     def render_material(self) -> "weft.Material":
-        """The renderer's material for these maps (SPEC §3.5, issue 5): ``albedo`` becomes the
-        base texture T, ``normal`` the tangent-space normal map (x right, y up in the image, as
-        the fit's frame), ``ambient`` the ambient map (I_A per texel, replacing the scene's),
-        ``specular`` the specular map with K_S = 1 and ``exponent`` the shininess;
-        ``flat_specular_normal`` evaluates the highlight with the vertex normal (eq. 4.30).
-        K_A = K_D = 1 as in the fit. Maps are stored as linear 8-bit textures (values clamped to
-        [0, 1]); the renderer clamps n.l at 0 whatever ``clamp_diffuse`` says, and uses the
-        scalar exponent (``exponent_map`` is not drawn)."""
+        """The renderer's material for these maps (SPEC §3.5). It draws
+        ``albedo * (ambient + max(n.l, 0)) + specular * max(n_s.h, 0)^e`` with the specular term
+        only where n.l > 0 (``clamp_diffuse`` semantics, whatever the flag says), from linear
+        8-bit mipmapped textures, each holding value / scale rounded to 1/255 with one scale
+        per channel = the map's maximum (so values above 1 are drawn; negative ones as 0):
+
+        - ``albedo`` -> base texture T with K_D = its scale;
+        - ``albedo * ambient`` (the constant term) -> the ambient map as radiance
+          (``ambient_map_is_radiance``: not multiplied by T or the scene's ambient), K_A = scale;
+        - ``specular`` -> the specular map's RGB with K_S = scale (none: K_S = 0);
+        - ``exponent`` -> shininess; ``exponent_map`` -> the specular map's alpha, log-encoded
+          between its minimum and maximum over texels with a non-zero specular texel
+          (``shininess_max``); exponents below 1e-3 are drawn as 1e-3;
+        - ``normal`` -> tangent-space normal map ((x / s, y / s, z) + 1) / 2 with
+          ``normal_scale`` s = the largest |x|, |y| (at least 1e-3; x right, y up in the image,
+          as the fit's frame), decoded (2 texel - 1) * (s, s, 1) and renormalised;
+        - ``flat_specular_normal`` -> the highlight from the vertex normal (eq. 4.30).
+
+        :meth:`as_drawn` returns exactly these quantised values as a BtfMaterial."""
 
         from weft._core import btf_render_material
 
         return btf_render_material(self.core_maps())
+
+    def as_drawn(self) -> "BtfMaterial":
+        """The material exactly as :meth:`render_material` draws it at texel centres: every map
+        quantised as its texture holds it (scales as above), normals decoded and renormalised,
+        ``clamp_diffuse = True``, the exponent (map) as the shader decodes it. The drawn albedo
+        and constant term are exact; the ambient is their ratio (where the drawn albedo is 0
+        but the constant term is not, albedo = 1e-30 and ambient = term / 1e-30). Its
+        reconstruction (:func:`weft.btf.sample_errors`) is what the renderer draws, up to
+        texture filtering between texels and float rounding."""
+        from weft._core import btf_drawn_maps
+
+        return BtfMaterial.from_core(btf_drawn_maps(self.core_maps()))
 
     def save(self, folder: str) -> None:
         """Writes the folder (created if needed): material.json, <map>.exr, <map>.png."""
