@@ -2,7 +2,8 @@
 # Installs what weft needs on a Debian machine, only when missing: system packages from Debian
 # (Vulkan loader + lavapipe + validation layers, glslc, GLFW, GLM, libpng, OpenEXR, GoogleTest, Xvfb)
 # and Python build/test packages from PyPI (av = PyAV, its wheels bundle FFmpeg: video files as
-# environment captures, weft.ibl.read_video_frames).
+# environment captures, weft.ibl.read_video_frames; matplotlib draws the BTF report's figures and
+# the benchmarks' plots).
 set -euo pipefail
 
 packages=(g++ pkg-config ccache libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc
@@ -23,9 +24,10 @@ if ((${#missing[@]})); then
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.22" "pytest>=7" "av>=11"
+python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.22" "pytest>=7" "av>=11" "matplotlib>=3.5"
 import importlib.util, sys
-need = ["scikit_build_core", "pybind11", "numpy", "pytest", "av"]
+need = ["scikit_build_core", "pybind11", "numpy", "pytest", "av", "matplotlib"]
 sys.exit(0 if all(importlib.util.find_spec(n) for n in need) else 1)
 PY
 python3 -c "import av" || { echo "install-deps: PyAV (pip package av) was installed but does not import" >&2; exit 1; }
+python3 -c "import matplotlib" || { echo "install-deps: matplotlib was installed but does not import" >&2; exit 1; }

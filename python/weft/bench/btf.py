@@ -1,54 +1,92 @@
-"""``python -m weft.bench btf``: BTF fitting, time against error (SPEC §3.6).
+"""``python -m weft.bench btf``: BTF fits against the generator's truth, and their speed (issue 12).
 
-For each preset a synthetic 256 x 256 x 81 BTF (sensor noise 0.004, JPEG quality 95, frontal
-view) is written in the Bonn layout and read back; then timed: load, linear fit (plain and
-robust), exponent search (eq. 4.30: every integer 1..4096; eq. 4.29: grid + refinement),
-nonlinear Blinn-Phong (built-in LM on every texel; Ceres on a 32 x 32 crop when built with it)
-and diffuse + 2 Lafortune lobes (built-in LM).
-Errors against the ground truth: normal angular error (mean, 95th percentile), ambient error
-(|a - a_true| with a = I_A/|n|), total deviation (SPEC §3.4) of every model.
-Peers in the same run: the batched NumPy normal equations (:func:`weft.reference.btf.
-batched_normal_equations`, what a user would write; on the first preset) and the memory
-bandwidth bound (bytes of float32 samples / measured memcpy bandwidth).
-``--quick`` (CI): 32 x 32, two presets, no targets evaluated.
+Data: the generator's presets and random materials (:mod:`weft.btf.synth_random`, seeds not
+tuned to: with and without a specular lobe, with cast shadows), frontal view, sensor noise 0.004,
+written as PNG and as JPEG quality 90 in the Bonn layout and read back.
+Models per dataset: linear (plain, robust), linear + specular (eq. 4.29, 4.30), per-texel
+Blinn-Phong (built-in LM, highlight around n and around n_s = (0,0,1), and the one of the two
+with the lower deviation as drawn, "blinn_phong (chosen)"), the same with Ceres on a crop when
+built with it, and diffuse + 1 / 2 Lafortune lobes.
+Per model: texels outside the physical space, normal error (mean, p95), exponent and k_s median
+relative error, deviation as fitted and as drawn (Lafortune: not drawable, as fitted), the noise
+floor (deviation of the truth material itself against the noisy data), time and texels/s.
+Speed rows at 256 x 256 x 81: the linear fit against one read pass over the samples (and the
+memcpy bound, and batched NumPy normal equations), Blinn-Phong texels/s on a random material.
+The issue's targets are printed as a pass/fail table; ``error_vs_time.png`` plots error against
+fit time (matplotlib). ``--quick`` (CI): 24 x 24, three datasets, targets shown but not judged.
 """
 
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import os
 import sys
 import tempfile
 import time
-from typing import Any, Callable, Dict, List, Tuple
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from weft.bench import Progress, machine_info, markdown_table, write_report
+from weft.bench import Progress, machine_info, write_report
 
-DESCRIPTION = "BTF fitting: load / linear / exponent search / Blinn-Phong time against normal " \
-              "error and deviation, with NumPy and memory-bandwidth peers"
+DESCRIPTION = "BTF fitting: every model against the generator's truth (physical validity, " \
+              "normals, exponent, k_s, deviation as drawn vs fitted vs noise floor) and speed"
 
-PRESETS = ("wool", "polyacrylic", "corduroy", "upholstery", "granite")
-QUICK_PRESETS = ("wool", "corduroy")
-SIZE, QUICK_SIZE = 256, 32
 NOISE = 0.004
-TARGET_LINEAR_MS, TARGET_SEARCH_MS, TARGET_BP_TEXELS_S = 20.0, 50.0, 50_000.0
-CERES_CROP = 32
+JPEG_QUALITY = 90
+SIZE, QUICK_SIZE, SPEED_SIZE = 128, 24, 256
+CERES_CROP, QUICK_CERES_CROP = 32, 8
+PRESETS = ("wool", "polyacrylic", "corduroy", "upholstery", "granite")
+SPECULAR_SEEDS, DIFFUSE_SEEDS, SHADOW_SEEDS = (0, 1, 2, 3), (4, 5), (6, 7, 8)
+FORMATS = ("png", "jpg")
+SPEED_SEED = 100   # the non-preset material of the Blinn-Phong speed row
+SPEED_THREADS = 2
+
+
+@dataclass(frozen=True)
+class Case:
+    """One synthetic dataset: a preset or a random seed, written in one format."""
+
+    source: str            # preset name or "random"
+    seed: int
+    specular: bool
+    shadows: Optional[bool]  # None: the preset's default
+    fmt: str
+
+    @property
+    def name(self) -> str:
+        what = self.source if self.source != "random" else f"random{self.seed}"
+        flags = ("" if self.specular else "-diffuse") + ("-shadows" if self.shadows else "")
+        return f"{what}{flags}.{self.fmt}"
+
+
+def cases(quick: bool, presets: Optional[List[str]] = None) -> List[Case]:
+    if quick:
+        return [Case("wool", 0, True, None, "png"), Case("random", 0, True, False, "jpg"),
+                Case("random", 6, True, True, "png")]
+    out = []
+    for fmt in FORMATS:
+        out += [Case(p, 0, True, None, fmt) for p in (presets or PRESETS)]
+        out += [Case("random", s, True, False, fmt) for s in SPECULAR_SEEDS]
+        out += [Case("random", s, False, False, fmt) for s in DIFFUSE_SEEDS]
+        out += [Case("random", s, True, True, fmt) for s in SHADOW_SEEDS]
+    return out
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--quick", action="store_true", help="32 x 32, two presets (CI)")
+    parser.add_argument("--quick", action="store_true",
+                        help=f"{QUICK_SIZE} x {QUICK_SIZE}, three datasets (CI)")
     parser.add_argument("--out", default="out/bench/btf", help="output folder")
+    parser.add_argument("--size", type=int, default=None,
+                        help=f"texels per side of the accuracy datasets ({SIZE})")
     parser.add_argument("--presets", nargs="+", choices=PRESETS, default=None)
-    parser.add_argument("--size", type=int, default=None, help="texels per side (256)")
     parser.add_argument("--repeats", type=int, default=None, help="timing repeats (best of)")
     parser.add_argument("--no-numpy", dest="numpy", action="store_false",
-                        help="skip the batched NumPy peer")
+                        help="skip the batched NumPy peer of the speed rows")
 
 
-def best_time(fn: Callable[[], Any], repeats: int) -> Tuple[float, Any]:
+def best_time(fn: Callable[[], Any], repeats: int = 1) -> Tuple[float, Any]:
     best, out = float("inf"), None
     for _ in range(max(repeats, 1)):
         t0 = time.perf_counter()
@@ -57,12 +95,20 @@ def best_time(fn: Callable[[], Any], repeats: int) -> Tuple[float, Any]:
     return best, out
 
 
-def memcpy_bandwidth() -> float:
-    """Bytes/s of a large NumPy copy (read + write counted)."""
-    src = np.ones(64 * 1024 * 1024 // 4, np.float32)
-    dst = np.empty_like(src)
-    t, _ = best_time(lambda: np.copyto(dst, src), 5)
-    return 2 * src.nbytes / t
+def make_data(case: Case, size: int, tmp: str) -> Tuple[Any, Any]:
+    """(samples read back from files, truth) of a case."""
+    from weft import btf
+    from weft.btf import synth
+
+    if case.source == "random":
+        samples, truth = synth.synthesize_random(case.seed, size, specular=case.specular,
+                                                 shadows=bool(case.shadows), noise=NOISE)
+    else:
+        samples, truth = synth.synthesize(case.source, size, noise=NOISE, seed=case.seed,
+                                          shadows=case.shadows)
+    folder = os.path.join(tmp, case.name)
+    btf.write(folder, samples, fmt=case.fmt, quality=JPEG_QUALITY)
+    return btf.load(folder), truth
 
 
 def crop(samples: Any, n: int) -> Any:
@@ -71,186 +117,177 @@ def crop(samples: Any, n: int) -> Any:
     return weft.BtfSamples(np.ascontiguousarray(samples.values[:, :, :n, :n]), samples.angles)
 
 
-def run_preset(preset: str, size: int, repeats: int, tmp: str) -> Dict[str, Any]:
-    from weft import btf
+def crop_truth(truth: Any, n: int) -> Any:
+    from weft.btf import BtfMaterial
 
-    samples, truth = btf.synthesize(preset, size, noise=NOISE)
-    folder = os.path.join(tmp, preset)
-    btf.write(folder, samples, fmt="jpg", quality=95)
-    t_load, data = best_time(lambda: btf.load(folder), repeats)
-    t_lin, linear = best_time(lambda: btf.fit_linear(data), repeats)
-    t_rob, robust = best_time(lambda: btf.fit_linear(data, robust=True), 1)
-    t_flat, flat = best_time(lambda: btf.fit_specular(data, linear), repeats)
-    t_fitted, fitted = best_time(lambda: btf.fit_specular(data, linear, False), 1)
-    t_bp, bp = best_time(lambda: btf.fit_blinn_phong(data, flat.material, "builtin"), 1)
-    t_laf, laf = best_time(lambda: btf.fit_lafortune(data, flat.material, 2), 1)
+    m = truth
+    cut = (lambda a: None if a is None else np.ascontiguousarray(a[:n, :n]))
+    return BtfMaterial(normal=cut(m.normal), albedo=cut(m.albedo), ambient=cut(m.ambient),
+                       specular=cut(m.specular), exponent=m.exponent,
+                       exponent_map=cut(m.exponent_map),
+                       flat_specular_normal=m.flat_specular_normal, clamp_diffuse=m.clamp_diffuse)
+
+
+def model_row(case: Case, name: str, solver: str, scored: Any, truth: Any, floor: float,
+              texels: int, **extra: Any) -> Dict[str, Any]:
+    from weft.btf import scoring
+
+    t = scoring.truth_errors(scored.model, truth)
+    drawn = scored.drawn["total"] if scored.drawn else None
+    fitted = scored.fitted["total"]
+    return {"case": case.name, "source": case.source, "seed": case.seed, "format": case.fmt,
+            "specular": case.specular, "shadows": bool(extra.pop("shadows")),
+            "truth_flat": bool(truth.flat_specular_normal), "model": name,
+            "solver": solver, "drawable": scored.drawable, "texels": texels,
+            "seconds": scored.seconds, "texels_per_s": texels / max(scored.seconds, 1e-12),
+            "outside": scoring.physical_violations(scored.model)["texels"],
+            "normal_mean_deg": t["mean_deg"], "normal_p95_deg": t["p95_deg"],
+            "exponent_rel": t["exponent_median_rel_error"], "k_s_rel": t["k_s_median_rel_error"],
+            "albedo_err": t["albedo_abs_error"], "ambient_err": t["ambient_abs_error"],
+            "dev_fitted": fitted, "dev_drawn": drawn,
+            "drawn_vs_fitted": None if drawn is None else drawn / max(fitted, 1e-300),
+            "noise_floor": floor, "drawn_vs_floor": None if drawn is None else drawn / floor,
+            **extra}
+
+
+def run_case(case: Case, size: int, crop_n: int, tmp: str) -> List[Dict[str, Any]]:
+    """Every model on one dataset: the rows of the accuracy tables."""
+    from weft import btf
+    from weft.btf import scoring
+
+    data, truth = make_data(case, size, tmp)
     texels = size * size
-    row: Dict[str, Any] = {
-        "preset": preset, "size": size, "shadows": truth.shadows,
-        "load_ms": t_load * 1e3, "linear_ms": t_lin * 1e3, "robust_ms": t_rob * 1e3,
-        "search_eq430_ms": t_flat * 1e3, "search_eq429_ms": t_fitted * 1e3,
-        "blinn_phong_s": t_bp, "linear_texels_per_s": texels / t_lin,
-        "lafortune2_s": t_laf, "lafortune2_texels_per_s": texels / t_laf,
-        "blinn_phong_texels_per_s": texels / t_bp, "bp_mean_iterations": bp.mean_iterations,
-        "exponent_eq430": int(flat.exponent), "exponent_eq429": int(fitted.exponent),
-        "truth_exponent": truth.material.exponent,
-    }
-    lin_material = linear.material(data)
-    models = {"linear": lin_material, "robust": robust.material(data),
-              "spec_eq429": fitted.material, "spec_eq430": flat.material,
-              "blinn_phong": bp.material}
-    for name, m in models.items():
-        row[f"dev_{name}"] = btf.deviation(data, btf.sample_errors(data, m))["total"]
-        stats = btf.normal_stats(m.normal, truth.material.normal)
-        row[f"normal_mean_{name}"] = stats["mean_deg"]
-        row[f"normal_p95_{name}"] = stats["p95_deg"]
-    row["dev_lafortune2"] = btf.deviation(data, laf.errors(data))["total"]
-    row["normal_mean_lafortune2"] = btf.normal_stats(laf.normal, truth.material.normal)["mean_deg"]
-    row["ambient_err_linear"] = float(np.mean(np.abs(lin_material.ambient -
-                                                      truth.material.ambient)))
-    row["ambient_err_blinn_phong"] = float(np.mean(np.abs(bp.material.ambient *
-                                                          bp.material.albedo -
-                                                          truth.material.ambient *
-                                                          truth.material.albedo)))
-    row["bp_gain_vs_eq430"] = row["dev_spec_eq430"] / max(row["dev_blinn_phong"], 1e-300)
+    floor = scoring.score(data, "truth", truth.material).fitted["total"]
+    common = dict(case=case, truth=truth.material, floor=floor, texels=texels)
+    rows: List[Dict[str, Any]] = []
+
+    def add(name: str, solver: str, seconds: float, model: Any, **extra: Any) -> Any:
+        s = scoring.score(data, name, model, seconds)
+        rows.append(model_row(name=name, solver=solver, scored=s, shadows=truth.shadows,
+                              **common, **extra))
+        return s
+
+    t, linear = best_time(lambda: btf.fit_linear(data))
+    add("linear", "-", t, linear.material(data))
+    t, robust = best_time(lambda: btf.fit_linear(data, robust=True))
+    add("linear (robust)", "IRLS", t, robust.material(data))
+    t, flat = best_time(lambda: btf.fit_specular(data, linear, True))
+    add("linear + specular eq4.30", "search", t, flat.material)
+    t, fitted = best_time(lambda: btf.fit_specular(data, linear, False))
+    add("linear + specular eq4.29", "search", t, fitted.material)
+    bp = {}
+    for key, seed, flat_ns in (("n", fitted.material, False), ("(0,0,1)", flat.material, True)):
+        t, r = best_time(lambda: btf.fit_blinn_phong(data, seed, "builtin",
+                                                     flat_specular_normal=flat_ns))
+        bp[key] = add(f"Blinn-Phong n_s={key}", "builtin", t, r.material,
+                      shadowed_fraction=getattr(r, "shadowed_fraction", None))
+    chosen = min(bp, key=lambda k: bp[k].deviation)
+    rows.append(dict(next(r for r in rows if r["model"] == f"Blinn-Phong n_s={chosen}"),
+                     model="Blinn-Phong (chosen)", chosen=f"n_s={chosen}"))
+    for lobes in (1, 2):
+        t, laf = best_time(lambda: btf.fit_lafortune(data, flat.material, lobes))
+        add(f"Lafortune {lobes} lobe{'s' if lobes > 1 else ''}", "builtin", t, laf)
     if btf.have_ceres():
-        small = crop(data, min(CERES_CROP, size))
-        seed = btf.fit_specular(small, btf.fit_linear(small)).material
-        t_c, ceres = best_time(lambda: btf.fit_blinn_phong(small, seed, "ceres"), 1)
-        t_b, builtin = best_time(lambda: btf.fit_blinn_phong(small, seed, "builtin"), 1)
-        n = small.width * small.height
-        row["ceres_texels_per_s"] = n / t_c
-        row["ceres_vs_builtin_dev"] = (
-            btf.deviation(small, btf.sample_errors(small, ceres.material))["total"] /
-            btf.deviation(small, btf.sample_errors(small, builtin.material))["total"])
-        row["builtin_crop_texels_per_s"] = n / t_b
-    return row, samples
+        rows += ceres_rows(case, data, truth, crop_n)
+    return rows
 
 
-def numpy_peer(samples: Any, repeats: int) -> Dict[str, Any]:
+def ceres_rows(case: Case, data: Any, truth: Any, n: int) -> List[Dict[str, Any]]:
+    """Blinn-Phong with Ceres (one problem per texel, slow) on an n x n crop, both highlights."""
     from weft import btf
-    from weft.reference import btf as ref
+    from weft.btf import scoring
 
-    values = samples.values
-    t, x = best_time(lambda: ref.batched_normal_equations(values, samples.light_dirs),
-                     max(1, repeats // 2))
-    mine = btf.fit_linear(samples)
-    diff = btf.angular_error_deg(x[..., :3], mine.normal)
-    return {"numpy_linear_ms": t * 1e3, "max_normal_difference_deg": float(diff.max())}
+    small = crop(data, n)
+    small_truth = crop_truth(truth.material, n)
+    floor = scoring.score(small, "truth", small_truth).fitted["total"]
+    linear = btf.fit_linear(small)
+    rows = []
+    for key, flat_ns in (("n", False), ("(0,0,1)", True)):
+        seed = btf.fit_specular(small, linear, flat_ns).material
+        t, r = best_time(lambda: btf.fit_blinn_phong(small, seed, "ceres",
+                                                     flat_specular_normal=flat_ns))
+        s = scoring.score(small, "ceres", r.material, t)
+        rows.append(model_row(case, f"Blinn-Phong n_s={key} (Ceres, {n}² crop)", "ceres", s,
+                              small_truth, floor, n * n, shadows=truth.shadows))
+    return rows
+
+
+def speed_rows(repeats: int, numpy_peer: bool, size: int) -> Dict[str, Any]:
+    """Linear fit vs one read pass of the samples; Blinn-Phong texels/s on a random material."""
+    from weft import btf
+    from weft.btf import synth
+
+    samples, _ = synth.synthesize_random(SPEED_SEED, size, noise=NOISE)
+    values = samples.values  # a copy: the read pass reads this array once
+    t_read, _ = best_time(lambda: float(values.sum()), repeats)
+    src = np.ones(64 * 1024 * 1024 // 4, np.float32)
+    dst = np.zeros_like(src)
+    np.copyto(dst, src)  # touch the pages first: the timed copies measure bandwidth, not faults
+    t_copy, _ = best_time(lambda: np.copyto(dst, src), max(repeats, 3))
+    bandwidth = 2 * src.nbytes / t_copy
+    t_lin, linear = best_time(lambda: btf.fit_linear(samples), repeats)
+    out: Dict[str, Any] = {"size": size, "seed": SPEED_SEED, "sample_bytes": values.nbytes,
+                           "read_pass_ms": t_read * 1e3, "linear_ms": t_lin * 1e3,
+                           "linear_vs_read_pass": t_lin / t_read, "memcpy_GBps": bandwidth / 1e9,
+                           "bandwidth_bound_ms": values.nbytes / bandwidth * 1e3}
+    flat = btf.fit_specular(samples, linear, True).material
+    fitted = btf.fit_specular(samples, linear, False).material
+    for key, seed, flat_ns in (("n", fitted, False), ("flat", flat, True)):
+        t, _ = best_time(lambda: btf.fit_blinn_phong(samples, seed, "builtin",
+                                                     threads=SPEED_THREADS,
+                                                     flat_specular_normal=flat_ns),
+                         min(repeats, 2))
+        out[f"blinn_phong_{key}_texels_per_s"] = size * size / t
+    if numpy_peer:
+        from weft.reference import btf as ref
+
+        t_np, x = best_time(lambda: ref.batched_normal_equations(values, samples.light_dirs))
+        out["numpy_linear_ms"] = t_np * 1e3
+        out["numpy_max_normal_difference_deg"] = float(
+            btf.angular_error_deg(x[..., :3], linear.normal).max())
+    return out
 
 
 def run(args: argparse.Namespace) -> int:
+    from weft.bench import btf_report
+
     quick = bool(args.quick)
     size = args.size or (QUICK_SIZE if quick else SIZE)
-    presets = tuple(args.presets or (QUICK_PRESETS if quick else PRESETS))
     repeats = args.repeats or (1 if quick else 5)
     if size < 8 or repeats < 1:
         print("python -m weft.bench btf: error: --size must be >= 8, --repeats >= 1",
               file=sys.stderr)
         return 2
-    progress = Progress(len(presets) + 2)
-    progress.update("memcpy bandwidth")
-    bandwidth = memcpy_bandwidth()
-    progress.step("memcpy bandwidth")
+    todo = cases(quick, args.presets)
+    speed_size = QUICK_SIZE * 2 if quick else SPEED_SIZE
+    crop_n = min(QUICK_CERES_CROP if quick else CERES_CROP, size)
+    progress = Progress(len(todo) + 2)
     rows: List[Dict[str, Any]] = []
-    peer: Dict[str, Any] = {}
+    t0 = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="weft-bench-btf-") as tmp:
-        for i, preset in enumerate(presets):
-            progress.update(preset)
-            row, samples = run_preset(preset, size, repeats, tmp)
-            rows.append(row)
-            if i == 0 and args.numpy:
-                progress.update(f"{preset}: NumPy peer")
-                peer = numpy_peer(samples, repeats)
-            progress.step(preset)
-    sample_bytes = size * size * 81 * 3 * 4
-    bound_ms = sample_bytes / bandwidth * 1e3
-    linear_ms = float(np.median([r["linear_ms"] for r in rows]))
-    search_ms = float(np.median([r["search_eq430_ms"] for r in rows]))
-    bp_rate = float(np.median([r["blinn_phong_texels_per_s"] for r in rows]))
-    targets = {
-        "evaluated": not quick and size == SIZE,
-        "linear_ms": {"measured": linear_ms, "target": TARGET_LINEAR_MS,
-                      "met": linear_ms <= TARGET_LINEAR_MS},
-        "search_ms": {"measured": search_ms, "target": TARGET_SEARCH_MS,
-                      "met": search_ms <= TARGET_SEARCH_MS},
-        "blinn_phong_texels_per_s": {"measured": bp_rate, "target": TARGET_BP_TEXELS_S,
-                                     "met": bp_rate >= TARGET_BP_TEXELS_S},
-        "bp_beats_pipeline_on_all_presets": all(r["dev_blinn_phong"] < r["dev_spec_eq430"]
-                                                for r in rows),
-        "lafortune2_beats_pipeline_on_all_presets": all(
-            r["dev_lafortune2"] < r["dev_spec_eq430"] for r in rows),
-    }
-    summary = {"memcpy_GBps": bandwidth / 1e9, "sample_bytes": sample_bytes,
-               "bandwidth_bound_ms": bound_ms, "linear_vs_bound": linear_ms / bound_ms,
-               **peer}
-    if peer:
-        summary["numpy_vs_weft_linear"] = peer["numpy_linear_ms"] / rows[0]["linear_ms"]
-    progress.update("report")
-    plot_note = ("matplotlib is not installed: no plot" if importlib.util.find_spec("matplotlib")
-                 is None else "no plot drawn: the table holds every figure")
+        for case in todo:
+            progress.update(case.name)
+            rows += run_case(case, size, crop_n, tmp)
+            progress.step(case.name)
+    progress.update(f"speed at {speed_size}²")
+    speed = speed_rows(repeats, args.numpy, speed_size)
+    progress.step("speed")
     command = "python -m weft.bench btf" + (" --quick" if quick else "")
     if args.size:
         command += f" --size {args.size}"
     if args.presets:
         command += " --presets " + " ".join(args.presets)
-    markdown = render_markdown(rows, summary, targets, size, command)
+    targets = btf_report.targets(rows, speed, evaluated=not quick and speed_size == SPEED_SIZE)
+    progress.update("report")
+    plot_note = btf_report.plot_error_vs_time(rows, os.path.join(args.out, "error_vs_time.png"))
     data = {"benchmark": "btf", "command": command, "machine": machine_info(), "size": size,
-            "noise": NOISE, "presets": list(presets), "results": rows, "summary": summary,
-            "targets": targets, "plot": None, "plot_note": plot_note}
-    write_report(args.out, data, markdown + f"\n\n{plot_note}\n")
+            "noise": NOISE, "jpeg_quality": JPEG_QUALITY, "cases": [c.name for c in todo],
+            "results": rows, "speed": speed, "targets": targets,
+            "plot": None if plot_note else "error_vs_time.png", "plot_note": plot_note,
+            "seconds": time.perf_counter() - t0}
+    markdown = btf_report.render_markdown(data)
+    write_report(args.out, data, markdown)
     progress.step("report")
     progress.close()
     print(markdown)
     return 0
-
-
-def render_markdown(rows: List[Dict[str, Any]], summary: Dict[str, Any],
-                    targets: Dict[str, Any], size: int, command: str) -> str:
-    def f(v: Any, p: int = 2) -> str:
-        return f"{v:.{p}f}" if isinstance(v, float) else str(v)
-
-    time_rows = [[r["preset"], f(r["load_ms"], 1), f(r["linear_ms"]), f(r["robust_ms"], 1),
-                  f(r["search_eq430_ms"]), f(r["search_eq429_ms"], 0), f(r["blinn_phong_s"], 3),
-                  f"{r['linear_texels_per_s'] / 1e6:.1f} M",
-                  f"{r['blinn_phong_texels_per_s'] / 1e3:.1f} k",
-                  f"{r['lafortune2_texels_per_s'] / 1e3:.1f} k",
-                  f"{r.get('ceres_texels_per_s', float('nan')) / 1e3:.2f} k"] for r in rows]
-    err_rows = [[r["preset"], *(f"{r[f'normal_mean_{m}']:.2f} / {r[f'normal_p95_{m}']:.2f}"
-                                for m in ("linear", "robust", "blinn_phong")),
-                 f(r["ambient_err_linear"], 4),
-                 *(f(r[f"dev_{m}"], 4) for m in ("linear", "spec_eq429", "spec_eq430",
-                                                 "blinn_phong", "lafortune2")),
-                 f"{r['exponent_eq429']} / {r['exponent_eq430']} ({r['truth_exponent']:g})",
-                 f"{r['bp_gain_vs_eq430']:.2f}x"] for r in rows]
-    lines = [f"# BTF fitting benchmark ({size} x {size} x 81, noise {NOISE}, JPEG 95)", "",
-             f"`{command}`", "", "## Times", "",
-             markdown_table(["preset", "load ms", "linear ms", "robust ms", "search eq4.30 ms",
-                             "search eq4.29 ms", "Blinn-Phong s", "linear texels/s",
-                             "BP texels/s", "Lafortune-2 texels/s", "Ceres texels/s"],
-                            time_rows), "",
-             "## Errors against the ground truth", "",
-             markdown_table(["preset", "normal ° linear (mean / p95)", "robust", "Blinn-Phong",
-                             "ambient |err|", "dev % linear", "dev % eq4.29", "dev % eq4.30",
-                             "dev % BP", "dev % Lafortune-2", "n eq4.29 / eq4.30 (truth)",
-                             "BP gain"], err_rows), "",
-             "## Peers and targets", ""]
-    peer_rows = [["memcpy bandwidth", f"{summary['memcpy_GBps']:.1f} GB/s"],
-                 ["bandwidth bound of the linear fit",
-                  f"{summary['bandwidth_bound_ms']:.2f} ms ({summary['sample_bytes'] / 1e6:.0f} "
-                  f"MB of float32 samples)"],
-                 ["linear fit / bound", f"{summary['linear_vs_bound']:.2f}x"]]
-    if "numpy_linear_ms" in summary:
-        peer_rows += [["batched NumPy normal equations", f"{summary['numpy_linear_ms']:.0f} ms "
-                       f"({summary['numpy_vs_weft_linear']:.0f}x weft; normals agree to "
-                       f"{summary['max_normal_difference_deg']:.1e}°)"]]
-    for key in ("linear_ms", "search_ms", "blinn_phong_texels_per_s"):
-        t = targets[key]
-        state = ("met" if t["met"] else "MISSED") if targets["evaluated"] else "not evaluated"
-        peer_rows.append([f"target {key}", f"{t['measured']:.2f} vs {t['target']:g}: {state}"])
-    peer_rows.append(["Blinn-Phong beats linear + specular on every preset",
-                      str(targets["bp_beats_pipeline_on_all_presets"])])
-    peer_rows.append(["Lafortune (2 lobes) beats linear + specular on every preset",
-                      str(targets["lafortune2_beats_pipeline_on_all_presets"])])
-    lines.append(markdown_table(["figure", "value"], peer_rows))
-    return "\n".join(lines)

@@ -149,27 +149,58 @@ def sample_angles(views: Sequence[Sequence[float]]) -> np.ndarray:
     return np.asarray(rows, dtype=np.float32)
 
 
+def render_truth(material: BtfMaterial, height: np.ndarray, *, shadows: bool, views: int = 1,
+                 noise: float = 0.0, noise_seed: int = 1) -> "weft.BtfSamples":
+    """Float samples of ``material`` for ``views`` view directions x 81 lights (cast shadows
+    from ``height`` when ``shadows``), with Gaussian noise of std ``noise``."""
+    if not (np.isfinite(noise) and 0 <= noise <= 1):
+        raise weft.InvalidArgument(f"noise must be in [0, 1], got {noise}")
+    angles = sample_angles(view_angles(views))
+    samples = _core.btf_render(material.core_maps(), angles, height if shadows else None, True)
+    if noise > 0:
+        values = samples.values
+        values += np.random.default_rng(noise_seed).normal(0.0, noise, values.shape).astype(
+            np.float32)
+        samples = _core.BtfSamples(values, angles)
+    return samples
+
+
 def synthesize(preset: str, size: int = 256, *, views: int = 1, noise: float = 0.0,
                seed: int = 0, shadows: Optional[bool] = None, specular: Optional[float] = None,
                height_scale: float = 1.0,
                material: Optional[BtfMaterial] = None) -> Tuple["weft.BtfSamples", SynthTruth]:
     """Renders a preset (or a given ``material`` with the preset's height field) to float
-    samples for ``views`` view directions x 81 lights, with Gaussian noise of std ``noise``."""
+    samples for ``views`` view directions x 81 lights, with Gaussian noise of std ``noise``.
+    ``preset`` "random" is :func:`synthesize_random` with this ``seed``."""
+    if preset == "random":
+        if material is not None or height_scale != 1.0:
+            raise weft.InvalidArgument("the random preset takes no material or height_scale")
+        return synthesize_random(seed, size, views=views, noise=noise,
+                                 specular=specular is None or specular > 0,
+                                 shadows=bool(shadows))
     if not (np.isfinite(noise) and 0 <= noise <= 1):
         raise weft.InvalidArgument(f"noise must be in [0, 1], got {noise}")
     truth_material, height, cast = truth_for(preset, size, seed, specular=specular,
                                              shadows=shadows, height_scale=height_scale)
     if material is not None:
         truth_material = material
-    angles = sample_angles(view_angles(views))
-    samples = _core.btf_render(truth_material.core_maps(), angles,
-                               height if cast else None, True)
-    if noise > 0:
-        values = samples.values
-        values += np.random.default_rng(seed + 1).normal(0.0, noise, values.shape).astype(
-            np.float32)
-        samples = _core.BtfSamples(values, angles)
+    samples = render_truth(truth_material, height, shadows=cast, views=views, noise=noise,
+                           noise_seed=seed + 1)
     return samples, SynthTruth(truth_material, height, cast, float(noise))
+
+
+def synthesize_random(seed: int, size: int = 64, *, specular: bool = True, shadows: bool = False,
+                      noise: float = 0.004, flat_specular_normal: Optional[bool] = None,
+                      views: int = 1) -> Tuple["weft.BtfSamples", SynthTruth]:
+    """A material drawn at random from ``seed`` (:func:`weft.btf.synth_random.random_truth`),
+    rendered like a preset: independent data for checking the fits without tuning to presets."""
+    from weft.btf.synth_random import random_truth
+
+    material, height = random_truth(seed, size, specular=specular,
+                                    flat_specular_normal=flat_specular_normal)
+    samples = render_truth(material, height, shadows=bool(shadows), views=views, noise=noise,
+                           noise_seed=np.random.SeedSequence([int(seed), 1]).generate_state(1)[0])
+    return samples, SynthTruth(material, height, bool(shadows), float(noise))
 
 
 def write(path: str, samples: "weft.BtfSamples", *, fmt: str = "jpg", quality: int = 95,
