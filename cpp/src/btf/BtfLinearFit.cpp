@@ -67,8 +67,9 @@ LightFrame lightFrame(const BtfSamples& samples) {
 }
 
 // The four rows from sample s of channel c, where the accumulation goes after its current group
-// (rolling over to the next channel, then to the next block). Used to prefetch: a block reads 243 rows of 4 KiB at strides of a whole plane, too short and too
-// scattered for the hardware prefetcher to follow, which left the pass waiting on memory.
+// (rolling over to the next channel, then to the next block). Used to prefetch: a block reads
+// 243 rows of 4 KiB at strides of a whole plane, too short and too scattered for the hardware
+// prefetcher to follow, which left the pass waiting on memory.
 struct NextRows {
     const float* row[4] = {nullptr, nullptr, nullptr, nullptr};
     int len = 0; // texels to prefetch (0: nothing follows)
