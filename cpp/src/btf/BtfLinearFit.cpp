@@ -66,10 +66,10 @@ LightFrame lightFrame(const BtfSamples& samples) {
     return f;
 }
 
-// Rows [s, s + count) of channel c: where the accumulation goes after the group at (c, s) of the
-// block at `begin` (the next rows, then the next channel, then the next block). Used to
-// prefetch: a block reads 243 rows of 4 KiB at strides of a whole plane, too short and too
-// scattered for the hardware prefetcher to follow, which left the pass waiting on memory.
+// The four rows from sample s of channel c, where the accumulation goes after its current group
+// (rolling over to the next channel, then to the next block). Used to prefetch: a block reads
+// 243 rows of 4 KiB at strides of a whole plane, too short and too scattered for the hardware
+// prefetcher to follow, which left the pass waiting on memory.
 struct NextRows {
     const float* row[4] = {nullptr, nullptr, nullptr, nullptr};
     int len = 0; // texels to prefetch (0: nothing follows)
@@ -167,12 +167,12 @@ void accumulateBlock(const float* values, size_t texels, const glm::vec3* lights
 // The per-texel solve of a block in float SIMD, all texels at once: T (the mean, unless given),
 // n = C⁻¹ Σ_c t_c q_c / Σ_c t_c², I_A,c = Σ p_c / (N t_c) - mean(l)·n. Writes planar results to
 // `out` (nx, ny, nz, a_r, a_g, a_b) from `t` (T per channel); flags in `scalar` the texels that
-// solveTexel redoes in double: a channel below the dark threshold, or a float overflow. Returns
-// false when a Σ p is not finite.
+// solveTexel redoes in double: a channel below the dark threshold, or Σ t² or a result outside
+// float's normal range. Returns false when a Σ p is not finite. (__restrict: without it GCC
+// gives up on versioning the loop for its 25 memory streams and does not vectorise it.)
 #if defined(__x86_64__) && defined(__GNUC__)
 __attribute__((target_clones("avx2", "default")))
 #endif
-// (__restrict: without it GCC gives up on versioning the loop for its 25 memory streams.)
 bool solveBlock(const float (*__restrict acc)[4][kBlock], int len, int samples,
                 const float inverse[3][3], const glm::vec3 mean, float darkThreshold,
                 const float (*__restrict t)[kBlock], float (*__restrict out)[kBlock],
@@ -192,7 +192,8 @@ bool solveBlock(const float (*__restrict acc)[4][kBlock], int len, int samples,
         const float rx = t0 * acc[0][1][i] + t1 * acc[1][1][i] + t2 * acc[2][1][i];
         const float ry = t0 * acc[0][2][i] + t1 * acc[1][2][i] + t2 * acc[2][2][i];
         const float rz = t0 * acc[0][3][i] + t1 * acc[1][3][i] + t2 * acc[2][3][i];
-        const float inv = 1.0f / (t0 * t0 + t1 * t1 + t2 * t2);
+        const float tt = t0 * t0 + t1 * t1 + t2 * t2;
+        const float inv = 1.0f / tt;
         const float nx = (i00 * rx + i01 * ry + i02 * rz) * inv;
         const float ny = (i01 * rx + i11 * ry + i12 * rz) * inv;
         const float nz = (i02 * rx + i12 * ry + i22 * rz) * inv;
@@ -205,8 +206,10 @@ bool solveBlock(const float (*__restrict acc)[4][kBlock], int len, int samples,
         out[3][i] = a0;
         out[4][i] = a1;
         out[5][i] = a2;
-        // Σ t² overflows float for samples beyond ~1e19, where double still has room.
-        const bool finite = (std::fabs(nx) <= FLT_MAX) & (std::fabs(ny) <= FLT_MAX) &
+        // Σ t² leaves float's range for samples beyond ~1e19 (or below ~1e-19 with a zero dark
+        // threshold), where double still has room.
+        const bool finite = (tt >= FLT_MIN) & (tt <= FLT_MAX) &
+                            (std::fabs(nx) <= FLT_MAX) & (std::fabs(ny) <= FLT_MAX) &
                             (std::fabs(nz) <= FLT_MAX) & (std::fabs(a0) <= FLT_MAX) &
                             (std::fabs(a1) <= FLT_MAX) & (std::fabs(a2) <= FLT_MAX);
         scalar[i] = (lit & finite) ? 0 : 1;

@@ -95,7 +95,6 @@ std::vector<uint8_t> readFile(const std::string& path) {
     return data;
 }
 
-
 // macOS adds `__MACOSX/` folders and `._name` AppleDouble files (resource forks) when it zips
 // or copies to foreign file systems; they carry the image names but are not images.
 bool isMacMetadata(const std::string& name) {
@@ -162,7 +161,7 @@ BtfSamples allocateSamples(int width, int height, std::vector<BtfAngles> angles,
 class SampleStore {
 public:
     explicit SampleStore(BtfGamma gamma) : mGamma(gamma) {
-        for (int k = 0; k < 256; ++k) mLut8[k] = convert(k / 255.0);
+        for (int k = 0; k < 256; ++k) mLut8[k] = convert(k, 255);
     }
 
     void put(const Decoded& d, const Entry& entry, const Entry& first, BtfSamples& samples,
@@ -194,13 +193,14 @@ public:
     }
 
 private:
-    float convert(double v) const {
-        return mGamma == BtfGamma::Raw ? float(v) : float(std::pow(v, 2.2));
+    float convert(int value, int max) const {
+        return mGamma == BtfGamma::Raw ? float(value) / float(max)
+                                       : float(std::pow(double(value) / max, 2.2));
     }
     const float* lut16() {
         std::call_once(mLut16Once, [this] {
             mLut16.resize(65536);
-            for (int k = 0; k < 65536; ++k) mLut16[size_t(k)] = convert(k / 65535.0);
+            for (int k = 0; k < 65536; ++k) mLut16[size_t(k)] = convert(k, 65535);
         });
         return mLut16.data();
     }
