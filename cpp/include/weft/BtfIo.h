@@ -1,7 +1,7 @@
 #pragma once
 // Reading and writing BTFs in the Bonn database layout (shared/formats/bonn-btf.md): a folder or
 // a zip holding `tvTTT_pvPPP/NNNNN tlAAA plBBB tvCCC pvDDD.jpg` images (also the underscore
-// variant with a material prefix; .jpg, .png).
+// variant with a material prefix; .jpg, .png (8 or 16 bits), .exr).
 #include <string>
 #include <vector>
 
@@ -14,8 +14,10 @@ namespace weft {
 struct BtfLoadOptions {
     /// Views to load as (θ_v, φ_v) degrees; empty = every view present. Default: frontal.
     std::vector<glm::vec2> views{glm::vec2(0.0f, 0.0f)};
+    /// Raw: value / 255 (16-bit PNG: value / 65535); Linear: the same raised to 2.2. Values
+    /// are taken as stored: PNG gAMA/sRGB/iCCP chunks are ignored, as JPEG has none.
     BtfGamma gamma = BtfGamma::Raw;
-    int threads = 0; ///< decoding threads, 0 = all cores
+    int threads = 0; ///< decoding threads, 0 = all cores, else 1..256
 };
 
 /// Angles parsed from a file name by their tl/pl/tv/pv keys (space or underscore separated).
@@ -23,8 +25,13 @@ struct BtfLoadOptions {
 bool parseBtfFileName(const std::string& name, BtfAngles& out);
 
 /// Loads a folder or a .zip. Every selected view must hold each of the 81 standard light
-/// directions exactly once; all images must be RGB (or grey) of one size. Throws IoError naming
-/// the file (or the missing angles) otherwise, InvalidArgument for impossible options.
+/// directions exactly once; all images must be RGB (or grey) of one size and opaque (a PNG
+/// with any alpha below its maximum is refused: compositing would change the measurement).
+/// macOS metadata (`__MACOSX/` folders, `._*` AppleDouble files) is skipped. Images are read,
+/// decoded and converted one at a time per thread, and every zip entry's declared size is
+/// checked first (against the archive and a 256 MiB per-image limit), so a zip bomb is refused
+/// without being inflated. Throws IoError naming the file (or the missing angles) otherwise,
+/// InvalidArgument for impossible options.
 BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options = {});
 
 enum class BtfImageFormat { Jpeg, Png };
