@@ -17,6 +17,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 import weft
+from weft.btf import synth
 from weft.btf.material import BtfMaterial
 
 K_S_RANGE = (0.02, 0.3)   # below ~0.02 the lobe is under the 0.004 noise: no exponent to recover
@@ -26,16 +27,8 @@ PEAK = 0.95                # brightest possible sample (θ_l = 0, highlight)
 
 
 def _value_noise(rng: np.random.Generator, size: int, cells: int) -> np.ndarray:
-    """Tileable value noise in [0, 1] (smooth-step interpolation of a cells x cells grid)."""
-    cells = int(min(max(cells, 2), size))
-    grid = rng.random((cells, cells))
-    t = np.arange(size) * cells / size
-    i0 = np.floor(t).astype(int) % cells
-    i1 = (i0 + 1) % cells
-    f = t - np.floor(t)
-    f = f * f * (3 - 2 * f)
-    rows = grid[i0] * (1 - f)[:, None] + grid[i1] * f[:, None]
-    return rows[:, i0] * (1 - f)[None, :] + rows[:, i1] * f[None, :]
+    """synth's tileable value noise with the cell count kept in [2, size]."""
+    return synth._value_noise(rng, size, int(min(max(cells, 2), size)))
 
 
 def _fbm(rng: np.random.Generator, size: int) -> np.ndarray:
