@@ -60,6 +60,16 @@ Frame renderFrame(Renderer& r, const Scene& scene, const Camera& camera, uint32_
     return r.render(scene, camera, outputs);
 }
 
+const char* const kToneMaps[] = {"clamp", "aces", "agx", "neutral"};
+
+ToneMap toneMapOf(const std::string& name) {
+    for (int i = 0; i < 4; ++i)
+        if (name == kToneMaps[i]) return ToneMap(i);
+    throw InvalidArgument("tone_map must be 'clamp', 'aces', 'agx' or 'neutral' (got '" + name + "')");
+}
+
+std::string toneMapName(ToneMap t) { return kToneMaps[int(t)]; }
+
 #define WEFT_SETTING(pyname, field, type)                                                          \
     def_property(                                                                                  \
         pyname, [](const Renderer& r) { return r.settings().field; },                              \
@@ -76,7 +86,7 @@ void bindRender(py::module_& m) {
         "Vulkan renderer drawing a Scene from a Camera into an offscreen image of width x height.")
         .def(py::init([](int64_t width, int64_t height, int64_t shadowMapSize, int pcfRadius,
                          float biasConstant, float biasSlope, float biasMax, float normalOffset,
-                         bool reuseShadowMaps) {
+                         bool reuseShadowMaps, int64_t msaa, float exposure, const std::string& toneMap) {
             if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
                 throw InvalidArgument("render target size must be positive (got " +
                                       std::to_string(width) + "x" + std::to_string(height) + ")");
@@ -90,11 +100,17 @@ void bindRender(py::module_& m) {
             s.biasMax = biasMax;
             s.normalOffset = normalOffset;
             s.reuseShadowMaps = reuseShadowMaps;
+            if (msaa != 1 && msaa != 2 && msaa != 4 && msaa != 8)
+                throw InvalidArgument("msaa must be 1, 2, 4 or 8 samples (got " + std::to_string(msaa) + ")");
+            s.msaa = uint32_t(msaa);
+            s.exposure = exposure;
+            s.toneMap = toneMapOf(toneMap);
             return std::make_unique<Renderer>(uint32_t(width), uint32_t(height), s);
         }), py::arg("width"), py::arg("height"), py::arg("shadow_map_size") = 2048,
            py::arg("pcf_radius") = 1, py::arg("bias_constant") = 0.0005f,
            py::arg("bias_slope") = 0.0015f, py::arg("bias_max") = 0.01f,
-           py::arg("normal_offset") = 1.5f, py::arg("reuse_shadow_maps") = true)
+           py::arg("normal_offset") = 1.5f, py::arg("reuse_shadow_maps") = true,
+           py::arg("msaa") = 4, py::arg("exposure") = 0.0f, py::arg("tone_map") = "clamp")
         .def_property_readonly("width", &Renderer::width)
         .def_property_readonly("height", &Renderer::height)
         .def_property_readonly("device_name", &Renderer::deviceName)
@@ -112,6 +128,31 @@ void bindRender(py::module_& m) {
         .WEFT_SETTING("bias_max", biasMax, float)
         .WEFT_SETTING("normal_offset", normalOffset, float)
         .WEFT_SETTING("reuse_shadow_maps", reuseShadowMaps, bool)
+        .def_property("msaa", [](const Renderer& r) { return r.settings().msaa; },
+            [](Renderer& r, int64_t v) {
+                RenderSettings s = r.settings();
+                if (v != 1 && v != 2 && v != 4 && v != 8)
+                    throw InvalidArgument("msaa must be 1, 2, 4 or 8 samples (got " + std::to_string(v) + ")");
+                s.msaa = uint32_t(v);
+                r.setSettings(s);
+            }, "Multisample anti-aliasing samples per pixel (1, 2, 4, 8; default 4), lowered to what\n"
+               "the device supports (msaa_samples). render_debug frames are not multisampled.")
+        .def_property_readonly("msaa_samples", &Renderer::msaaSamples,
+            "The samples per pixel the device renders for the msaa setting.")
+        .def_property("exposure", [](const Renderer& r) { return r.settings().exposure; },
+            [](Renderer& r, float v) {
+                RenderSettings s = r.settings();
+                s.exposure = v;
+                r.setSettings(s);
+            }, "Exposure in photographic stops: the colour output shows linear radiance x 2^exposure\n"
+               "(render_linear is not exposed).")
+        .def_property("tone_map", [](const Renderer& r) { return toneMapName(r.settings().toneMap); },
+            [](Renderer& r, const std::string& v) {
+                RenderSettings s = r.settings();
+                s.toneMap = toneMapOf(v);
+                r.setSettings(s);
+            }, "'clamp' (the seed's look), 'aces' (Narkowicz's ACES fit), 'agx' (Blender's AgX) or\n"
+               "'neutral' (Khronos PBR Neutral): how exposed radiance maps to the 8-bit colour output.")
         .def("render", [](Renderer& r, const Scene& scene, const Camera& camera) {
             return colorImage(renderFrame(r, scene, camera, OutputColor).color);
         }, py::arg("scene"), py::arg("camera"), "sRGB-encoded RGBA uint8 image (H, W, 4).")

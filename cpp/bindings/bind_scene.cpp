@@ -450,7 +450,7 @@ void bindScene(py::module_& m) {
                                    int specularLevels, int specularSamples, int domeLights,
                                    int domeMapSize, int domeRefresh, float domeBlur,
                                    float domeBlurDepthTolerance, const std::string& lookup,
-                                   int sphereMapSize) {
+                                   int sphereMapSize, bool background, float backgroundBlur) {
             EnvironmentLighting e;
             if (py::isinstance<Environment>(environment))
                 e.environment = environment.cast<std::shared_ptr<Environment>>();
@@ -476,12 +476,15 @@ void bindScene(py::module_& m) {
                 throw InvalidArgument("Scene.set_environment: lookup must be 'cube' or 'sphere_map' "
                                       "(got '" + lookup + "')");
             e.sphereMapSize = sphereMapSize;
+            e.background = background;
+            e.backgroundBlur = backgroundBlur;
             s.setEnvironment(e);
         }, py::arg("environment"), py::arg("intensity") = 1.0f, py::arg("specular_size") = 64,
            py::arg("specular_levels") = 6, py::arg("specular_samples") = 64,
            py::arg("dome_lights") = 0, py::arg("dome_map_size") = 256, py::arg("dome_refresh") = 0,
            py::arg("dome_blur") = 0.0f, py::arg("dome_blur_depth_tolerance") = 0.05f,
            py::arg("lookup") = "cube", py::arg("sphere_map_size") = 128,
+           py::arg("background") = false, py::arg("background_blur") = 0.0f,
            "Lights the scene with an environment (a weft.ibl.Environment, re-baked when its version\n"
            "changes, or a weft.ibl.CubeMap, copied into a new one): SH9 irradiance for materials'\n"
            "environment_diffuse, a GGX chain (level l: roughness l / (levels - 1)) for their\n"
@@ -492,7 +495,9 @@ void bindScene(py::module_& m) {
            "differ by more than dome_blur_depth_tolerance, relative, do not mix); they darken the\n"
            "diffuse light only. lookup='sphere_map' is the seed's eye-space path: the environment\n"
            "is read as eye space (a capture from the viewer's camera) and looked up in sphere maps\n"
-           "of sphere_map_size at normalize(d_eye + (0, 0, 1)).")
+           "of sphere_map_size at normalize(d_eye + (0, 0, 1)). background=True draws the\n"
+           "environment behind the scene (and in the dynamic probe): sharp, or at background_blur\n"
+           "> 0 the glossy chain at that roughness (0..1). A background_image wins over it.")
         .def("clear_environment", &Scene::clearEnvironment)
         .def_property("background_image",
                       [](const Scene& s) { return std::const_pointer_cast<Texture>(s.backgroundImage()); },

@@ -46,6 +46,8 @@ layout(set = 0, binding = 0) uniform FrameUbo {
     vec4 options;  // x: sphere-map lookups, y: last glossy sphere level, z: dome deferred to the
                    // blur pass, w: background image
     vec4 viewport; // xy: 1 / target size
+    mat4 inverseViewProj; // clip -> world (the background's view rays)
+    vec4 sky;      // x: environment drawn as background, y: its chain level (< 0: radiance cube)
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };
@@ -57,5 +59,6 @@ layout(set = 0, binding = 6) uniform samplerCube environmentMap; // GGX chain by
 layout(set = 0, binding = 10) uniform sampler2D backgroundImage;   // camera image (AR) or black
 layout(set = 0, binding = 11) uniform sampler2D sphereIrradiance;  // eye-space sphere maps
 layout(set = 0, binding = 12) uniform sampler2D sphereGlossy;      // mips by roughness
+layout(set = 0, binding = 13) uniform samplerCube environmentRadiance; // the background's source
 
 layout(push_constant) uniform Push { uint instance; } push;

@@ -1,10 +1,22 @@
 #version 450
-// The scene's background image (a camera frame for AR, SPEC §4.5) stretched over the target;
-// sRGB textures decode to linear on sampling.
+// What lies behind the scene: the scene's background image (a camera frame for AR, SPEC §4.5)
+// stretched over the target (sRGB textures decode to linear on sampling), or the environment
+// seen along each pixel's view ray (frame.sky.x), times its intensity: the sharp radiance cube
+// (mip chosen by the ray's footprint) or, blurred, the glossy chain at frame.sky.y.
 #include "frame.glsl"
 
 layout(location = 0) out vec4 outColor;
 
 void main() {
-    outColor = vec4(textureLod(backgroundImage, gl_FragCoord.xy * frame.viewport.xy, 0.0).rgb, 1.0);
+    vec2 uv = gl_FragCoord.xy * frame.viewport.xy;
+    if (frame.options.w > 0.5) {
+        outColor = vec4(textureLod(backgroundImage, uv, 0.0).rgb, 1.0);
+        return;
+    }
+    vec4 far = frame.inverseViewProj * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
+    vec4 near = frame.inverseViewProj * vec4(uv * 2.0 - 1.0, 0.0, 1.0);
+    vec3 ray = normalize(far.xyz / far.w - near.xyz / near.w);
+    vec3 radiance = frame.sky.y < 0.0 ? texture(environmentRadiance, ray).rgb
+                                      : textureLod(environmentMap, ray, frame.sky.y).rgb;
+    outColor = vec4(radiance * frame.environment.x, 1.0);
 }

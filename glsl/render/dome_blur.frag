@@ -11,7 +11,10 @@ layout(location = 0) out vec4 outColor;
 void main() {
     ivec2 c = ivec2(gl_FragCoord.xy);
     vec2 centre = texelFetch(visDepthTex, c, 0).rg;
-    if (centre.y < 0.0) discard; // no surface
+    if (centre.y < 0.0) { // no depth here (background or MSAA sample 0 uncovered): unblurred
+        outColor = vec4(texelFetch(domeTex, c, 0).rgb * centre.x, 0.0);
+        return;
+    }
     int last = textureSize(visDepthTex, 0).y - 1;
     float step = push.params.x / 3.0;
     float sigma = max(push.params.x * 0.5, 1e-6);

@@ -147,6 +147,15 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--dome", type=_dome_size, default=None, metavar="N",
                         help="shadow lights in the environment's dome: 0 or a multiple of 8 up "
                              "to 64 (default 16 with --environment)")
+    render.add_argument("--msaa", type=int, choices=(1, 2, 4, 8), default=4,
+                        help="multisample anti-aliasing samples per pixel (4)")
+    render.add_argument("--exposure", type=float, default=0.0, metavar="EV",
+                        help="exposure in photographic stops: the image shows radiance x 2^EV (0)")
+    render.add_argument("--tone-map", choices=("clamp", "aces", "agx", "neutral"),
+                        default="clamp",
+                        help="how radiance above 1 is shown: clamp (the seed's look, clips), "
+                             "aces (filmic), agx (Blender's) or neutral (Khronos PBR Neutral, "
+                             "colours kept); default clamp")
     render.set_defaults(handler=_cmd_render)
 
     from weft.btf import cli as btf_cli
@@ -227,8 +236,9 @@ def _cmd_render(args: argparse.Namespace) -> int:
     if args.environment:  # read (and reject) the environment before any simulation or GPU work
         import weft.ibl
 
+        # 256 texels per face: it is also the background the camera sees
         cube = weft.ibl.load_environment_cube(
-            args.environment, 64, source=args.source or "auto",
+            args.environment, 256, source=args.source or "auto",
             wrap=1.0 if args.wrap is None else args.wrap)
     if args.scene == "cloth":
         import weft.scenes
@@ -247,7 +257,8 @@ def _cmd_render(args: argparse.Namespace) -> int:
         import weft.scenes
 
         weft.scenes.composite_over(scene, weft.load_png(args.background))
-    renderer = weft.Renderer(args.width, args.height)
+    renderer = weft.Renderer(args.width, args.height, msaa=args.msaa, exposure=args.exposure,
+                             tone_map=args.tone_map)
     image = renderer.render(scene, camera)
     directory = os.path.dirname(args.out)
     if directory:

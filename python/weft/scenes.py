@@ -125,9 +125,11 @@ def light_with_environment(scene: "weft.Scene", environment, dome_lights: int = 
     pixel). With ``sun_lights`` > 0 up to that many bright lights are extracted
     (``weft.ibl.split_lights``: threshold + components) and added as directional lights with
     sharp shadow maps alongside the dome, which then lights with the rest of the sky: a sun
-    that SH9 cannot follow is exact that way. With ``background`` the clear colour becomes the
-    environment's mean radiance over the upper hemisphere. Returns the Environment (call its
-    ``set_radiance`` to change the lighting, e.g. from a video)."""
+    that SH9 cannot follow is exact that way. With ``background`` the environment is drawn
+    behind the scene (without the suns taken out as lights); the clear colour, left where
+    nothing is drawn (e.g. render_debug's background), becomes its mean radiance over the upper
+    hemisphere. Returns the Environment (call its ``set_radiance`` to change the lighting, e.g.
+    from a video)."""
     if dome_lights not in DOME_SIZES:
         raise InvalidArgument(f"dome_lights must be 0 or a multiple of 8 up to 64, got "
                               f"{dome_lights!r}")
@@ -147,7 +149,7 @@ def light_with_environment(scene: "weft.Scene", environment, dome_lights: int = 
             env = weft.ibl.Environment(sky)
     scene.set_environment(env, intensity=float(intensity), dome_lights=int(dome_lights),
                           dome_map_size=int(dome_map_size), dome_refresh=0,
-                          dome_blur=float(dome_blur))
+                          dome_blur=float(dome_blur), background=bool(background))
     for i in range(scene.instance_count):
         material = scene.material(i)
         material.environment_diffuse = 1.0

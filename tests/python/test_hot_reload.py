@@ -86,8 +86,10 @@ def test_shader_needing_a_new_descriptor_is_refused(shader_dir: Path, make_rende
          "layout(set = 0, binding = 0) uniform sampler2D hdr;",
          "layout(set = 0, binding = 0) uniform sampler2D hdr;\n"
          "layout(set = 0, binding = 7) uniform sampler2D extra;")
-    edit(shader_dir / "render" / "output.frag", "vec3 c = texelFetch(hdr, ivec2(gl_FragCoord.xy), 0).rgb;",
-         "vec3 c = texelFetch(hdr, ivec2(gl_FragCoord.xy), 0).rgb + texture(extra, vec2(0.5)).rgb;")
+    edit(shader_dir / "render" / "output.frag",
+         "texelFetch(hdr, ivec2(gl_FragCoord.xy), 0).rgb * push.params.x",
+         "(texelFetch(hdr, ivec2(gl_FragCoord.xy), 0).rgb + texture(extra, vec2(0.5)).rgb) * "
+         "push.params.x")
     np.testing.assert_array_equal(r.render(scene, camera), good)
     errors = weft.shader_errors()
     assert len(errors) == 1 and "binding 7" in errors[0], errors

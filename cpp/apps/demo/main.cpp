@@ -29,6 +29,9 @@ options:
   --environment PATH light the scene with a captured environment instead of the sun and moon:
                      an equirectangular (2:1) or sphere-map (square) .hdr/.exr/.png; diffuse
                      from its SH9 irradiance, shadows from a dome of 16 shadow lights
+  --msaa N           anti-aliasing samples per pixel: 1, 2, 4 or 8 (default 4)
+  --exposure EV      exposure in stops: the image shows radiance x 2^EV (default 0)
+  --tone-map OP      clamp (the seed's look), aces, agx or neutral (default clamp)
   --script PATH      scripted input, one event per line: "<frame> key <K>",
                      "<frame> grab <x> <y>", "<frame> drag <x> <y>", "<frame> release"
                      (pixels from the top left; keys as below, or SPACE/LEFT/RIGHT/UP/DOWN)
@@ -55,6 +58,13 @@ int parseInt(const char* flag, const char* value) {
     const long v = std::strtol(value, &end, 10);
     if (!*value || *end) throw weft::InvalidArgument(std::string(flag) + " needs an integer, got '" + value + "'");
     return int(v);
+}
+
+float parseFloat(const char* flag, const char* value) {
+    char* end = nullptr;
+    const float v = std::strtof(value, &end);
+    if (!*value || *end) throw weft::InvalidArgument(std::string(flag) + " needs a number, got '" + value + "'");
+    return v;
 }
 
 } // namespace
@@ -87,6 +97,18 @@ int main(int argc, char** argv) {
             else if (a == "--script") o.script = next();
             else if (a == "--shader-dir") o.shaderDir = next();
             else if (a == "--environment") o.environment = next();
+            else if (a == "--msaa") o.msaa = uint32_t(parseInt("--msaa", next()));
+            else if (a == "--exposure") o.exposure = parseFloat("--exposure", next());
+            else if (a == "--tone-map") {
+                const std::string op = next();
+                const char* names[] = {"clamp", "aces", "agx", "neutral"};
+                int found = -1;
+                for (int k = 0; k < 4; ++k)
+                    if (op == names[k]) found = k;
+                if (found < 0)
+                    throw weft::InvalidArgument("--tone-map must be clamp, aces, agx or neutral, got '" + op + "'");
+                o.toneMap = weft::ToneMap(found);
+            }
             else if (a == "--no-hot-reload") hotReload = false;
             else throw weft::InvalidArgument("unknown option '" + a + "' (see --help)");
         }

@@ -3,6 +3,8 @@
 #include <weft/Error.h>
 #include <string>
 
+#include <weft/Renderer.h>
+
 namespace weft {
 
 struct DemoOptions {
@@ -21,6 +23,9 @@ struct DemoOptions {
     std::string script;         // scripted input: "<frame> key K | grab x y | drag x y | release"
     std::string screenshot;     // windowed: save the last presented frame here
     std::string statsJson;      // optional: write the last frame's statistics as JSON
+    uint32_t msaa = 4;          // RenderSettings::msaa
+    float exposure = 0.0f;      // RenderSettings::exposure (stops)
+    ToneMap toneMap = ToneMap::Clamp;
 };
 
 /// Runs the seed's cloth environment (terrain, sphere, cloth held at one edge in the wind,

@@ -23,6 +23,13 @@ class Window;
 enum class HairPrimitive { Lines = 0, Ribbons = 1 };
 /// Weighted blended OIT weight functions w(z, alpha) of SPEC §5.4, eq. 7-10.
 enum class OitWeight { Eq7 = 7, Eq8 = 8, Eq9 = 9, Eq10 = 10 };
+/// How the output pass maps exposed linear radiance to [0, 1] before sRGB encoding.
+enum class ToneMap {
+    Clamp = 0,   // the seed's look: values above 1 clip
+    Aces = 1,    // Narkowicz's fit of the ACES filmic curve (2015)
+    AgX = 2,     // Sobotka's AgX base look, sigmoid fit (Blender 4)
+    Neutral = 3, // Khronos PBR Neutral (2024): colours below ~0.8 kept as they are
+};
 
 struct RenderSettings {
     uint32_t shadowMapSize = 2048;  // texels per side of each shadow map
@@ -34,6 +41,13 @@ struct RenderSettings {
     /// Keep the shadow maps of the last frame when no shadow view and no shadow caster changed.
     bool reuseShadowMaps = true;
     uint32_t probeSize = 64;        // texels per face of the dynamic reflection capture
+    /// Multisample anti-aliasing of the forward pass: 1, 2, 4 or 8 samples per pixel, lowered
+    /// to what the device supports (debug frames are never multisampled).
+    uint32_t msaa = 4;
+    /// Output: linear radiance times 2^exposure (photographic stops), tone mapped, sRGB
+    /// encoded. The linear output (OutputLinear) is neither exposed nor tone mapped.
+    float exposure = 0.0f;
+    ToneMap toneMap = ToneMap::Clamp;
 
     // Hair (SPEC §5): drawing, deep opacity maps (self-shadowing from directional lights) and
     // weighted blended order-independent transparency.
@@ -114,6 +128,8 @@ public:
     void resize(uint32_t width, uint32_t height);
     const RenderSettings& settings() const;
     void setSettings(const RenderSettings& settings);
+    /// The MSAA samples per pixel colour frames get on this device for settings().msaa.
+    uint32_t msaaSamples() const;
 
     /// Renders offscreen and returns the outputs asked for (a bitwise OR of FrameOutput).
     Frame render(const Scene& scene, const Camera& camera, uint32_t outputs = OutputColor);

@@ -68,6 +68,11 @@ struct EnvironmentLighting {
     enum class Lookup { Cube, SphereMap };
     Lookup lookup = Lookup::Cube;
     int sphereMapSize = 128;
+    /// Draw the environment behind the scene (cube lookups; a background image wins): its
+    /// radiance times `intensity`, sharp at `backgroundBlur` 0, else the glossy chain at that
+    /// roughness (0..1). Reflections and the dynamic probe see it too.
+    bool background = false;
+    float backgroundBlur = 0.0f;
 
     /// Throws InvalidArgument for a missing/non-finite/negative environment or bad parameters.
     void validate() const;

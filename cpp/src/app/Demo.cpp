@@ -140,8 +140,17 @@ bool isPng(const std::string& path) {
 // Headless: with --frames N, N frames at one fixed 60 Hz step each, written as DIR/frame_NNNN.png
 // (or only the last one when --out names a .png) plus DIR/stats.json; without, the cloth
 // settles for 1.5 s and one frame is written to --out.
+RenderSettings renderSettings(const DemoOptions& o) {
+    RenderSettings s;
+    s.msaa = o.msaa;
+    s.exposure = o.exposure;
+    s.toneMap = o.toneMap;
+    s.validate();
+    return s;
+}
+
 int runHeadless(const DemoOptions& o, app::DemoScene& demo) {
-    Renderer renderer(uint32_t(o.width), uint32_t(o.height));
+    Renderer renderer(uint32_t(o.width), uint32_t(o.height), renderSettings(o));
     const std::vector<ScriptEvent> script = loadScript(o.script);
     size_t next = 0;
     const bool sequence = o.frames > 0 && !isPng(o.out);
@@ -180,7 +189,7 @@ int runHeadless(const DemoOptions& o, app::DemoScene& demo) {
 
 int runWindow(const DemoOptions& o, app::DemoScene& demo) {
     Window window(o.width, o.height, "weft demo", o.vsync);
-    Renderer renderer(uint32_t(o.width), uint32_t(o.height));
+    Renderer renderer(uint32_t(o.width), uint32_t(o.height), renderSettings(o));
     std::cout << "weft-demo: " << app::DemoScene::controls() << std::endl;
     window.onKey([&](int key, int action) {
         if (action == 0) return; // release

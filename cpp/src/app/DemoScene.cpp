@@ -258,9 +258,9 @@ void DemoScene::lightWith(const std::string& path) {
         for (int c = 0; c < 3; ++c) rgb.pixels[t * 3 + size_t(c)] = image.pixels[t * size_t(image.channels) + size_t(c)];
     CubeMap cube;
     if (image.width == 2 * image.height) {
-        cube = equirectToCube(rgbView(rgb), 64);
+        cube = equirectToCube(rgbView(rgb), 256); // also the visible sky
     } else if (image.width == image.height) {
-        CaptureCube capture = sphereToCube(rgbView(rgb), glm::mat4(1.0f), 1.0f, 64);
+        CaptureCube capture = sphereToCube(rgbView(rgb), glm::mat4(1.0f), 1.0f, 256);
         fillUnseen(capture.cube, capture.valid);
         cube = std::move(capture.cube);
     } else {
@@ -274,6 +274,7 @@ void DemoScene::lightWith(const std::string& path) {
     env.domeMapSize = 256;
     env.domeRefresh = 4;
     env.domeBlur = 4.0f; // the accumulated dome shadows blurred over 4 pixels
+    env.background = true; // the environment is the sky the camera sees
     mScene.setEnvironment(env);
     // The environment replaces the sun, the moon and the constant ambient term.
     mEnvironmentLit = true;

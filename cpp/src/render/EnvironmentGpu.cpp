@@ -72,11 +72,25 @@ EnvironmentGpu::EnvironmentGpu(vk::Context& ctx)
 bool EnvironmentGpu::prepare(const EnvironmentLighting& env, double& bakeMs) {
     bakeMs = 0.0;
     if (!env.environment) return false;
+    const auto t0 = std::chrono::steady_clock::now();
+    bool uploaded = false;
+    // The background's sharp source: the radiance and its mips, only while it is shown.
+    const Key radianceKey{env.environment, env.environment->version()};
+    if (env.background && !(mRadiance && radianceKey.same(mRadianceKey))) {
+        CubeMap radiance = env.environment->radiance();
+        radiance.buildMips();
+        uploadCube(mRadiance, radiance);
+        mRadianceKey = radianceKey;
+        uploaded = true;
+    }
     const bool sphere = env.lookup == EnvironmentLighting::Lookup::SphereMap;
     const Key key{env.environment, env.environment->version(), env.specularSize,
                   env.specularLevels, env.specularSamples, sphere ? env.sphereMapSize : 0};
-    if (mCube && key.same(mKey)) return false;
-    const auto t0 = std::chrono::steady_clock::now();
+    if (mCube && key.same(mKey)) {
+        if (uploaded)
+            bakeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        return uploaded;
+    }
     // Environment caches both by content version, so a chain another user already asked for
     // (or a renderer before this one) is not filtered again.
     const Sh9 sh = env.environment->irradianceSh();
@@ -85,7 +99,7 @@ bool EnvironmentGpu::prepare(const EnvironmentLighting& env, double& bakeMs) {
     for (int k = 0; k < 9; ++k) mSh[size_t(k)] = glm::vec4(a[k] * sh.coeffs[size_t(k)], 0.0f);
     const CubeMap chain =
         env.environment->specularChain(env.specularSize, env.specularLevels, env.specularSamples);
-    upload(chain);
+    uploadCube(mCube, chain);
     if (sphere) {
         uploadSphereMaps(*env.environment, chain, env.sphereMapSize);
     } else {
@@ -97,7 +111,7 @@ bool EnvironmentGpu::prepare(const EnvironmentLighting& env, double& bakeMs) {
     return true;
 }
 
-void EnvironmentGpu::upload(const CubeMap& chain) {
+void EnvironmentGpu::uploadCube(vk::Image& image, const CubeMap& chain) {
     const uint32_t size = uint32_t(chain.size()), levels = uint32_t(chain.levels());
     std::vector<uint16_t> halves;
     std::vector<VkBufferImageCopy> regions;
@@ -111,8 +125,8 @@ void EnvironmentGpu::upload(const CubeMap& chain) {
         appendHalves(chain.data(int(l)), size_t(6) * s * s, halves);
     }
     // A new image: a frame in flight may still sample the old one, which is retired after it.
-    mCube = vk::Image(&mCtx, cubeDesc(size, levels));
-    uploadImage(mCube, halves, regions);
+    image = vk::Image(&mCtx, cubeDesc(size, levels));
+    uploadImage(image, halves, regions);
 }
 
 void EnvironmentGpu::uploadImage(vk::Image& image, const std::vector<uint16_t>& halves,
@@ -168,6 +182,12 @@ void EnvironmentGpu::fillFrame(const EnvironmentLighting& env, GpuFrame& frame) 
         return;
     }
     frame.environment = glm::vec4(env.intensity, float(mCube.desc().mipLevels - 1), 0.0f, 0.0f);
+    // The background: the sharp radiance (level < 0) or the chain at the blur's roughness.
+    if (env.background && env.lookup == EnvironmentLighting::Lookup::Cube)
+        frame.sky = glm::vec4(1.0f, env.backgroundBlur > 0.0f
+                                        ? env.backgroundBlur * float(mCube.desc().mipLevels - 1)
+                                        : -1.0f,
+                              0.0f, 0.0f);
     if (mSphereGlossy) {
         frame.options.x = 1.0f;
         frame.options.y = float(mSphereGlossy.desc().mipLevels - 1);

@@ -30,6 +30,9 @@ public:
     /// The eye-space sphere maps (irradiance E / pi, glossy chain), or a black 2D image.
     VkImageView sphereIrradiance() const { return mSphereIrradiance ? mSphereIrradiance.view() : mBlack2d.view(); }
     VkImageView sphereGlossy() const { return mSphereGlossy ? mSphereGlossy.view() : mBlack2d.view(); }
+    /// The radiance itself with its mips (uploaded while the environment is the background), or
+    /// the black cube.
+    VkImageView radianceView() const { return mRadiance ? mRadiance.view() : mBlack.view(); }
 
 private:
     // What the uploaded chain was baked from (weak: a new environment at a freed address differs).
@@ -43,14 +46,15 @@ private:
                    sphereSize == o.sphereSize;
         }
     };
-    void upload(const CubeMap& chain);
+    void uploadCube(vk::Image& image, const CubeMap& cube);
     void uploadSphereMaps(Environment& env, const CubeMap& chain, int size);
     void uploadImage(vk::Image& image, const std::vector<uint16_t>& halves,
                      const std::vector<VkBufferImageCopy>& regions);
 
     vk::Context& mCtx;
-    vk::Image mBlack, mBlack2d, mCube, mSphereIrradiance, mSphereGlossy;
+    vk::Image mBlack, mBlack2d, mCube, mSphereIrradiance, mSphereGlossy, mRadiance;
     Key mKey;
+    Key mRadianceKey; // what mRadiance holds (size, levels, samples unused)
     std::array<glm::vec4, 9> mSh{}; // A_l L_lm / pi
 };
 

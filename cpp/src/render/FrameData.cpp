@@ -156,6 +156,7 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
 
     GpuFrame& g = f.frame;
     g.viewProj = camera.projection(aspect) * camera.view();
+    g.inverseViewProj = glm::inverse(g.viewProj);
     g.cameraPos = glm::vec4(camera.position, 1);
     g.view = camera.view();
     g.ambient = glm::vec4(scene.ambient(), 0);

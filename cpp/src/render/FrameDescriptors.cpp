@@ -45,8 +45,11 @@ void Renderer::Impl::uploadFrame(FrameSlot& slot, const render::FrameData& data,
         for (int f = 0; f < 6; ++f) {
             render::GpuFrame face = frame;
             face.viewProj = render::probeFaceViewProj(f, probe.position(), 0.02f, 1000.0f);
+            face.inverseViewProj = glm::inverse(face.viewProj);
             face.cameraPos = glm::vec4(probe.position(), 1.0f);
             face.options.z = 0.0f; // the faces shade the dome inline: no blur pass for them
+            const float texel = 1.0f / float(probe.cube().desc().width);
+            face.viewport = glm::vec4(texel, texel, 0.0f, 0.0f);
             std::memcpy(faces.data() + f * faceStride, &face, sizeof(face));
         }
         slot.probeUbo.write(faces.data(), faces.size());
@@ -126,6 +129,8 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
             {pipes.environmentSampler, environment.sphereGlossy(),
              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+        VkDescriptorImageInfo radianceInfo{pipes.environmentSampler, environment.radianceView(),
+                                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         // Binding i of frame.glsl / environment.glsl: a buffer or images (count > 1: an array).
         struct Entry {
             VkDescriptorType type;
@@ -143,7 +148,7 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
             {image, nullptr, &environmentInfo, 1}, {ssbo, &domeInfo, nullptr, 1},
             {image, nullptr, &domeMapInfo, 1},    {image, nullptr, &probeInfo, 1},
             {image, nullptr, &backgroundInfo, 1}, {image, nullptr, &sphereInfos[0], 1},
-            {image, nullptr, &sphereInfos[1], 1}};
+            {image, nullptr, &sphereInfos[1], 1}, {image, nullptr, &radianceInfo, 1}};
         constexpr uint32_t kBindings = sizeof(entries) / sizeof(entries[0]);
         VkWriteDescriptorSet writes[kBindings];
         for (uint32_t i = 0; i < kBindings; ++i) {

@@ -60,6 +60,9 @@ struct GpuFrame {
                            // sphere map, z: 1 = dome diffuse deferred to the blur pass,
                            // w: 1 = background image
     glm::vec4 viewport;    // xy: 1 / target size in pixels
+    glm::mat4 inverseViewProj; // clip -> world (the background's view rays)
+    glm::vec4 sky;         // x: 1 = the environment is the background, y: its level in the
+                           // glossy chain (< 0: the sharp radiance cube)
 };
 
 /// Instance flags in GpuInstance::kd.w.
@@ -77,10 +80,16 @@ struct DomeBlurPush {
     glm::vec4 params; // x: radius in pixels, y: camera near, z: camera far, w: depth tolerance
 };
 
+/// Push constants of the output pass (glsl/render/output.frag).
+struct OutputPush {
+    glm::vec4 params; // x: exposure scale 2^EV, y: tone map (weft::ToneMap), zw: unused
+};
+
 static_assert(sizeof(GpuLight) == 80, "GpuLight must match frame.glsl");
 static_assert(sizeof(GpuShadowLayer) == 80, "GpuShadowLayer must match frame.glsl");
 static_assert(sizeof(GpuDomeLight) == 96, "GpuDomeLight must match environment.glsl");
 static_assert(sizeof(GpuInstance) == 224, "GpuInstance must match frame.glsl");
-static_assert(sizeof(GpuFrame) == 64 + 48 + 32 + 16 + 144 + 64 + 32, "GpuFrame must match frame.glsl");
+static_assert(sizeof(GpuFrame) == 64 + 48 + 32 + 16 + 144 + 64 + 32 + 64 + 16,
+              "GpuFrame must match frame.glsl");
 
 } // namespace weft::render

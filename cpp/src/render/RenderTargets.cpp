@@ -4,8 +4,9 @@ namespace weft::render {
 
 namespace {
 vk::Image makeTarget(vk::Context& ctx, uint32_t w, uint32_t h, VkFormat format,
-                     VkImageUsageFlags usage) {
+                     VkImageUsageFlags usage, uint32_t samples = 1) {
     vk::ImageDesc d;
+    d.samples = VkSampleCountFlagBits(samples);
     d.width = w;
     d.height = h;
     d.format = format;
@@ -31,6 +32,9 @@ void RenderTargets::ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug)
         albedo = vk::Image();
         dome = vk::Image();
         domeRows = vk::Image();
+        hdrMs = vk::Image();
+        depthMs = vk::Image();
+        domeMs = vk::Image();
     }
     if (debug && !position) {
         position = makeTarget(ctx, w, h, kDebugFormat, color);
@@ -44,6 +48,22 @@ void RenderTargets::ensureDome(vk::Context& ctx) {
     constexpr VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     if (!dome) dome = makeTarget(ctx, width, height, kDomeFormat, usage);
     if (!domeRows) domeRows = makeTarget(ctx, width, height, kDomeBlurFormat, usage);
+}
+
+void RenderTargets::ensureMultisampled(vk::Context& ctx, uint32_t count, bool withDome) {
+    if (count != samples) {
+        samples = count;
+        hdrMs = vk::Image();
+        depthMs = vk::Image();
+        domeMs = vk::Image();
+    }
+    if (!hdrMs) {
+        hdrMs = makeTarget(ctx, width, height, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, count);
+        depthMs = makeTarget(ctx, width, height, kDepthFormat,
+                             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, count);
+    }
+    if (withDome && !domeMs)
+        domeMs = makeTarget(ctx, width, height, kDomeFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, count);
 }
 
 vk::Buffer& RenderTargets::readbackFor(vk::Context& ctx, const vk::Image* image) {

@@ -24,9 +24,16 @@ struct RenderTargets {
     vk::Image albedo;
     vk::Image dome;     // the forward pass's dome output for the blur, created on first use
     vk::Image domeRows; // the blur's first (row) pass
+    // Multisampled forward targets, resolved into hdr, depth (sample 0) and dome; made when the
+    // forward pass renders with more than one sample.
+    uint32_t samples = 1;
+    vk::Image hdrMs, depthMs, domeMs;
 
     /// Creates the dome images at the current size on first request.
     void ensureDome(vk::Context& ctx);
+
+    /// Creates the multisampled targets for `count` samples (dome: also the dome output's).
+    void ensureMultisampled(vk::Context& ctx, uint32_t count, bool dome);
 
     /// (Re)creates the images for a size; debug images only when asked for.
     void ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug);

@@ -227,6 +227,8 @@ ImageU8 Renderer::present(Window& window, const Scene& scene, const Camera& came
     return shot;
 }
 
+uint32_t Renderer::msaaSamples() const { return mImpl->supportedSamples(mImpl->settings.msaa); }
+
 ShadowInfo Renderer::shadowInfo(int lightIndex) const {
     if (lightIndex < 0 || size_t(lightIndex) >= mImpl->shadowInfos.size())
         throw InvalidArgument("light index " + std::to_string(lightIndex) +

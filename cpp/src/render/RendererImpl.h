@@ -106,6 +106,13 @@ struct Renderer::Impl {
                                 bool captureProbe, bool domeBlur);
     VkDeviceSize probeFaceStride() const; // the probe faces' uniforms, aligned
     void ensureShadowMaps(uint32_t layers);
+    /// The largest sample count <= `wanted` the device renders colour and depth with.
+    uint32_t supportedSamples(uint32_t wanted) const {
+        const VkPhysicalDeviceLimits& l = ctx->properties().limits;
+        const VkSampleCountFlags ok = l.framebufferColorSampleCounts & l.framebufferDepthSampleCounts;
+        while (wanted > 1 && !(ok & wanted)) wanted /= 2;
+        return wanted;
+    }
 };
 
 } // namespace weft

@@ -31,6 +31,12 @@ void RenderSettings::validate() const {
                               std::to_string(hairDomSize) + ")");
     const int w = int(hairOitWeight);
     if (w < 7 || w > 10) throw InvalidArgument("hair OIT weight must be eq. 7, 8, 9 or 10");
+    if (msaa != 1 && msaa != 2 && msaa != 4 && msaa != 8)
+        throw InvalidArgument("msaa must be 1, 2, 4 or 8 samples (got " + std::to_string(msaa) + ")");
+    if (!(std::isfinite(exposure) && std::fabs(exposure) <= 64.0f))
+        throw InvalidArgument("exposure must be finite, in [-64, 64] stops");
+    if (int(toneMap) < 0 || int(toneMap) > 3)
+        throw InvalidArgument("tone map must be clamp, aces, agx or neutral");
     if (hairPrimitive != HairPrimitive::Lines && hairPrimitive != HairPrimitive::Ribbons)
         throw InvalidArgument("hair primitive must be lines or ribbons");
 }
@@ -75,7 +81,8 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
                                              {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                              {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                              {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                             {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
@@ -83,16 +90,23 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     outputSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     sceneLayout = vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));
     shadowLayout = vk::createPipelineLayout(c, {materialSetLayout}, sizeof(ShadowPush));
-    outputLayout = vk::createPipelineLayout(c, {outputSetLayout}, 0);
+    outputLayout = vk::createPipelineLayout(c, {outputSetLayout}, sizeof(OutputPush));
     domeBlurSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     domeBlurLayout = vk::createPipelineLayout(c, {domeBlurSetLayout}, sizeof(DomeBlurPush));
     createPipelines();
 }
 
-VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool twoSided) {
+namespace {
+int sampleIndex(uint32_t samples) { // 1, 2, 4, 8 -> 0..3
+    return samples >= 8 ? 3 : samples >= 4 ? 2 : samples >= 2 ? 1 : 0;
+}
+} // namespace
+
+VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool twoSided,
+                                      uint32_t samples) {
     const int facing = twoSided ? 2 : mirrored ? 1 : 0;
-    vk::Pipeline& p = mForward[debug][dome][facing];
+    vk::Pipeline& p = mForward[debug][dome][facing][sampleIndex(samples)];
     if (p) return p;
     static const char* const shaders[2][2] = {
         {"render/forward.frag", "render/forward_dome.frag"},
@@ -108,15 +122,36 @@ VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool
     d.layout = sceneLayout;
     d.cullMode = facing == 2 ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
     d.frontFace = facing == 1 ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    d.samples = VkSampleCountFlagBits(samples);
+    p = vk::createGraphicsPipeline(mCtx, d);
+    return p;
+}
+
+VkPipeline ScenePipelines::backgroundFor(uint32_t samples, bool withDepth) {
+    vk::Pipeline& p = mBackground[withDepth][sampleIndex(samples)];
+    if (p) return p;
+    vk::GraphicsPipelineDesc d; // a full-screen pass into the forward pass's colour target
+    d.vertexShader = "render/fullscreen.vert";
+    d.vertexLayout = vk::VertexLayout::None;
+    d.colorFormats = {kHdrFormat};
+    d.cullMode = VK_CULL_MODE_NONE;
+    d.depthTest = d.depthWrite = false;
+    d.fragmentShader = "render/background.frag";
+    d.layout = sceneLayout;
+    d.samples = VkSampleCountFlagBits(samples);
+    if (withDepth) d.depthFormat = kDepthFormat; // inside a pass with a depth attachment
     p = vk::createGraphicsPipeline(mCtx, d);
     return p;
 }
 
 void ScenePipelines::createPipelines() {
     vk::Context& c = mCtx;
-    for (auto& byDome : mForward) // created again on first use
-        for (auto& byFacing : byDome)
-            for (vk::Pipeline& p : byFacing) p = vk::Pipeline();
+    for (auto& byDebug : mForward) // created again on first use
+        for (auto& byDome : byDebug)
+            for (auto& byFacing : byDome)
+                for (vk::Pipeline& p : byFacing) p = vk::Pipeline();
+    for (auto& byDepth : mBackground)
+        for (vk::Pipeline& p : byDepth) p = vk::Pipeline();
 
     vk::GraphicsPipelineDesc fd; // full-screen passes into the hdr target
     fd.vertexShader = "render/fullscreen.vert";
@@ -124,9 +159,6 @@ void ScenePipelines::createPipelines() {
     fd.colorFormats = {kHdrFormat};
     fd.cullMode = VK_CULL_MODE_NONE;
     fd.depthTest = fd.depthWrite = false;
-    fd.fragmentShader = "render/background.frag";
-    fd.layout = sceneLayout;
-    background = vk::createGraphicsPipeline(c, fd);
     fd.layout = domeBlurLayout;
     fd.fragmentShader = "render/dome_blur_x.frag";
     fd.colorFormats = {kDomeBlurFormat};

@@ -25,14 +25,17 @@ struct ScenePipelines {
     vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout, domeBlurSetLayout;
     vk::PipelineLayout sceneLayout, shadowLayout, outputLayout, domeBlurLayout;
     vk::Pipeline shadow, shadowAlpha;
-    vk::Pipeline background; // the scene's background image into the hdr target
     vk::Pipeline domeBlurRows; // the dome blur's row pass
     vk::Pipeline domeBlur;     // its column pass, adding the dome-shadowed diffuse light
 
     /// Forward shading for an output set (`debug` outputs, `dome` output for the blur pass) and
     /// a facing: back faces culled, the same for mirroring transforms (det < 0 reverses the
     /// winding), or two-sided (no culling). Created on first use.
-    VkPipeline forwardFor(bool debug, bool dome, bool mirrored, bool twoSided);
+    /// `samples`: MSAA samples of the targets (1, 2, 4, 8).
+    VkPipeline forwardFor(bool debug, bool dome, bool mirrored, bool twoSided, uint32_t samples);
+    /// The background (image or environment) into a colour target of `samples`; `withDepth`:
+    /// drawn inside a pass that has a depth attachment (not tested, not written).
+    VkPipeline backgroundFor(uint32_t samples, bool withDepth = false);
 
     /// Builds every pipeline again from the current shaders (hot reload); layouts and samplers
     /// stay, so descriptor sets made for them stay valid. Old pipelines are retired.
@@ -44,7 +47,8 @@ struct ScenePipelines {
 private:
     vk::Context& mCtx;
     std::unordered_map<int, vk::Pipeline> mOutput; // by format
-    vk::Pipeline mForward[2][2][3];                // [debug][dome][facing]
+    vk::Pipeline mForward[2][2][3][4];             // [debug][dome][facing][samples 1, 2, 4, 8]
+    vk::Pipeline mBackground[2][4];                // [with depth][samples]
 };
 
 } // namespace weft::render

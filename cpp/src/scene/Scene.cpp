@@ -216,6 +216,9 @@ void EnvironmentLighting::validate() const {
     requireFinite(domeBlur, "environment dome_blur");
     if (domeBlur < 0.0f || domeBlur > 64.0f)
         throw InvalidArgument("environment dome_blur must be in [0, 64] pixels");
+    requireFinite(backgroundBlur, "environment background_blur");
+    if (backgroundBlur < 0.0f || backgroundBlur > 1.0f)
+        throw InvalidArgument("environment background_blur must be in [0, 1] (roughness)");
     requireFinite(domeBlurDepthTolerance, "environment dome_blur_depth_tolerance");
     if (domeBlurDepthTolerance <= 0.0f)
         throw InvalidArgument("environment dome_blur_depth_tolerance must be > 0");

@@ -97,7 +97,7 @@ Image::Image(Context* ctx, const ImageDesc& desc) : mCtx(ctx), mDesc(desc) {
     info.extent = {desc.width, desc.height, 1};
     info.mipLevels = desc.mipLevels;
     info.arrayLayers = desc.layers;
-    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.samples = desc.samples;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
     info.usage = desc.usage;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;

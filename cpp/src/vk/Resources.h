@@ -88,6 +88,7 @@ struct ImageDesc {
     VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
     VkImageUsageFlags usage = 0;
     bool cube = false; // 6 layers viewed as a cube map (view() is VK_IMAGE_VIEW_TYPE_CUBE)
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT; // > 1: a multisampled render target
 };
 
 /// A 2D (array) image with one view over all layers and mips, and per-layer views for

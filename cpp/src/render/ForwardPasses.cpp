@@ -1,0 +1,120 @@
+// The forward pass: every instance shaded per pixel into the hdr target (plus the debug outputs
+// or the dome's output for the blur), over the environment or the scene's background image.
+// With MSAA it renders into multisampled targets resolved at the end of the pass: colour and the
+// dome output averaged, depth from sample 0 (what later passes depth-test against).
+#include "render/FramePasses.h"
+#include "render/GpuCache.h"
+#include "render/PassSetup.h"
+#include "render/RenderTargets.h"
+#include "render/RendererImpl.h"
+#include "render/ScenePipelines.h"
+
+namespace weft::render {
+
+namespace {
+
+// Resolves `a` (multisampled) into `target` at the end of the pass.
+void resolveInto(VkRenderingAttachmentInfo& a, VkImageView target, VkImageLayout layout,
+                 VkResolveModeFlagBits mode) {
+    a.resolveImageView = target;
+    a.resolveImageLayout = layout;
+    a.resolveMode = mode;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE; // only the resolved image is read later
+}
+
+} // namespace
+
+void addForwardPasses(FrameGraph& g, FramePassContext& f) {
+    RenderTargets& t = f.targets;
+    const bool ms = f.samples > 1;
+    const int rHdrMs = ms ? g.addResource("hdr_ms", &t.hdrMs) : -1;
+    const int rDepthMs = ms ? g.addResource("depth_ms", &t.depthMs) : -1;
+    const int rDomeMs = ms && f.domeBlur ? g.addResource("dome_ms", &t.domeMs) : -1;
+    const int rColour = ms ? rHdrMs : f.rHdr; // what the passes draw colour into
+    vk::Image& colour = ms ? t.hdrMs : t.hdr;
+
+    // The background image (AR: the camera frame) or the environment under everything the
+    // forward pass draws.
+    if (f.background)
+        g.addPass({"background", {}, {{rColour, Use::ColorWrite}}, [&f, &colour](VkCommandBuffer cmd) {
+                       drawFullscreen(f, cmd, colour.view(), VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+                                      f.pipes.backgroundFor(f.samples), f.pipes.sceneLayout,
+                                      f.sets.frame, nullptr, 0);
+                   }});
+
+    std::vector<ResourceUse> writes = {{f.rHdr, Use::ColorWrite}, {f.rDepth, Use::DepthWrite}};
+    if (ms) {
+        writes.push_back({rHdrMs, Use::ColorWrite});
+        writes.push_back({rDepthMs, Use::DepthWrite});
+    }
+    for (int r : f.rDebug)
+        if (r >= 0) writes.push_back({r, Use::ColorWrite});
+    if (f.domeBlur) {
+        f.rDomeLight = g.addResource("dome_light", &t.dome);
+        writes.push_back({f.rDomeLight, Use::ColorWrite});
+        if (ms) writes.push_back({rDomeMs, Use::ColorWrite});
+    }
+    std::vector<ResourceUse> reads = {{f.rShadow, Use::Sampled}};
+    if (f.rDomeMaps >= 0) reads.push_back({f.rDomeMaps, Use::Sampled});
+    if (f.rProbe >= 0) reads.push_back({f.rProbe, Use::Sampled});
+    if (f.background) reads.push_back({rColour, Use::ColorWrite}); // drawn over, loaded
+
+    g.addPass({"forward", reads, writes, [&f, ms](VkCommandBuffer cmd) {
+                   RenderTargets& t = f.targets;
+                   std::vector<VkRenderingAttachmentInfo> colors;
+                   auto color = [&](VkImageView view, const glm::vec4& clear) {
+                       colors.push_back(clearedColor(view, clear));
+                   };
+                   color(ms ? t.hdrMs.view() : t.hdr.view(), glm::vec4(f.scene.background(), 1.0f));
+                   if (f.background) colors.back().loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+                   if (ms)
+                       resolveInto(colors.back(), t.hdr.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                   VK_RESOLVE_MODE_AVERAGE_BIT);
+                   if (f.debug) { // background: not covered, not shadowed (never multisampled)
+                       color(t.position.view(), glm::vec4(0.0f));
+                       color(t.normal.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+                       color(t.surface.view(), glm::vec4(0.0f));
+                       color(t.albedo.view(), glm::vec4(0.0f));
+                   }
+                   if (f.domeBlur) { // no surface: no light to darken, visibility 1
+                       color(ms ? t.domeMs.view() : t.dome.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+                       if (ms)
+                           resolveInto(colors.back(), t.dome.view(),
+                                       VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                       VK_RESOLVE_MODE_AVERAGE_BIT);
+                   }
+                   // kept when hair tests against it or the dome blur reads it
+                   VkRenderingAttachmentInfo depth =
+                       clearedDepth(ms ? t.depthMs.view() : t.depth.view(), f.hasHair || f.domeBlur);
+                   if (ms)
+                       resolveInto(depth, t.depth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                   VK_RESOLVE_MODE_SAMPLE_ZERO_BIT);
+                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                   info.renderArea = {{0, 0}, {t.width, t.height}};
+                   info.layerCount = 1;
+                   info.colorAttachmentCount = uint32_t(colors.size());
+                   info.pColorAttachments = colors.data();
+                   info.pDepthAttachment = &depth;
+                   f.ctx.fn().cmdBeginRendering(cmd, &info);
+                   setViewport(cmd, t.width, t.height);
+                   VkPipeline bound = VK_NULL_HANDLE;
+                   for (const Draw& d : f.data.draws) {
+                       if (d.mesh->indexCount == 0) continue; // e.g. a cloth torn to pieces
+                       const VkPipeline p =
+                           f.pipes.forwardFor(f.debug, f.domeBlur, d.mirrored, d.twoSided, f.samples);
+                       if (p != bound) {
+                           vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+                           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                   f.pipes.sceneLayout, 0, 1, &f.sets.frame, 0, nullptr);
+                       }
+                       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.sceneLayout,
+                                               1, 1, &d.material, 0, nullptr);
+                       vkCmdPushConstants(cmd, f.pipes.sceneLayout, vk::kGraphicsStages, 0,
+                                          sizeof(uint32_t), &d.instance);
+                       drawMesh(cmd, *d.mesh);
+                   }
+                   f.ctx.fn().cmdEndRendering(cmd);
+               }});
+}
+
+} // namespace weft::render

@@ -1,0 +1,80 @@
+#pragma once
+// The renderer's pass modules. recordFrame (FrameRecording.cpp) prepares a frame's data, fills a
+// FramePassContext and calls each module's add function in order; a module adds only the passes
+// its part of the scene needs. A new pass group is one new file defining an add function, its
+// shaders and its test, plus one line in recordFrame.
+#include <string>
+#include <vector>
+
+#include <weft/Renderer.h>
+
+#include "render/FrameData.h"
+#include "render/FrameGraph.h"
+
+namespace weft::render {
+
+struct FrameSets;
+struct ScenePipelines;
+struct RenderTargets;
+class DomeShadows;
+class ReflectionProbe;
+class HairPasses;
+struct MeshGpu;
+
+/// What every pass module of one frame sees: the renderer's parts, the frame's data and
+/// descriptor sets, and the frame-graph resources registered so far (-1: absent). Modules
+/// register the resources they produce here for the modules after them.
+struct FramePassContext {
+    vk::Context& ctx;
+    const RenderSettings& settings;
+    ScenePipelines& pipes;
+    RenderTargets& targets;
+    DomeShadows& dome;
+    ReflectionProbe& probe;
+    HairPasses* hair;         // null without hair
+    vk::Image& shadowMaps;    // the scene lights' maps (a dummy layer when there are none)
+    const std::vector<ShadowInfo>& shadowInfos;
+    const Scene& scene;
+    const Camera& camera;
+    const FrameData& data;
+    const FrameSets& sets;
+    vk::Image* ldr;      // the output image (offscreen or the swapchain's)
+    uint32_t outputs;    // FrameOutput bits
+    bool present;        // the output goes to a swapchain
+    bool debug;          // debug outputs (rendered without MSAA: one surface per pixel)
+    bool hasHair;
+    bool domeBlur;       // the dome's diffuse light goes through the blur passes
+    bool background;     // a background image or the environment is drawn behind the scene
+    bool captureProbe;   // the dynamic reflection probe is captured this frame
+    bool reuseShadows;   // the scene lights' shadow maps hold this frame's views
+    std::vector<int> domeDue; // dome layers rendered this frame (the rest are reused)
+    uint32_t samples = 1;     // MSAA samples of the forward pass
+
+    // frame-graph resources
+    int rShadow = -1, rDepth = -1, rHdr = -1, rLdr = -1;
+    int rDebug[4] = {-1, -1, -1, -1};
+    int rDomeMaps = -1, rProbe = -1, rDomeLight = -1;
+    std::vector<std::string> reused; // passes skipped because their output is still valid
+};
+
+/// Binds a mesh's buffers and draws it (ShadowPasses.cpp).
+void drawMesh(VkCommandBuffer cmd, const MeshGpu& mesh);
+// Depth of every shadow caster (meshes, alpha-tested ones with holes, and hair if `withHair`)
+// seen by viewProj, into a depth view of size x size (ShadowPasses.cpp).
+void drawCasters(const FramePassContext& f, VkCommandBuffer cmd, VkImageView view, uint32_t size,
+                 const glm::mat4& viewProj, bool withHair);
+/// One full-screen triangle into one colour target of the output's size (OutputPasses.cpp).
+void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target,
+                    VkAttachmentLoadOp load, VkPipeline pipeline, VkPipelineLayout layout,
+                    VkDescriptorSet set, const void* push, uint32_t pushBytes);
+
+// The modules, in the order recordFrame calls them.
+void addShadowPasses(FrameGraph& g, FramePassContext& f);   // scene lights' shadow maps
+void addDomePasses(FrameGraph& g, FramePassContext& f);     // the environment dome's maps
+void addProbePasses(FrameGraph& g, FramePassContext& f);    // dynamic reflection capture
+void addForwardPasses(FrameGraph& g, FramePassContext& f);  // background + forward shading
+void addDomeBlurPasses(FrameGraph& g, FramePassContext& f); // dome shadows blurred, added
+void addHairPasses(FrameGraph& g, FramePassContext& f);     // DOM, hair, OIT (HairPasses)
+void addOutputPasses(FrameGraph& g, FramePassContext& f);   // tone mapping, readback, present
+
+} // namespace weft::render
