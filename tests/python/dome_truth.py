@@ -152,15 +152,20 @@ def measure(weft, renderer, faces, lights: int, truth=None, ground_casts: bool =
     fit_c = np.linalg.lstsq(a, cols, rcond=None)[0]
     pixel_of = lambda x, z: (fit_r[0] * x + fit_r[1] * z + fit_r[2],
                              fit_c[0] * x + fit_c[1] * z + fit_c[2])
-    dark = np.where(ground, 1.0 - want_ratio, 0.0)
-    dark = np.where(dark > 0.5 * np.nanmax(dark), dark, 0.0)
-    centre = (np.sum(dark * pos[..., 0]) / dark.sum(), np.sum(dark * pos[..., 2]) / dark.sum())
+    def core(ratio):  # centre (x, z) of the darker half of the shadow
+        dark = np.where(ground, 1.0 - np.nan_to_num(ratio, nan=1.0), 0.0)
+        dark = np.where(dark > 0.5 * dark.max(), dark, 0.0)
+        if dark.sum() <= 0.0:
+            return np.array([np.nan, np.nan])
+        return np.array([np.sum(dark * pos[..., 0]), np.sum(dark * pos[..., 2])]) / dark.sum()
+
+    centre = core(want_ratio)
     # circles outside the sphere's image (radius ~0.75 on the ground from this camera)
     radii = np.array([0.8, 1.0, 1.2, 1.5])
     g, w = circle_minima(got_ratio, pixel_of, centre, radii), circle_minima(want_ratio, pixel_of, centre, radii)
     passes = [p for p in stats["passes"] if p["name"].startswith("dome")]
     return dict(truth=truth, got_ratio=got_ratio, want_ratio=want_ratio, image=image,
                 mean_rel=float(rel.mean()), p95_rel=float(np.percentile(rel, 95)),
-                abs_mean_rel=float(abs_rel.mean()),
+                abs_mean_rel=float(abs_rel.mean()), core=core(got_ratio), core_truth=centre,
                 minima=g["minima"], minima_truth=w["minima"], tv=g["tv"], tv_truth=w["tv"],
                 stats=stats, dome_passes=passes)
