@@ -81,7 +81,9 @@ ShadowDome::ShadowDome(const CubeMap& radiance, int count, DomeLayout layout, in
         }
     }, 1024);
     std::vector<glm::dvec3> sum(size_t(count), glm::dvec3(0.0)), moment(size_t(count), glm::dvec3(0.0));
-    std::vector<double> omega(size_t(count), 0.0), power(size_t(count), 0.0);
+    std::vector<glm::dvec3> spreadMoment(size_t(count), glm::dvec3(0.0));
+    std::vector<double> omega(size_t(count), 0.0), power(size_t(count), 0.0),
+        spreadPower(size_t(count), 0.0);
     for (size_t k = 0; k < t.size(); ++k) {
         if (owner[k] < 0) continue;
         const size_t i = size_t(owner[k]);
@@ -92,8 +94,14 @@ ShadowDome::ShadowDome(const CubeMap& radiance, int count, DomeLayout layout, in
         // comes from on average (a sun in the cell pulls the light onto itself; the fixed cell
         // centre would put the shadow up to a cell's radius off), its length the spread
         const double lum = std::max(0.0, 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b);
-        moment[i] += lum * glm::dvec3(t.x[k], t.y[k], t.z[k]);
+        const glm::dvec3 dir(t.x[k], t.y[k], t.z[k]);
+        moment[i] += lum * dir;
         power[i] += lum;
+        // the spread weighted by L^2 dw: a sun sharing its cell with sky keeps its own (sharp)
+        // size, a smooth cell its full extent
+        const double w2 = t.dw[k] > 0.0f ? lum * lum / double(t.dw[k]) : 0.0;
+        spreadMoment[i] += w2 * dir;
+        spreadPower[i] += w2;
     }
     for (int i = 0; i < count; ++i) {
         DomeLight l;
@@ -107,8 +115,8 @@ ShadowDome::ShadowDome(const CubeMap& radiance, int count, DomeLayout layout, in
             const glm::dvec3 d = moment[size_t(i)] / len;
             if (d.y > 1e-4) l.direction = glm::vec3(d);
             // A uniform cone of half-angle a has mean cosine (1 + cos a) / 2 about its axis:
-            // the cone with this cell's mean cosine |moment| / power.
-            cosRadius = 2.0 * len / power[size_t(i)] - 1.0;
+            // the cone with this cell's mean cosine about V_i.
+            cosRadius = 2.0 * glm::dot(spreadMoment[size_t(i)], d) / spreadPower[size_t(i)] - 1.0;
         }
         l.angularRadius = float(std::acos(std::clamp(cosRadius, -1.0, 1.0)));
         mLights.push_back(l);
