@@ -446,6 +446,12 @@ void bindIbl(py::module_& m) {
                 out.mutable_data()[i] = d.lights()[size_t(i)].solidAngle;
             return out;
         })
+        .def_property_readonly("angular_radii", [](const ShadowDome& d) {
+            py::array_t<float> out(py::ssize_t(d.size()));
+            for (int i = 0; i < d.size(); ++i)
+                out.mutable_data()[i] = d.lights()[size_t(i)].angularRadius;
+            return out;
+        }, "Per light: half-angle (radians) of the cone with its cell's light spread.")
         .def("diffuse_visible", [](const ShadowDome& d, py::handle normal, py::handle visible) {
             const auto mask = maskVector(visible, "visible", d.size());
             return fromVec3(d.diffuseVisible(toVec3(normal, "normal"), mask));

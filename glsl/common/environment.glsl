@@ -4,19 +4,47 @@
 // same in NumPy. Included by shading.glsl after frame.glsl.
 
 struct DomeLight {
-    mat4 viewProj;
+    mat4 viewProj;  // orthographic: rows 0-2 are orthogonal (a rotation times axis scales)
     vec4 direction; // xyz: towards the light, w: normal offset (world units)
-    vec4 intensity; // rgb: T_i / pi
+    vec4 intensity; // rgb: T_i / pi, a: tan of the light's angular radius (0: a point light)
 };
 layout(std430, set = 0, binding = 7) readonly buffer DomeLights { DomeLight domeLights[]; };
 layout(set = 0, binding = 8) uniform sampler2DArray domeMaps;
 layout(set = 0, binding = 9) uniform samplerCube probeMap; // dynamic capture (black while drawn)
 
+// Each dome light stands for the light of its whole cell of the sky, a cone of angular radius a,
+// so its shadow is soft: one shadow-map tap per light gives N hard copies of every shadow (the
+// seed's ghosting). PCSS (Fernando 2005) per light, for a directional light of angular size a:
+// the blockers found within a search disc of radius a_t (z_receiver - z_near) give their mean
+// depth z_b; the visibility is the fraction of the disc of radius a_t (z_receiver - z_b) -- the
+// penumbra a cone of that angle casts from blockers at z_b -- that is not blocked (PCF), with
+// a_t = tan a. Taps lie on a Vogel spiral turned by a hash of the receiver point (and per
+// light), so the few taps per light are noise, not banding; the screen-space blur (dome_blur*)
+// and the sum over lights average it. Tap depths are compared against the receiver's tangent
+// plane (receiver-plane depth), which keeps wide kernels off a flat or convex receiver.
+const int kDomeBlockerTaps = 6;
+const int kDomePcfTaps = 10;
+const float kGoldenAngle = 2.39996323;
+
+float domeHash(vec3 p) {
+    uvec3 u = floatBitsToUint(p * 1024.0);
+    uint h = u.x * 0x8da6b343u ^ u.y * 0xd8163841u ^ u.z * 0xcb1ab31fu;
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    return float(h & 0xffffu) / 65536.0;
+}
+
+// Depth of dome map `layer` at uv; outside the map (the frustum holds every caster) nothing is.
+float domeDepth(vec2 uv, int layer, ivec2 size) {
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return 1.0;
+    return texelFetch(domeMaps, ivec3(ivec2(uv * vec2(size)), layer), 0).r;
+}
+
 // Eq. 2.23 / pi: the irradiance the occluded dome lights would have brought, at p (normal n).
-// One tap per map, receiver pushed along n by the normal offset, slope-scaled bias.
 vec3 domeOccluded(vec3 p, vec3 n) {
     vec3 occluded = vec3(0.0);
-    int size = int(frame.environment.w);
+    float spin = 6.28318531 * domeHash(p);
     for (int i = 0; i < int(frame.environment.z); ++i) {
         DomeLight d = domeLights[i];
         float c = dot(n, d.direction.xyz);
@@ -24,11 +52,56 @@ vec3 domeOccluded(vec3 p, vec3 n) {
         float sinTheta = sqrt(max(0.0, 1.0 - c * c));
         vec4 clip = d.viewProj * vec4(p + n * (d.direction.w * sinTheta), 1.0);
         vec2 uv = clip.xy * 0.5 + 0.5;
-        if (uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0 || clip.z > 1.0) continue;
+        // Depths beyond the far plane are behind every caster (the frustum is fitted to the
+        // casters, and the maps are cleared to 1): compared as 1, sized by their distance.
+        float z = clip.z;
+        vec3 r0 = vec3(d.viewProj[0][0], d.viewProj[1][0], d.viewProj[2][0]);
+        vec3 r1 = vec3(d.viewProj[0][1], d.viewProj[1][1], d.viewProj[2][1]);
+        vec3 r2 = vec3(d.viewProj[0][2], d.viewProj[1][2], d.viewProj[2][2]);
         float bias = min(frame.bias.x + frame.bias.y * sinTheta / max(c, 1e-4), frame.bias.z);
-        ivec2 t = clamp(ivec2(floor(uv * float(size))), ivec2(0), ivec2(size - 1));
-        if (clip.z - bias > texelFetch(domeMaps, ivec3(t, i), 0).r)
-            occluded += d.intensity.rgb * c;
+        ivec3 size = textureSize(domeMaps, 0);
+        float tanA = d.intensity.a;
+        if (tanA <= 0.0) { // a point light: one tap
+            if (min(z, 1.0) - bias > domeDepth(uv, i, size.xy)) occluded += d.intensity.rgb * c;
+            continue;
+        }
+        // clip-space depth per world unit along the light, uv per world unit across it
+        float zPerWorld = length(r2);
+        vec2 uvPerWorld = 0.5 * vec2(length(r0), length(r1));
+        // receiver plane: with m_k = (row_k . n) / |row_k|^2 (the inverse transpose of an
+        // orthogonal-rows matrix applied to n), dz = -(m.x dx + m.y dy) / m.z in clip units
+        vec3 m = vec3(dot(r0, n) / dot(r0, r0), dot(r1, n) / dot(r1, r1), dot(r2, n) / dot(r2, r2));
+        vec2 slope = clamp(-2.0 * m.xy / max(abs(m.z), 1e-6) * sign(m.z), vec2(-8.0), vec2(8.0));
+        float rot = spin + float(i) * kGoldenAngle;
+        // blocker search over the widest penumbra any caster (all nearer than z) could cast
+        vec2 searchUv = uvPerWorld * (tanA * z / zPerWorld);
+        // penumbrae reach past the map's edge by at most the search radius
+        vec2 outside = max(-uv, uv - 1.0);
+        if (any(greaterThan(outside, searchUv))) continue;
+        float blockers = 0.0, blockerZ = 0.0;
+        for (int k = 0; k < kDomeBlockerTaps; ++k) {
+            float rr = sqrt((float(k) + 0.5) / float(kDomeBlockerTaps));
+            float a = rot + float(k) * kGoldenAngle;
+            vec2 o = rr * vec2(cos(a), sin(a)) * searchUv;
+            float b = domeDepth(uv + o, i, size.xy);
+            if (min(z + dot(slope, o), 1.0) - bias > b) {
+                blockers += 1.0;
+                blockerZ += b;
+            }
+        }
+        if (blockers == 0.0) continue;
+        blockerZ /= blockers;
+        vec2 filterUv = uvPerWorld * (tanA * max(z - blockerZ, 0.0) / zPerWorld);
+        // at least a texel wide: the map's own resolution
+        filterUv = max(filterUv, vec2(1.0) / vec2(size.xy));
+        float hidden = 0.0;
+        for (int k = 0; k < kDomePcfTaps; ++k) {
+            float rr = sqrt((float(k) + 0.5) / float(kDomePcfTaps));
+            float a = rot + 1.3 + float(k) * kGoldenAngle;
+            vec2 o = rr * vec2(cos(a), sin(a)) * filterUv;
+            if (min(z + dot(slope, o), 1.0) - bias > domeDepth(uv + o, i, size.xy)) hidden += 1.0;
+        }
+        occluded += d.intensity.rgb * c * (hidden / float(kDomePcfTaps));
     }
     return occluded;
 }

@@ -37,37 +37,24 @@ def dome_passes(stats) -> list:
     return [p["name"] for p in stats["passes"] if p["name"].startswith("dome")]
 
 
-def test_dome_diffuse_follows_eq_2_23_and_converges(make_renderer) -> None:
+def test_dome_diffuse_converges_to_the_visibility_weighted_irradiance(make_renderer) -> None:
+    # each dome light is soft (a cone of its cell's spread, environment.glsl), so the ground is no
+    # longer eq. 2.23 with one-tap visibility per light; against the exact integral it is close
+    # and closer with more lights. tests/python/test_dome_truth.py measures it in depth.
     env = weft.ibl.Environment(FACES)
-    sh = ref_ibl.project_sh9(np.asarray(FACES, np.float64))
     r = make_renderer(64, 64)
     exact_error = {}
     for n in (16, 64):
-        debug = r.render_debug(dome_scene(env, n, dome_map_size=512), camera())
+        debug = r.render_debug(dome_scene(env, n, dome_map_size=256), camera())
         ground = debug["mask"] & (debug["instance"] == 0)
         p, normal = debug["position"][ground], debug["normal"][ground]
         got = debug["linear"][ground][:, :3]
-        dome = env.shadow_dome(n)
-        v = np.asarray(dome.directions, np.float64)
-        t = np.asarray(dome.intensities, np.float64)
-        # eq. 2.23 with exact (ray-traced) visibility of each dome light
-        occluded = np.stack([ref_ibl.ray_hits_sphere(q, v, CENTRE, RADIUS) for q in p])
-        cos = np.maximum(normal @ v.T, 0.0)
-        eq223 = np.maximum(ref_ibl.sh_irradiance(sh, normal) - (occluded * cos) @ t, 0.0) / np.pi
-        err = np.abs(got - eq223).max(axis=1)
-        assert occluded.any(axis=1).mean() > 0.5  # most of the ground is under some light's shadow
-        # the shadow maps (512^2, one tap) decide visibility per texel: pixels whose ray passes
-        # within a texel of the sphere's silhouette may flip one light (measured 2.5% / 9% of
-        # the ground over 1/255 for 16 / 64 lights); all others agree to float precision
-        assert np.mean(err > 1.0 / 255.0) < (0.05 if n == 16 else 0.15), np.mean(err > 1.0 / 255.0)
-        assert np.median(err) < 1e-4
         sel = np.arange(len(p))[::9]
         exact = np.stack([ref_ibl.visible_irradiance(FACES, p[k], normal[k], CENTRE, RADIUS)
                           for k in sel]) / np.pi
-        exact_error[n] = float(np.abs(got[sel] - exact).mean())
-    # more dome lights approximate the visibility-weighted irradiance better (measured 0.016 ->
-    # 0.005)
-    assert exact_error[64] < 0.6 * exact_error[16], exact_error
+        exact_error[n] = float(np.abs(got[sel] - exact).mean() / np.abs(exact).mean())
+    # mean relative error, measured 0.017 / 0.0037
+    assert exact_error[16] < 0.03 and exact_error[64] < 0.5 * exact_error[16], exact_error
 
 
 def test_dome_maps_are_reused_and_refreshed_round_robin(make_renderer) -> None:

@@ -1,6 +1,6 @@
 #pragma once
-// The dome of shadow lights (SPEC §4.5, seed eq. 2.21-2.23): N fixed directions over the upper
-// hemisphere (+Y), each with an intensity taken from the environment so that the lights together
+// The dome of shadow lights (SPEC §4.5, seed eq. 2.21-2.23): N cells around fixed directions
+// over the upper hemisphere (+Y), each with an intensity taken from the environment so that the lights together
 // reproduce the environment's irradiance from above the horizon.
 //
 // Layouts: Fibonacci (default; point k at height y = 1 - (k + 0.5) / N, azimuth k x the golden
@@ -8,7 +8,9 @@
 // bands, 8 lights per band at the band's middle height, odd rings turned by half a step).
 // Intensity of light i (eq. 2.21 with T integrated over the light's cell): T_i = integral of L
 // over the environment texels above the horizon that are nearer to light i than to any other
-// (its Voronoi cell). Then H_i = T_i max(0, N.V_i), D = sum of visible H_i (eq. 2.22) or
+// (its Voronoi cell). Its direction V_i is the cell's luminance-weighted mean direction (the
+// layout direction for a black cell), so that a sun's shadow points away from the sun. Then
+// H_i = T_i max(0, N.V_i), D = sum of visible H_i (eq. 2.22) or
 // D = E(N) - sum of occluded H_i (eq. 2.23), with E the irradiance.
 #include <cstdint>
 #include <vector>
@@ -25,6 +27,10 @@ struct DomeLight {
     glm::vec3 direction{0.0f, 1.0f, 0.0f}; ///< unit, towards the light (y > 0)
     glm::vec3 intensity{0.0f};             ///< T_i: radiance integrated over the cell (RGB)
     float solidAngle = 0.0f;               ///< sr of the cell
+    /// Half-angle (radians) of the uniform cone with the cell's luminance-weighted spread about
+    /// `direction`: about the cell's radius under a smooth sky, near 0 for a sun. The renderer
+    /// sizes each light's soft-shadow filter by it.
+    float angularRadius = 0.0f;
 };
 
 class ShadowDome {

@@ -1,6 +1,7 @@
 // Dome of shadow lights: layouts, Voronoi-cell intensities and the seed's eq. 2.22 / 2.23.
 #include <weft/ShadowDome.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -79,15 +80,47 @@ ShadowDome::ShadowDome(const CubeMap& radiance, int count, DomeLayout layout, in
             }
         }
     }, 1024);
-    std::vector<glm::dvec3> sum(size_t(count), glm::dvec3(0.0));
-    std::vector<double> omega(size_t(count), 0.0);
+    std::vector<glm::dvec3> sum(size_t(count), glm::dvec3(0.0)), moment(size_t(count), glm::dvec3(0.0));
+    std::vector<glm::dvec3> spreadMoment(size_t(count), glm::dvec3(0.0));
+    std::vector<double> omega(size_t(count), 0.0), power(size_t(count), 0.0),
+        spreadPower(size_t(count), 0.0);
     for (size_t k = 0; k < t.size(); ++k) {
         if (owner[k] < 0) continue;
-        sum[size_t(owner[k])] += glm::dvec3(t.r[k], t.g[k], t.b[k]);
-        omega[size_t(owner[k])] += t.dw[k];
+        const size_t i = size_t(owner[k]);
+        const glm::dvec3 rgb(t.r[k], t.g[k], t.b[k]);
+        sum[i] += rgb;
+        omega[i] += t.dw[k];
+        // luminance-weighted moment of the directions: its direction is where the cell's light
+        // comes from on average (a sun in the cell pulls the light onto itself; the fixed cell
+        // centre would put the shadow up to a cell's radius off), its length the spread
+        const double lum = std::max(0.0, 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b);
+        const glm::dvec3 dir(t.x[k], t.y[k], t.z[k]);
+        moment[i] += lum * dir;
+        power[i] += lum;
+        // the spread weighted by L^2 dw: a sun sharing its cell with sky keeps its own (sharp)
+        // size, a smooth cell its full extent
+        const double w2 = t.dw[k] > 0.0f ? lum * lum / double(t.dw[k]) : 0.0;
+        spreadMoment[i] += w2 * dir;
+        spreadPower[i] += w2;
     }
-    for (int i = 0; i < count; ++i)
-        mLights.push_back({dirs[size_t(i)], glm::vec3(sum[size_t(i)]), float(omega[size_t(i)])});
+    for (int i = 0; i < count; ++i) {
+        DomeLight l;
+        l.direction = dirs[size_t(i)];
+        l.intensity = glm::vec3(sum[size_t(i)]);
+        l.solidAngle = float(omega[size_t(i)]);
+        // A black cell keeps its layout direction and the radius of a cone of its solid angle.
+        double cosRadius = 1.0 - omega[size_t(i)] / (2.0 * kPi);
+        const double len = glm::length(moment[size_t(i)]);
+        if (power[size_t(i)] > 0.0 && len > 1e-12 * power[size_t(i)]) {
+            const glm::dvec3 d = moment[size_t(i)] / len;
+            if (d.y > 1e-4) l.direction = glm::vec3(d);
+            // A uniform cone of half-angle a has mean cosine (1 + cos a) / 2 about its axis:
+            // the cone with this cell's mean cosine about V_i.
+            cosRadius = 2.0 * glm::dot(spreadMoment[size_t(i)], d) / spreadPower[size_t(i)] - 1.0;
+        }
+        l.angularRadius = float(std::acos(std::clamp(cosRadius, -1.0, 1.0)));
+        mLights.push_back(l);
+    }
 }
 
 glm::vec3 ShadowDome::diffuseVisible(const glm::vec3& normal,

@@ -1,5 +1,7 @@
 #include "render/DomeShadows.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "render/RenderTargets.h"
@@ -27,7 +29,10 @@ std::vector<int> DomeShadows::prepare(const Scene& scene, const RenderSettings& 
         GpuDomeLight g;
         g.viewProj = f.viewProj;
         g.direction = glm::vec4(l.direction, settings.normalOffset * f.texelWorld);
-        g.intensity = glm::vec4(l.intensity / 3.14159265f, 0.0f);
+        // the light's soft-shadow filter (environment.glsl) spreads over tan of its angular
+        // radius per unit of receiver-blocker distance; capped at 60 degrees
+        g.intensity = glm::vec4(l.intensity / 3.14159265f,
+                                std::tan(std::min(l.angularRadius, 1.0471976f)));
         lights.push_back(g);
         const size_t at = frustumKey.size();
         frustumKey.resize(at + sizeof(glm::mat4) / 8);
