@@ -29,6 +29,8 @@ options:
   --environment PATH light the scene with a captured environment instead of the sun and moon:
                      an equirectangular (2:1) or sphere-map (square) .hdr/.exr/.png; diffuse
                      from its SH9 irradiance, shadows from a dome of 16 shadow lights
+  --time HOURS       time of day, 0..24 (6 sunrise, 12 noon, 18 sunset; default 8.4): the
+                     analytic sky (Preetham 1999) and its sun, or the moon at night
   --script PATH      scripted input, one event per line: "<frame> key <K>",
                      "<frame> grab <x> <y>", "<frame> drag <x> <y>", "<frame> release"
                      (pixels from the top left; keys as below, or SPACE/LEFT/RIGHT/UP/DOWN)
@@ -87,6 +89,13 @@ int main(int argc, char** argv) {
             else if (a == "--script") o.script = next();
             else if (a == "--shader-dir") o.shaderDir = next();
             else if (a == "--environment") o.environment = next();
+            else if (a == "--time") {
+                const char* v = next();
+                char* end = nullptr;
+                o.hour = std::strtof(v, &end);
+                if (!*v || *end || !(o.hour >= 0.0f && o.hour <= 24.0f))
+                    throw weft::InvalidArgument(std::string("--time needs hours in [0, 24], got '") + v + "'");
+            }
             else if (a == "--no-hot-reload") hotReload = false;
             else throw weft::InvalidArgument("unknown option '" + a + "' (see --help)");
         }

@@ -60,6 +60,21 @@ glm::vec3 unitOrThrow(const glm::vec3& v, const char* what) {
     return v / len;
 }
 
+// Irradiance of the sun's disc at normal incidence and on a horizontal surface (before scale):
+// its points after the atmosphere, each sunSolidAngle() / N of the disc.
+void sunDisc(const glm::vec3& toSun, double turbidity, glm::vec3& normal, glm::vec3& horizontal) {
+    const sky::SunRadiance sun(turbidity);
+    const double dw = sky::sunSolidAngle() / kSunPoints;
+    glm::dvec3 n(0.0), h(0.0);
+    for (const glm::vec3& d : sky::sunDiscPoints(toSun, kSunPoints)) {
+        const glm::dvec3 e = glm::dvec3(sun(d)) * dw;
+        n += e;
+        h += e * double(std::max(d.y, 0.0f));
+    }
+    normal = glm::vec3(n);
+    horizontal = glm::vec3(h);
+}
+
 } // namespace
 
 void SkyParams::validate() const {
@@ -104,16 +119,9 @@ SkyModel::SkyModel(const SkyParams& params) : mParams(params) {
     const float zenith[3] = {mZenith.z, mZenith.x, mZenith.y};
     for (int q = 0; q < 3; ++q) mNorm[q] = float(zenith[q] / perez(mCoeffs[q], 1.0, mThetaS));
 
-    // The sun: its disc's points after the atmosphere, each sunSolidAngle() / N of the disc.
-    const sky::SunRadiance sun(t);
-    const double dw = sky::sunSolidAngle() / kSunPoints;
-    glm::dvec3 sunNormal(0.0), sunHorizontal(0.0);
-    for (const glm::vec3& d : sky::sunDiscPoints(mToSun, kSunPoints)) {
-        const glm::dvec3 e = glm::dvec3(sun(d)) * dw;
-        sunNormal += e;
-        sunHorizontal += e * double(std::max(d.y, 0.0f));
-    }
-    mSunIrradiance = glm::vec3(sunNormal) * params.scale;
+    glm::vec3 sunHorizontal(0.0f);
+    sunDisc(mToSun, t, mSunIrradiance, sunHorizontal);
+    mSunIrradiance *= params.scale;
 
     // Horizontal irradiance of the sky: E = int L cos theta dw = 1/2 int_0^1 int_0^2pi L du dphi
     // with u = cos^2 theta; a midpoint rule in (u, phi).
@@ -197,14 +205,18 @@ CubeMap skyCube(const SkyParams& params, int size) {
     return cube;
 }
 
-glm::vec3 sunIrradiance(const SkyParams& params) { return SkyModel(params).sunIrradiance(); }
+glm::vec3 sunIrradiance(const SkyParams& params) {
+    params.validate();
+    glm::vec3 normal, horizontal;
+    sunDisc(glm::normalize(params.sunDirection), params.turbidity, normal, horizontal);
+    return normal * params.scale;
+}
 
 DirectionalLight sunLight(const SkyParams& params) {
-    const SkyModel model(params);
-    const glm::vec3 colour = model.sunIrradiance() / float(kPi);
+    const glm::vec3 colour = sunIrradiance(params) / float(kPi);
     const float peak = std::max(colour.x, std::max(colour.y, colour.z));
     DirectionalLight light;
-    light.direction = -model.toSun();
+    light.direction = -glm::normalize(params.sunDirection);
     light.color = peak > 0.0f ? colour / peak : glm::vec3(1.0f);
     light.intensity = peak;
     light.castShadows = peak > 0.0f;
