@@ -173,7 +173,10 @@ py::tuple captureTuple(CaptureCube&& c) {
 
 } // namespace
 
+void bindSky(py::module_& m); // bind_sky.cpp
+
 void bindIbl(py::module_& m) {
+    bindSky(m);
     py::class_<CubeMap>(m, "CubeMap",
         "RGB float cube map: faces +X, -X, +Y, -Y, +Z, -Z (Vulkan/OpenGL convention), each S x S,\n"
         "NumPy view (6, S, S, 3); optional mip chain. See weft/CubeMap.h for the orientation.")

@@ -174,17 +174,21 @@ PYBIND11_MODULE(_core, m) {
           "Compile errors of reloaded shaders since the last clear (name: file:line: message).");
     m.def("clear_shader_errors", &weft::clearShaderErrors);
 
-    m.def("demo_scene", [] {
+    m.def("demo_scene", [](py::object hour) {
         weft::app::DemoScene demo;
+        if (!hour.is_none()) demo.setHour(hour.cast<float>());
         return py::make_tuple(std::make_shared<weft::Scene>(demo.scene()), demo.camera(),
                               demo.clothPtr());
-    }, "The demo's scene (terrain, sphere, furry ball, sun and moon, and the cloth in it), its\n"
-       "camera and the cloth (step it to animate the scene), as (scene, camera, cloth).");
+    }, py::arg("hour") = py::none(),
+       "The demo's scene (terrain, sphere, furry ball, sun and moon under the analytic sky, and\n"
+       "the cloth in it) at `hour` (0..24, default 8.4), its camera and the cloth (step it to\n"
+       "animate the scene), as (scene, camera, cloth).");
 
     m.def("run_demo", [](int width, int height, int frames, bool headless, bool vsync,
                          const std::string& out, const std::string& screenshot,
                          const std::string& statsJson, const std::string& script,
-                         const std::string& shaderDir, const std::string& environment) {
+                         const std::string& shaderDir, const std::string& environment,
+                         py::object hour) {
         weft::DemoOptions o;
         o.width = width;
         o.height = height;
@@ -197,12 +201,17 @@ PYBIND11_MODULE(_core, m) {
         o.script = script;
         o.shaderDir = shaderDir;
         o.environment = environment;
+        if (!hour.is_none()) {
+            o.hour = hour.cast<float>();
+            if (!(o.hour >= 0.0f && o.hour <= 24.0f))
+                throw weft::InvalidArgument("hour (time of day) must be in [0, 24]");
+        }
         py::gil_scoped_release release;
         return weft::runDemo(o);
     }, py::arg("width") = 1280, py::arg("height") = 720, py::arg("frames") = 0,
        py::arg("headless") = false, py::arg("vsync") = true, py::arg("out") = "out/demo.png",
        py::arg("screenshot") = "", py::arg("stats_json") = "", py::arg("script") = "",
-       py::arg("shader_dir") = "", py::arg("environment") = "",
+       py::arg("shader_dir") = "", py::arg("environment") = "", py::arg("hour") = py::none(),
        "Runs the demo (the seed's cloth environment): a window when a display exists, else\n"
        "headless to `out` (see `weft-demo --help` for frames, scripts and output folders).");
 

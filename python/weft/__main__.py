@@ -92,6 +92,9 @@ def build_parser() -> argparse.ArgumentParser:
                       help="light the scene with a captured environment instead of the sun and "
                            "moon: an equirectangular (2:1) or sphere-map (square) .hdr/.exr/.png "
                            "(SH9 diffuse, blurred shadows from a dome of 16 lights)")
+    demo.add_argument("--time", type=float, default=None, metavar="HOURS", dest="hour",
+                      help="time of day in hours 0..24 (6 sunrise, 12 noon, 18 sunset): the "
+                           "analytic sky (Preetham 1999) and its sun, or the moon at night")
     demo.add_argument("--script", default="", metavar="FILE",
                       help="scripted input: lines '<frame> key <K>', '<frame> grab <x> <y>', "
                            "'<frame> drag <x> <y>', '<frame> release'")
@@ -175,7 +178,7 @@ def _cmd_demo(args: argparse.Namespace) -> int:
                              headless=args.headless, vsync=args.vsync, out=args.out,
                              screenshot=args.screenshot, stats_json=args.stats,
                              script=args.script, shader_dir=args.shader_dir,
-                             environment=args.environment))
+                             environment=args.environment, hour=args.hour))
 
 
 def format_table(rows: List[Dict[str, Any]], columns: Sequence[str]) -> str:

@@ -32,6 +32,8 @@ options:
   --msaa N           anti-aliasing samples per pixel: 1, 2, 4 or 8 (default 4)
   --exposure EV      exposure in stops: the image shows radiance x 2^EV (default 0)
   --tone-map OP      clamp (the seed's look), aces, agx or neutral (default clamp)
+  --time HOURS       time of day, 0..24 (6 sunrise, 12 noon, 18 sunset; default 8.4): the
+                     analytic sky (Preetham 1999) and its sun, or the moon at night
   --script PATH      scripted input, one event per line: "<frame> key <K>",
                      "<frame> grab <x> <y>", "<frame> drag <x> <y>", "<frame> release"
                      (pixels from the top left; keys as below, or SPACE/LEFT/RIGHT/UP/DOWN)
@@ -108,6 +110,13 @@ int main(int argc, char** argv) {
                 if (found < 0)
                     throw weft::InvalidArgument("--tone-map must be clamp, aces, agx or neutral, got '" + op + "'");
                 o.toneMap = weft::ToneMap(found);
+            }
+            else if (a == "--time") {
+                const char* v = next();
+                char* end = nullptr;
+                o.hour = std::strtof(v, &end);
+                if (!*v || *end || !(o.hour >= 0.0f && o.hour <= 24.0f))
+                    throw weft::InvalidArgument(std::string("--time needs hours in [0, 24], got '") + v + "'");
             }
             else if (a == "--no-hot-reload") hotReload = false;
             else throw weft::InvalidArgument("unknown option '" + a + "' (see --help)");

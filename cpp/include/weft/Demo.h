@@ -19,6 +19,7 @@ struct DemoOptions {
     /// frame_NNNN.png for every frame and stats.json.
     std::string out = "out/demo.png";
     std::string environment;    // light with this .hdr/.exr/.png (equirect or sphere map)
+    float hour = -1.0f;         // time of day in hours [0, 24] (6 sunrise, 18 sunset); < 0: default
     std::string shaderDir;      // hot reload: watch this glsl/-like directory ("" = off)
     std::string script;         // scripted input: "<frame> key K | grab x y | drag x y | release"
     std::string screenshot;     // windowed: save the last presented frame here

@@ -263,6 +263,7 @@ int runDemo(const DemoOptions& o) {
         std::cout << "weft-demo: shader hot reload: watching " << o.shaderDir << std::endl;
     }
     app::DemoScene demo;
+    if (o.hour >= 0.0f || std::isnan(o.hour)) demo.setHour(o.hour);
     if (!o.environment.empty()) demo.lightWith(o.environment);
     const int rc = !o.headless && Window::displayAvailable() ? runWindow(o, demo)
                                                              : runHeadless(o, demo);

@@ -1,7 +1,10 @@
 #include "app/DemoScene.h"
+#include "app/DemoSkyDome.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include <GLFW/glfw3.h>
@@ -10,6 +13,7 @@
 #include <weft/Environment.h>
 #include <weft/HairGenerator.h>
 #include <weft/IblConvert.h>
+#include <weft/Sky.h>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -22,6 +26,14 @@ constexpr float kTerrainSize = 16.0f;
 constexpr int kTerrainCells = 96;
 const glm::vec3 kSphereCenter(0.0f, 0.6f, 0.0f);
 constexpr float kSphereRadius = 0.6f;
+// The analytic sky (weft/Sky.h): a clear day; radiance scaled so that the noon sun's light has
+// intensity ~1 as the seed's had (E ~ 100 klx -> E / pi / 32); with no exposure control yet the
+// night sky is raised from the natural night's ~1e-7 kcd/m^2 to a moonlit blue that shows.
+constexpr float kTurbidity = 3.0f;
+constexpr float kSkyScale = 1.0f / 32.0f;
+const glm::vec3 kNightSky = glm::vec3(0.012f, 0.018f, 0.04f) / kSkyScale;
+constexpr int kSkyCubeSize = 32;          // diffuse light only needs the sky's low frequencies
+const float kSkyRegenCos = std::cos(glm::radians(1.0f)); // regenerate after the sun moved 1 deg
 
 float smoothstep(float e0, float e1, float x) {
     const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
@@ -126,21 +138,6 @@ Material fittedWeaveBtf(int size, int threads) {
     return btfRenderMaterial(fit.maps);
 }
 
-// The sky's vertical gradient (linear RGB), from the zenith (v = 0) through the horizon
-// (v = 0.5) down: an ambient map, so the sky dome shows it unlit.
-TexturePtr skyGradient() {
-    ImageU8 img(4, 128, 4);
-    for (int y = 0; y < 128; ++y) {
-        const float v = (float(y) + 0.5f) / 128.0f;
-        const glm::vec3 zenith(0.18f, 0.36f, 0.78f), horizon(0.72f, 0.82f, 0.95f);
-        const glm::vec3 c = v < 0.5f ? glm::mix(zenith, horizon, std::pow(v / 0.5f, 1.5f))
-                                     : horizon * (1.0f - 0.2f * smoothstep(0.5f, 0.7f, v));
-        for (int x = 0; x < 4; ++x)
-            for (int k = 0; k < 4; ++k) img.at(x, y)[k] = uint8_t(std::lround(255.0f * (k < 3 ? c[k] : 1.0f)));
-    }
-    return std::make_shared<Texture>(std::move(img), false, false);
-}
-
 } // namespace
 
 DemoScene::DemoScene() {
@@ -159,7 +156,8 @@ DemoScene::DemoScene() {
     const glm::mat4 ballAt = glm::translate(glm::mat4(1.0f), glm::vec3(1.35f, 0.3f, 0.55f));
     Material skin;
     skin.baseColor = glm::vec3(0.35f, 0.22f, 0.1f);
-    mScene.addMesh(ballMesh, skin, ballAt);
+    mBallMaterial = skin;
+    mBallId = mScene.addMesh(ballMesh, skin, ballAt);
     FurParams fur;
     fur.density = 9000.0f; // strands per square metre
     fur.segments = 6;
@@ -214,11 +212,9 @@ DemoScene::DemoScene() {
     mClothMaterial.shininess = 20.0f;
     mClothId = mScene.addCloth(mCloth, mClothMaterial);
 
-    // The sky: a large dome drawn from inside, lit only by its ambient-map gradient, tinted by
-    // the time of day (updateSky).
-    mSkyMaterial.ka = glm::vec3(1.0f);
+    // The sky: a large dome drawn from inside that shows the sky's radiance through its ambient
+    // map (updateSky) until the renderer draws the environment behind the scene.
     mSkyMaterial.kd = mSkyMaterial.ks = glm::vec3(0.0f);
-    mSkyMaterial.ambientMap = skyGradient();
     mSkyMaterial.twoSided = true;
     mSkyId = mScene.addMesh(std::make_shared<Mesh>(Mesh::uvSphere(45.0f, 32, 16)), mSkyMaterial,
                             glm::mat4(1.0f), false);
@@ -258,9 +254,9 @@ void DemoScene::lightWith(const std::string& path) {
         for (int c = 0; c < 3; ++c) rgb.pixels[t * 3 + size_t(c)] = image.pixels[t * size_t(image.channels) + size_t(c)];
     CubeMap cube;
     if (image.width == 2 * image.height) {
-        cube = equirectToCube(rgbView(rgb), 256); // also the visible sky
+        cube = equirectToCube(rgbView(rgb), 128); // also painted onto the sky dome
     } else if (image.width == image.height) {
-        CaptureCube capture = sphereToCube(rgbView(rgb), glm::mat4(1.0f), 1.0f, 256);
+        CaptureCube capture = sphereToCube(rgbView(rgb), glm::mat4(1.0f), 1.0f, 128);
         fillUnseen(capture.cube, capture.valid);
         cube = std::move(capture.cube);
     } else {
@@ -274,16 +270,32 @@ void DemoScene::lightWith(const std::string& path) {
     env.domeMapSize = 256;
     env.domeRefresh = 4;
     env.domeBlur = 4.0f; // the accumulated dome shadows blurred over 4 pixels
-    env.background = true; // the environment is the sky the camera sees
     mScene.setEnvironment(env);
-    // The environment replaces the sun, the moon and the constant ambient term.
+    const CubeMap& radiance = env.environment->radiance();
+    paintSkyDome(mSkyMaterial, [&](const glm::vec3& d) { return radiance.sample(d); });
+    // The environment replaces the sun, the moon, the analytic sky and the ambient term.
     mEnvironmentLit = true;
     mDayNight = false;
+    mSky.reset();
     updateSky();
-    for (Material* m : {&mTerrainMaterial, &mSphereMaterial, &mClothMaterial}) m->environmentDiffuse = 1.0f;
+}
+
+void DemoScene::useEnvironmentDiffuse() {
+    // Diffuse light from the environment's SH9 irradiance replaces the constant ambient term.
+    mTerrainMaterial.environmentDiffuse = mSphereMaterial.environmentDiffuse = 1.0f;
+    mClothMaterial.environmentDiffuse = mBallMaterial.environmentDiffuse = 1.0f;
     mScene.setMaterial(mTerrainId, mTerrainMaterial);
     mScene.setMaterial(mSphereId, mSphereMaterial);
-    mScene.setMaterial(mClothId, mClothMaterial);
+    mScene.setMaterial(mBallId, mBallMaterial);
+    if (!mBtf) mScene.setMaterial(mClothId, mClothMaterial);
+    mScene.setAmbient(glm::vec3(0.0f));
+}
+
+void DemoScene::setHour(float hour) {
+    if (!(hour >= 0.0f && hour <= 24.0f))
+        throw InvalidArgument("time of day must be in [0, 24] hours, got " + std::to_string(hour));
+    mTimeOfDay = std::fmod(hour / 24.0f, 1.0f);
+    updateSky();
 }
 
 void DemoScene::updateSky() {
@@ -293,25 +305,60 @@ void DemoScene::updateSky() {
     const glm::vec3 toSun = glm::normalize(glm::vec3(std::cos(angle) * std::cos(mSunAzimuth), 0.9f * height + 0.05f,
                                                      std::cos(angle) * std::sin(mSunAzimuth)));
     const float day = smoothstep(-0.05f, 0.25f, height);
-    DirectionalLight sun;
+    if (mEnvironmentLit) {
+        DirectionalLight off;
+        off.intensity = 0.0f;
+        off.castShadows = false;
+        mScene.setLight(mSunId, off);
+        mScene.setLight(mMoonId, off);
+        mScene.setMaterial(mSkyId, mSkyMaterial);
+        useEnvironmentDiffuse();
+        return;
+    }
+    // The analytic sky lights the scene (SH9 diffuse) and shows on the dome; it is generated
+    // again once the sun has moved 1 degree (a day per minute: every ~10 frames at 60 Hz).
+    SkyParams sky;
+    sky.sunDirection = toSun;
+    sky.turbidity = kTurbidity;
+    sky.sun = false; // the sun is the directional light, with sharp shadows
+    sky.scale = kSkyScale;
+    sky.nightRadiance = kNightSky;
+    if (!mSky || glm::dot(toSun, mSkySun) < kSkyRegenCos) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const SkyModel model(sky);
+        CubeMap cube = skyCube(sky, kSkyCubeSize);
+        // The dome shows the horizon's haze below the horizon, not the model's grey ground:
+        // it lies beyond the green terrain's edge.
+        paintSkyDome(mSkyMaterial, [&](const glm::vec3& d) {
+            return model.radiance(glm::vec3(d.x, std::max(d.y, 0.0f), d.z));
+        });
+        mSunLight = sunLight(sky);
+        mSkyMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        mSkySun = toSun;
+        if (!mSky) {
+            mSky = std::make_shared<Environment>(std::move(cube));
+            EnvironmentLighting env;
+            env.environment = mSky;
+            env.specularSize = 16; // nothing glossy reflects the sky itself: keep the bake cheap
+            env.specularLevels = 5;
+            mScene.setEnvironment(env);
+            useEnvironmentDiffuse();
+        } else {
+            mSky->setRadiance(std::move(cube));
+        }
+        mScene.setMaterial(mSkyId, mSkyMaterial);
+        mScene.setBackground(model.radiance(glm::vec3(0.0f, 0.1f, 1.0f)));
+    }
+    DirectionalLight sun = mSunLight; // colour and intensity from the sky model
     sun.direction = -toSun;
-    sun.color = glm::mix(glm::vec3(1.0f, 0.55f, 0.3f), glm::vec3(1.0f, 0.96f, 0.88f), smoothstep(0.0f, 0.5f, height));
-    sun.intensity = mEnvironmentLit ? 0.0f : 0.95f * day;
-    sun.castShadows = mShadows && day > 0.0f && !mEnvironmentLit;
+    sun.castShadows = mShadows && sun.intensity > 0.0f;
     DirectionalLight moon;
     moon.direction = toSun;
     moon.color = glm::vec3(0.55f, 0.65f, 1.0f);
-    moon.intensity = mEnvironmentLit ? 0.0f : 0.25f * (1.0f - day);
-    moon.castShadows = mShadows && day <= 0.0f && !mEnvironmentLit;
+    moon.intensity = 0.25f * (1.0f - day);
+    moon.castShadows = mShadows && day <= 0.0f;
     mScene.setLight(mSunId, sun);
     mScene.setLight(mMoonId, moon);
-    mScene.setAmbient(mEnvironmentLit ? glm::vec3(0.0f)
-                                      : glm::mix(glm::vec3(0.03f, 0.04f, 0.08f), glm::vec3(0.2f, 0.22f, 0.27f), day));
-    mScene.setBackground(glm::mix(glm::vec3(0.01f, 0.015f, 0.04f), glm::vec3(0.45f, 0.62f, 0.86f), day));
-    Material sky = mSkyMaterial;
-    sky.baseColor = glm::mix(glm::vec3(0.03f, 0.04f, 0.1f), glm::vec3(1.0f), day) *
-                    glm::mix(glm::vec3(1.0f, 0.7f, 0.5f), glm::vec3(1.0f), smoothstep(0.0f, 0.4f, height));
-    mScene.setMaterial(mSkyId, sky);
 }
 
 void DemoScene::applySettings(Renderer& renderer) const {
@@ -474,6 +521,7 @@ std::string DemoScene::status() const {
       << ", PCF " << 2 * mPcf + 1 << (mBtf ? ", BTF" : mNormalMap ? ", normal map" : "")
       << (mHoles ? ", holes" : "")
       << (mShadows ? "" : ", no shadows") << (mPaused ? ", paused" : "");
+    if (mSky) s << ", analytic sky " << std::fixed << std::setprecision(2) << mSkyMs << " ms";
     return s.str();
 }
 

@@ -8,6 +8,7 @@
 
 #include <weft/Camera.h>
 #include <weft/Cloth.h>
+#include <weft/Environment.h>
 #include <weft/Renderer.h>
 #include <weft/Scene.h>
 
@@ -25,6 +26,10 @@ public:
     /// equirectangular (2:1) or sphere-map (square) .hdr/.exr/.png, diffuse from its SH9
     /// irradiance and shadows from a dome of 16 lights (SPEC §4.4, §4.5).
     void lightWith(const std::string& path);
+    /// Sets the time of day in hours [0, 24] (6 sunrise, 12 noon, 18 sunset) and the sky.
+    void setHour(float hour);
+    /// Milliseconds the last analytic sky took (cube, dome texture and sun light).
+    double skyMs() const { return mSkyMs; }
     /// Renderer settings the controls change (PCF kernel).
     void applySettings(Renderer& renderer) const;
 
@@ -49,6 +54,7 @@ public:
 private:
     void buildTerrain();
     void updateSky();
+    void useEnvironmentDiffuse();
     void ray(double x, double y, int w, int h, glm::vec3& origin, glm::vec3& dir) const;
 
     Scene mScene;
@@ -61,6 +67,12 @@ private:
     Material mTerrainMaterial;
     bool mEnvironmentLit = false;
     Material mSkyMaterial;
+    std::shared_ptr<Environment> mSky; // the analytic sky (null with a captured environment)
+    glm::vec3 mSkySun{0.0f};           // the sun it was generated for
+    DirectionalLight mSunLight;        // its sun
+    double mSkyMs = 0.0;
+    uint32_t mBallId = 0;
+    Material mBallMaterial;
     float mSunAzimuth = 0.6f;
     float mTimeOfDay = 0.35f; // 0..1, 0.25 = sunrise... 0.5 = noon (the sun at its highest)
     bool mDayNight = false, mPaused = false, mNormalMap = true, mHoles = false;

@@ -1,5 +1,6 @@
 """Image-based lighting tools (SPEC §4): capture conversion, cube maps, irradiance, glossy
-prefiltering, light extraction and the dome of shadow lights.
+prefiltering, light extraction, the dome of shadow lights and an analytic daylight sky
+(``sky``, ``sun_light``, ``SkyModel``: Preetham, Shirley & Smits 1999).
 
 The numeric work is in C++ (``weft._core``); this package re-exports it and adds conveniences:
 
@@ -22,6 +23,7 @@ from weft._core import (
     CubeMap,
     Environment,
     ShadowDome,
+    SkyModel,
     cube_coords,
     cube_texel_directions,
     cube_texel_solid_angles,
@@ -42,7 +44,9 @@ from weft._core import (
     prefilter_ggx_gpu,
     project_sh9,
     sh_irradiance,
+    sky,
     sphere_to_cube,
+    sun_light,
 )
 from weft.ibl.capture import (
     cross_to_cube,
@@ -61,7 +65,7 @@ from weft.ibl.lights import EnvLight, extract_lights, median_cut, split_lights
 from weft.ibl.video import environments_from_video, read_video_frames
 
 __all__ = [
-    "CubeMap", "Environment", "ShadowDome", "EnvLight",
+    "CubeMap", "Environment", "ShadowDome", "EnvLight", "SkyModel", "sky", "sun_light",
     "cube_coords", "cube_texel_directions", "cube_texel_solid_angles", "cube_to_equirect",
     "cube_to_sphere", "dfg_lut", "equirect_to_cube", "fill_unseen", "fisheye_to_cube",
     "irradiance_box_blur", "irradiance_exact", "irradiance_exact_gpu", "irradiance_from_sh",
