@@ -39,16 +39,32 @@ int hairDomSlot(int light) {
     return -1;
 }
 
+// The environment's diffuse light on a fibre of tangent t, per unit diffuse colour:
+// (1 / pi^2) integral of L(w) sin(t, w) dw, the Kajiya-Kay kernel normalised so that a constant
+// environment L gives L (a diffuse fibre in a furnace looks like a Lambertian surface).
+// sin(t, w) = sqrt(1 - (t.w)^2) is rotationally symmetric about t, so by Funk-Hecke the integral
+// over the SH9 radiance is sum_l Lambda_l sum_m L_lm Y_lm(t), Lambda_l = 2 pi integral over
+// [-1, 1] of sqrt(1 - x^2) P_l(x) dx: Lambda_0 = pi^2, Lambda_1 = 0 (odd), Lambda_2 = -pi^2 / 8.
+// environmentSh holds A_l L_lm / pi (L_00, 2/3 L_1m, 1/4 L_2m), so the result is
+// c_00 Y_00 - (1/2) sum_m c_2m Y_2m(t): a fibre along a bright direction sees it only at grazing.
+vec3 hairEnvironmentDiffuse(vec3 t) {
+    float y2[5] = float[5](1.092548 * t.x * t.y, 1.092548 * t.y * t.z,
+                           0.315392 * (3.0 * t.z * t.z - 1.0), 1.092548 * t.x * t.z,
+                           0.546274 * (t.x * t.x - t.y * t.y));
+    vec3 e = 0.282095 * frame.environmentSh[0].rgb;
+    for (int k = 0; k < 5; ++k) e -= 0.5 * y2[k] * frame.environmentSh[4 + k].rgb;
+    return max(e, vec3(0.0)) * frame.environment.x;
+}
+
 // Ambient * diffuse colour + sum over lights of L * visibility * f(t, l, v), plus, in a scene
-// lit by an environment, its irradiance averaged over all directions (the SH9 constant term: a
-// fibre has no single normal) times diffuse / pi (environmentSh holds E / pi). `debugVis` is the visibility of the frame's
-// debug light (frame.counts.w).
+// lit by an environment, its diffuse light along the fibre (hairEnvironmentDiffuse; the
+// specular lobes get no environment light). `debugVis` is the visibility of the frame's debug
+// light (frame.counts.w).
 vec3 hairRadiance(vec3 p, vec3 t, vec3 color, HairShading s, uint strand, out float debugVis) {
     vec3 v = normalize(frame.cameraPos.xyz - p);
     s.diffuse.rgb *= color;
     vec3 c = frame.ambient.rgb * s.diffuse.rgb;
-    vec3 meanIrradiance = max(0.282095 * frame.environmentSh[0].rgb, vec3(0.0)) * frame.environment.x;
-    c += meanIrradiance * s.diffuse.rgb; // environmentSh holds E / pi already
+    c += hairEnvironmentDiffuse(t) * s.diffuse.rgb;
     debugVis = 1.0;
     for (int i = 0; i < frame.counts.x; ++i) {
         vec3 l;

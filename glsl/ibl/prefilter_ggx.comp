@@ -1,8 +1,8 @@
 #version 450
-// GGX split-sum prefiltering of one output cube level (N = V = R) by filtered importance sampling,
-// the GPU twin of weft::prefilterGgx (cpp/src/ibl/GlossyFilter.cpp): same face convention, same
-// samples (computed once per level by the CPU filter's code, cpp/src/ibl/GpuPrefilter.cpp), same
-// seamless bilinear taps and trilinear blend between the source levels.
+// GGX split-sum prefiltering of one output cube level (N = V = R), the GPU twin of
+// weft::prefilterGgx (cpp/src/ibl/GlossyFilter.cpp) running the same plan (cpp/src/ibl/GgxPlan.h):
+// filtered importance sampling of the clamped source (same samples, same seamless bilinear taps
+// and trilinear blend between the source levels) plus an exact sum over the level's points.
 //
 // The source levels carry a one-texel border holding the taps past each face edge (the
 // neighbouring face's texel; past a corner, the mean of three), so a bilinear lookup is four
@@ -24,16 +24,19 @@ struct Sample {
 };
 layout(std430, set = 0, binding = 2) readonly buffer Samples { Sample smp[]; };
 
-const int MODE_MIRROR = 0; // level 0 (unless it is a copy of a source level): the source read
-                           // along the normal with the lookup smp[first]
-const int MODE_GGX = 1;    // the GGX lobe: smp[first .. first + count)
+// The points of the exact sums follow the source levels in `src`, two texels each: the unit
+// direction (xyz), then radiance x solid angle (rgb) (a texel fetch, not a storage buffer load:
+// see above).
 
 layout(push_constant) uniform Params {
-    int outSize;   // face size of the level written
-    int outOffset; // float offset of that level in `dst`
-    int first;     // this level's samples in smp
+    int outSize;    // face size of the level written
+    int outOffset;  // float offset of that level in `dst`
+    int first;      // this level's samples: smp[first .. first + count)
     int count;
-    int mode;
+    int pointFirst; // texel of this level's first point in src
+    int pointCount;
+    float alpha2;   // GGX alpha^2 of the level
+    float invNorm;  // 1 / integral of D(h) (n.l) dl
 } pc;
 
 vec3 faceDirection(int face, float u, float v) {
@@ -97,27 +100,31 @@ void main() {
     int face = index / (s * s), j = (index / s) % s, i = index % s;
     vec3 n = faceDirection(face, 2.0 * (float(i) + 0.5) / float(s) - 1.0,
                            2.0 * (float(j) + 0.5) / float(s) - 1.0);
-    vec3 result;
-    if (pc.mode == MODE_MIRROR) {
-        result = sampleLod(cubeCoord(n), smp[pc.first]);
-    } else {
-        vec3 up = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-        vec3 t = normalize(cross(up, n));
-        vec3 b = cross(n, t);
-        vec3 acc = vec3(0.0);
-        float wsum = 0.0;
-        for (int k = pc.first; k < pc.first + pc.count; ++k) {
-            Sample sm = smp[k];
-            vec3 hl = sm.dir.xyz;
-            vec3 h = hl.x * t + hl.y * b + hl.z * n;
-            vec3 l = 2.0 * hl.z * h - n;
-            float nl = dot(n, l);
-            if (nl <= 0.0) continue;
-            acc += nl * sampleLod(cubeCoord(l), sm);
-            wsum += nl;
-        }
-        result = wsum > 0.0 ? acc / wsum : vec3(0.0);
+    vec3 up = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+    vec3 t = normalize(cross(up, n));
+    vec3 b = cross(n, t);
+    vec3 acc = vec3(0.0);
+    float wsum = 0.0;
+    for (int k = pc.first; k < pc.first + pc.count; ++k) {
+        Sample sm = smp[k];
+        vec3 hl = sm.dir.xyz;
+        vec3 h = hl.x * t + hl.y * b + hl.z * n;
+        vec3 l = 2.0 * hl.z * h - n;
+        float nl = dot(n, l);
+        if (nl <= 0.0) continue;
+        acc += nl * sampleLod(cubeCoord(l), sm);
+        wsum += nl;
     }
+    // weft::ggxPointWeight: D(h) (n.l) with (n.h)^2 = (1 + n.l) / 2
+    vec3 exact = vec3(0.0);
+    for (int k = 0; k < pc.pointCount; ++k) {
+        int texel = pc.pointFirst + 2 * k;
+        float nl = dot(n, texelFetch(src, texel).xyz);
+        if (nl <= 0.0) continue;
+        float d = 0.5 * (1.0 + nl) * (pc.alpha2 - 1.0) + 1.0;
+        exact += (pc.alpha2 / (3.14159265358979 * d * d) * nl) * texelFetch(src, texel + 1).rgb;
+    }
+    vec3 result = (wsum > 0.0 ? acc / wsum : vec3(0.0)) + exact * pc.invNorm;
     int o = pc.outOffset + index * 3;
     dst[o] = result.x;
     dst[o + 1] = result.y;

@@ -58,11 +58,14 @@ CubeMap phongExact(const CubeMap& radiance, float shininess, int size, int sourc
 CubeMap phongSampled(const CubeMap& radiance, float shininess, int size, int samples = 64);
 /// GGX split-sum prefiltered chain (Karis 2013, N = V = R): mip level m of the result holds
 /// perceptual roughness m / (levels - 1) (alpha = roughness^2); level 0 is the source resampled.
-/// Filtered importance sampling as in phongSampled.
+/// Converged next to a small bright sun (cpp/src/ibl/GgxPlan.h): rough levels are exact sums over
+/// the texel clusters of a source mip; narrow ones sample (as phongSampled) the environment
+/// clamped to 8x its mean luminance and sum what the clamp removed exactly. `samples` sets both
+/// the samples per texel and the cluster budget (24 per sample, at most 16384).
 CubeMap prefilterGgx(const CubeMap& radiance, int size, int levels = 5, int samples = 64);
 /// prefilterGgx as a Vulkan compute shader on the shared device (a GPU, or lavapipe): the same
-/// algorithm and samples, equal to the CPU result up to float rounding (level 0 is an exact copy
-/// when `size` is the size of a source mip level). `dispatchMs` (optional) receives the wall time
+/// plan (samples, points, level 0 computed on the CPU), equal to the CPU result up to float
+/// rounding. `dispatchMs` (optional) receives the wall time
 /// of the recorded dispatches and copy (upload of the source chain and pipeline creation
 /// excluded). Throws weft::Error when no Vulkan device is usable, InvalidArgument when the
 /// source levels the samples read exceed the device's texel buffer size or `samples` exceeds

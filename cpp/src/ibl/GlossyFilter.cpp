@@ -9,6 +9,7 @@
 #include <weft/Error.h>
 
 #include "CubeTexels.h"
+#include "GgxPlan.h"
 #include "GgxSamples.h"
 #include "IblParallel.h"
 #include "IblValidate.h"
@@ -152,32 +153,32 @@ std::vector<GgxSample> ggxSamples(float alpha, int samples, float texelSolidAngl
 
 CubeMap prefilterGgx(const CubeMap& radiance, int size, int levels, int samples) {
     requireGgxArguments(radiance, size, levels, samples);
-    const CubeMap chain = withMips(radiance);
-    const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
+    const GgxPlan plan = ggxPlan(radiance, size, levels, samples);
     CubeMap out(size);
-    // Level 0: the source at the output size (mirror reflection).
-    const float lod0 = ggxMirrorLod(radiance.size(), size);
-    fillLevel(out, 0, [&](const glm::vec3& d) { return chain.sampleLod(d, lod0); });
+    std::copy(plan.mirror.data(), plan.mirror.data() + plan.mirror.floatCount(), out.data());
     out.buildMips(); // allocates the chain; levels 1 .. levels-1 are overwritten below
     out.keepLevels(levels);
     for (int m = 1; m < levels; ++m) {
-        const std::vector<GgxSample> table = ggxSamples(ggxLevelAlpha(m, levels), samples,
-                                                        texelOmega);
+        const GgxLevelPlan& p = plan.level[size_t(m)];
+        const float alpha2 = p.alpha * p.alpha;
         fillLevel(out, m, [&](const glm::vec3& n) {
             glm::vec3 t, b;
             tangentFrame(n, t, b);
             glm::vec3 acc(0.0f);
             float wsum = 0.0f;
-            for (const GgxSample& s : table) {
+            for (const GgxSample& s : p.samples) {
                 const glm::vec3& hl = s.h;
                 const glm::vec3 h = hl.x * t + hl.y * b + hl.z * n;
                 const glm::vec3 l = 2.0f * hl.z * h - n; // reflect V = N about H
                 const float nl = glm::dot(n, l);
                 if (nl <= 0.0f) continue;
-                acc += nl * chain.sampleLod(l, s.lod);
+                acc += nl * plan.clamped.sampleLod(l, s.lod);
                 wsum += nl;
             }
-            return wsum > 0.0f ? acc / wsum : glm::vec3(0.0f);
+            glm::vec3 exact(0.0f);
+            for (const GgxPoint& q : p.points)
+                exact += ggxPointWeight(glm::dot(n, q.dir), alpha2) * q.power;
+            return (wsum > 0.0f ? acc / wsum : glm::vec3(0.0f)) + exact * p.invNorm;
         });
     }
     return out;

@@ -1,7 +1,8 @@
-// The GGX chain on the GPU: the source mip levels the samples read in one texel buffer (faces
-// padded for seamless taps), the samples of every level in one storage buffer, one compute
-// dispatch per output level (glsl/ibl/prefilter_ggx.comp), read back into a CubeMap. Level 0 is
-// a buffer copy when the output size is a source level.
+// The GGX chain on the GPU: the plan's clamped source mip levels the samples read (faces padded
+// for seamless taps) and the exactly summed points of every level in one texel buffer, the
+// samples in a storage buffer, one compute dispatch per output level
+// (glsl/ibl/prefilter_ggx.comp), read back into a CubeMap. Level 0 (the plan's mirror level,
+// computed on the CPU) is a buffer copy.
 #include <weft/IblFilter.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <weft/Error.h>
 
 #include "CubeTexels.h"
+#include "GgxPlan.h"
 #include "GgxSamples.h"
 #include "IblValidate.h"
 #include "vk/ComputePipeline.h"
@@ -23,13 +25,16 @@ namespace weft {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-
 // Must match glsl/ibl/prefilter_ggx.comp.
-enum Mode : int32_t { kMirror = 0, kGgx = 1 };
-
 struct PrefilterPush {
-    int32_t outSize, outOffset, first, count, mode;
+    int32_t outSize, outOffset, first, count, pointFirst, pointCount;
+    float alpha2, invNorm;
+};
+
+// A point of the exact sum as the shader reads it: two RGBA texels, direction and radiance x
+// solid angle.
+struct GpuPoint {
+    float dir[4], power[4];
 };
 
 // One sample as the shader reads it (std430): the half vector in the texel's frame, the weight
@@ -146,27 +151,18 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
     CubeMap out(size);
     out.buildMips(); // allocates every level; the dispatches overwrite those kept
     out.keepLevels(levels);
-    const CubeMap chain = withMips(radiance);
+    const GgxPlan plan = ggxPlan(radiance, size, levels, samples);
+    const CubeMap& chain = plan.clamped;
 
-    // Every level's samples, computed once (not per texel) by the CPU filter's own code. The
-    // samples whose reflected direction lies below the horizon (n.l = 2 h.z^2 - 1 <= 0 for every
-    // texel) are dropped; those near 0 stay, the shader tests n.l per texel as the CPU does.
-    // Level 0 (the mirror level) is a copy of the source level of the output size when there is
-    // one, else the source read along each texel's direction.
-    const float texelOmega = 4.0f * kPi / (6.0f * float(radiance.size()) * float(radiance.size()));
-    const float lod0 = ggxMirrorLod(radiance.size(), size);
-    const int copyLevel = float(int(lod0)) == lod0 && chain.levelSize(int(lod0)) == size
-                              ? int(lod0) : -1;
+    // The samples whose reflected direction lies below the horizon (n.l = 2 h.z^2 - 1 <= 0 for
+    // every texel) are dropped; those near 0 stay, the shader tests n.l per texel as the CPU does.
     std::vector<std::vector<LodLookup>> lookups(static_cast<size_t>(levels));
-    int firstRead = chain.levels() - 1;
-    for (int m = 0; m < levels; ++m) {
+    int firstRead = std::max(chain.levels() - 1, 0);
+    for (int m = 1; m < levels; ++m) {
         auto& level = lookups[size_t(m)];
-        if (m == 0 && copyLevel < 0)
-            level.push_back(lodLookup(glm::vec3(0.0f, 0.0f, 1.0f), lod0, chain.levels()));
-        if (m > 0)
-            for (const GgxSample& g : ggxSamples(ggxLevelAlpha(m, levels), samples, texelOmega))
-                if (2.0f * g.h.z * g.h.z - 1.0f > -1e-3f)
-                    level.push_back(lodLookup(g.h, g.lod, chain.levels()));
+        for (const GgxSample& g : plan.level[size_t(m)].samples)
+            if (2.0f * g.h.z * g.h.z - 1.0f > -1e-3f)
+                level.push_back(lodLookup(g.h, g.lod, chain.levels()));
         for (const LodLookup& k : level) firstRead = std::min(firstRead, k.l0);
     }
     const PaddedSource padded = paddedSource(chain, firstRead);
@@ -174,31 +170,38 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
     auto shared = vk::Context::shared();
     vk::Context& ctx = *shared;
     const int64_t srcTexels = padded.offsets.back();
-    if (srcTexels > int64_t(ctx.properties().limits.maxTexelBufferElements) ||
-        srcTexels > int64_t(INT32_MAX))
-        throw InvalidArgument("GGX prefilter on the GPU: the source levels read (" +
-                              std::to_string(srcTexels) + " texels) exceed the device's texel " +
-                              "buffer limit; use a smaller source or prefilterGgx");
-
     std::vector<GpuSample> table;
+    std::vector<GpuPoint> pointTable;
     std::vector<PrefilterPush> pushes;
-    int32_t dstOffset = 0;
-    for (int m = 0; m < levels; ++m) {
+    int32_t dstOffset = int32_t(out.floatCount(0));
+    for (int m = 1; m < levels; ++m) {
+        const GgxLevelPlan& p = plan.level[size_t(m)];
         const int s = out.levelSize(m);
-        PrefilterPush push{s, dstOffset, int32_t(table.size()), 0, m == 0 ? kMirror : kGgx};
+        PrefilterPush push{s, dstOffset, int32_t(table.size()), 0,
+                           int32_t(srcTexels + 2 * int64_t(pointTable.size())),
+                           int32_t(p.points.size()), p.alpha * p.alpha, p.invNorm};
         dstOffset += int32_t(out.floatCount(m));
-        if (m == 0 && copyLevel >= 0) continue;
         for (const LodLookup& k : lookups[size_t(m)])
             table.push_back({{k.h.x, k.h.y, k.h.z}, k.blend,
                              int32_t(padded.offsets[size_t(k.l0)]), chain.levelSize(k.l0),
                              int32_t(padded.offsets[size_t(k.l1)]), chain.levelSize(k.l1)});
+        for (const GgxPoint& q : p.points)
+            pointTable.push_back({{q.dir.x, q.dir.y, q.dir.z, 0.0f},
+                                  {q.power.x, q.power.y, q.power.z, 0.0f}});
         push.count = int32_t(table.size()) - push.first;
         pushes.push_back(push);
     }
 
     size_t dstFloats = 0;
     for (int l = 0; l < out.levels(); ++l) dstFloats += out.floatCount(l);
-    vk::Buffer src(&ctx, size_t(std::max<int64_t>(srcTexels, 1)) * 4 * sizeof(float),
+    const int64_t allTexels = srcTexels + 2 * int64_t(pointTable.size());
+    if (allTexels > int64_t(ctx.properties().limits.maxTexelBufferElements) ||
+        allTexels > int64_t(INT32_MAX))
+        throw InvalidArgument("GGX prefilter on the GPU: the source levels read and the points (" +
+                              std::to_string(allTexels) + " texels) exceed the device's texel " +
+                              "buffer limit; use a smaller source or prefilterGgx");
+
+    vk::Buffer src(&ctx, size_t(std::max<int64_t>(allTexels, 1)) * 4 * sizeof(float),
                    VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, vk::MemoryUsage::Upload);
     vk::Buffer dst(&ctx, dstFloats * sizeof(float),
                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -207,13 +210,13 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::Upload);
     writePadded(chain, padded, static_cast<float*>(src.mapped()));
     if (!table.empty()) sampleBuffer.write(table.data(), table.size() * sizeof(GpuSample));
-    vk::Buffer mirror; // level 0 when it is a copy: that source level as it is laid out in `dst`
+    if (!pointTable.empty())
+        std::memcpy(static_cast<float*>(src.mapped()) + srcTexels * 4, pointTable.data(),
+                    pointTable.size() * sizeof(GpuPoint));
+    // Level 0, the plan's mirror level, as it is laid out in `dst`.
     const VkDeviceSize mirrorBytes = out.floatCount(0) * sizeof(float);
-    if (copyLevel >= 0) {
-        mirror = vk::Buffer(&ctx, mirrorBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                            vk::MemoryUsage::Upload);
-        mirror.write(chain.data(copyLevel), mirrorBytes);
-    }
+    vk::Buffer mirror(&ctx, mirrorBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::Upload);
+    mirror.write(plan.mirror.data(), mirrorBytes);
 
     const vk::ComputeProgram& program = vk::cachedComputeProgram(
         ctx, "ibl/prefilter_ggx.comp",
@@ -235,10 +238,8 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
 
     const auto start = std::chrono::steady_clock::now();
     ctx.immediate([&](VkCommandBuffer cmd) {
-        if (copyLevel >= 0) {
-            const VkBufferCopy region{0, 0, mirrorBytes};
-            vkCmdCopyBuffer(cmd, mirror.get(), dst.get(), 1, &region);
-        }
+        const VkBufferCopy region{0, 0, mirrorBytes};
+        vkCmdCopyBuffer(cmd, mirror.get(), dst.get(), 1, &region);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0,
                                 nullptr);
