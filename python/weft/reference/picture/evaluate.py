@@ -54,7 +54,8 @@ def evaluate(ref: ReferenceScene, renderer, spp: int, reference: Optional[np.nda
     linear = np.asarray(debug["linear"], np.float64)[..., :3]
     regions = cmp.masks(debug, ref.ground, ref.key_light, ref.background_drawn)
     result = cmp.compare(linear, reference, regions, ref.exposure)
-    return Evaluation(ref.name, linear, reference, debug, result, regions, seconds)
+    return Evaluation(ref.name, linear, reference, debug, result, regions, seconds,
+                      {"background_drawn": ref.background_drawn})
 
 
 def noise_floor(ref: ReferenceScene, width: int, height: int, spp: int,
