@@ -439,6 +439,24 @@ void bindScene(py::module_& m) {
             if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
             return fromMat4(s.instances()[id].transform);
         }, py::arg("id"), "An instance's object -> world matrix (4x4).")
+        // Read-only getters so that exporters (weft.reference.picture: the Mitsuba reference)
+        // can read a scene back instead of rebuilding it from a second description.
+        .def("mesh", [](const Scene& s, uint32_t id) -> py::object {
+            if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
+            const MeshPtr& mesh = s.instances()[id].mesh;
+            if (!mesh) return py::none();
+            return py::cast(std::const_pointer_cast<Mesh>(mesh));
+        }, py::arg("id"), "An instance's weft.Mesh (object space), or None for a cloth instance.")
+        .def("cloth", [](const Scene& s, uint32_t id) -> py::object {
+            if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
+            const auto& cloth = s.instances()[id].cloth;
+            if (!cloth) return py::none();
+            return py::cast(std::const_pointer_cast<Cloth>(cloth));
+        }, py::arg("id"), "A cloth instance's weft.Cloth (its mesh() is world space), else None.")
+        .def("casts_shadows", [](const Scene& s, uint32_t id) {
+            if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
+            return s.instances()[id].castShadows;
+        }, py::arg("id"), "Whether an instance casts shadows.")
         .def("add_light", &Scene::addLight, py::arg("light"),
              "Adds a DirectionalLight, PointLight or SpotLight; returns its id.")
         .def("set_light", &Scene::setLight, py::arg("id"), py::arg("light"))

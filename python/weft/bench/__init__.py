@@ -27,6 +27,7 @@ SUBSYSTEMS: Dict[str, str] = {
     "hair": "weft.bench.hair",
     "btf": "weft.bench.btf",
     "ibl": "weft.bench.ibl",
+    "picture": "weft.bench.picture",
 }
 
 __all__ = ["SUBSYSTEMS", "main", "load_subsystem", "machine_info", "Progress", "write_report",

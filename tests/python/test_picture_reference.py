@@ -1,0 +1,273 @@
+"""weft's picture against an independent truth (issue 18): Mitsuba 3's path tracer on the
+reference scene set (FLIP + relative error, whole / covered / objects / edges) and the 4x4
+supersampled anti-aliasing reference; plus the conventions the Mitsuba export rests on, each
+checked against Mitsuba itself (a wrong convention would make the reference lie silently).
+
+Tolerances are today's measured values plus a margin (numbers in the comments, measured at
+this file's size: 128 x 96, 512 spp); they are ceilings for regressions, to be lowered towards
+the issue's targets (FLIP <= 0.04 whole, <= 0.08 objects / edges) as the picture improves.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import weft
+import weft.ibl
+import weft.reference.ibl
+import weft.scenes
+
+mi = pytest.importorskip("mitsuba", reason="mitsuba (PyPI) is not installed: no path-traced "
+                                           "reference")
+pytest.importorskip("flip_evaluator", reason="flip-evaluator (PyPI) is not installed")
+
+from weft.reference.picture import antialias as aa  # noqa: E402
+from weft.reference.picture import compare as cmp  # noqa: E402
+from weft.reference.picture import conventions as conv  # noqa: E402
+from weft.reference.picture import environment as envmod  # noqa: E402
+from weft.reference.picture import evaluate as ev  # noqa: E402
+from weft.reference.picture import mitsuba_export as mx  # noqa: E402
+from weft.reference.picture import scenes  # noqa: E402
+
+W, H, SPP = 128, 96, 512
+
+#: Per scene and region: (FLIP ceiling, relative-error ceiling). Today (128 x 96, 512 spp,
+#: background masked out until weft draws the sky; `python -m weft.bench picture --size 128 96
+#: --spp 512`), FLIP / rel:
+#:   spheres_sky  covered 0.166 / 0.075  objects 0.252 / 0.132  edges 0.350
+#:   spheres_sun  covered 0.178 / 0.075  objects 0.297 / 0.166  edges 0.374  unlit bias -0.40
+#:   cloth        covered 0.152 / 0.061  objects 0.284 / 0.139  edges 0.356  unlit bias -0.63
+#:   dome         covered 0.098 / 0.040  objects 0.280 / 0.122  edges 0.435
+#: The reference's pair noise floor (two seeds) is 0.017-0.035 FLIP. Margin: +25% of today's
+#: value (a 128 x 96 frame's FLIP moves by a few % with the reference's noise).
+TOLERANCES = {
+    "spheres_sky": {"covered": (0.21, 0.095), "objects": (0.32, 0.17), "edges": (0.44, None)},
+    "spheres_sun": {"covered": (0.22, 0.095), "objects": (0.37, 0.21), "edges": (0.47, None)},
+    "cloth": {"covered": (0.19, 0.08), "objects": (0.36, 0.18), "edges": (0.45, None)},
+    "dome": {"covered": (0.125, 0.05), "objects": (0.35, 0.155), "edges": (0.55, None)},
+}
+
+
+@pytest.fixture(scope="module")
+def renderer():
+    return weft.Renderer(W, H)
+
+
+@pytest.fixture(scope="module")
+def evaluations(renderer):
+    """Each reference scene rendered once by weft and once by Mitsuba."""
+    return {name: ev.evaluate(scenes.build(name), renderer, SPP) for name in scenes.SCENES}
+
+
+# ---------------------------------------------------------------------------------------------
+# Conventions, each against Mitsuba itself
+# ---------------------------------------------------------------------------------------------
+
+def _plane_scene(material, light=None, ambient=(0.0, 0.0, 0.0)):
+    scene = weft.Scene()
+    scene.ambient = ambient
+    scene.add_mesh(weft.Mesh.plane(6.0, 6.0), material)
+    if light is not None:
+        scene.add_light(light)
+    return scene
+
+
+TOP = weft.Camera(position=(0.0, 3.0, 0.01), target=(0.0, 0.0, 0.0), fov_y=0.3)
+
+
+def test_directional_light_units_match_lambert():
+    """weft's diffuse K_D T (n.l) L has no 1/pi: Mitsuba's irradiance pi L under a Lambertian
+    K_D T gives the same radiance, also at a slant (n.l = cos 60 deg)."""
+    for direction, cos in (((0.0, -1.0, 0.0), 1.0), ((0.0, -0.5, -math.sqrt(0.75)), 0.5)):
+        light = weft.DirectionalLight(direction=direction, color=(1.0, 0.5, 0.25), intensity=0.8)
+        scene = _plane_scene(weft.Material(kd=(0.6, 0.6, 0.6)), light)
+        got = mx.render_mitsuba(scene, TOP, 8, 8, spp=16, integrator="direct")[4, 4]
+        want = 0.6 * cos * 0.8 * np.array([1.0, 0.5, 0.25])
+        np.testing.assert_allclose(got, want, rtol=2e-3)
+        lin = weft.Renderer(8, 8).render_linear(scene, TOP)[4, 4, :3]
+        np.testing.assert_allclose(lin, want, rtol=2e-3)
+
+
+def test_glossy_lobe_adds_to_an_undiminished_lambertian():
+    """The exported glossy material is Lambert K_D T + a GGX lobe whose normal-incidence peak is
+    weft's K_S L (F0 = 8 K_S / (s + 2)): on a plane lit and seen from straight above, weft and
+    Mitsuba agree to 1%."""
+    light = weft.DirectionalLight(direction=(0.0, -1.0, 0.0), intensity=1.0)
+    scene = _plane_scene(weft.Material(kd=(0.5, 0.5, 0.5), ks=(0.04,) * 3, shininess=12.0), light)
+    got = mx.render_mitsuba(scene, TOP, 8, 8, spp=256, integrator="direct")[4, 4]
+    lin = weft.Renderer(8, 8).render_linear(scene, TOP)[4, 4, :3]
+    assert got[0] > 0.5 * 1.05  # the lobe is there
+    np.testing.assert_allclose(got, lin, rtol=0.01)
+    assert conv.highlight_f0(0.04, 12.0) == pytest.approx(8 * 0.04 / 14)
+    assert conv.ior_from_f0(0.04) == pytest.approx(1.5)
+
+
+def test_environment_diffuse_is_lambert_under_the_radiance():
+    """weft's environment diffuse K_D T E / pi is a Lambertian under the radiance: a plane facing
+    up under a constant sky of radiance c shows K_D c in Mitsuba and in weft."""
+    faces = np.full((6, 16, 16, 3), 0.7, np.float32)
+    scene = _plane_scene(weft.Material(kd=(0.5, 0.5, 0.5), environment_diffuse=1.0))
+    scene.set_environment(weft.ibl.CubeMap(faces))
+    got = mx.render_mitsuba(scene, TOP, 8, 8, spp=1024, integrator="direct")[4, 4]
+    lin = weft.Renderer(8, 8).render_linear(scene, TOP)[4, 4, :3]
+    np.testing.assert_allclose(got, 0.35, rtol=0.02)  # upper hemisphere only: E = pi c
+    np.testing.assert_allclose(lin, 0.35, rtol=0.02)
+
+
+def test_mitsuba_envmap_axes():
+    """The measured mapping: radiance from world direction d is the equirect at u = atan2(x, -z)
+    / 2 pi, v = acos(y) / pi. Each axis direction evaluates to the texel our converter put
+    there (a cube whose faces hold distinct colours)."""
+    mx.import_mitsuba()
+    faces = np.zeros((6, 8, 8, 3), np.float32)
+    colours = np.eye(3)[[0, 0, 1, 1, 2, 2]] * np.array([1, 2, 1, 2, 1, 2])[:, None]
+    faces[:] = colours[:, None, None, :]
+    emitter = mi.load_dict(mx.environment_emitter(mi, faces))
+    for face, d in enumerate([(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1),
+                              (0, 0, -1)]):
+        d = np.array(d, float) + 0.05 * np.array([0.3, 0.2, 0.1])  # off the u seam
+        si = mi.SurfaceInteraction3f()
+        si.wi = mi.Vector3f(*(-d / np.linalg.norm(d)))
+        np.testing.assert_allclose(np.array(emitter.eval(si)), colours[face], atol=1e-5,
+                                   err_msg=f"face {face}")
+
+
+def test_environment_direction_and_camera_agree_with_weft():
+    """One bright patch of sky lights a diffuse sphere: the brightest pixel is the same in
+    weft's frame and Mitsuba's (environment axes + camera: fov axis, look-at, no mirroring)."""
+    d0 = np.array([0.8, 0.5, 0.33])
+    d0 /= np.linalg.norm(d0)
+    dirs = weft.reference.ibl.texel_directions(32)
+    faces = (0.02 + 40.0 * ((dirs @ d0) > math.cos(math.radians(8.0)))[..., None]
+             * np.ones(3)).astype(np.float32)
+    scene = weft.Scene()
+    scene.ambient = (0.0, 0.0, 0.0)
+    scene.add_mesh(weft.Mesh.uv_sphere(1.0, 64, 32),
+                   weft.Material(kd=(0.8, 0.8, 0.8), environment_diffuse=1.0))
+    scene.set_environment(weft.ibl.CubeMap(faces))
+    camera = weft.Camera(position=(0.4, 0.6, 4.0), target=(0.0, 0.0, 0.0), fov_y=0.6)
+    ref = mx.render_mitsuba(scene, camera, 64, 48, spp=64, integrator="direct") @ cmp.LUMA
+    got = weft.Renderer(64, 48).render_linear(scene, camera)[..., :3] @ cmp.LUMA
+    peak = lambda img: np.array(np.unravel_index(np.argmax(img), img.shape))  # noqa: E731
+    assert np.abs(peak(ref) - peak(got)).max() <= 3, (peak(ref), peak(got))
+    # and the lit side is the +x, +y side (right, top) in both images
+    assert peak(got)[1] > 32 and peak(got)[0] < 24
+
+
+def test_cube_to_equirect_keeps_the_power_of_a_sun():
+    """Supersampled nearest lookup: the equirect's integral (sin-theta weights) equals the
+    cube's (texel solid angles) for the sky with its small sun, to 1%."""
+    faces = envmod.sky_faces(32, sun=True)
+    eq = envmod.cube_to_equirect(faces).astype(np.float64)
+    h, w = eq.shape[:2]
+    theta = (np.arange(h) + 0.5) / h * np.pi
+    eq_power = (eq * (np.sin(theta) * (np.pi / h) * (2 * np.pi / w))[:, None, None]).sum((0, 1))
+    omega = weft.reference.ibl.texel_solid_angles(32)
+    cube_power = (faces * omega[None, ..., None]).sum((0, 1, 2))
+    np.testing.assert_allclose(eq_power, cube_power, rtol=0.01)
+
+
+def test_export_refuses_what_it_cannot_represent():
+    scene = weft.Scene()
+    scene.add_mesh(weft.Mesh.plane(1.0, 1.0), weft.Material())
+    scene.add_light(weft.SpotLight())
+    with pytest.raises(weft.InvalidArgument, match="SpotLight"):
+        mx.export_scene(scene, TOP, 8, 8)
+    with pytest.raises(weft.InvalidArgument, match="integrator"):
+        mx.export_scene(weft.Scene(), TOP, 8, 8, integrator="bdpt")
+    tex = weft.Texture(np.full((2, 2, 4), 255, np.uint8))
+    scene = weft.Scene()
+    scene.add_mesh(weft.Mesh.plane(1.0, 1.0), weft.Material(texture=tex))
+    with pytest.raises(weft.InvalidArgument, match="textured"):
+        mx.export_scene(scene, TOP, 8, 8)
+    with pytest.raises(weft.InvalidArgument, match="unknown reference scene"):
+        scenes.build("teapot")
+
+
+def test_scene_getters_read_the_scene_back():
+    scene, camera, cloth = weft.scenes.cloth_scene(resolution=8, steps=2)
+    assert scene.mesh(0).vertex_count == 81 and scene.cloth(0) is None
+    assert scene.mesh(2) is None and scene.cloth(2) is cloth
+    assert scene.casts_shadows(0) is False and scene.casts_shadows(1) is True
+    with pytest.raises(weft.InvalidArgument):
+        scene.mesh(7)
+
+
+# ---------------------------------------------------------------------------------------------
+# The reference scenes
+# ---------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("name", scenes.SCENES)
+def test_picture_against_path_traced_reference(evaluations, name):
+    e = evaluations[name]
+    regions = e.result["regions"]
+    assert np.isfinite(e.reference).all() and e.reference.mean() > 0.02
+    for region, (flip_max, rel_max) in TOLERANCES[name].items():
+        r = regions[region]
+        assert 0.0 < r["flip"] <= flip_max, (name, region, r)
+        if rel_max is not None:
+            assert r["rel"] <= rel_max, (name, region, r)
+    if "whole" in regions and e.info.get("background_drawn"):
+        assert regions["whole"]["flip"] <= TOLERANCES[name]["covered"][0]
+
+
+def test_reference_noise_floor_is_below_the_tolerances(evaluations):
+    """A second Mitsuba frame (other seed) against the first: the pair's FLIP is what noise
+    alone scores, far below every tolerance (today 0.02-0.04 at 128 spp against >= 0.12)."""
+    ref = scenes.build("spheres_sky")
+    e = evaluations["spheres_sky"]
+    floor = ev.noise_floor(ref, W, H, SPP // 4, e.reference, e.regions)  # 4x the noise: a bound
+    for region, (flip_max, _) in TOLERANCES["spheres_sky"].items():
+        assert floor[region] < 0.4 * flip_max, (region, floor)
+
+
+def test_the_unlit_side_lacks_bounce_light(evaluations):
+    """Where the key light does not reach, weft has only its environment / ambient term; the
+    path tracer adds the light bounced off the ground. Today weft is 40-63% too dark there:
+    this documents it (and fails once it is fixed, to be tightened then)."""
+    for name in ("spheres_sun", "cloth"):
+        unlit = evaluations[name].result["regions"]["unlit"]
+        assert unlit["bias"] < -0.2, (name, unlit)
+
+
+# ---------------------------------------------------------------------------------------------
+# Anti-aliasing reference
+# ---------------------------------------------------------------------------------------------
+
+def test_box_downsample_and_edge_masks():
+    img = np.arange(16, dtype=float).reshape(4, 4, 1)
+    np.testing.assert_allclose(aa.box_downsample(img, 2)[..., 0], [[2.5, 4.5], [10.5, 12.5]])
+    ids = np.zeros((5, 5), int)
+    ids[2, 2] = 1
+    assert cmp.edge_mask(ids).sum() == 9
+
+
+def test_aa_reference_measures_todays_aliasing():
+    """Without MSAA, silhouettes of the default scene are off by several levels against the
+    4x4 supersampled frame (today 6.8/255 at 160 x 120, 7.0 at 128 x 96; ~1/255 in the
+    interior)."""
+    scene, camera = weft.default_scene()
+    out = aa.aa_edge_error(scene, camera, weft.Renderer(160, 120))
+    assert out["mesh_edges_pixels"] > 300
+    assert out["interior"] < 2.0
+    if not hasattr(weft.Renderer, "msaa"):
+        assert 4.0 < out["mesh_edges"] < 10.0, out["mesh_edges"]
+
+
+def test_aa_targets_at_default_settings():
+    """Issue 18's targets for the renderer's defaults: <= 4/255 on mesh edges, <= 6/255 on hair
+    (1-pixel ribbons), against the 4x4 supersampled frame."""
+    if not hasattr(weft.Renderer, "msaa"):
+        pytest.skip("MSAA not built yet")
+    scene, camera = weft.default_scene()
+    mesh = aa.aa_edge_error(scene, camera, weft.Renderer(160, 120))
+    assert mesh["mesh_edges"] <= 4.0, mesh["mesh_edges"]
+    hscene, hcamera, width = aa.hair_scene(160, 120)
+    r = weft.Renderer(160, 120)
+    r.hair_primitive = "ribbons"
+    r.hair_width = width
+    hair = aa.aa_edge_error(hscene, hcamera, r)
+    assert hair["hair_edges"] <= 6.0, hair["hair_edges"]
