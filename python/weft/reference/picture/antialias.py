@@ -48,8 +48,8 @@ def aa_edge_error(scene, camera, renderer, factor: int = FACTOR,
     import weft
 
     w, h = int(renderer.width), int(renderer.height)
-    debug = renderer.render_debug(scene, camera)
-    normal = np.asarray(debug["linear"], np.float64)[..., :3]
+    debug = renderer.render_debug(scene, camera)  # never multisampled: ids and masks only
+    normal = np.asarray(renderer.render_linear(scene, camera), np.float64)[..., :3]
     big = (make_renderer or (lambda ww, hh: weft.Renderer(ww, hh)))(w * factor, h * factor)
     _copy_settings(renderer, big)
     hi = np.asarray(big.render_linear(scene, camera), np.float64)[..., :3]
