@@ -34,20 +34,28 @@ from weft.reference.picture import scenes  # noqa: E402
 
 W, H, SPP = 128, 96, 512
 
-#: Per scene and region: (FLIP ceiling, relative-error ceiling). Today (128 x 96, 512 spp,
-#: background masked out until weft draws the sky; `python -m weft.bench picture --size 128 96
-#: --spp 512`), FLIP / rel:
-#:   spheres_sky  covered 0.166 / 0.075  objects 0.252 / 0.132  edges 0.350
-#:   spheres_sun  covered 0.178 / 0.075  objects 0.297 / 0.166  edges 0.374  unlit bias -0.40
-#:   cloth        covered 0.152 / 0.061  objects 0.284 / 0.139  edges 0.356  unlit bias -0.63
-#:   dome         covered 0.098 / 0.040  objects 0.280 / 0.122  edges 0.435
-#: The reference's pair noise floor (two seeds) is 0.017-0.035 FLIP. Margin: +25% of today's
-#: value (a 128 x 96 frame's FLIP moves by a few % with the reference's noise).
+#: Per scene and region: (FLIP ceiling, relative-error ceiling). Measured at 128 x 96, 512 spp
+#: (`python -m weft.bench picture --quick --size 128 96 --spp 512`), FLIP / rel, before -> after
+#: the environment background, MSAA and the soft dome shadows:
+#:   spheres_sky  whole 0.33 -> 0.099  covered 0.166 -> 0.120 / 0.057  objects 0.252 -> 0.199
+#:                edges 0.350 -> 0.157
+#:   spheres_sun  whole 0.34 -> 0.118  covered 0.178 -> 0.148 / 0.069  objects 0.297 -> 0.260
+#:                edges 0.374 -> 0.207  unlit bias -0.40 (no bounce light yet)
+#:   cloth        whole 0.29 -> 0.295  covered 0.152 / 0.061  objects 0.284 / 0.139  edges 0.356
+#:                unlit bias -0.63
+#:   dome         whole 0.31 -> 0.057  covered 0.098 -> 0.060 / 0.029  objects 0.280 -> 0.227
+#:                edges 0.435 -> 0.163
+#: The reference's pair noise floor (two seeds) is 0.014-0.037 FLIP. Margin: +25% of the value
+#: (a 128 x 96 frame's FLIP moves by a few % with the reference's noise). The issue's targets
+#: (whole <= 0.04, objects and edges <= 0.08) are not met yet: bounce light is missing.
 TOLERANCES = {
-    "spheres_sky": {"covered": (0.21, 0.095), "objects": (0.32, 0.17), "edges": (0.44, None)},
-    "spheres_sun": {"covered": (0.22, 0.095), "objects": (0.37, 0.21), "edges": (0.47, None)},
+    "spheres_sky": {"whole": (0.125, None), "covered": (0.15, 0.075), "objects": (0.25, 0.17),
+                    "edges": (0.2, None)},
+    "spheres_sun": {"whole": (0.15, None), "covered": (0.185, 0.09), "objects": (0.33, 0.21),
+                    "edges": (0.26, None)},
     "cloth": {"covered": (0.19, 0.08), "objects": (0.36, 0.18), "edges": (0.45, None)},
-    "dome": {"covered": (0.125, 0.05), "objects": (0.35, 0.155), "edges": (0.55, None)},
+    "dome": {"whole": (0.075, None), "covered": (0.075, 0.037), "objects": (0.29, 0.155),
+             "edges": (0.21, None)},
 }
 
 
