@@ -86,7 +86,8 @@ void bindRender(py::module_& m) {
         "Vulkan renderer drawing a Scene from a Camera into an offscreen image of width x height.")
         .def(py::init([](int64_t width, int64_t height, int64_t shadowMapSize, int pcfRadius,
                          float biasConstant, float biasSlope, float biasMax, float normalOffset,
-                         bool reuseShadowMaps, int64_t msaa, float exposure, const std::string& toneMap) {
+                         bool reuseShadowMaps, int64_t msaa, float exposure, const std::string& toneMap,
+                         bool bounce) {
             if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
                 throw InvalidArgument("render target size must be positive (got " +
                                       std::to_string(width) + "x" + std::to_string(height) + ")");
@@ -105,12 +106,14 @@ void bindRender(py::module_& m) {
             s.msaa = uint32_t(msaa);
             s.exposure = exposure;
             s.toneMap = toneMapOf(toneMap);
+            s.bounce = bounce;
             return std::make_unique<Renderer>(uint32_t(width), uint32_t(height), s);
         }), py::arg("width"), py::arg("height"), py::arg("shadow_map_size") = 2048,
            py::arg("pcf_radius") = 1, py::arg("bias_constant") = 0.0005f,
            py::arg("bias_slope") = 0.0015f, py::arg("bias_max") = 0.01f,
            py::arg("normal_offset") = 1.5f, py::arg("reuse_shadow_maps") = true,
-           py::arg("msaa") = 4, py::arg("exposure") = 0.0f, py::arg("tone_map") = "clamp")
+           py::arg("msaa") = 4, py::arg("exposure") = 0.0f, py::arg("tone_map") = "clamp",
+           py::arg("bounce") = true)
         .def_property_readonly("width", &Renderer::width)
         .def_property_readonly("height", &Renderer::height)
         .def_property_readonly("device_name", &Renderer::deviceName)
@@ -128,6 +131,15 @@ void bindRender(py::module_& m) {
         .WEFT_SETTING("bias_max", biasMax, float)
         .WEFT_SETTING("normal_offset", normalOffset, float)
         .WEFT_SETTING("reuse_shadow_maps", reuseShadowMaps, bool)
+        .def_property("bounce", [](const Renderer& r) { return r.settings().bounce; },
+            [](Renderer& r, bool v) {
+                RenderSettings s = r.settings();
+                s.bounce = v;
+                r.setSettings(s);
+            },
+            "One bounce of diffuse light: what the receivers (instances that cast no shadow, such "
+            "as a ground) reflect onto the shadow casters, and the sky and ambient they hide from "
+            "them (a small SH9 capture per caster, at most 8).")
         .def_property("msaa", [](const Renderer& r) { return r.settings().msaa; },
             [](Renderer& r, int64_t v) {
                 RenderSettings s = r.settings();

@@ -160,6 +160,9 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
         irradiance = sphere ? textureLod(sphereIrradiance, sphereMapUv(n), 0.0).rgb *
                                   frame.environment.x
                             : environmentIrradiance(n);
+        // the part of the sky the receivers hide from a caster (bounce.glsl)
+        int bp = bounceProbe(ins);
+        if (bp >= 0) irradiance = max(irradiance - bounceIrradiance(bp, 1, n), vec3(0.0));
         if (frame.environment.z > 0.0) {
             lit = max(irradiance - domeOccluded(p, n) * frame.environment.x, vec3(0.0));
             float full = dot(irradiance, vec3(0.2126, 0.7152, 0.0722));

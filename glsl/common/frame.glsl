@@ -30,7 +30,8 @@ struct Instance {
     vec4 baseColor;
     vec4 environment; // rgb: reflectivity (Fresnel F0), w: environment-diffuse weight
     vec4 maps;      // x: log2(shininess max / shininess), exponent in the specular map's
-                    //    alpha; 0: none. y: normal-map scale of x and y
+                    //    alpha; 0: none. y: normal-map scale of x and y. z: bounce capture + 1
+                    //    (0: none; bounce.glsl)
 };
 
 layout(set = 0, binding = 0) uniform FrameUbo {
@@ -47,7 +48,8 @@ layout(set = 0, binding = 0) uniform FrameUbo {
                    // blur pass, w: background image
     vec4 viewport; // xy: 1 / target size
     mat4 inverseViewProj; // clip -> world (the background's view rays)
-    vec4 sky;      // x: environment drawn as background, y: its chain level (< 0: radiance cube)
+    vec4 sky;      // x: environment drawn as background, y: its chain level (< 0: radiance cube),
+                   // z: bounce light (bounce.glsl) in this frame
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };

@@ -2,6 +2,7 @@
 // (SPEC §1.2, §1.3 eq. 2.3-2.5, 2.8-2.10; §1.5). python/weft/reference/shading.py and
 // shadow.py implement the same equations in NumPy.
 #include "frame.glsl"
+#include "bounce.glsl"
 #include "environment.glsl"
 
 layout(set = 1, binding = 0) uniform sampler2D baseTexture;
@@ -227,6 +228,13 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
         }
     }
     sh.environment = environmentTerms(p, n, v, sf.T, sf.alpha, ins);
+    // One bounce (bounce.glsl): the receivers keep the ambient out of the solid angle they
+    // cover and send their own radiance instead, as diffuse light not darkened by the dome.
+    int bp = bounceProbe(ins);
+    if (bp >= 0) {
+        float covered = min(bounceIrradiance(bp, 2, n).x, 1.0);
+        sh.ambient = sh.ambient * (1.0 - covered) + bounceIrradiance(bp, 0, n) * ins.kd.rgb * sf.T;
+    }
     return sh;
 }
 

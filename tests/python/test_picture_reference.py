@@ -35,27 +35,30 @@ from weft.reference.picture import scenes  # noqa: E402
 W, H, SPP = 128, 96, 512
 
 #: Per scene and region: (FLIP ceiling, relative-error ceiling). Measured at 128 x 96, 512 spp
-#: (`python -m weft.bench picture --quick --size 128 96 --spp 512`), FLIP / rel, before -> after
-#: the environment background, MSAA and the soft dome shadows:
-#:   spheres_sky  whole 0.33 -> 0.099  covered 0.166 -> 0.120 / 0.057  objects 0.252 -> 0.199
-#:                edges 0.350 -> 0.157
-#:   spheres_sun  whole 0.34 -> 0.118  covered 0.178 -> 0.148 / 0.069  objects 0.297 -> 0.260
-#:                edges 0.374 -> 0.207  unlit bias -0.40 (no bounce light yet)
-#:   cloth        whole 0.29 -> 0.295  covered 0.152 / 0.061  objects 0.284 / 0.139  edges 0.356
-#:                unlit bias -0.63
-#:   dome         whole 0.31 -> 0.057  covered 0.098 -> 0.060 / 0.029  objects 0.280 -> 0.227
-#:                edges 0.435 -> 0.163
-#: The reference's pair noise floor (two seeds) is 0.014-0.037 FLIP. Margin: +25% of the value
+#: (`python -m weft.bench picture --size 128 96 --spp 512`), FLIP / rel, before the picture work
+#: -> after the environment background, MSAA and the soft dome shadows -> after one bounce
+#: (BounceProbes; the cloth scene also shows its uniform sky as the background now):
+#:   spheres_sky  whole 0.33 -> 0.099 -> 0.077  covered 0.166 -> 0.120 -> 0.087 / 0.040
+#:                objects 0.252 -> 0.199 -> 0.096 / 0.058  edges 0.350 -> 0.157 -> 0.119
+#:   spheres_sun  whole 0.34 -> 0.118 -> 0.088  covered 0.178 -> 0.148 -> 0.103 / 0.047
+#:                objects 0.297 -> 0.260 -> 0.120 / 0.069  edges 0.374 -> 0.207 -> 0.144
+#:                unlit bias -0.40 -> -0.17
+#:   cloth        whole 0.29 -> 0.295 -> 0.081  covered 0.152 -> 0.100 / 0.044
+#:                objects 0.284 -> 0.125 / 0.060  edges 0.356 -> 0.151  unlit bias -0.63 -> -0.34
+#:   dome         whole 0.31 -> 0.057 -> 0.045  covered 0.098 -> 0.060 -> 0.043 / 0.021
+#:                objects 0.280 -> 0.227 -> 0.048 / 0.026  edges 0.435 -> 0.163 -> 0.094
+#: The reference's pair noise floor (two seeds) is 0.013-0.037 FLIP. Margin: +25% of the value
 #: (a 128 x 96 frame's FLIP moves by a few % with the reference's noise). The issue's targets
-#: (whole <= 0.04, objects and edges <= 0.08) are not met yet: bounce light is missing.
+#: (whole <= 0.04, objects and edges <= 0.08) are met for the dome's objects only so far.
 TOLERANCES = {
-    "spheres_sky": {"whole": (0.125, None), "covered": (0.15, 0.075), "objects": (0.25, 0.17),
-                    "edges": (0.2, None)},
-    "spheres_sun": {"whole": (0.15, None), "covered": (0.185, 0.09), "objects": (0.33, 0.21),
-                    "edges": (0.26, None)},
-    "cloth": {"covered": (0.19, 0.08), "objects": (0.36, 0.18), "edges": (0.45, None)},
-    "dome": {"whole": (0.075, None), "covered": (0.075, 0.037), "objects": (0.29, 0.155),
-             "edges": (0.21, None)},
+    "spheres_sky": {"whole": (0.096, None), "covered": (0.11, 0.05), "objects": (0.12, 0.073),
+                    "edges": (0.15, None)},
+    "spheres_sun": {"whole": (0.11, None), "covered": (0.13, 0.059), "objects": (0.15, 0.086),
+                    "edges": (0.18, None)},
+    "cloth": {"whole": (0.10, None), "covered": (0.125, 0.055), "objects": (0.156, 0.075),
+              "edges": (0.19, None)},
+    "dome": {"whole": (0.056, None), "covered": (0.054, 0.027), "objects": (0.06, 0.033),
+             "edges": (0.12, None)},
 }
 
 
@@ -178,6 +181,7 @@ def test_cube_to_equirect_keeps_the_power_of_a_sun():
     np.testing.assert_allclose(eq_power, cube_power, rtol=0.01)
 
 
+
 def test_export_refuses_what_it_cannot_represent():
     scene = weft.Scene()
     scene.add_mesh(weft.Mesh.plane(1.0, 1.0), weft.Material())
@@ -224,22 +228,26 @@ def test_picture_against_path_traced_reference(evaluations, name):
 
 def test_reference_noise_floor_is_below_the_tolerances(evaluations):
     """A second Mitsuba frame (other seed) against the first: the pair's FLIP is what noise
-    alone scores, far below every tolerance (today 0.02-0.04 at 128 spp against >= 0.12)."""
+    alone scores, well below every tolerance (0.03-0.045 at 128 spp against >= 0.096)."""
     ref = scenes.build("spheres_sky")
     e = evaluations["spheres_sky"]
     floor = ev.noise_floor(ref, W, H, SPP // 4, e.reference, e.regions)  # 4x the noise: a bound
     for region, (flip_max, _) in TOLERANCES["spheres_sky"].items():
-        assert floor[region] < 0.4 * flip_max, (region, floor)
+        assert floor[region] < 0.5 * flip_max, (region, floor)
 
 
-def test_the_unlit_side_lacks_bounce_light(evaluations):
-    """Where the key light does not reach, weft has only its environment / ambient term; the
-    path tracer adds the light bounced off the ground. Today weft is 40-63% too dark there:
-    this documents it (and fails once it is fixed, to be tightened then)."""
-    for name in ("spheres_sun", "cloth"):
-        unlit = evaluations[name].result["regions"]["unlit"]
-        assert unlit["bias"] < -0.2, (name, unlit)
-
+def test_bounce_light_brings_the_unlit_side_towards_the_path_tracer(evaluations):
+    """Where the key light does not reach, the path tracer adds light bounced off the ground.
+    Without bounce weft is 41-63% too dark there; one bounce (the receivers' SH9 captures)
+    takes it to 17-34% (measured -0.17 and -0.34; the issue's target, 10%, needs more than one
+    bounce and a capture per surface region of a concave cloth)."""
+    for name, floor in (("spheres_sun", -0.22), ("cloth", -0.42)):
+        e = evaluations[name]
+        unlit = e.result["regions"]["unlit"]
+        assert floor < unlit["bias"] < 0.05, (name, unlit)
+        ref = scenes.build(name)
+        without = ev.evaluate(ref, weft.Renderer(W, H, bounce=False), SPP, reference=e.reference)
+        assert without.result["regions"]["unlit"]["bias"] < unlit["bias"] - 0.2, name
 
 # ---------------------------------------------------------------------------------------------
 # Anti-aliasing reference

@@ -41,6 +41,10 @@ struct RenderSettings {
     /// Keep the shadow maps of the last frame when no shadow view and no shadow caster changed.
     bool reuseShadowMaps = true;
     uint32_t probeSize = 64;        // texels per face of the dynamic reflection capture
+    /// One bounce of diffuse light from the receivers (instances that cast no shadow: grounds,
+    /// walls) onto the shadow casters, and the sky and ambient they hide from them (per-caster
+    /// SH9 captures, render/BounceProbes.h).
+    bool bounce = true;
     /// Multisample anti-aliasing of the forward pass: 1, 2, 4 or 8 samples per pixel, lowered
     /// to what the device supports (debug frames are never multisampled).
     uint32_t msaa = 4;

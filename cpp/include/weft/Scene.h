@@ -120,6 +120,8 @@ public:
     /// World-space bounds of all mesh and hair instances (min > max when the scene is empty);
     /// with `castersOnly`, of those that cast shadows (what shadow maps must enclose).
     void bounds(glm::vec3& lo, glm::vec3& hi, bool castersOnly = false) const;
+    /// World-space bounds of mesh instance `index` (a cloth's: of its particles, holes left out).
+    void instanceBounds(size_t index, glm::vec3& lo, glm::vec3& hi) const;
     /// Increases whenever anything in the scene changes; the renderer reuses work by it.
     uint64_t version() const { return mVersion; }
 

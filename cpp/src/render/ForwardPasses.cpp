@@ -57,6 +57,7 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
     std::vector<ResourceUse> reads = {{f.rShadow, Use::Sampled}};
     if (f.rDomeMaps >= 0) reads.push_back({f.rDomeMaps, Use::Sampled});
     if (f.rProbe >= 0) reads.push_back({f.rProbe, Use::Sampled});
+    if (f.rBounceSh >= 0) reads.push_back({f.rBounceSh, Use::Sampled});
     if (f.background) reads.push_back({rColour, Use::ColorWrite}); // drawn over, loaded
 
     g.addPass({"forward", reads, writes, [&f, ms](VkCommandBuffer cmd) {

@@ -24,7 +24,28 @@ VkDeviceSize Renderer::Impl::probeFaceStride() const {
     return (sizeof(render::GpuFrame) + align - 1) / align * align;
 }
 
-void Renderer::Impl::uploadFrame(FrameSlot& slot, const render::FrameData& data, bool captureProbe) {
+namespace {
+
+// The frame's uniforms seen from a cube capture's face at `position` (`size` texels per side):
+// the dome shaded inline (no blur pass for captures) and no bounce light (captures show the
+// receivers, which have none, or feed a reflection, which takes the light the frame has).
+render::GpuFrame captureFace(const render::GpuFrame& frame, int face, const glm::vec3& position,
+                             uint32_t size) {
+    render::GpuFrame f = frame;
+    f.viewProj = render::probeFaceViewProj(face, position, 0.02f, 1000.0f);
+    f.inverseViewProj = glm::inverse(f.viewProj);
+    f.cameraPos = glm::vec4(position, 1.0f);
+    f.options.z = 0.0f;
+    f.sky.z = 0.0f;
+    const float texel = 1.0f / float(size);
+    f.viewport = glm::vec4(texel, texel, 0.0f, 0.0f);
+    return f;
+}
+
+} // namespace
+
+void Renderer::Impl::uploadFrame(FrameSlot& slot, const render::FrameData& data, bool captureProbe,
+                                 bool captureBounce) {
     vk::Context& c = *ctx;
     const render::GpuFrame& frame = data.frame;
     const std::vector<render::GpuInstance>& instances = data.instances;
@@ -43,16 +64,22 @@ void Renderer::Impl::uploadFrame(FrameSlot& slot, const render::FrameData& data,
         ensureBuffer(c, slot.probeUbo, 6 * faceStride, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
         std::vector<uint8_t> faces(6 * faceStride, 0);
         for (int f = 0; f < 6; ++f) {
-            render::GpuFrame face = frame;
-            face.viewProj = render::probeFaceViewProj(f, probe.position(), 0.02f, 1000.0f);
-            face.inverseViewProj = glm::inverse(face.viewProj);
-            face.cameraPos = glm::vec4(probe.position(), 1.0f);
-            face.options.z = 0.0f; // the faces shade the dome inline: no blur pass for them
-            const float texel = 1.0f / float(probe.cube().desc().width);
-            face.viewport = glm::vec4(texel, texel, 0.0f, 0.0f);
+            const render::GpuFrame face =
+                captureFace(frame, f, probe.position(), probe.cube().desc().width);
             std::memcpy(faces.data() + f * faceStride, &face, sizeof(face));
         }
         slot.probeUbo.write(faces.data(), faces.size());
+    }
+    if (captureBounce) {
+        const uint32_t n = 6 * bounce.count();
+        ensureBuffer(c, slot.bounceUbo, n * faceStride, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        std::vector<uint8_t> faces(n * faceStride, 0);
+        for (uint32_t i = 0; i < n; ++i) {
+            const render::GpuFrame face = captureFace(frame, int(i % 6), bounce.position(i / 6),
+                                                      render::BounceProbes::kFaceSize);
+            std::memcpy(faces.data() + i * faceStride, &face, sizeof(face));
+        }
+        slot.bounceUbo.write(faces.data(), faces.size());
     }
     if (!instances.empty())
         slot.instances.write(instances.data(), instances.size() * sizeof(render::GpuInstance));
@@ -69,25 +96,30 @@ void Renderer::Impl::uploadFrame(FrameSlot& slot, const render::FrameData& data,
 
 render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
                                             const render::FrameData& data, bool captureProbe,
-                                            bool domeBlur) {
+                                            bool captureBounce, bool domeBlur) {
     vk::Context& c = *ctx;
     const render::GpuFrame& frame = data.frame;
     VK_CHECK(vkResetDescriptorPool(c.device(), slot.pool, 0));
-    // The frame set, six probe-face sets while capturing, the output set, the dome blur's two.
-    VkDescriptorSetLayout layouts[kFrameSets + 3];
+    // The frame set, six probe-face sets while capturing, six per bounce capture while taking
+    // those, the output set, the dome blur's two, the bounce projection's.
+    VkDescriptorSetLayout layouts[kFrameSets + 4];
     uint32_t setCount = 0;
     layouts[setCount++] = pipes.frameSetLayout;
     if (captureProbe)
         for (uint32_t f = 0; f < 6; ++f) layouts[setCount++] = pipes.frameSetLayout;
+    const uint32_t bounceIndex = setCount;
+    const uint32_t bounceFaces = captureBounce ? 6 * bounce.count() : 0;
+    for (uint32_t f = 0; f < bounceFaces; ++f) layouts[setCount++] = pipes.frameSetLayout;
     const uint32_t outputIndex = setCount;
     layouts[setCount++] = pipes.outputSetLayout;
     layouts[setCount++] = pipes.domeBlurSetLayout;
     layouts[setCount++] = pipes.domeBlurSetLayout;
+    layouts[setCount++] = pipes.bounceShSetLayout;
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = slot.pool;
     alloc.descriptorSetCount = setCount;
     alloc.pSetLayouts = layouts;
-    VkDescriptorSet sets[kFrameSets + 3];
+    VkDescriptorSet sets[kFrameSets + 4];
     VK_CHECK(vkAllocateDescriptorSets(c.device(), &alloc, sets));
     render::FrameSets result;
     result.frame = sets[0];
@@ -95,13 +127,19 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
     result.output = sets[outputIndex];
     result.domeRows = sets[outputIndex + 1];
     result.domeBlur = sets[outputIndex + 2];
+    result.bounceSh = sets[outputIndex + 3];
+    for (uint32_t f = 0; f < bounceFaces; ++f) result.bounceFaces[f] = sets[bounceIndex + f];
     const VkDescriptorSet outputSet = result.output, domeRowsSet = result.domeRows,
                           domeBlurSet = result.domeBlur;
     const VkDeviceSize faceStride = probeFaceStride();
     vk::Image& shadowImage = data.shadowViews.empty() ? dummyShadow : shadowMaps;
     vk::Image& domeImage = dome.active() ? dome.maps() : dummyShadow;
-    // A frame set: the frame's data with uniforms `ubo` and the reflection capture `probeView`.
-    auto writeFrameSet = [&](VkDescriptorSet set, VkDescriptorBufferInfo uboInfo, VkImageView probeView) {
+    // Without bounce light the shaders' SH binding holds a white texel they never read.
+    const VkImageView noBounce = cache->textureView(TexturePtr());
+    // A frame set: the frame's data with uniforms `ubo`, the reflection capture `probeView` and
+    // the bounce captures' SH9 `bounceView`.
+    auto writeFrameSet = [&](VkDescriptorSet set, VkDescriptorBufferInfo uboInfo, VkImageView probeView,
+                             VkImageView bounceView) {
         VkDescriptorBufferInfo instInfo{slot.instances.get(), 0, VK_WHOLE_SIZE};
         VkDescriptorBufferInfo lightInfo{slot.lights.get(), 0, VK_WHOLE_SIZE};
         VkDescriptorImageInfo shadowInfo{pipes.nearestSampler, shadowImage.view(),
@@ -131,6 +169,8 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
         VkDescriptorImageInfo radianceInfo{pipes.environmentSampler, environment.radianceView(),
                                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        VkDescriptorImageInfo bounceInfo{pipes.nearestSampler, bounceView,
+                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         // Binding i of frame.glsl / environment.glsl: a buffer or images (count > 1: an array).
         struct Entry {
             VkDescriptorType type;
@@ -148,7 +188,8 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
             {image, nullptr, &environmentInfo, 1}, {ssbo, &domeInfo, nullptr, 1},
             {image, nullptr, &domeMapInfo, 1},    {image, nullptr, &probeInfo, 1},
             {image, nullptr, &backgroundInfo, 1}, {image, nullptr, &sphereInfos[0], 1},
-            {image, nullptr, &sphereInfos[1], 1}, {image, nullptr, &radianceInfo, 1}};
+            {image, nullptr, &sphereInfos[1], 1}, {image, nullptr, &radianceInfo, 1},
+            {image, nullptr, &bounceInfo, 1}};
         constexpr uint32_t kBindings = sizeof(entries) / sizeof(entries[0]);
         VkWriteDescriptorSet writes[kBindings];
         for (uint32_t i = 0; i < kBindings; ++i) {
@@ -163,11 +204,31 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
         vkUpdateDescriptorSets(c.device(), kBindings, writes, 0, nullptr);
     };
     writeFrameSet(result.frame, {slot.ubo.get(), 0, sizeof(frame)},
-                  probe.instance() >= 0 ? probe.cube().view() : environment.black());
+                  probe.instance() >= 0 ? probe.cube().view() : environment.black(),
+                  bounce.count() > 0 ? bounce.sh().view() : noBounce);
     if (captureProbe) // the faces see the capture as black: it is being drawn
         for (uint32_t f = 0; f < 6; ++f)
             writeFrameSet(sets[1 + f], {slot.probeUbo.get(), f * faceStride, sizeof(frame)},
-                          environment.black());
+                          environment.black(), noBounce);
+    for (uint32_t f = 0; f < bounceFaces; ++f)
+        writeFrameSet(result.bounceFaces[f], {slot.bounceUbo.get(), f * faceStride, sizeof(frame)},
+                      environment.black(), noBounce); // diffuse light: no reflection capture
+    if (captureBounce) { // the projection reads the captures and the environment's chain
+        VkDescriptorImageInfo infos[2] = {
+            {pipes.nearestSampler, bounce.faces().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+            {pipes.environmentSampler, environment.view(scene.environment()),
+             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+        VkWriteDescriptorSet w[2];
+        for (uint32_t i = 0; i < 2; ++i) {
+            w[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w[i].dstSet = result.bounceSh;
+            w[i].dstBinding = i;
+            w[i].descriptorCount = 1;
+            w[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            w[i].pImageInfo = &infos[i];
+        }
+        vkUpdateDescriptorSets(c.device(), 2, w, 0, nullptr);
+    }
     VkDescriptorImageInfo hdrInfo{pipes.nearestSampler, targets.hdr.view(),
                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet outputWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};

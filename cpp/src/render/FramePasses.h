@@ -18,6 +18,7 @@ struct ScenePipelines;
 struct RenderTargets;
 class DomeShadows;
 class ReflectionProbe;
+class BounceProbes;
 class HairPasses;
 struct MeshGpu;
 
@@ -31,6 +32,7 @@ struct FramePassContext {
     RenderTargets& targets;
     DomeShadows& dome;
     ReflectionProbe& probe;
+    BounceProbes& bounce;
     HairPasses* hair;         // null without hair
     vk::Image& shadowMaps;    // the scene lights' maps (a dummy layer when there are none)
     const std::vector<ShadowInfo>& shadowInfos;
@@ -46,6 +48,7 @@ struct FramePassContext {
     bool domeBlur;       // the dome's diffuse light goes through the blur passes
     bool background;     // a background image or the environment is drawn behind the scene
     bool captureProbe;   // the dynamic reflection probe is captured this frame
+    bool captureBounce;  // the bounce captures are taken (and projected) this frame
     bool reuseShadows;   // the scene lights' shadow maps hold this frame's views
     std::vector<int> domeDue; // dome layers rendered this frame (the rest are reused)
     uint32_t samples = 1;     // MSAA samples of the forward pass
@@ -53,7 +56,7 @@ struct FramePassContext {
     // frame-graph resources
     int rShadow = -1, rDepth = -1, rHdr = -1, rLdr = -1;
     int rDebug[4] = {-1, -1, -1, -1};
-    int rDomeMaps = -1, rProbe = -1, rDomeLight = -1;
+    int rDomeMaps = -1, rProbe = -1, rDomeLight = -1, rBounceSh = -1;
     std::vector<std::string> reused; // passes skipped because their output is still valid
 };
 
@@ -63,6 +66,13 @@ void drawMesh(VkCommandBuffer cmd, const MeshGpu& mesh);
 // seen by viewProj, into a depth view of size x size (ShadowPasses.cpp).
 void drawCasters(const FramePassContext& f, VkCommandBuffer cmd, VkImageView view, uint32_t size,
                  const glm::mat4& viewProj, bool withHair);
+/// One cube-capture face: the draws `include` accepts (phantoms never), shaded with the face's
+/// frame set into `color` (cleared to `clear`) over a `size` x `size` depth; with `background`
+/// the environment is drawn behind them (ProbePasses.cpp).
+void drawCaptureFace(const FramePassContext& f, VkCommandBuffer cmd, VkImageView color,
+                     VkImageView depth, uint32_t size, VkDescriptorSet faceSet,
+                     const glm::vec4& clear, bool background, bool (*include)(const Draw&, int),
+                     int arg);
 /// One full-screen triangle into one colour target of the output's size (OutputPasses.cpp).
 void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target,
                     VkAttachmentLoadOp load, VkPipeline pipeline, VkPipelineLayout layout,
@@ -72,6 +82,7 @@ void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView 
 void addShadowPasses(FrameGraph& g, FramePassContext& f);   // scene lights' shadow maps
 void addDomePasses(FrameGraph& g, FramePassContext& f);     // the environment dome's maps
 void addProbePasses(FrameGraph& g, FramePassContext& f);    // dynamic reflection capture
+void addBouncePasses(FrameGraph& g, FramePassContext& f);   // bounce captures, their SH9
 void addForwardPasses(FrameGraph& g, FramePassContext& f);  // background + forward shading
 void addDomeBlurPasses(FrameGraph& g, FramePassContext& f); // dome shadows blurred, added
 void addHairPasses(FrameGraph& g, FramePassContext& f);     // DOM, hair, OIT (HairPasses)

@@ -1,6 +1,6 @@
 // One frame of a Renderer: its data (uploaded, and its descriptor sets written, by
 // FrameDescriptors.cpp) and the frame graph the pass modules build (render/FramePasses.h:
-// shadow views, dome maps, reflection capture, forward shading, dome blur, hair, output,
+// shadow views, dome maps, reflection capture, bounce captures, forward shading, dome blur, hair, output,
 // readback or present), recorded into the frame slot's command buffer.
 #include "render/FramePasses.h"
 #include "render/RendererImpl.h"
@@ -78,6 +78,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     const bool background = scene.backgroundImage() != nullptr || data.frame.sky.x > 0.5f;
     data.frame.viewport = glm::vec4(1.0f / float(targets.width), 1.0f / float(targets.height), 0, 0);
     const bool captureProbe = probe.prepare(scene, data, settings.probeSize);
+    // Debug frames keep one bounce: their colour is the colour render() draws.
+    const bool captureBounce = bounce.prepare(scene, data, settings);
     const bool reuseShadows = settings.reuseShadowMaps && !data.shadowViews.empty() &&
                               key == shadowSignature;
     shadowSignature = std::move(key);
@@ -91,14 +93,15 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     const uint32_t samples = debug ? 1u : supportedSamples(settings.msaa);
     if (samples > 1) targets.ensureMultisampled(c, samples, domeBlur);
 
-    uploadFrame(slot, data, captureProbe);
-    const render::FrameSets sets = bindFrame(slot, scene, data, captureProbe, domeBlur);
+    uploadFrame(slot, data, captureProbe, captureBounce);
+    const render::FrameSets sets = bindFrame(slot, scene, data, captureProbe, captureBounce, domeBlur);
 
-    render::FramePassContext f{c, settings, pipes, targets, dome, probe, hasHair ? hair.get() : nullptr,
+    render::FramePassContext f{c, settings, pipes, targets, dome, probe, bounce,
+                               hasHair ? hair.get() : nullptr,
                                data.shadowViews.empty() ? dummyShadow : shadowMaps, shadowInfos,
                                scene, camera, data, sets, ldr, outputs, present, debug, hasHair,
-                               domeBlur, background, captureProbe, reuseShadows, std::move(domeDue),
-                               samples};
+                               domeBlur, background, captureProbe, captureBounce, reuseShadows,
+                               std::move(domeDue), samples};
     if (scene.environment().environment && !environmentBaked) f.reused.push_back("environment");
 
     FrameGraph g;
@@ -115,6 +118,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     render::addShadowPasses(g, f);
     render::addDomePasses(g, f);
     render::addProbePasses(g, f);
+    render::addBouncePasses(g, f);
     render::addForwardPasses(g, f);
     render::addDomeBlurPasses(g, f);
     render::addHairPasses(g, f);

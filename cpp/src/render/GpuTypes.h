@@ -42,7 +42,8 @@ struct GpuInstance {
     glm::vec4 baseColor;
     glm::vec4 environment; // rgb: reflectivity (Fresnel F0), w: environment-diffuse weight
     glm::vec4 maps; // x: log2(shininessMax / shininess) with the exponent in the specular map's
-                    // alpha, else 0; y: normal-map scale of x and y; zw: unused
+                    // alpha, else 0; y: normal-map scale of x and y; z: bounce capture + 1
+                    // (0: none; BounceProbes.h); w: unused
 };
 
 struct GpuFrame {
@@ -62,7 +63,8 @@ struct GpuFrame {
     glm::vec4 viewport;    // xy: 1 / target size in pixels
     glm::mat4 inverseViewProj; // clip -> world (the background's view rays)
     glm::vec4 sky;         // x: 1 = the environment is the background, y: its level in the
-                           // glossy chain (< 0: the sharp radiance cube)
+                           // glossy chain (< 0: the sharp radiance cube), z: 1 = bounce
+                           // light (BounceProbes.h) in this frame
 };
 
 /// Instance flags in GpuInstance::kd.w.

@@ -29,6 +29,14 @@ glm::mat4 probeFaceViewProj(int face, const glm::vec3& position, float zNear, fl
     return m;
 }
 
+std::vector<uint64_t> captureKey(const Scene& scene, const FrameData& data) {
+    std::vector<uint64_t> key = {uint64_t(reinterpret_cast<uintptr_t>(&scene)), scene.version()};
+    for (const Draw& d : data.draws) key.push_back(d.mesh->contentId);
+    const EnvironmentLighting& env = scene.environment();
+    key.push_back(env.environment ? env.environment->version() : 0);
+    return key;
+}
+
 bool ReflectionProbe::prepare(const Scene& scene, const FrameData& data, uint32_t size) {
     mInstance = -1;
     for (size_t i = 0; i < scene.instances().size(); ++i)
@@ -43,13 +51,9 @@ bool ReflectionProbe::prepare(const Scene& scene, const FrameData& data, uint32_
         return false;
     }
     mPosition = glm::vec3(scene.instances()[size_t(mInstance)].transform[3]);
-    // What the faces show: everything in the scene (its version counts every edit), the
-    // meshes' contents (cloth moves without editing the scene) and the environment's radiance.
-    std::vector<uint64_t> key = {uint64_t(reinterpret_cast<uintptr_t>(&scene)), scene.version(),
-                                 uint64_t(mInstance), size};
-    for (const Draw& d : data.draws) key.push_back(d.mesh->contentId);
-    const EnvironmentLighting& env = scene.environment();
-    key.push_back(env.environment ? env.environment->version() : 0);
+    std::vector<uint64_t> key = captureKey(scene, data);
+    key.push_back(uint64_t(mInstance));
+    key.push_back(size);
     if (!mCube || mCube.desc().width != size) {
         vk::ImageDesc d;
         d.width = d.height = size;

@@ -18,6 +18,11 @@ namespace weft::render {
 /// [zNear, zFar]. Its determinant is negative: faces are mirror images of a camera's view.
 glm::mat4 probeFaceViewProj(int face, const glm::vec3& position, float zNear, float zFar);
 
+/// What a capture of the scene shows, as a key (equal keys: the capture can be kept): the scene
+/// (its version counts every edit), the meshes' contents (cloth moves without editing the
+/// scene) and the environment's radiance.
+std::vector<uint64_t> captureKey(const Scene& scene, const FrameData& data);
+
 class ReflectionProbe {
 public:
     explicit ReflectionProbe(vk::Context& ctx) : mCtx(ctx) {}

@@ -10,6 +10,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "render/BounceProbes.h"
 #include "render/DomeShadows.h"
 #include "render/EnvironmentGpu.h"
 #include "render/FrameData.h"
@@ -30,23 +31,29 @@ namespace weft {
 namespace render {
 
 constexpr uint32_t kFramesInFlight = 2;
-// timestamp pairs: shadow views + dome maps + probe faces + forward + output + readback
-constexpr uint32_t kMaxPasses = 128;
-constexpr uint32_t kFrameSets = 7; // the frame's, and one per face of the reflection capture
+// timestamp pairs: shadow views + dome maps + probe faces + bounce faces + forward + output +
+// readback
+constexpr uint32_t kMaxPasses = 192;
+constexpr uint32_t kBounceFaces = 6 * BounceProbes::kMaxProbes;
+// the frame's, one per face of the reflection capture and one per face of the bounce captures
+constexpr uint32_t kFrameSets = 7 + kBounceFaces;
 
-/// The descriptor sets of one frame: the frame's, one per probe face while capturing, the
-/// output pass's and the dome blur's two passes'.
+/// The descriptor sets of one frame: the frame's, one per probe face while capturing, one per
+/// bounce-capture face while capturing those, the output pass's, the dome blur's two passes'
+/// and the bounce projection's.
 struct FrameSets {
     VkDescriptorSet frame = VK_NULL_HANDLE;
     std::array<VkDescriptorSet, 6> faces{};
-    VkDescriptorSet output = VK_NULL_HANDLE, domeRows = VK_NULL_HANDLE, domeBlur = VK_NULL_HANDLE;
+    std::array<VkDescriptorSet, kBounceFaces> bounceFaces{}; // 6 probe + face
+    VkDescriptorSet output = VK_NULL_HANDLE, domeRows = VK_NULL_HANDLE, domeBlur = VK_NULL_HANDLE,
+                    bounceSh = VK_NULL_HANDLE;
 };
 
 /// Per frame in flight: its command buffer, uploads, descriptors and timestamps.
 struct FrameSlot {
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     uint64_t serial = 0;
-    vk::Buffer ubo, probeUbo, instances, lights, shadowLayers, domeLights;
+    vk::Buffer ubo, probeUbo, bounceUbo, instances, lights, shadowLayers, domeLights;
     vk::DescriptorPool pool;
     std::unique_ptr<render::Timestamps> timestamps;
     vk::Semaphore acquired;
@@ -68,6 +75,7 @@ struct Renderer::Impl {
     render::EnvironmentGpu environment{*ctx};
     render::DomeShadows dome{*ctx};
     render::ReflectionProbe probe{*ctx};
+    render::BounceProbes bounce{*ctx};
     std::unique_ptr<render::GpuCache> cache;
     std::unique_ptr<render::HairPasses> hair; // created with the first scene that has hair
 
@@ -101,9 +109,10 @@ struct Renderer::Impl {
     void recordFrame(FrameSlot& slot, const Scene& scene, const Camera& camera, uint32_t outputs,
                      vk::Image* ldr, bool present);
     // FrameDescriptors.cpp: the slot's buffers and the frame's descriptor sets.
-    void uploadFrame(FrameSlot& slot, const render::FrameData& data, bool captureProbe);
+    void uploadFrame(FrameSlot& slot, const render::FrameData& data, bool captureProbe,
+                     bool captureBounce);
     render::FrameSets bindFrame(FrameSlot& slot, const Scene& scene, const render::FrameData& data,
-                                bool captureProbe, bool domeBlur);
+                                bool captureProbe, bool captureBounce, bool domeBlur);
     VkDeviceSize probeFaceStride() const; // the probe faces' uniforms, aligned
     void ensureShadowMaps(uint32_t layers);
     /// The largest sample count <= `wanted` the device renders colour and depth with.

@@ -5,6 +5,7 @@
 
 #include <weft/Renderer.h>
 
+#include "render/BounceProbes.h"
 #include "render/GpuCache.h"
 #include "render/GpuTypes.h"
 #include "render/RenderTargets.h"
@@ -82,7 +83,8 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
                                              {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                              {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                              {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                             {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {14, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
@@ -94,6 +96,9 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     domeBlurSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     domeBlurLayout = vk::createPipelineLayout(c, {domeBlurSetLayout}, sizeof(DomeBlurPush));
+    bounceShSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    bounceShLayout = vk::createPipelineLayout(c, {bounceShSetLayout}, sizeof(glm::vec4));
     createPipelines();
 }
 
@@ -176,6 +181,11 @@ void ScenePipelines::createPipelines() {
                          VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
     fd.blends = {add};
     domeBlur = vk::createGraphicsPipeline(c, fd);
+    fd.blends.clear();
+    fd.layout = bounceShLayout;
+    fd.fragmentShader = "render/bounce_sh.frag";
+    fd.colorFormats = {BounceProbes::kShFormat};
+    bounceSh = vk::createGraphicsPipeline(c, fd);
 
     vk::GraphicsPipelineDesc sd;
     sd.vertexShader = "render/shadow.vert";

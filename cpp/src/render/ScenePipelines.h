@@ -22,11 +22,13 @@ struct ScenePipelines {
     vk::Sampler nearestSampler; // texel fetches (shadow maps, hdr)
     vk::Sampler cookieSampler;  // bilinear, clamp to edge, level 0 (spot-light cookies)
     vk::Sampler environmentSampler; // trilinear over the whole chain (environment cube)
-    vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout, domeBlurSetLayout;
-    vk::PipelineLayout sceneLayout, shadowLayout, outputLayout, domeBlurLayout;
+    vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout, domeBlurSetLayout,
+        bounceShSetLayout;
+    vk::PipelineLayout sceneLayout, shadowLayout, outputLayout, domeBlurLayout, bounceShLayout;
     vk::Pipeline shadow, shadowAlpha;
     vk::Pipeline domeBlurRows; // the dome blur's row pass
     vk::Pipeline domeBlur;     // its column pass, adding the dome-shadowed diffuse light
+    vk::Pipeline bounceSh;     // the bounce captures projected onto SH9 (BounceProbes.h)
 
     /// Forward shading for an output set (`debug` outputs, `dome` output for the blur pass) and
     /// a facing: back faces culled, the same for mirroring transforms (det < 0 reverses the

@@ -241,36 +241,53 @@ void Scene::clearEnvironment() {
     ++mVersion;
 }
 
+namespace {
+// Grows [lo, hi] by the eight corners of [olo, ohi] under `transform`.
+void addBox(glm::vec3& lo, glm::vec3& hi, const glm::vec3& olo, const glm::vec3& ohi,
+            const glm::mat4& transform) {
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 c((i & 1) ? ohi.x : olo.x, (i & 2) ? ohi.y : olo.y, (i & 4) ? ohi.z : olo.z);
+        const glm::vec3 w = glm::vec3(transform * glm::vec4(c, 1.0f));
+        lo = glm::min(lo, w);
+        hi = glm::max(hi, w);
+    }
+}
+} // namespace
+
+void Scene::instanceBounds(size_t index, glm::vec3& lo, glm::vec3& hi) const {
+    if (index >= mInstances.size())
+        throw InvalidArgument("instance " + std::to_string(index) + " out of range (the scene has " +
+                              std::to_string(mInstances.size()) + ")");
+    const MeshInstance& inst = mInstances[index];
+    lo = glm::vec3(1e30f);
+    hi = glm::vec3(-1e30f);
+    if (inst.cloth) { // particles are in world space
+        const float* p = inst.cloth->particleData(); // x, y, z, w records
+        for (int k = 0; k < inst.cloth->particleCount(); ++k) {
+            if (inst.cloth->isHole(k)) continue;
+            const glm::vec3 x(p[4 * k], p[4 * k + 1], p[4 * k + 2]);
+            lo = glm::min(lo, x);
+            hi = glm::max(hi, x);
+        }
+        return;
+    }
+    glm::vec3 mlo, mhi;
+    inst.mesh->bounds(mlo, mhi);
+    addBox(lo, hi, mlo, mhi, inst.transform);
+}
+
 void Scene::bounds(glm::vec3& lo, glm::vec3& hi, bool castersOnly) const {
     lo = glm::vec3(1e30f);
     hi = glm::vec3(-1e30f);
-    auto add = [&](const glm::vec3& olo, const glm::vec3& ohi, const glm::mat4& transform) {
-        for (int i = 0; i < 8; ++i) {
-            const glm::vec3 c((i & 1) ? ohi.x : olo.x, (i & 2) ? ohi.y : olo.y,
-                              (i & 4) ? ohi.z : olo.z);
-            const glm::vec3 w = glm::vec3(transform * glm::vec4(c, 1.0f));
-            lo = glm::min(lo, w);
-            hi = glm::max(hi, w);
-        }
-    };
-    for (const MeshInstance& inst : mInstances) {
-        if (castersOnly && !inst.castShadows) continue;
-        if (inst.cloth) { // particles are in world space
-            const float* p = inst.cloth->particleData(); // x, y, z, w records
-            for (int k = 0; k < inst.cloth->particleCount(); ++k) {
-                if (inst.cloth->isHole(k)) continue;
-                const glm::vec3 x(p[4 * k], p[4 * k + 1], p[4 * k + 2]);
-                lo = glm::min(lo, x);
-                hi = glm::max(hi, x);
-            }
-            continue;
-        }
-        glm::vec3 mlo, mhi;
-        inst.mesh->bounds(mlo, mhi);
-        add(mlo, mhi, inst.transform);
+    for (size_t i = 0; i < mInstances.size(); ++i) {
+        if (castersOnly && !mInstances[i].castShadows) continue;
+        glm::vec3 ilo, ihi;
+        instanceBounds(i, ilo, ihi);
+        lo = glm::min(lo, ilo);
+        hi = glm::max(hi, ihi);
     }
     for (const HairInstance& h : mHairs)
-        if (!castersOnly || h.castShadows) add(h.lo, h.hi, h.transform);
+        if (!castersOnly || h.castShadows) addBox(lo, hi, h.lo, h.hi, h.transform);
 }
 
 } // namespace weft

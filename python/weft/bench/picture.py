@@ -5,7 +5,7 @@ For every reference scene (weft.reference.picture.scenes) Mitsuba renders the tr
 (``path``, full global illumination; ``direct`` as well, to tell missing bounce light from
 errors of the direct light), plus a second frame of another seed whose FLIP against the first
 is the reference's own noise floor. weft then renders each setting -- dome lights, GGX prefilter
-samples, MSAA where the renderer has it -- timed (median of ``--frames`` renders after a
+samples, MSAA where the renderer has it, one bounce off -- timed (median of ``--frames`` renders after a
 warm-up; maps reused, the scene is static) and compared: mean FLIP (LDR) and relative error over
 the whole image, the covered pixels, the objects, the geometric edges and the objects' unlit
 side. The anti-aliasing reference (4x4 supersampled frame) scores mesh and hair edges. Writes
@@ -55,6 +55,7 @@ def _settings(name: str, quick: bool, has_msaa: bool) -> List[Dict[str, Any]]:
             out += [{"specular_samples": 1024}]
         if has_msaa:
             out += [{"msaa": m} for m in (1, 4, 8)]
+        out += [{"bounce": False}]
     return out
 
 
@@ -106,8 +107,9 @@ def bench_scene(name: str, width: int, height: int, spp: int, frames: int, quick
         build_kw = {k2: v for k2, v in setting.items() if k2 in ("dome_lights", "specular_samples")}
         ref = scenes.build(name, **build_kw) if build_kw else base
         renderer = weft.Renderer(width, height)
-        if "msaa" in setting:
-            renderer.msaa = int(setting["msaa"])
+        for key in ("msaa", "bounce"):  # renderer settings
+            if key in setting:
+                setattr(renderer, key, setting[key])
         e = ev.evaluate(ref, renderer, spp, reference=reference)
         ms = _time_frames(renderer, ref.scene, ref.camera, frames)
         vs_direct = cmp.compare(e.weft_linear, direct, e.regions, ref.exposure)["regions"]

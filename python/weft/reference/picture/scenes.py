@@ -7,7 +7,7 @@ as it is and :mod:`~weft.reference.picture.mitsuba_export` exports for the path 
 - ``spheres_sun``: the same under the sky with a sun, the sun split off as a directional light
   with a shadow map (``sun_lights=1``, weft's best path for a sun);
 - ``cloth``: ``weft.scenes.cloth_scene`` (cloth draped over a sphere, a sun with its shadow and
-  a constant ambient, read as a uniform sky);
+  a constant ambient, read as a uniform sky and drawn as the background by both);
 - ``dome``: a sphere floating over the ground under the sky: the ground's soft shadow comes from
   the dome of shadow lights alone.
 
@@ -146,6 +146,8 @@ def build(name: str, dome_lights: int = 16, specular_samples: Optional[int] = No
             m = scene.material(i)
             m.ka = m.kd  # the ambient as a sky's light (see the module doc)
             scene.set_material(i, m)
+        # ... and that uniform sky is what both show behind the scene
+        scene.background = scene.ambient
         light = scene.lights[0]
         d = -np.asarray(light.direction, np.float64)
         return ReferenceScene(name, scene, camera, ground=(0,), exposure=1.0,

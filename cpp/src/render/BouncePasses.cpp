@@ -1,0 +1,58 @@
+// One bounce of diffuse light (BounceProbes.h): each caster's cube capture of the receivers,
+// then one pass projecting every capture onto SH9 (bounce_sh.frag), read by the forward pass.
+#include "render/BounceProbes.h"
+#include "render/FramePasses.h"
+#include "render/PassSetup.h"
+#include "render/RendererImpl.h"
+
+namespace weft::render {
+
+void addBouncePasses(FrameGraph& g, FramePassContext& f) {
+    BounceProbes& b = f.bounce;
+    if (b.count() == 0) return;
+    f.rBounceSh = g.addResource("bounce_sh", &b.sh());
+    if (!f.captureBounce) {
+        f.reused.push_back("bounce");
+        return;
+    }
+    const int rFaces = g.addResource("bounce_faces", &b.faces());
+    const int rDepth = g.addResource("bounce_depth", &b.depth());
+    std::vector<ResourceUse> reads = {{f.rShadow, Use::Sampled}};
+    if (f.rDomeMaps >= 0) reads.push_back({f.rDomeMaps, Use::Sampled});
+    for (uint32_t i = 0; i < 6 * b.count(); ++i) {
+        g.addPass({"bounce[" + std::to_string(i / 6) + "][" + std::to_string(i % 6) + "]", reads,
+                   {{rFaces, Use::ColorWrite}, {rDepth, Use::DepthWrite}},
+                   [&f, i](VkCommandBuffer cmd) {
+                       // the receivers alone, over alpha 0: the sky they leave uncovered
+                       drawCaptureFace(f, cmd, f.bounce.faces().layerView(i), f.bounce.depth().view(),
+                                       BounceProbes::kFaceSize, f.sets.bounceFaces[i], glm::vec4(0.0f),
+                                       false, [](const Draw& d, int) { return !d.castShadows; }, 0);
+                   }});
+    }
+    // x: environment intensity (0: none), y: texels per face, z: probes
+    const glm::vec4 push(f.data.frame.environment.x, float(BounceProbes::kFaceSize),
+                         float(b.count()), 0.0f);
+    g.addPass({"bounce_sh", {{rFaces, Use::Sampled}}, {{f.rBounceSh, Use::ColorWrite}},
+               [&f, push](VkCommandBuffer cmd) {
+                   const uint32_t w = BounceProbes::kShColumns, h = f.bounce.count();
+                   VkRenderingAttachmentInfo a = attachment(
+                       f.bounce.sh().view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
+                   a.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                   info.renderArea = {{0, 0}, {w, h}};
+                   info.layerCount = 1;
+                   info.colorAttachmentCount = 1;
+                   info.pColorAttachments = &a;
+                   f.ctx.fn().cmdBeginRendering(cmd, &info);
+                   setViewport(cmd, w, h);
+                   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.bounceSh.get());
+                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.bounceShLayout,
+                                           0, 1, &f.sets.bounceSh, 0, nullptr);
+                   vkCmdPushConstants(cmd, f.pipes.bounceShLayout, vk::kGraphicsStages, 0,
+                                      sizeof(push), &push);
+                   vkCmdDraw(cmd, 3, 1, 0, 0);
+                   f.ctx.fn().cmdEndRendering(cmd);
+               }});
+}
+
+} // namespace weft::render

@@ -1,0 +1,66 @@
+#include "render/BounceProbes.h"
+
+#include <cstring>
+
+#include "render/ReflectionProbe.h"
+#include "render/RenderTargets.h"
+
+namespace weft::render {
+
+bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSettings& settings) {
+    mPositions.clear();
+    data.frame.sky.z = 0.0f;
+    std::vector<uint32_t> casters;
+    bool receivers = false;
+    for (const Draw& d : data.draws) {
+        if (d.phantom || d.mesh->indexCount == 0) continue;
+        if (!d.castShadows)
+            receivers = true;
+        else if (casters.size() < kMaxProbes)
+            casters.push_back(d.instance);
+    }
+    if (!settings.bounce || !receivers || casters.empty()) {
+        mKey.clear();
+        return false;
+    }
+    for (uint32_t i = 0; i < casters.size(); ++i) {
+        glm::vec3 lo, hi;
+        scene.instanceBounds(casters[i], lo, hi);
+        mPositions.push_back(0.5f * (lo + hi));
+        data.instances[casters[i]].maps.z = float(i + 1);
+    }
+    data.frame.sky.z = 1.0f;
+
+    const uint32_t layers = 6 * kMaxProbes;
+    if (!mFaces) { // sized for kMaxProbes once: a few hundred kB
+        vk::ImageDesc d;
+        d.width = d.height = kFaceSize;
+        d.layers = layers;
+        d.format = kHdrFormat; // the forward pipelines draw into it as they draw the frame
+        d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+        mFaces = vk::Image(&mCtx, d);
+        vk::ImageDesc z;
+        z.width = z.height = kFaceSize;
+        z.format = kDepthFormat;
+        z.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+        mDepth = vk::Image(&mCtx, z);
+        vk::ImageDesc s;
+        s.width = kShColumns;
+        s.height = kMaxProbes;
+        s.format = kShFormat;
+        s.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+        mSh = vk::Image(&mCtx, s);
+        mKey.clear();
+    }
+    std::vector<uint64_t> key = captureKey(scene, data);
+    for (const glm::vec3& p : mPositions) {
+        uint64_t bits[2] = {0, 0};
+        std::memcpy(bits, &p, sizeof(p));
+        key.insert(key.end(), bits, bits + 2);
+    }
+    if (key == mKey) return false;
+    mKey = std::move(key);
+    return true;
+}
+
+} // namespace weft::render

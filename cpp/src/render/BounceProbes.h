@@ -1,0 +1,50 @@
+#pragma once
+// One bounce of diffuse light (issue 18): light that the scene's receivers (instances that cast
+// no shadow: grounds, walls) reflect onto its shadow casters, and the part of the sky the
+// receivers hide from them. Each caster gets a small cube capture of the receivers alone, taken
+// from the centre of its bounds and shaded as the frame shades them; bounce_sh.frag projects
+// every capture onto SH9 irradiance, three sets per caster:
+//   0  the receivers' radiance                   -> added as diffuse light (K_D T E / pi),
+//   1  the environment's radiance they hide      -> taken from the environment's irradiance,
+//   2  the solid angle they cover (radiance 1)   -> the fraction of the ambient I_A kept out.
+// Casters do not see each other or themselves here: the dome (and shadow maps) carry their
+// occlusion, so nothing is counted twice. Captured again only when what they show may have
+// changed (the same key as the reflection capture's).
+#include <cstdint>
+#include <vector>
+
+#include <weft/Renderer.h>
+#include <weft/Scene.h>
+
+#include "render/FrameData.h"
+#include "vk/Resources.h"
+
+namespace weft::render {
+
+class BounceProbes {
+public:
+    static constexpr uint32_t kMaxProbes = 8;  // casters beyond these get no bounce light
+    static constexpr uint32_t kFaceSize = 16;  // texels per face: SH9 needs no more
+    static constexpr uint32_t kShColumns = 27; // three sets of nine coefficients
+    static constexpr VkFormat kShFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
+    explicit BounceProbes(vk::Context& ctx) : mCtx(ctx) {}
+
+    /// Picks this frame's probes (settings.bounce, casters with receivers to see), marks their
+    /// instances (GpuInstance::maps.z = probe + 1) and the frame (GpuFrame::sky.z = 1), and
+    /// returns whether the captures must be taken again.
+    bool prepare(const Scene& scene, FrameData& data, const RenderSettings& settings);
+    uint32_t count() const { return uint32_t(mPositions.size()); }
+    const glm::vec3& position(uint32_t probe) const { return mPositions[probe]; }
+    vk::Image& faces() { return mFaces; } // layer 6 probe + face, kHdrFormat
+    vk::Image& depth() { return mDepth; }
+    vk::Image& sh() { return mSh; }       // row: probe, column: 9 set + coefficient
+
+private:
+    vk::Context& mCtx;
+    vk::Image mFaces, mDepth, mSh;
+    std::vector<glm::vec3> mPositions;
+    std::vector<uint64_t> mKey;
+};
+
+} // namespace weft::render
