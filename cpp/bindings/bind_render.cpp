@@ -87,7 +87,7 @@ void bindRender(py::module_& m) {
         .def(py::init([](int64_t width, int64_t height, int64_t shadowMapSize, int pcfRadius,
                          float biasConstant, float biasSlope, float biasMax, float normalOffset,
                          bool reuseShadowMaps, int64_t msaa, float exposure, const std::string& toneMap,
-                         bool bounce) {
+                         bool bounce, int64_t ambientOcclusion, float ambientOcclusionBlur) {
             if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
                 throw InvalidArgument("render target size must be positive (got " +
                                       std::to_string(width) + "x" + std::to_string(height) + ")");
@@ -107,13 +107,19 @@ void bindRender(py::module_& m) {
             s.exposure = exposure;
             s.toneMap = toneMapOf(toneMap);
             s.bounce = bounce;
+            if (ambientOcclusion < 0 || ambientOcclusion > 64 || ambientOcclusion % 8 != 0)
+                throw InvalidArgument("ambient_occlusion must be 0 or a multiple of 8 up to 64 dome "
+                                      "lights (got " + std::to_string(ambientOcclusion) + ")");
+            s.ambientOcclusion = uint32_t(ambientOcclusion);
+            s.ambientOcclusionBlur = ambientOcclusionBlur;
             return std::make_unique<Renderer>(uint32_t(width), uint32_t(height), s);
         }), py::arg("width"), py::arg("height"), py::arg("shadow_map_size") = 2048,
            py::arg("pcf_radius") = 1, py::arg("bias_constant") = 0.0005f,
            py::arg("bias_slope") = 0.0015f, py::arg("bias_max") = 0.01f,
            py::arg("normal_offset") = 1.5f, py::arg("reuse_shadow_maps") = true,
            py::arg("msaa") = 4, py::arg("exposure") = 0.0f, py::arg("tone_map") = "clamp",
-           py::arg("bounce") = true)
+           py::arg("bounce") = true, py::arg("ambient_occlusion") = 16,
+           py::arg("ambient_occlusion_blur") = 4.0f)
         .def_property_readonly("width", &Renderer::width)
         .def_property_readonly("height", &Renderer::height)
         .def_property_readonly("device_name", &Renderer::deviceName)
@@ -140,6 +146,26 @@ void bindRender(py::module_& m) {
             "One bounce of diffuse light: what the receivers (instances that cast no shadow, such "
             "as a ground) reflect onto the shadow casters, and the sky and ambient they hide from "
             "them (a small SH9 capture per caster, at most 8).")
+        .def_property("ambient_occlusion", [](const Renderer& r) { return r.settings().ambientOcclusion; },
+            [](Renderer& r, int64_t v) {
+                if (v < 0 || v > 64 || v % 8 != 0)
+                    throw InvalidArgument("ambient_occlusion must be 0 or a multiple of 8 up to 64 "
+                                          "dome lights (got " + std::to_string(v) + ")");
+                RenderSettings s = r.settings();
+                s.ambientOcclusion = uint32_t(v);
+                r.setSettings(s);
+            },
+            "Ambient occlusion of a scene without an environment: its constant ambient is read as "
+            "a uniform sky, occluded by the shadow casters through a dome of this many soft shadow "
+            "lights (0: off; a multiple of 8 up to 64).")
+        .def_property("ambient_occlusion_blur",
+            [](const Renderer& r) { return r.settings().ambientOcclusionBlur; },
+            [](Renderer& r, float v) {
+                RenderSettings s = r.settings();
+                s.ambientOcclusionBlur = v;
+                r.setSettings(s);
+            },
+            "Blur radius in pixels of the ambient occlusion (0: per pixel).")
         .def_property("msaa", [](const Renderer& r) { return r.settings().msaa; },
             [](Renderer& r, int64_t v) {
                 RenderSettings s = r.settings();

@@ -49,7 +49,8 @@ layout(set = 0, binding = 0) uniform FrameUbo {
     vec4 viewport; // xy: 1 / target size
     mat4 inverseViewProj; // clip -> world (the background's view rays)
     vec4 sky;      // x: environment drawn as background, y: its chain level (< 0: radiance cube),
-                   // z: bounce light (bounce.glsl) in this frame
+                   // z: bounce light (bounce.glsl) in this frame, w: the dome occludes the
+                   // ambient (no environment; RenderSettings::ambientOcclusion)
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };

@@ -189,7 +189,9 @@ Surface surfaceAt(vec3 p, vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins
 
 // The terms of eq. 2.10 summed over lights, plus the environment's (environment.glsl).
 struct Shading {
-    vec3 ambient;           // I_A K_A T
+    vec3 ambient;           // I_A K_A T (less what receivers hide from a caster: bounce.glsl)
+    float ambientVisibility; // the part of the ambient's sky no caster occludes (ambient dome)
+    vec3 bounce;            // light bounced off the receivers (bounce.glsl)
     vec3 diffuse;           // direct diffuse, shadows applied
     vec3 diffuseUnshadowed; // direct diffuse without shadows (phantoms' reference)
     vec3 specular;          // direct specular, shadows applied
@@ -202,7 +204,20 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     vec3 v = normalize(frame.cameraPos.xyz - p);
     Shading sh;
     sh.ambient = sf.ambient * ins.ka.rgb * (hasFlag(ins, AMBIENT_RADIANCE) ? vec3(1.0) : sf.T);
-    sh.diffuse = sh.diffuseUnshadowed = sh.specular = vec3(0.0);
+    sh.diffuse = sh.diffuseUnshadowed = sh.specular = sh.bounce = vec3(0.0);
+    // A scene without an environment reads its ambient as a uniform sky of radiance 1 times
+    // I_A; its dome (frame.sky.w) gives the fraction of that sky's light that reaches p. The sky
+    // an occluder hides is partly replaced by the light the occluder reflects, which nothing
+    // here traces: Jimenez et al. 2016 ("Practical real-time strategies for accurate indirect
+    // occlusion", eq. 10) fit that multi-bounce visibility as a cubic in the visibility v whose
+    // coefficients depend on the albedo rho around p (taken as the surface's own).
+    sh.ambientVisibility = 1.0;
+    if (frame.sky.w > 0.5) {
+        float v = clamp(1.0 - dot(domeOccluded(p, n), vec3(0.2126, 0.7152, 0.0722)), 0.0, 1.0);
+        float rho = clamp(dot(ins.kd.rgb * sf.T, vec3(0.2126, 0.7152, 0.0722)), 0.0, 1.0);
+        float a = 2.0404 * rho - 0.3324, b = -4.7951 * rho + 0.6417, c = 2.7552 * rho + 0.6903;
+        sh.ambientVisibility = clamp(max(v, ((a * v + b) * v + c) * v), 0.0, 1.0);
+    }
     debugVis = 1.0;
     debugDepth = 0.0;
     for (int i = 0; i < frame.counts.x; ++i) {
@@ -233,28 +248,35 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     int bp = bounceProbe(ins);
     if (bp >= 0) {
         float covered = min(bounceIrradiance(bp, 2, n).x, 1.0);
-        sh.ambient = sh.ambient * (1.0 - covered) + bounceIrradiance(bp, 0, n) * ins.kd.rgb * sf.T;
+        sh.ambient *= 1.0 - covered;
+        sh.bounce = bounceIrradiance(bp, 0, n) * ins.kd.rgb * sf.T;
     }
     return sh;
 }
 
 // The colour of a shaded fragment. With the dome's diffuse deferred to the blur pass
 // (frame.options.z), `dome` receives that part before the dome's shadows (rgb) and its
-// visibility (a), and the colour leaves it out. A phantom (SPEC §4.5, AR) shows the background
-// image darkened by the shadows it receives: background * lit / unlit diffuse light (differential
-// rendering of a diffuse stand-in).
+// visibility (a), and the colour leaves it out; the part is the environment's diffuse light, or
+// the ambient when the dome stands for the ambient's sky (frame.sky.w). A phantom (SPEC §4.5,
+// AR) shows the background image darkened by the shadows it receives: background * lit / unlit
+// diffuse light (differential rendering of a diffuse stand-in).
 vec3 shadedColor(Shading sh, Instance ins, out vec4 dome) {
     bool deferDome = frame.options.z > 0.5;
+    bool ambientDome = frame.sky.w > 0.5;
     EnvironmentTerms e = sh.environment;
+    // what the dome darkens, before (domed) and after (domedLit) its shadows; the rest (direct)
+    vec3 domed = ambientDome ? sh.ambient : e.diffuse;
+    vec3 domedLit = ambientDome ? sh.ambient * sh.ambientVisibility : e.diffuseLit;
+    float visibility = ambientDome ? sh.ambientVisibility : e.visibility;
+    vec3 direct = (ambientDome ? e.diffuseLit : sh.ambient) + sh.diffuse + sh.bounce;
     if (hasFlag(ins, PHANTOM)) {
         vec3 unlit = max(sh.ambient + sh.diffuseUnshadowed + e.diffuse, vec3(1e-30));
         vec3 bg = frame.options.w > 0.5
                       ? textureLod(backgroundImage, gl_FragCoord.xy * frame.viewport.xy, 0.0).rgb
                       : frame.background.rgb;
-        vec3 direct = sh.ambient + sh.diffuse;
-        dome = vec4(bg * e.diffuse / unlit, e.visibility);
-        return bg * (deferDome ? direct : direct + e.diffuseLit) / unlit;
+        dome = vec4(bg * domed / unlit, visibility);
+        return bg * (deferDome ? direct : direct + domedLit) / unlit;
     }
-    dome = vec4(e.diffuse, e.visibility);
-    return sh.ambient + sh.diffuse + sh.specular + e.specular + (deferDome ? vec3(0.0) : e.diffuseLit);
+    dome = vec4(domed, visibility);
+    return direct + sh.specular + e.specular + (deferDome ? vec3(0.0) : domedLit);
 }

@@ -51,10 +51,14 @@ def renderer_small() -> "weft.Renderer":
 
 @pytest.fixture
 def make_renderer() -> Callable[..., "weft.Renderer"]:
-    """Factory: ``make_renderer(width, height, **settings)``. Without MSAA unless asked for: the
-    NumPy oracles evaluate one surface per pixel, as render_debug's outputs hold."""
+    """Factory: ``make_renderer(width, height, **settings)``. Without MSAA, bounce light and
+    ambient occlusion unless asked for: the NumPy oracles evaluate one surface per pixel, as
+    render_debug's outputs hold, lit by its own point's lights and ambient (the global terms
+    have their own tests against analytic truths and the path tracer)."""
     def make(width: int = 128, height: int = 96, **settings: object) -> "weft.Renderer":
         settings.setdefault("msaa", 1)
+        settings.setdefault("bounce", False)
+        settings.setdefault("ambient_occlusion", 0)
         return weft.Renderer(width, height, **settings)
 
     return make

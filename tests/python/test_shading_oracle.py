@@ -237,7 +237,8 @@ def label_pixels(debug: Dict[str, np.ndarray]) -> np.ndarray:
 def oracle_frame(request, smooth_texture):
     srgb = request.param
     scene, camera, materials = build_scene(smooth_texture, srgb=srgb)
-    renderer = weft.Renderer(192, 144, shadow_map_size=1024, pcf_radius=1, msaa=1)
+    renderer = weft.Renderer(192, 144, shadow_map_size=1024, pcf_radius=1, msaa=1,
+                             bounce=False, ambient_occlusion=0)  # the oracle shades locally
     debug = renderer.render_debug(scene, camera)
     labels = label_pixels(debug)
     if "instance" in debug:

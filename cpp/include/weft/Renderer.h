@@ -45,6 +45,12 @@ struct RenderSettings {
     /// walls) onto the shadow casters, and the sky and ambient they hide from them (per-caster
     /// SH9 captures, render/BounceProbes.h).
     bool bounce = true;
+    /// Ambient occlusion of a scene without an environment: its constant ambient I_A is read as
+    /// a uniform sky and occluded by the shadow casters through a dome of this many soft shadow
+    /// lights (0: off; else a multiple of 8 up to 64), like an environment's dome (SPEC §4.5),
+    /// with the visibility blurred over `ambientOcclusionBlur` pixels (0: per pixel).
+    uint32_t ambientOcclusion = 16;
+    float ambientOcclusionBlur = 4.0f;
     /// Multisample anti-aliasing of the forward pass: 1, 2, 4 or 8 samples per pixel, lowered
     /// to what the device supports (debug frames are never multisampled).
     uint32_t msaa = 4;

@@ -1,5 +1,6 @@
 // The dome's shadows blurred (rows, then columns, depth-aware), times the diffuse light they
-// darken, added to the colour (SPEC §4.5). Only when the scene's environment asks for a blur.
+// darken, added to the colour (SPEC §4.5). Only when the scene's environment (or the ambient
+// occlusion setting, for a dome over the ambient) asks for a blur.
 #include "render/FramePasses.h"
 #include "render/GpuTypes.h"
 #include "render/RenderTargets.h"
@@ -10,9 +11,8 @@ namespace weft::render {
 
 void addDomeBlurPasses(FrameGraph& g, FramePassContext& f) {
     if (!f.domeBlur) return;
-    const EnvironmentLighting& env = f.scene.environment();
-    const DomeBlurPush push{glm::vec4(env.domeBlur, f.camera.zNear, f.camera.zFar,
-                                      env.domeBlurDepthTolerance)};
+    const DomeBlurPush push{glm::vec4(f.dome.blurRadius(), f.camera.zNear, f.camera.zFar,
+                                      f.dome.blurDepthTolerance())};
     const int rRows = g.addResource("dome_rows", &f.targets.domeRows);
     g.addPass({"dome_blur_x", {{f.rDomeLight, Use::Sampled}, {f.rDepth, Use::Sampled}},
                {{rRows, Use::ColorWrite}}, [&f, push](VkCommandBuffer cmd) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <weft/Environment.h>
+
 #include "render/RenderTargets.h"
 
 namespace weft::render {
@@ -11,16 +13,29 @@ namespace weft::render {
 std::vector<int> DomeShadows::prepare(const Scene& scene, const RenderSettings& settings,
                                       const std::vector<uint64_t>& casterKey, uint64_t frame) {
     const EnvironmentLighting& env = scene.environment();
-    if (!env.environment || env.domeLights == 0) {
+    glm::vec3 lo, hi;
+    scene.bounds(lo, hi, true);
+    const bool casters = lo.x <= hi.x;
+    const glm::vec3 ambient = scene.ambient();
+    mAmbient = !env.environment && settings.ambientOcclusion > 0 && casters &&
+               glm::max(ambient.x, glm::max(ambient.y, ambient.z)) > 0.0f;
+    if (!mAmbient && (!env.environment || env.domeLights == 0)) {
         mLights.clear();
         mMaps = vk::Image();
         mFrustumKey.clear();
         return {};
     }
-    // Cached by the environment's content version: unchanged radiance integrates nothing.
-    const ShadowDome dome = env.environment->shadowDome(env.domeLights);
-    glm::vec3 lo, hi;
-    scene.bounds(lo, hi, true);
+    // Cached by the environment's content version: unchanged radiance integrates nothing. The
+    // ambient's sky is one uniform environment for every renderer.
+    static const std::shared_ptr<Environment> uniformSky = [] {
+        CubeMap sky(16);
+        std::fill(sky.data(), sky.data() + sky.floatCount(), 1.0f);
+        return std::make_shared<Environment>(std::move(sky));
+    }();
+    const ShadowDome dome = mAmbient ? uniformSky->shadowDome(int(settings.ambientOcclusion))
+                                     : env.environment->shadowDome(env.domeLights);
+    mBlur = mAmbient ? settings.ambientOcclusionBlur : env.domeBlur;
+    mBlurTolerance = env.domeBlurDepthTolerance;
     const unsigned size = unsigned(env.domeMapSize);
     std::vector<GpuDomeLight> lights;
     std::vector<uint64_t> frustumKey;
@@ -55,7 +70,7 @@ std::vector<int> DomeShadows::prepare(const Scene& scene, const RenderSettings& 
         mCurrent.assign(n, 1);
     } else {
         if (casterKey != mCasterKey) mCurrent.assign(n, 0); // every map is stale now
-        const int perFrame = env.domeRefresh > 0 ? env.domeRefresh : int(n);
+        const int perFrame = env.domeRefresh > 0 && !mAmbient ? env.domeRefresh : int(n);
         int rendered = 0;
         // Round robin over the stale maps, starting where the frame index points.
         for (uint32_t k = 0; k < n && rendered < perFrame; ++k) {

@@ -71,8 +71,9 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     data.frame.environment.z = float(dome.lights().size());
     data.frame.environment.w = float(dome.mapSize());
     // The dome's diffuse light goes through the blur pass (SPEC §4.5) when a blur is asked for.
-    const bool domeBlur = dome.active() && scene.environment().domeBlur > 0.0f;
+    const bool domeBlur = dome.active() && dome.blurRadius() > 0.0f;
     data.frame.options.z = domeBlur ? 1.0f : 0.0f;
+    data.frame.sky.w = dome.occludesAmbient() ? 1.0f : 0.0f;
     data.frame.options.w = scene.backgroundImage() != nullptr ? 1.0f : 0.0f;
     // Something behind the scene: the background image, or the environment (EnvironmentGpu).
     const bool background = scene.backgroundImage() != nullptr || data.frame.sky.x > 0.5f;

@@ -64,7 +64,8 @@ struct GpuFrame {
     glm::mat4 inverseViewProj; // clip -> world (the background's view rays)
     glm::vec4 sky;         // x: 1 = the environment is the background, y: its level in the
                            // glossy chain (< 0: the sharp radiance cube), z: 1 = bounce
-                           // light (BounceProbes.h) in this frame
+                           // light (BounceProbes.h) in this frame, w: 1 = the dome stands for
+                           // the ambient's uniform sky (ambient occlusion, DomeShadows.h)
 };
 
 /// Instance flags in GpuInstance::kd.w.

@@ -38,6 +38,12 @@ void RenderSettings::validate() const {
         throw InvalidArgument("exposure must be finite, in [-64, 64] stops");
     if (int(toneMap) < 0 || int(toneMap) > 3)
         throw InvalidArgument("tone map must be clamp, aces, agx or neutral");
+    if (ambientOcclusion > 64 || ambientOcclusion % 8 != 0)
+        throw InvalidArgument("ambient_occlusion must be 0 or a multiple of 8 up to 64 dome lights "
+                              "(got " + std::to_string(ambientOcclusion) + ")");
+    if (!(std::isfinite(ambientOcclusionBlur) && ambientOcclusionBlur >= 0.0f &&
+          ambientOcclusionBlur <= 64.0f))
+        throw InvalidArgument("ambient_occlusion_blur must be in [0, 64] pixels");
     if (hairPrimitive != HairPrimitive::Lines && hairPrimitive != HairPrimitive::Ribbons)
         throw InvalidArgument("hair primitive must be lines or ribbons");
 }

@@ -4,8 +4,11 @@ the shading-oracle error of the very frames that were timed.
 For every resolution x shadow-map size the default scene is rendered once to warm up, then
 ``--frames`` times with ``Renderer.render_debug``; each of those frames is checked against the
 NumPy oracle of :mod:`weft.reference.shading` (SPEC §1.3 eq. 2.5, 2.8–2.10, §1.5) and its
-statistics are recorded. Times are medians over the frames; errors are the worst frame's
-(max) or the average (mean). ``render()`` (colour only, no debug read-back) is timed as well.
+statistics are recorded. The oracle shades each point locally, so these frames are rendered
+without the global terms (bounce light, ambient occlusion; their accuracy is measured against
+the path tracer by ``weft.bench picture``). Times are medians over the frames; errors are the
+worst frame's (max) or the average (mean). ``render()`` (colour only, no debug read-back) is
+timed as well, both that way and at the renderer's defaults (global terms on).
 """
 
 from __future__ import annotations
@@ -168,7 +171,9 @@ def measure_setting(width: int, height: int, shadow_size: int, frames: int,
     scene, camera = weft.default_scene()
     # Shadow maps are re-rendered every frame so that their cost is measured (a static scene
     # would otherwise reuse them after the first frame).
-    renderer = weft.Renderer(width, height, shadow_map_size=shadow_size, reuse_shadow_maps=False)
+    renderer = weft.Renderer(width, height, shadow_map_size=shadow_size, reuse_shadow_maps=False,
+                             bounce=False, ambient_occlusion=0)
+    defaults = weft.Renderer(width, height, shadow_map_size=shadow_size, reuse_shadow_maps=False)
     materials: Optional[List[Any]] = None
     oracle_error: Optional[str] = None
     try:
@@ -195,13 +200,18 @@ def measure_setting(width: int, height: int, shadow_size: int, frames: int,
 
     color_cpu: List[float] = []
     color_wall: List[float] = []
-    for i in range(frames):
+    default_wall: List[float] = []
+    defaults.render(scene, camera)  # warm-up
+    for i in range(frames):  # alternating, so both see the same machine load
         if progress:
             progress.update(f"{label}: render() {i + 1}/{frames}")
         start = time.perf_counter()
         renderer.render(scene, camera)
         color_wall.append((time.perf_counter() - start) * 1e3)
         color_cpu.append(float(renderer.stats["cpu_ms"]))
+        start = time.perf_counter()
+        defaults.render(scene, camera)
+        default_wall.append((time.perf_counter() - start) * 1e3)
 
     groups = sorted({g for f in debug_frames for g in f["pass_gpu_ms"]},
                     key=lambda g: (PASS_GROUPS.index(g) if g in PASS_GROUPS else 99, g))
@@ -219,6 +229,7 @@ def measure_setting(width: int, height: int, shadow_size: int, frames: int,
                         for g in groups},
         "render_cpu_ms": _median(color_cpu),
         "render_wall_ms": _median(color_wall),
+        "render_defaults_wall_ms": _median(default_wall),
         "device": renderer.device_name,
     }
     if oracle_frames:
@@ -273,8 +284,9 @@ def to_markdown(report: Dict[str, Any]) -> str:
         f"- command: `{report['command']}`",
         f"- {report['frames']} timed frame(s) per setting after 1 warm-up; times are medians in "
         "ms over the `render_debug` frames the oracle checked (all debug outputs read back); "
-        "`render()` is the colour-only frame. GPU times from timestamp queries, n/a where the "
-        "device cannot measure them.",
+        "`render()` is the colour-only frame; these frames have no bounce light or ambient "
+        "occlusion (the oracle shades locally), 'render() defaults ms' (wall) has them. GPU "
+        "times from timestamp queries, n/a where the device cannot measure them.",
         "- oracle: NumPy Blinn-Phong + PCF from the same frame's debug outputs "
         "(weft.reference.shading), worst frame. Linear errors are |GPU - oracle| over all "
         "covered pixels (max, mean, 99th percentile) with the texture sampled in NumPy, which "
@@ -285,7 +297,8 @@ def to_markdown(report: Dict[str, Any]) -> str:
         "fraction of covered pixels whose PCF visibility differs from the NumPy PCF.",
         "",
     ]
-    header = ["resolution", "shadow map", "frame CPU ms", "render() CPU ms", "GPU shadow ms",
+    header = ["resolution", "shadow map", "frame CPU ms", "render() CPU ms",
+              "render() defaults ms", "GPU shadow ms",
               "GPU forward ms", "GPU output ms", "GPU total ms", "max err", "mean err",
               "p99 err", "max shading err", "max 8-bit", "> 1 level", "shadow mismatch"]
     rows = []
@@ -294,7 +307,8 @@ def to_markdown(report: Dict[str, Any]) -> str:
         o = r.get("oracle")
         rows.append([
             f"{r['width']}x{r['height']}", r["shadow_map_size"], _fmt_ms(r["frame_cpu_ms"]),
-            _fmt_ms(r["render_cpu_ms"]), _fmt_ms(gpu.get("shadow")), _fmt_ms(gpu.get("forward")),
+            _fmt_ms(r["render_cpu_ms"]), _fmt_ms(r.get("render_defaults_wall_ms")),
+            _fmt_ms(gpu.get("shadow")), _fmt_ms(gpu.get("forward")),
             _fmt_ms(gpu.get("output")), _fmt_ms(r["frame_gpu_ms"]),
             _fmt_err(o["max_abs"]) if o else "n/a", _fmt_err(o["mean_abs"]) if o else "n/a",
             _fmt_err(o["p99_abs"]) if o else "n/a",
