@@ -118,7 +118,7 @@ void bindRender(py::module_& m) {
            py::arg("bias_slope") = 0.0015f, py::arg("bias_max") = 0.01f,
            py::arg("normal_offset") = 1.5f, py::arg("reuse_shadow_maps") = true,
            py::arg("msaa") = 4, py::arg("exposure") = 0.0f, py::arg("tone_map") = "clamp",
-           py::arg("bounce") = true, py::arg("ambient_occlusion") = 16,
+           py::arg("bounce") = true, py::arg("ambient_occlusion") = 8,
            py::arg("ambient_occlusion_blur") = 4.0f)
         .def_property_readonly("width", &Renderer::width)
         .def_property_readonly("height", &Renderer::height)

@@ -152,6 +152,12 @@ def build_parser() -> argparse.ArgumentParser:
                              "to 64 (default 16 with --environment)")
     render.add_argument("--msaa", type=int, choices=(1, 2, 4, 8), default=4,
                         help="multisample anti-aliasing samples per pixel (4)")
+    render.add_argument("--ao", type=_dome_size, default=8, metavar="N",
+                        help="ambient occlusion of a constant ambient (scenes without an "
+                             "environment): dome shadow lights, 0 (off) or a multiple of 8 up "
+                             "to 64 (8)")
+    render.add_argument("--no-bounce", action="store_true",
+                        help="no bounce light from the receivers (ground) onto the objects")
     render.add_argument("--exposure", type=float, default=0.0, metavar="EV",
                         help="exposure in photographic stops: the image shows radiance x 2^EV (0)")
     render.add_argument("--tone-map", choices=("clamp", "aces", "agx", "neutral"),
@@ -261,7 +267,8 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
         weft.scenes.composite_over(scene, weft.load_png(args.background))
     renderer = weft.Renderer(args.width, args.height, msaa=args.msaa, exposure=args.exposure,
-                             tone_map=args.tone_map)
+                             tone_map=args.tone_map, ambient_occlusion=args.ao,
+                             bounce=not args.no_bounce)
     image = renderer.render(scene, camera)
     directory = os.path.dirname(args.out)
     if directory:

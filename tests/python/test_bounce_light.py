@@ -131,8 +131,9 @@ def test_ambient_occlusion_under_a_sphere_matches_the_view_factor(make_renderer)
     the sky's cosine-weighted light (its view factor): the ground shows 1 - that."""
     r_s, h = 0.5, 1.0
     scene, camera = sphere_over_ground(r_s, h)
-    # measured: within 0.01 at 64 dome lights, 0.033 at the default 16 (dome quantisation)
-    for lights, blur, tolerance in ((64, 0.0, 0.02), (16, 4.0, 0.045)):
+    # measured: within 0.01 at 64 dome lights, 0.033 at 16, 0.054 at the default 8 (the dome's
+    # quantisation of the sky)
+    for lights, blur, tolerance in ((64, 0.0, 0.02), (16, 4.0, 0.045), (8, 4.0, 0.07)):
         debug = make_renderer(128, 128, ambient_occlusion=lights, ambient_occlusion_blur=blur,
                               bounce=False).render_debug(scene, camera)
         ground = debug["instance"] == 0
@@ -153,7 +154,7 @@ def test_ambient_occlusion_under_a_sphere_matches_the_view_factor(make_renderer)
 
 def test_ambient_occlusion_is_skipped_where_nothing_needs_it(make_renderer):
     scene, camera = sphere_over_ground()
-    r = make_renderer(48, 48, ambient_occlusion=16)
+    r = make_renderer(48, 48, ambient_occlusion=8)
     r.render(scene, camera)
     assert any(p["name"].startswith("dome[") for p in r.stats["passes"])
     scene.ambient = (0.0, 0.0, 0.0)  # no ambient: nothing to occlude

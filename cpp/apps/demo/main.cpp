@@ -30,6 +30,9 @@ options:
                      an equirectangular (2:1) or sphere-map (square) .hdr/.exr/.png; diffuse
                      from its SH9 irradiance, shadows from a dome of 16 shadow lights
   --msaa N           anti-aliasing samples per pixel: 1, 2, 4 or 8 (default 4)
+  --ao N             ambient occlusion of the constant ambient (no --environment): dome
+                     lights, 0 (off) or a multiple of 8 up to 64 (default 8)
+  --no-bounce        no bounce light from the ground onto the objects
   --exposure EV      exposure in stops: the image shows radiance x 2^EV (default 0)
   --tone-map OP      clamp (the seed's look), aces, agx or neutral (default clamp)
   --time HOURS       time of day, 0..24 (6 sunrise, 12 noon, 18 sunset; default 8.4): the
@@ -100,6 +103,8 @@ int main(int argc, char** argv) {
             else if (a == "--shader-dir") o.shaderDir = next();
             else if (a == "--environment") o.environment = next();
             else if (a == "--msaa") o.msaa = uint32_t(parseInt("--msaa", next()));
+            else if (a == "--ao") o.ambientOcclusion = uint32_t(parseInt("--ao", next()));
+            else if (a == "--no-bounce") o.bounce = false;
             else if (a == "--exposure") o.exposure = parseFloat("--exposure", next());
             else if (a == "--tone-map") {
                 const std::string op = next();

@@ -25,6 +25,8 @@ struct DemoOptions {
     std::string screenshot;     // windowed: save the last presented frame here
     std::string statsJson;      // optional: write the last frame's statistics as JSON
     uint32_t msaa = 4;          // RenderSettings::msaa
+    uint32_t ambientOcclusion = 8; // RenderSettings::ambientOcclusion
+    bool bounce = true;         // RenderSettings::bounce
     float exposure = 0.0f;      // RenderSettings::exposure (stops)
     ToneMap toneMap = ToneMap::Clamp;
 };

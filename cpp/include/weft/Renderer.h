@@ -48,8 +48,11 @@ struct RenderSettings {
     /// Ambient occlusion of a scene without an environment: its constant ambient I_A is read as
     /// a uniform sky and occluded by the shadow casters through a dome of this many soft shadow
     /// lights (0: off; else a multiple of 8 up to 64), like an environment's dome (SPEC §4.5),
-    /// with the visibility blurred over `ambientOcclusionBlur` pixels (0: per pixel).
-    uint32_t ambientOcclusion = 16;
+    /// with the visibility blurred over `ambientOcclusionBlur` pixels (0: per pixel). The
+    /// default, 8, is the best error per millisecond measured on lavapipe: under a sphere the
+    /// visibility is within 0.054 of the analytic view factor (16: 0.033 at 1.4x the cost of
+    /// 8, 64: 0.01); the forward pass pays for every light.
+    uint32_t ambientOcclusion = 8;
     float ambientOcclusionBlur = 4.0f;
     /// Multisample anti-aliasing of the forward pass: 1, 2, 4 or 8 samples per pixel, lowered
     /// to what the device supports (debug frames are never multisampled).

@@ -143,6 +143,8 @@ bool isPng(const std::string& path) {
 RenderSettings renderSettings(const DemoOptions& o) {
     RenderSettings s;
     s.msaa = o.msaa;
+    s.ambientOcclusion = o.ambientOcclusion;
+    s.bounce = o.bounce;
     s.exposure = o.exposure;
     s.toneMap = o.toneMap;
     s.validate();
