@@ -4,7 +4,7 @@
 layout(set = 0, binding = 14) uniform sampler2D bounceSh; // row: probe, column: 9 set + k
 
 // The instance's bounce capture, or -1 (none, or a frame without bounce light).
-int bounceProbe(Instance ins) { return frame.sky.z > 0.5 ? int(ins.maps.z + 0.5) - 1 : -1; }
+int bounceProbe(Instance ins) { return frame.sky.z > 0.5 ? int(ins.flags.y) - 1 : -1; }
 
 vec3 bounceIrradiance(int probe, int set, vec3 n) {
     float b[9] = float[9](0.282095, 0.488603 * n.y, 0.488603 * n.z, 0.488603 * n.x,

@@ -3,11 +3,6 @@
 // R = 2(n.v)n - v times Schlick's Fresnel. python/weft/reference/ibl_shading.py evaluates the
 // same in NumPy. Included by shading.glsl after frame.glsl.
 
-struct DomeLight {
-    mat4 viewProj;  // orthographic: rows 0-2 are orthogonal (a rotation times axis scales)
-    vec4 direction; // xyz: towards the light, w: normal offset (world units)
-    vec4 intensity; // rgb: T_i / pi, a: tan of the light's angular radius (0: a point light)
-};
 layout(std430, set = 0, binding = 7) readonly buffer DomeLights { DomeLight domeLights[]; };
 layout(set = 0, binding = 8) uniform sampler2DArray domeMaps;
 layout(set = 0, binding = 9) uniform samplerCube probeMap; // dynamic capture (black while drawn)
@@ -152,7 +147,7 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
     e.diffuse = e.diffuseLit = vec3(0.0);
     e.specular = vec3(0.0);
     e.visibility = 1.0;
-    bool probe = (int(ins.baseColor.w) & 4) != 0;
+    bool probe = hasFlag(ins, DYNAMIC_REFLECTION);
     bool sphere = frame.options.x > 0.5;
     if (frame.environment.x <= 0.0 && !probe) return e;
     vec3 irradiance = vec3(0.0), lit = vec3(-1.0);
@@ -190,7 +185,7 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
     }
     // The seed's decal material keeps its gloss in the base texture's alpha:
     // lighting = lerp(specular, diffuse, alpha), out = lighting * T (SPEC §4.4).
-    bool gloss = (int(ins.kd.w) & 8) != 0;
+    bool gloss = hasFlag(ins, GLOSS_IN_ALPHA);
     e.diffuse = diffuse * T * (gloss ? decalAlpha : 1.0);
     // Per channel as eq. 2.23 has it (the blur pass uses the scalar visibility).
     e.diffuseLit = lit.x < 0.0 ? e.diffuse : e.diffuse * lit / max(irradiance, vec3(1e-30));

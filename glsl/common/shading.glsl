@@ -2,6 +2,9 @@
 // (SPEC §1.2, §1.3 eq. 2.3-2.5, 2.8-2.10; §1.5). python/weft/reference/shading.py and
 // shadow.py implement the same equations in NumPy.
 #include "frame.glsl"
+
+bool hasFlag(Instance ins, uint flag) { return (ins.flags.x & flag) != 0u; }
+
 #include "bounce.glsl"
 #include "environment.glsl"
 
@@ -11,14 +14,6 @@ layout(set = 1, binding = 2) uniform sampler2D specularMap; // linear, multiplie
                                                             // log-encoded exponent (optional)
 layout(set = 1, binding = 3) uniform sampler2D ambientMap;  // linear, replaces I_A (or I_A K_A T)
 
-const int MAP_NORMAL = 1;
-const int MAP_AMBIENT = 2;
-const int SPECULAR_VERTEX_NORMAL = 4;
-const int GLOSS_IN_ALPHA = 8;
-const int PHANTOM = 16;
-const int AMBIENT_RADIANCE = 32;
-
-bool hasFlag(Instance ins, int flag) { return (int(ins.kd.w) & flag) != 0; }
 
 // Depth of a perspective shadow map's NDC depth d as distance along the view axis.
 float linearShadowDepth(float d, float zNear, float zFar) {
@@ -150,10 +145,9 @@ struct Surface {
 vec3 shadingNormal(vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins, bool frontFacing,
                    out vec3 vertexOut) {
     vec3 n = normalize(vertexNormal);
-    // Two-sided (bit 0 of baseColor.w): the back face is shaded with the flipped normal; a
-    // mirroring transform (bit 1) reverses which side the rasteriser calls front.
-    int flags = int(ins.baseColor.w);
-    if ((flags & 1) != 0 && frontFacing == ((flags & 2) != 0)) {
+    // Two-sided: the back face is shaded with the flipped normal; a mirroring transform
+    // reverses which side the rasteriser calls front.
+    if (hasFlag(ins, TWO_SIDED) && frontFacing == hasFlag(ins, MIRRORED)) {
         n = -n;
         tangent.w = -tangent.w;
     }

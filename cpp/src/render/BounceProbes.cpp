@@ -27,7 +27,7 @@ bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSett
         glm::vec3 lo, hi;
         scene.instanceBounds(casters[i], lo, hi);
         mPositions.push_back(0.5f * (lo + hi));
-        data.instances[casters[i]].maps.z = float(i + 1);
+        data.instances[casters[i]].flags.y = i + 1;
     }
     data.frame.sky.z = 1.0f;
 

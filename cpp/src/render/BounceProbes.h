@@ -31,7 +31,7 @@ public:
     explicit BounceProbes(vk::Context& ctx) : mCtx(ctx) {}
 
     /// Picks this frame's probes (settings.bounce, casters with receivers to see), marks their
-    /// instances (GpuInstance::maps.z = probe + 1) and the frame (GpuFrame::sky.z = 1), and
+    /// instances (GpuInstance::flags.y = probe + 1) and the frame (GpuFrame::sky.z = 1), and
     /// returns whether the captures must be taken again.
     bool prepare(const Scene& scene, FrameData& data, const RenderSettings& settings);
     uint32_t count() const { return uint32_t(mPositions.size()); }

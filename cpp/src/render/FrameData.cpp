@@ -113,18 +113,18 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
         g.normalMatrix = glm::transpose(glm::inverse(inst.transform));
         g.ka = glm::vec4(inst.material.ka, inst.material.alphaCutoff);
         const Material& m = inst.material;
-        const int maps = (m.normalMap ? kFlagNormalMap : 0) | (m.ambientMap ? kFlagAmbientMap : 0) |
-                         (m.specularVertexNormal ? kFlagSpecularVertexNormal : 0) |
-                         (m.glossInAlpha ? kFlagGlossInAlpha : 0) | (m.phantom ? kFlagPhantom : 0) |
-                         (m.ambientMapIsRadiance ? kFlagAmbientRadiance : 0);
-        g.kd = glm::vec4(inst.material.kd, float(maps));
-        g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
         const bool mirrored = glm::determinant(glm::mat3(inst.transform)) < 0.0f;
-        // baseColor.w: bit 0 two-sided, bit 1 mirrored (for the back-face test), bit 2 reflects
-        // the dynamic capture
-        g.baseColor = glm::vec4(inst.material.baseColor,
-                                float((inst.material.twoSided ? 1 : 0) | (mirrored ? 2 : 0) |
-                                      (inst.material.dynamicReflection ? 4 : 0)));
+        const uint32_t flags =
+            (m.normalMap ? gpu::MAP_NORMAL : 0u) | (m.ambientMap ? gpu::MAP_AMBIENT : 0u) |
+            (m.specularVertexNormal ? gpu::SPECULAR_VERTEX_NORMAL : 0u) |
+            (m.glossInAlpha ? gpu::GLOSS_IN_ALPHA : 0u) | (m.phantom ? gpu::PHANTOM : 0u) |
+            (m.ambientMapIsRadiance ? gpu::AMBIENT_RADIANCE : 0u) |
+            (m.twoSided ? gpu::TWO_SIDED : 0u) | (mirrored ? gpu::MIRRORED : 0u) |
+            (m.dynamicReflection ? gpu::DYNAMIC_REFLECTION : 0u);
+        g.flags = glm::uvec4(flags, 0u, 0u, 0u);
+        g.kd = glm::vec4(inst.material.kd, 0.0f);
+        g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
+        g.baseColor = glm::vec4(inst.material.baseColor, 0.0f);
         g.environment = glm::vec4(inst.material.reflectivity, inst.material.environmentDiffuse);
         g.maps = glm::vec4(m.shininessMax > 0.0f ? std::log2(m.shininessMax / m.shininess) : 0.0f,
                            m.normalScale, 0.0f, 0.0f);

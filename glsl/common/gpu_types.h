@@ -1,0 +1,105 @@
+// The structs the renderer uploads and its scene shaders read, defined once for both: this file
+// is valid C++17 (included by cpp/src/render/GpuTypes.h, inside namespace weft::render::gpu)
+// and GLSL 450 (included by frame.glsl and environment.glsl). Uniform blocks use std140 and
+// buffers std430; every member is a vec4, ivec4, uvec4 or mat4, so both layouts are the C++
+// one (GpuTypes.h asserts the sizes). Flags are integer bits, not packed into floats.
+#ifndef WEFT_GPU_TYPES_H
+#define WEFT_GPU_TYPES_H
+
+#ifdef __cplusplus
+#include <cstdint>
+
+#include <glm/glm.hpp>
+namespace weft::render::gpu {
+using vec4 = glm::vec4;
+using ivec4 = glm::ivec4;
+using uvec4 = glm::uvec4;
+using mat4 = glm::mat4;
+using uint = std::uint32_t;
+#define WEFT_CONST(type, name, value) constexpr type name = value
+#else
+#define WEFT_CONST(type, name, value) const type name = value
+#endif
+
+WEFT_CONST(int, MAX_COOKIES, 4);       // distinct spot-light cookie textures per frame
+WEFT_CONST(int, MAX_SHADOW_LAYERS, 32); // shadow-map layers per frame (a point light takes 6)
+
+// Light::position.w
+WEFT_CONST(int, LIGHT_DIRECTIONAL, 0);
+WEFT_CONST(int, LIGHT_POINT, 1);
+WEFT_CONST(int, LIGHT_SPOT, 2);
+
+// Instance::flags.x
+WEFT_CONST(uint, MAP_NORMAL, 1u);             // tangent-space normal map
+WEFT_CONST(uint, MAP_AMBIENT, 2u);            // ambient map replaces I_A
+WEFT_CONST(uint, SPECULAR_VERTEX_NORMAL, 4u); // highlight from the vertex normal
+WEFT_CONST(uint, GLOSS_IN_ALPHA, 8u);         // the decal's gloss in the base texture's alpha
+WEFT_CONST(uint, PHANTOM, 16u);               // shows only the shadows it receives (AR)
+WEFT_CONST(uint, AMBIENT_RADIANCE, 32u);      // the ambient map is the ambient term itself
+WEFT_CONST(uint, TWO_SIDED, 64u);             // back faces shaded with the flipped normal
+WEFT_CONST(uint, MIRRORED, 128u);             // det(model) < 0: front and back swap
+WEFT_CONST(uint, DYNAMIC_REFLECTION, 256u);   // reflects the dynamic capture
+
+struct Light {
+    vec4 position;    // xyz: position (point, spot); w: LIGHT_*
+    vec4 direction;   // directional: unit vector towards the light; spot: unit axis into the
+                      // scene; w: cookie slot or -1
+    vec4 radiance;    // rgb: colour * intensity; w: first shadow layer or -1
+    vec4 attenuation; // k_c, k_l, k_q, radius (> 0: eq. 2.4)
+    vec4 cone;        // cos(inner), cos(outer), tan(outer), 0
+};
+
+// One layer of the shadow-map array: the light view it was rendered from.
+struct ShadowLayer {
+    mat4 viewProj;
+    vec4 params; // x: normal offset (world units; perspective: per metre of distance),
+                 // y: 1 perspective / 0 orthographic, z: near, w: far
+};
+
+// A light of the environment's (or the ambient's) shadow dome (SPEC §4.5) and its map layer.
+struct DomeLight {
+    mat4 viewProj;  // orthographic: rows 0-2 are orthogonal (a rotation times axis scales)
+    vec4 direction; // xyz: unit vector towards the light, w: normal offset (world units)
+    vec4 intensity; // rgb: T_i / pi, a: tan of the light's angular radius (0: a point light)
+};
+
+struct Instance {
+    mat4 model;
+    mat4 normalMatrix; // inverse transpose of the model matrix (upper 3x3 used)
+    vec4 ka;           // w: alpha cutoff (0: opaque)
+    vec4 kd;
+    vec4 ks;           // w: shininess
+    vec4 baseColor;
+    vec4 environment;  // rgb: reflectivity (Fresnel F0), w: environment-diffuse weight
+    vec4 maps;         // x: log2(shininess max / shininess), the exponent in the specular
+                       // map's alpha (0: none); y: normal-map scale of x and y
+    uvec4 flags;       // x: MAP_* ... DYNAMIC_REFLECTION bits; y: bounce capture + 1 (0: none;
+                       // render/BounceProbes.h)
+};
+
+// The per-frame uniforms (binding 0 of the scene passes' set 0).
+struct Frame {
+    mat4 viewProj;
+    vec4 cameraPos;
+    vec4 ambient;
+    vec4 background;
+    vec4 bias;     // x: constant, y: slope, z: max (units of the light's depth range)
+    ivec4 counts;  // x: lights, y: PCF radius, z: shadow-map size, w: debug light or -1
+    vec4 environment;      // x: intensity (0: none), y: last chain level, z: dome lights,
+                           // w: dome shadow-map size
+    vec4 environmentSh[9]; // SH9 of E(n) / pi: A_l L_lm / pi (rgb), see environment.glsl
+    mat4 view;             // world -> eye (the sphere-map lookups of SPEC §4.4)
+    vec4 options;  // x: sphere-map lookups, y: last glossy sphere level, z: the dome's diffuse
+                   // deferred to the blur pass, w: background image (flags: 0 or 1)
+    vec4 viewport; // xy: 1 / target size in pixels
+    mat4 inverseViewProj; // clip -> world (the background's view rays)
+    vec4 sky;      // x: the environment is the background, y: its level in the glossy chain
+                   // (< 0: the sharp radiance cube), z: bounce light (BounceProbes.h) in this
+                   // frame, w: the dome stands for the ambient's uniform sky (ambient occlusion)
+};
+
+#ifdef __cplusplus
+} // namespace weft::render::gpu
+#endif
+#undef WEFT_CONST
+#endif // WEFT_GPU_TYPES_H
