@@ -1,6 +1,7 @@
 #pragma once
 // Private state of weft::Cloth, shared by the files of the solver.
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include <weft/Cloth.h>
@@ -32,8 +33,20 @@ namespace weft {
 struct Cloth::Impl {
     ClothParams params;
     int n = 0;
+    // Serialises every public call: the pool and the state admit one stepper at a time.
+    mutable std::recursive_mutex lock;
 
-    std::vector<cloth::Particle> particles; // current positions + inverse mass
+    // The solver's frame: positions are stored relative to frame (the cloth's origin), so
+    // float32 keeps its precision for a cloth far from the world origin. world holds the
+    // published world-space records (particleData), refreshed by publish().
+    glm::dvec3 frame{0.0};
+    std::vector<cloth::Particle> world;
+    glm::vec3 toLocal(const glm::vec3& p) const { return glm::vec3(glm::dvec3(p) - frame); }
+    glm::vec3 toWorld(const glm::vec3& p) const { return glm::vec3(glm::dvec3(p) + frame); }
+    /// Copies the particles to world; returns whether all of them are finite.
+    bool publish();
+
+    std::vector<cloth::Particle> particles; // current positions + inverse mass (local frame)
     std::vector<cloth::Particle> previous;  // x_prev of Verlet (w unused)
     std::vector<glm::vec3> rest;            // initial positions
     std::vector<float> baseInvMass;         // inverse mass without pins/grabs
@@ -75,9 +88,11 @@ struct Cloth::Impl {
     std::vector<float> tetherLength;
 
     std::vector<int> grabbed;
-    std::vector<glm::vec3> grabTargets;
+    std::vector<glm::vec3> grabTargets; // local frame
+    std::vector<glm::vec3> grabWorld;   // as given
     Wind wind;
-    std::vector<Collider> colliders;
+    std::vector<Collider> colliders;      // as given (world space)
+    std::vector<Collider> localColliders; // the same in the local frame (used by collide)
 
     double accumulator = 0.0;
     uint64_t steps = 0;

@@ -82,7 +82,7 @@ void Cloth::Impl::collide(int begin, int end) {
     for (int k = begin; k < end; ++k) {
         Particle& p = particles[size_t(k)];
         if (p.w == 0.0f) continue;
-        for (const Collider& c : colliders) {
+        for (const Collider& c : localColliders) {
             glm::vec3 n;
             const float s = c.distance(p.x, n);
             if (s >= thickness) continue;
