@@ -195,7 +195,8 @@ void Cloth::reset() {
         m.particles[size_t(k)].x = m.rest[size_t(k)];
         m.previous[size_t(k)].x = m.rest[size_t(k)];
     }
-    std::fill(m.active.begin(), m.active.end(), uint8_t(1));
+    std::fill(m.faceAlive.begin(), m.faceAlive.end(), uint8_t(1));
+    m.torn = false;
     m.grabbed.clear();
     m.grabTargets.clear();
     m.grabWorld.clear();
@@ -288,11 +289,7 @@ void Cloth::setHoles(const std::vector<uint8_t>& mask) {
     Lock lock(m.lock);
     for (int k = 0; k < m.n; ++k) m.hole[size_t(k)] = mask[size_t(k)] ? 1 : 0;
     ++m.meshVersion;
-    // Constraints come back only where both ends are cloth again (torn ones stay torn).
-    for (size_t c = 0; c < m.constraints.size(); ++c)
-        if (!m.hole[size_t(m.constraints[c].a)] && !m.hole[size_t(m.constraints[c].b)] &&
-            m.params.tearStrain == 0.0f)
-            m.active[c] = 1;
+    // Constraints come back where both ends are cloth again (torn faces stay torn).
     m.applyInverseMasses();
     m.publish();
     wake();

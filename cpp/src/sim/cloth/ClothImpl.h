@@ -62,6 +62,11 @@ struct Cloth::Impl {
     std::vector<int> endA;                      // constraints[c].a, contiguous
     std::vector<float> restLength;              // constraints[c].rest, contiguous
     std::vector<uint8_t> family, active;
+    // Tearing (ClothTearing.cpp): the grid's triangles, 2 per quad; a constraint is active
+    // while no end is a hole and (once anything tore) the faces it runs through are alive.
+    std::vector<uint8_t> faceAlive;
+    std::vector<float> faceStretch; // scratch of tearFaces
+    bool torn = false, anyHole = false;
     std::vector<float> lambda;
     std::vector<cloth::Batch> batches;
     // The structure-of-arrays path of the relaxation (CPUs with AVX-512, no colliders,
@@ -125,6 +130,13 @@ struct Cloth::Impl {
         return normals;
     }
     void afterStep(float dt);        // tearing, sleeping
+    bool faceOpen(int f) const;      // alive and no corner is a hole
+    bool quadAny(int i, int j) const;
+    bool quadBoth(int i, int j) const;
+    bool supported(size_t c) const;  // the faces constraint c runs through are alive
+    void updateActive();             // active from holes and faces
+    bool tearFaces();                // tears overstretched faces; whether any tore
+    void tethersAlongCloth(const std::vector<int>& anchors);
 };
 
 } // namespace weft

@@ -142,6 +142,8 @@ void Cloth::Impl::build() {
         restLength[c] = constraints[c].rest;
     }
     active.assign(constraints.size(), 1);
+    faceAlive.assign(size_t(2) * size_t(std::max(p.nx - 1, 0)) * size_t(std::max(p.ny - 1, 0)), 1);
+    torn = false;
     lambda.assign(constraints.size(), 0.0f);
     // WEFT_CLOTH_AOS=1 keeps the record layout (for A/B timings and the identity tests)
     const char* aos = std::getenv("WEFT_CLOTH_AOS");
@@ -223,10 +225,8 @@ void Cloth::Impl::applyInverseMasses() {
         particles[size_t(k)].w = fixed ? 0.0f : baseInvMass[size_t(k)];
     }
     for (int g : grabbed) particles[size_t(g)].w = 0.0f;
-    // Constraints touching a hole are gone for good (the mesh leaves them out too).
-    for (size_t c = 0; c < constraints.size(); ++c)
-        if (hole[size_t(constraints[c].a)] || hole[size_t(constraints[c].b)]) active[c] = 0;
-    denseStale = true;
+    // Constraints touching a hole are gone (the mesh leaves them out too), and torn ones.
+    updateActive();
     rebuildTethers();
     publish(); // the records carry w
 }
@@ -246,6 +246,12 @@ void Cloth::Impl::rebuildTethers() {
     for (int k = 0; k < n; ++k)
         if (!hole[size_t(k)] && particles[size_t(k)].w == 0.0f) anchors.push_back(k);
     if (anchors.empty()) return;
+    // Holes or tears: straight rest distances may cross empty space (too short a tether) or
+    // tie a piece to an anchor it is no longer attached to; measure along the cloth instead.
+    if (std::find(active.begin(), active.end(), uint8_t(0)) != active.end()) {
+        tethersAlongCloth(anchors);
+        return;
+    }
     tetherSlots = int(std::min(kMaxAnchors, anchors.size()));
     tetherAnchor.resize(size_t(tetherSlots) * size_t(n));
     tetherLength.assign(size_t(tetherSlots) * size_t(n), std::numeric_limits<float>::infinity());
