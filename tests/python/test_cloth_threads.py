@@ -9,6 +9,7 @@ hanging the suite.
 from __future__ import annotations
 
 import threading
+import time
 from typing import Callable, List
 
 import numpy as np
@@ -39,8 +40,9 @@ def _run(workers: List[Callable[[], None]]) -> None:
     threads = [threading.Thread(target=guard(w), daemon=True) for w in workers]
     for t in threads:
         t.start()
+    deadline = time.monotonic() + TIMEOUT
     for t in threads:
-        t.join(TIMEOUT)
+        t.join(max(0.0, deadline - time.monotonic()))
     hung = [t for t in threads if t.is_alive()]
     assert not hung, f"{len(hung)} thread(s) still running after {TIMEOUT} s: deadlock"
     assert not errors, errors
