@@ -361,7 +361,7 @@ def test_sleep_and_wake() -> None:
         cloth.step(DT)
     assert cloth.sleeping
     cloth.step(DT)
-    # the same rest state (the solver's local frame rounds its creep to ~1e-7 m, not to 0)
+    # the same rest state (rest lengths now exact in double: it creeps ~1e-7 m, not 0)
     np.testing.assert_allclose(cloth.positions, frozen, atol=1e-6)
     cloth.grab([0], [[-0.5, 1.5, -0.5]])  # grabbing wakes it
     assert not cloth.sleeping

@@ -128,7 +128,10 @@ def test_tethers_let_go_of_a_torn_off_piece() -> None:
     cut = ~np.isin(label, [label[0], label[n - 1]])
     assert cut.sum() > n * n // 2
     y = np.asarray(cloth.positions, dtype=np.float64)[:, 1]
-    assert y[cut].max() < -3.0  # fell far (held at 0.5-1.5 m on main)
+    # fell far below the pins at 1.5 m (held at 0.5-1.5 m on main): every particle at least
+    # 2.5 m, most of them most of the free fall
+    assert y[cut].max() < -1.0
+    assert np.median(y[cut]) < -10.0
 
 
 def test_tethers_let_go_of_a_region_cut_off_by_holes() -> None:

@@ -38,6 +38,7 @@ void checkIndices(const std::vector<int>& idx, int n, const char* what) {
 using Lock = std::lock_guard<std::recursive_mutex>;
 
 bool Cloth::Impl::publish() {
+    if (frame == glm::dvec3(0.0)) return true; // particleData is the records themselves
     world.resize(particles.size());
     bool finite = true;
     for (size_t k = 0; k < particles.size(); ++k) {
@@ -90,7 +91,10 @@ void Cloth::setParams(const ClothParams& p) {
 
 int Cloth::particleCount() const { return mImpl->n; }
 int Cloth::constraintCount() const { return int(mImpl->constraints.size()); }
-const float* Cloth::particleData() const { return &mImpl->world[0].x.x; }
+const float* Cloth::particleData() const {
+    const Impl& m = *mImpl;
+    return m.frame == glm::dvec3(0.0) ? &m.particles[0].x.x : &m.world[0].x.x;
+}
 const float* Cloth::normalData() const {
     Lock lock(mImpl->lock);
     return &mImpl->currentNormals()[0].x;

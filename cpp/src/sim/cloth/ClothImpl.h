@@ -36,9 +36,10 @@ struct Cloth::Impl {
     // Serialises every public call: the pool and the state admit one stepper at a time.
     mutable std::recursive_mutex lock;
 
-    // The solver's frame: positions are stored relative to frame (the cloth's origin), so
-    // float32 keeps its precision for a cloth far from the world origin. world holds the
-    // published world-space records (particleData), refreshed by publish().
+    // The solver's frame: positions are stored relative to frame (the cloth's origin when
+    // that is far from the world origin, else 0), so float32 keeps its precision for a cloth
+    // far away. With a frame, world holds the published world-space records (particleData),
+    // refreshed by publish(); without one the records are published as they are.
     glm::dvec3 frame{0.0};
     std::vector<cloth::Particle> world;
     glm::vec3 toLocal(const glm::vec3& p) const { return glm::vec3(glm::dvec3(p) - frame); }

@@ -85,14 +85,20 @@ void Cloth::Impl::build() {
     const glm::vec3 u = glm::normalize(p.axisU), v = glm::normalize(p.axisV);
     // Rest positions relative to the origin, in double (rest lengths come from them), so
     // neither the distance from the world origin nor the scale rounds them away.
-    frame = glm::dvec3(p.origin);
+    // Near the world origin (within a few cloth sizes) world coordinates lose nothing and
+    // the step publishes no copy; farther out the frame moves to the origin.
+    const double extent = double(std::max(p.size.x, p.size.y));
+    const double far = std::max({std::abs(double(p.origin.x)), std::abs(double(p.origin.y)),
+                                 std::abs(double(p.origin.z))});
+    frame = far > 4.0 * extent ? glm::dvec3(p.origin) : glm::dvec3(0.0);
+    const glm::dvec3 start = glm::dvec3(p.origin) - frame;
     std::vector<glm::dvec3> restD(static_cast<size_t>(n));
     rest.resize(size_t(n));
     for (int j = 0; j < p.ny; ++j)
         for (int i = 0; i < p.nx; ++i) {
             const double fu = p.nx > 1 ? double(i) / double(p.nx - 1) : 0.0;
             const double fv = p.ny > 1 ? double(j) / double(p.ny - 1) : 0.0;
-            const glm::dvec3 r = glm::dvec3(u) * (double(p.size.x) * fu) + glm::dvec3(v) * (double(p.size.y) * fv);
+            const glm::dvec3 r = start + glm::dvec3(u) * (double(p.size.x) * fu) + glm::dvec3(v) * (double(p.size.y) * fv);
             restD[size_t(j * p.nx + i)] = r;
             rest[size_t(j * p.nx + i)] = glm::vec3(r);
         }

@@ -135,8 +135,13 @@ bool Cloth::Impl::tearFaces() {
         const float s = faceStretch[size_t(f)];
         if (!(s > limit)) continue;
         if (worst < 0 || s > faceStretch[size_t(worst)]) worst = f;
-        bool tip = false;
-        around(f, [&](int g) { tip |= !faceAlive[size_t(g)]; });
+        // a tip: it shares an edge with a torn face (a crack ends there)
+        const int q = f / 2, i = q % qx, j = q / qx;
+        auto dead = [&](int a, int b, int t) {
+            return a >= 0 && b >= 0 && a < qx && b < qy && !faceAlive[size_t(face(nx, a, b, t))];
+        };
+        const bool tip = (f % 2 == 0) ? dead(i, j, 1) || dead(i, j - 1, 1) || dead(i + 1, j, 1)
+                                      : dead(i, j, 0) || dead(i - 1, j, 0) || dead(i, j + 1, 0);
         if (tip) tips.push_back(f);
     }
     std::vector<int> doomed;
