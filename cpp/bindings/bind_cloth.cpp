@@ -210,7 +210,11 @@ void bindCloth(py::module_& m) {
     py::class_<Cloth, std::shared_ptr<Cloth>>(m, "Cloth",
         "Grid cloth simulated with position-based dynamics (SPEC §2): Verlet + XPBD distance\n"
         "constraints over a graph-coloured parallel Gauss-Seidel, colliders, wind, grabbing,\n"
-        "holes, tearing, self-collision, sleeping. Particle p = j * nx + i.")
+        "holes, tearing, self-collision, sleeping. Particle p = j * nx + i.\n"
+        "Accepted ranges (else weft.InvalidArgument): size 1e-3..1e3 m per side, |origin| <= 1e7 m,\n"
+        "mass 1e-6..1e6 kg, |gravity| and |wind strength| <= 1e4 m/s^2, compliance <= 1e6 m/N,\n"
+        "thickness and self_thickness <= 1 m, tear_strain <= 100, sleep_threshold <= 100 m/s,\n"
+        "advance(max_steps) <= 1000. Calls from several threads are serialised.")
         .def_static("soa_kernels_available", &Cloth::soaKernelsAvailable,
                     "Whether this CPU runs the structure-of-arrays relaxation (AVX-512; cloths\n"
                     "without colliders, unless WEFT_CLOTH_AOS=1); results are bit-identical.")

@@ -57,7 +57,9 @@ struct ClothParams {
     float thickness = 0.005f;            // collision distance to colliders (m)
     bool selfCollision = false;
     float selfThickness = 0.0f;          // particle-particle distance; 0 = 0.9 x grid spacing
-    float tearStrain = 0.0f;             // break constraints above this strain; 0 = never
+    // Tearing: a face (grid triangle) tears when it is stretched beyond 1 + tearStrain (crack
+    // tips first); a constraint lives while the faces it runs through do. 0 = never.
+    float tearStrain = 0.0f;
     float sleepThreshold = 0.0f;         // sleep below this mean speed (m/s); 0 = never sleep
     int sleepSteps = 30;                 // ... for this many consecutive steps
     int threads = 0;                     // worker threads; 0 = hardware concurrency
