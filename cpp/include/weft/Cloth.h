@@ -30,7 +30,6 @@ constexpr float kMaxCompliance = 1e6f;                      // XPBD compliance (
 constexpr float kMaxThickness = 1.0f;                       // collider / self thickness (m)
 constexpr float kMaxTearStrain = 100.0f;
 constexpr float kMaxSleepSpeed = 100.0f;                    // sleep threshold (m/s)
-constexpr float kMaxColliderSize = 1e6f;                    // radius, half extents, size (m)
 /// advance(): at most this many steps per call (its max_steps); backlog beyond is dropped.
 constexpr int kMaxCatchUpSteps = 1000;
 } // namespace cloth_limits
