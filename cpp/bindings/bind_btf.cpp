@@ -366,6 +366,8 @@ void bindBtf(py::module_& m) {
         return e;
     }, py::arg("samples"), py::arg("fit"), py::arg("threads") = 0);
     m.def("btf_have_ceres", &btfHaveCeres);
+    m.def("btf_resolvable_exponent", &btfResolvableExponent, py::arg("samples"),
+          py::arg("fraction") = 0.01);
     m.def("btf_fit_blinn_phong", [](const BtfSamples& s, py::dict seed, const std::string& solver,
                                     int maxIterations, float minExponent, float maxExponent,
                                     int threads, bool flatSpecularNormal, bool visibility) {
@@ -391,7 +393,7 @@ void bindBtf(py::module_& m) {
         return d;
     }, py::arg("samples"), py::arg("seed"), py::arg("solver") = "auto",
        py::arg("max_iterations") = 30, py::arg("min_exponent") = 1.0f,
-       py::arg("max_exponent") = 4096.0f, py::arg("threads") = 0,
+       py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
        py::arg("flat_specular_normal") = false, py::arg("visibility") = true);
 }
 

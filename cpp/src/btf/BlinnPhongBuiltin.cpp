@@ -439,6 +439,10 @@ void evaluateCost(const BlinnPhongTexel& tx, const double theta[3], Evaluation& 
                  ev.d.data(), ev.g.data(), ev.lg.data()};
     CostSums sums;
     costFn(in, sums);
+    if (!tx.specular) { // no highlight column: the NNLS keeps k = 0 (its Gram entry is 0)
+        sums.sg = sums.sdg = sums.sgg = 0.0;
+        for (int c = 0; c < 3; ++c) sums.sgp[c] = 0.0;
+    }
     double(&G)[3][3] = ev.gram;
     G[0][0] = sums.sdd;
     G[0][1] = G[1][0] = sums.sd;

@@ -15,6 +15,10 @@ namespace weft {
 
 namespace {
 
+// The share of its peak a fitted lobe must show at some used sample to count as observed, and
+// the same share at the neighbouring half vector bounds the exponent (btfResolvableExponent).
+constexpr double kSeenFraction = 0.01;
+
 // Cast-shadow classification of a texel's samples for the fit r (SPEC §3.5 robustness): a cast
 // shadow removes the diffuse and specular light and leaves the constant term, so a sample is
 // taken as shadowed when it lies below b + m d / 2 (half the diffuse light; channel sums) and
@@ -85,15 +89,42 @@ bool btfHaveCeres() {
 #endif
 }
 
+float btfResolvableExponent(const BtfSamples& samples, double fraction) {
+    if (!(fraction > 0.0 && fraction < 1.0))
+        throw InvalidArgument("fraction must lie in (0, 1)");
+    const int count = samples.count();
+    std::vector<glm::dvec3> h(static_cast<size_t>(count));
+    for (int s = 0; s < count; ++s)
+        h[size_t(s)] = glm::dvec3(btfHalfVector(samples.light(s), samples.view(s)));
+    std::vector<double> nearest; // cos of the angle to the nearest other half vector
+    for (int s = 0; s < count; ++s) {
+        double best = -1.0;
+        for (int q = 0; q < count; ++q)
+            // repeated directions (several views with one half vector) are one sample
+            if (q != s && glm::dot(h[size_t(s)], h[size_t(q)]) < 1.0 - 1e-9)
+                best = std::max(best, glm::dot(h[size_t(s)], h[size_t(q)]));
+        if (best > -1.0) nearest.push_back(best);
+    }
+    if (nearest.empty()) return 4096.0f; // one direction: nothing to resolve a lobe with
+    std::nth_element(nearest.begin(), nearest.begin() + long(nearest.size() / 2), nearest.end());
+    const double c = std::min(nearest[nearest.size() / 2], 1.0 - 1e-9);
+    return float(std::min(std::log(1.0 / fraction) / -std::log(c), 1e6));
+}
+
 BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMaps& seed,
                                  const BtfNonlinearOptions& options) {
     seed.validate();
     samples.requireFinite();
     if (seed.width != samples.width() || seed.height != samples.height())
         throw InvalidArgument("seed material and samples differ in size");
-    if (!(options.minExponent >= 0.01f) || !(options.maxExponent > options.minExponent) ||
-        !std::isfinite(options.maxExponent) || options.maxExponent > 1e6f)
-        throw InvalidArgument("exponent bounds must satisfy 0.01 <= min < max <= 1e6");
+    const float maxExponent = options.maxExponent == 0.0f
+                                  ? btfResolvableExponent(samples, kSeenFraction)
+                                  : options.maxExponent;
+    if (!(options.minExponent >= 0.01f) || !(maxExponent > options.minExponent) ||
+        !std::isfinite(maxExponent) || maxExponent > 1e6f)
+        throw InvalidArgument("exponent bounds must satisfy 0.01 <= min < max <= 1e6 (max 0: "
+                              "the resolvable exponent, here " + std::to_string(maxExponent) +
+                              ")");
     if (options.maxIterations < 1 || options.maxIterations > 1000)
         throw InvalidArgument("maxIterations must be 1..1000");
     // Auto is the built-in solver: ~100x faster than Ceres per texel at equal or lower
@@ -112,7 +143,7 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
     BlinnPhongGeometry geometry(lights, halves);
     geometry.flatSpecular = options.flatSpecularNormal;
     const double etaMin = std::log(double(options.minExponent));
-    const double etaMax = std::log(double(options.maxExponent));
+    const double etaMax = std::log(double(maxExponent));
 
     BtfNonlinearFit out;
     out.solver = ceres ? "ceres" : "builtin";
@@ -195,7 +226,23 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                             if (std::equal(next.begin(), next.end(), weights.begin())) break;
                         }
                     }
-                    tx.weights = nullptr;
+                }
+                // A lobe that no used sample sees at >= kSeenFraction of its peak has no
+                // support in the data: k and e trade off freely (a needle lobe, k up to 10^3,
+                // that would sparkle from unsampled directions). Such a texel gets no highlight.
+                if (r.coef[0][2] > 0.0 || r.coef[1][2] > 0.0 || r.coef[2][2] > 0.0) {
+                    blinnPhongTerms(tx, r.theta, d, g);
+                    double seen = 0.0;
+                    for (int s = 0; s < count; ++s)
+                        if (tx.weights[s] > 0.0f) seen = std::max(seen, g[size_t(s)]);
+                    if (seen < kSeenFraction) {
+                        tx.specular = false;
+                        tx.start[0] = r.theta[0];
+                        tx.start[1] = r.theta[1];
+                        r = solve(r.theta);
+                        iters += r.iterations;
+                        tx.specular = true;
+                    }
                 }
                 const glm::dvec3 n = tx.normal(r.theta[0], r.theta[1]);
                 maps.exponentMap[t] = float(std::exp(r.theta[2]));

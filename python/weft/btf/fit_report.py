@@ -78,11 +78,12 @@ def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[
     if args.robust:
         seed_fit, t = f.run("robust linear fit", btf_fit.fit_linear, samples, robust=True)
         f.add("linear_robust", seed_fit.material(samples), t)
+    search_max = args.max_exponent or 4096
     flat, t = f.run("specular (n_s = (0,0,1))", btf_fit.fit_specular, samples, seed_fit, True,
-                    args.max_exponent, args.per_texel_exponent)
+                    search_max, args.per_texel_exponent)
     f.add("specular_eq4.30", flat.material, t)
     fitted, t = f.run("specular (fitted n)", btf_fit.fit_specular, samples, seed_fit, False,
-                      args.max_exponent)
+                      search_max)
     f.add("specular_eq4.29", fitted.material, t)
     choice: Dict[str, Any] = {}
     if args.nonlinear:
@@ -90,7 +91,7 @@ def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[
                                     ("blinn_phong_flat", flat.material, True)):
             label = "Blinn-Phong (n_s = " + ("(0,0,1))" if flat_ns else "n)")
             bp, t = f.run(label, btf_fit.fit_blinn_phong, samples, seed, args.solver,
-                          max_exponent=float(args.max_exponent), flat_specular_normal=flat_ns,
+                          max_exponent=args.max_exponent, flat_specular_normal=flat_ns,
                           visibility=args.visibility)
             f.add(name, bp.material, t, solver=bp.solver, mean_iterations=bp.mean_iterations,
                   shadowed_fraction=getattr(bp, "shadowed_fraction", None))
