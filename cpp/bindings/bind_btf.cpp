@@ -325,12 +325,13 @@ void bindBtf(py::module_& m) {
     }, py::arg("samples"), py::arg("maps"), py::arg("reconstruct") = false,
        py::arg("threads") = 0);
     m.def("btf_fit_lafortune", [](const BtfSamples& s, py::dict seed, int lobes,
-                                  int maxIterations, int threads) {
+                                  int maxIterations, int threads, bool visibility,
+                                  bool fixedNormal) {
         const BtfMaterialMaps mm = mapsFrom(s, seed);
         BtfLafortuneFit f;
         {
             py::gil_scoped_release release;
-            f = fitBtfLafortune(s, mm, lobes, maxIterations, threads);
+            f = fitBtfLafortune(s, mm, lobes, maxIterations, threads, visibility, fixedNormal);
         }
         const py::ssize_t h = f.height, w = f.width, l = f.lobes;
         py::dict d;
@@ -342,7 +343,8 @@ void bindBtf(py::module_& m) {
         d["mean_iterations"] = f.meanIterations;
         return d;
     }, py::arg("samples"), py::arg("seed"), py::arg("lobes") = 1,
-       py::arg("max_iterations") = 30, py::arg("threads") = 0);
+       py::arg("max_iterations") = 30, py::arg("threads") = 0, py::arg("visibility") = false,
+       py::arg("fixed_normal") = false);
     m.def("btf_lafortune_errors", [](const BtfSamples& s, py::dict fit, int threads) {
         const py::ssize_t h = s.height(), w = s.width();
         BtfLafortuneFit f;

@@ -68,8 +68,13 @@ struct BtfLafortuneFit {
     double meanIterations = 0;
 };
 
+/// `visibility`: cast shadows estimated per sample and left out, as in fitBtfBlinnPhong (off by
+/// default: with a fixed Blinn-Phong normal it only raises the deviation over all samples).
+/// `fixedNormal`: the seed's normal is kept. With the frontal view the lobe depends on l_z only
+/// and trades off with the diffuse term, so the normal is better taken from a Blinn-Phong fit.
 BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps& seed, int lobes,
-                                int maxIterations = 30, int threads = 0);
+                                int maxIterations = 30, int threads = 0, bool visibility = false,
+                                bool fixedNormal = false);
 
 /// Per-sample mean squared error of a Lafortune fit (and the reconstruction when asked).
 std::vector<double> btfLafortuneErrors(const BtfSamples& samples, const BtfLafortuneFit& fit,

@@ -10,6 +10,7 @@
 #include "btf/BlinnPhongTexel.h"
 #include "btf/BtfModel.h"
 #include "btf/BtfParallel.h"
+#include "btf/BtfShadowClassify.h"
 
 namespace weft {
 
@@ -19,13 +20,8 @@ namespace {
 // the same share at the neighbouring half vector bounds the exponent (btfResolvableExponent).
 constexpr double kSeenFraction = 0.01;
 
-// Cast-shadow classification of a texel's samples for the fit r (SPEC §3.5 robustness): a cast
-// shadow removes the diffuse and specular light and leaves the constant term, so a sample is
-// taken as shadowed when it lies below b + m d / 2 (half the diffuse light; channel sums) and
-// below the prediction by more than 4 robust standard deviations of the texel's
-// residuals under steep light (and 2% of the prediction): noise and model error stay in. Writes
-// the new weights (1 used, 0 left out; all used when fewer than 12 would remain) and returns the
-// number left out; `misfit` counts the samples off the prediction by more than 3 σ either way (a fit pulled by shadows may hide them from the first test).
+// Cast shadows of a texel's samples for the fit r (BtfShadowClassify.h): writes the weights of
+// the next round into `weights` and returns the number left out.
 int classifyShadows(const BlinnPhongTexel& tx, const BlinnPhongResult& r, const float* planes,
                     size_t np, std::vector<double>& d, std::vector<double>& g,
                     std::vector<float>& weights, int& misfit) {
@@ -34,8 +30,7 @@ int classifyShadows(const BlinnPhongTexel& tx, const BlinnPhongResult& r, const 
     blinnPhongTerms(tx, r.theta, d, g);
     double base = 0.0;
     for (int c = 0; c < 3; ++c) base += r.coef[c][1];
-    std::vector<double> lit(count), diffuse(count), seen(count), res;
-    res.reserve(count);
+    std::vector<double> lit(count), diffuse(count), seen(count);
     for (size_t s = 0; s < count; ++s) {
         double l = 0.0, p = 0.0, m = 0.0;
         for (int c = 0; c < 3; ++c) {
@@ -46,37 +41,10 @@ int classifyShadows(const BlinnPhongTexel& tx, const BlinnPhongResult& r, const 
         lit[s] = l;
         diffuse[s] = m;
         seen[s] = p - base;
-        // σ from the steep lights (θ_l <= 31°), which cast shadows rarely reach: a fit pulled
-        // by shadowed grazing samples misses all samples by more than the noise
-        if (tx.weights[s] > 0.0f && geo.l[2][s] >= 0.85f) res.push_back(std::fabs(seen[s] - l));
-    }
-    if (res.size() < 5)
-        for (size_t s = 0; s < count; ++s)
-            if (tx.weights[s] > 0.0f) res.push_back(std::fabs(seen[s] - lit[s]));
-    // robust σ of those residuals (median absolute residual / 0.6745)
-    double sigma = 0.0;
-    if (!res.empty()) {
-        std::nth_element(res.begin(), res.begin() + long(res.size() / 2), res.end());
-        sigma = res[res.size() / 2] / 0.6745;
     }
     std::fill(weights.begin(), weights.end(), 0.0f);
-    int left = 0;
-    misfit = 0;
-    for (size_t s = 0; s < count; ++s) {
-        const double margin = std::max(4.0 * sigma, 0.02 * (lit[s] + base));
-        const bool below = lit[s] - seen[s] > margin;
-        // half the diffuse light, not of the whole prediction: a highlight that overshoots a
-        // sample must not make it look shadowed (it would then be left out and never corrected)
-        const bool dark = below && seen[s] < 0.5 * diffuse[s];
-        weights[s] = dark ? 0.0f : 1.0f;
-        left += dark ? 1 : 0;
-        misfit += std::fabs(lit[s] - seen[s]) > 0.75 * margin ? 1 : 0;
-    }
-    if (int(count) - left < 12) { // too few left to fit 7 unknowns well: use them all
-        std::copy(geo.ones.begin(), geo.ones.end(), weights.begin());
-        return 0;
-    }
-    return left;
+    return classifyCastShadows(count, lit.data(), diffuse.data(), seen.data(), base,
+                               geo.l[2].data(), tx.weights, 12, weights.data(), misfit);
 }
 
 } // namespace

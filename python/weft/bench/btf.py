@@ -184,8 +184,11 @@ def run_case(case: Case, size: int, crop_n: int, tmp: str) -> List[Dict[str, Any
     chosen = min(bp, key=lambda k: bp[k].deviation)
     rows.append(dict(next(r for r in rows if r["model"] == f"Blinn-Phong n_s={chosen}"),
                      model="Blinn-Phong (chosen)", chosen=f"n_s={chosen}"))
+    # Lafortune keeps the chosen Blinn-Phong normal: with the frontal view its lobe depends on
+    # l_z only and trades off with the diffuse term (free normals went 89° off under shadows)
+    bp_seed = bp[chosen].model
     for lobes in (1, 2):
-        t, laf = best_time(lambda: btf.fit_lafortune(data, flat.material, lobes))
+        t, laf = best_time(lambda: btf.fit_lafortune(data, bp_seed, lobes, fixed_normal=True))
         add(f"Lafortune {lobes} lobe{'s' if lobes > 1 else ''}", "builtin", t, laf)
     if btf.have_ceres():
         rows += ceres_rows(case, data, truth, crop_n)

@@ -172,11 +172,19 @@ class LafortuneFit:
 
 
 def fit_lafortune(samples: Any, seed: BtfMaterial, lobes: int = 1, max_iterations: int = 30,
-                  threads: int = 0) -> LafortuneFit:
+                  threads: int = 0, visibility: bool = False,
+                  fixed_normal: bool = False) -> LafortuneFit:
     """Per-texel diffuse + ``lobes`` Lafortune lobes (built-in LM), seeded by the normal and
-    exponent of ``seed``."""
+    exponent of ``seed`` (the Blinn-Phong fit is the best seed under cast shadows).
+    ``visibility``: cast shadows estimated per sample and left out, as in
+    :func:`fit_blinn_phong` (off by default: with a Blinn-Phong normal kept it only raises the
+    deviation over all samples; with a free normal it helps on some cast-shadow data and hurts
+    on other). ``fixed_normal``: keep the seed's normal (with a frontal view the
+    lobe depends on l_z only and trades off with the diffuse term, so the normal is poorly
+    determined by this model; a Blinn-Phong seed pins it down)."""
     return LafortuneFit(**_core.btf_fit_lafortune(samples, seed.core_maps(), int(lobes),
-                                                  int(max_iterations), int(threads)))
+                                                  int(max_iterations), int(threads),
+                                                  bool(visibility), bool(fixed_normal)))
 
 
 def have_ceres() -> bool:

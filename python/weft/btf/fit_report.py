@@ -100,9 +100,13 @@ def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[
         choice = {"chosen": "blinn_phong_flat" if flat_dev < n_dev else "blinn_phong_n",
                   "deviation_n": n_dev, "deviation_flat": flat_dev,
                   "rule": "lower total deviation as drawn"}
+    # Lafortune keeps the chosen Blinn-Phong normal when there is one: with a frontal view its
+    # lobe depends on l_z only and trades off with the diffuse term
+    laf_seed = by[choice["chosen"]].model if choice else flat.material
     for count in lobes:
         laf, t = f.run(f"Lafortune ({count} lobe{'s' if count > 1 else ''})",
-                       btf_fit.fit_lafortune, samples, flat.material, count)
+                       btf_fit.fit_lafortune, samples, laf_seed, count,
+                       fixed_normal=bool(choice))
         f.add(f"lafortune_{count}", laf, t, mean_iterations=laf.mean_iterations)
     f.progress.close()
     return f.scored, choice, linear
