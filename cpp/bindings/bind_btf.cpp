@@ -372,9 +372,11 @@ void bindBtf(py::module_& m) {
           py::arg("fraction") = 0.01);
     m.def("btf_fit_blinn_phong", [](const BtfSamples& s, py::dict seed, const std::string& solver,
                                     int maxIterations, float minExponent, float maxExponent,
-                                    int threads, bool flatSpecularNormal, bool visibility) {
+                                    int threads, bool flatSpecularNormal, bool visibility,
+                                    bool luminanceNormals) {
         const BtfMaterialMaps mm = mapsFrom(s, seed);
         BtfNonlinearOptions o;
+        o.luminanceNormals = luminanceNormals;
         o.flatSpecularNormal = flatSpecularNormal;
         o.visibility = visibility;
         o.solver = solverFrom(solver);
@@ -396,7 +398,8 @@ void bindBtf(py::module_& m) {
     }, py::arg("samples"), py::arg("seed"), py::arg("solver") = "auto",
        py::arg("max_iterations") = 30, py::arg("min_exponent") = 1.0f,
        py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
-       py::arg("flat_specular_normal") = false, py::arg("visibility") = true);
+       py::arg("flat_specular_normal") = false, py::arg("visibility") = true,
+       py::arg("luminance_normals") = false);
 }
 
 } // namespace weft::py_bind

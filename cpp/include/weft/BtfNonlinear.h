@@ -25,6 +25,9 @@ struct BtfNonlinearOptions {
     float minExponent = 1.0f, maxExponent = 0.0f;
     bool flatSpecularNormal = false; ///< n_s = (0, 0, 1) (eq. 4.30) instead of n
     bool visibility = true;          ///< estimate cast shadows per sample and leave them out
+    /// fit n and e to the luma (BT.601) and only the colours to RGB: for JPEG data, whose
+    /// chroma is stored at half resolution and coarser precision than the luma
+    bool luminanceNormals = false;
     int threads = 0;
 };
 

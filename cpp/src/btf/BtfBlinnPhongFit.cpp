@@ -19,6 +19,8 @@ namespace {
 // The share of its peak a fitted lobe must show at some used sample to count as observed, and
 // the same share at the neighbouring half vector bounds the exponent (btfResolvableExponent).
 constexpr double kSeenFraction = 0.01;
+// Start exponents tried besides the seed's, evenly spaced in log e over the allowed range.
+constexpr int kEtaGrid = 6;
 
 // Cast shadows of a texel's samples for the fit r (BtfShadowClassify.h): writes the weights of
 // the next round into `weights` and returns the number left out.
@@ -138,6 +140,7 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
         // contiguously for 64 texels instead of 243 strided loads per texel.
         const size_t np = size_t(geometry.padded);
         std::vector<float> block(64 * 3 * np, 0.0f), weights(np, 0.0f), next(np, 0.0f);
+        std::vector<float> luma(options.luminanceNormals ? 3 * np : 0);
         std::vector<double> d, g;
         for (int b = b0; b < b1; ++b) {
             const size_t first = size_t(b) * 64, last = std::min(texels, first + 64);
@@ -148,7 +151,18 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                     for (size_t i = 0; i < last - first; ++i) dst[i * 3 * np] = src[i];
                 }
             for (size_t t = first; t < last; ++t) {
-                const float* planes = block.data() + (t - first) * 3 * np;
+                const float* rgb = block.data() + (t - first) * 3 * np;
+                const float* planes = rgb;
+                if (options.luminanceNormals) {
+                    // JPEG's luma (BT.601) in all three channels: the normal and exponent are
+                    // fitted to it, the colours projected from the RGB values at the end
+                    for (size_t s = 0; s < np; ++s) {
+                        const float y = 0.299f * rgb[s] + 0.587f * rgb[np + s] +
+                                        0.114f * rgb[2 * np + s];
+                        luma[s] = luma[np + s] = luma[2 * np + s] = y;
+                    }
+                    planes = luma.data();
+                }
                 tx.setPlanes(planes);
                 if (ceres)
                     for (int s = 0; s < count; ++s)
@@ -166,7 +180,16 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                     return blinnPhongCeres(tx, blinnPhongProject(tx, start), etaMin, etaMax,
                                            options.maxIterations);
                 };
-                const double start[3] = {tx.start[0], tx.start[1], eta0};
+                // The seed's exponent comes from a fit of another model (the θ_l = 0 residual);
+                // where it is far off, LM stalls in a local minimum of η (broad weak lobes traded
+                // against the diffuse term). Start instead from the best of it and an η grid
+                // over the allowed range, one cost evaluation each.
+                double etas[kEtaGrid + 1];
+                etas[0] = eta0;
+                for (int i = 0; i < kEtaGrid; ++i)
+                    etas[i + 1] = etaMin + (etaMax - etaMin) * (i + 0.5) / kEtaGrid;
+                const double start[3] = {tx.start[0], tx.start[1],
+                                         blinnPhongBestEta(tx, etas, kEtaGrid + 1)};
                 BlinnPhongResult r = solve(start);
                 int iters = r.iterations, left = 0;
                 if (options.visibility) {
@@ -174,6 +197,7 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                     // lights (θ_l <= 46°) alone, then from every sample not classified as
                     // shadowed against that fit, until the classification is stable.
                     std::copy(geometry.ones.begin(), geometry.ones.end(), weights.begin());
+                    const BlinnPhongResult first = r;
                     int misfit = 0;
                     left = classifyShadows(tx, r, planes, np, d, g, next, misfit);
                     // a fit with no diffuse term in some channel may be a highlight posing as
@@ -193,6 +217,16 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                             left = classifyShadows(tx, r, planes, np, d, g, next, misfit);
                             if (std::equal(next.begin(), next.end(), weights.begin())) break;
                         }
+                        // The rounds restart from the steep lights and may settle in a worse
+                        // minimum than the first fit: keep the first one (re-projected) where it
+                        // is cheaper on the final set of samples.
+                        BlinnPhongResult again = blinnPhongProject(tx, first.theta);
+                        if (again.cost < r.cost) {
+                            again.iterations = r.iterations;
+                            r = again;
+                        }
+                        left = 0;
+                        for (int s = 0; s < count; ++s) left += weights[size_t(s)] > 0.0f ? 0 : 1;
                     }
                 }
                 // A lobe that no used sample sees at >= kSeenFraction of its peak has no
@@ -209,9 +243,15 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                         tx.start[1] = r.theta[1];
                         r = solve(r.theta);
                         iters += r.iterations;
-                        tx.specular = true;
                     }
                 }
+                if (options.luminanceNormals) { // the colours at the luma fit's (n, e)
+                    tx.setPlanes(rgb, tx.weights);
+                    const int it = r.iterations;
+                    r = blinnPhongProject(tx, r.theta);
+                    r.iterations = it;
+                }
+                tx.specular = true;
                 const glm::dvec3 n = tx.normal(r.theta[0], r.theta[1]);
                 maps.exponentMap[t] = float(std::exp(r.theta[2]));
                 for (int c = 0; c < 3; ++c) {

@@ -176,9 +176,12 @@ def run_case(case: Case, size: int, crop_n: int, tmp: str) -> List[Dict[str, Any
     t, fitted = best_time(lambda: btf.fit_specular(data, linear, False))
     add("linear + specular eq4.29", "search", t, fitted.material)
     bp = {}
+    # JPEG keeps chroma at half resolution and coarser precision: normals from the luma
+    luma = case.fmt == "jpg"
     for key, seed, flat_ns in (("n", fitted.material, False), ("(0,0,1)", flat.material, True)):
         t, r = best_time(lambda: btf.fit_blinn_phong(data, seed, "builtin",
-                                                     flat_specular_normal=flat_ns))
+                                                     flat_specular_normal=flat_ns,
+                                                     luminance_normals=luma))
         bp[key] = add(f"Blinn-Phong n_s={key}", "builtin", t, r.material,
                       shadowed_fraction=getattr(r, "shadowed_fraction", None))
     chosen = min(bp, key=lambda k: bp[k].deviation)

@@ -73,6 +73,9 @@ def add_parsers(sub: Any) -> None:
     f.add_argument("--no-nonlinear", dest="nonlinear", action="store_false",
                    help="skip the per-texel Blinn-Phong fits")
     f.add_argument("--solver", choices=("auto", "builtin", "ceres"), default="builtin")
+    f.add_argument("--luminance-normals", action="store_true",
+                   help="Blinn-Phong: fit normals and exponents to the luma, colours to RGB "
+                        "(for JPEG input, whose chroma is subsampled)")
     f.add_argument("--no-visibility", dest="visibility", action="store_false",
                    help="Blinn-Phong: fit every sample (no cast-shadow estimation)")
     f.add_argument("--lafortune", type=int, choices=(0, 1, 2), nargs="+", default=[1],

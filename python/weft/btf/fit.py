@@ -115,7 +115,8 @@ class NonlinearFit:
 def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
                     max_iterations: int = 30, min_exponent: float = 1.0,
                     max_exponent: Optional[float] = None, threads: int = 0,
-                    flat_specular_normal: bool = False, visibility: bool = True) -> NonlinearFit:
+                    flat_specular_normal: bool = False, visibility: bool = True,
+                    luminance_normals: bool = False) -> NonlinearFit:
     """Per-texel Blinn-Phong in the renderer's model, seeded by ``seed`` (normal, exponent):
     ``P = albedo (ambient + max(n.l, 0)) + specular [n.l > 0] max(n_s.h, 0)^e``.
 
@@ -127,14 +128,17 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
     be unconstrained by the data (needle lobes).
     ``flat_specular_normal``: the highlight around n_s = (0, 0, 1) (seed eq. 4.30) instead of
     the fitted normal. ``visibility``: samples far darker than the fit (cast shadows) are left
-    out and the texel refitted; ``shadowed_fraction`` says how many. ``solver``: "auto"
+    out and the texel refitted; ``shadowed_fraction`` says how many. ``luminance_normals``: the
+    normal and exponent are fitted to the luma (BT.601), the colours to RGB at that fit: for
+    JPEG data, whose chroma is stored at half resolution and coarser precision. ``solver``: "auto"
     (= "builtin", the fastest and as accurate), "builtin" (Levenberg-Marquardt by variable
     projection with non-negative least squares), "ceres" (when built with it)."""
     r = _core.btf_fit_blinn_phong(samples, seed.core_maps(), solver, int(max_iterations),
                                   float(min_exponent),
                                   0.0 if max_exponent is None else float(max_exponent),
                                   int(threads),
-                                  bool(flat_specular_normal), bool(visibility))
+                                  bool(flat_specular_normal), bool(visibility),
+                                  bool(luminance_normals))
     return NonlinearFit(BtfMaterial.from_core(r["maps"]), r["solver"], r["mean_iterations"],
                         float(r["shadowed_fraction"]))
 

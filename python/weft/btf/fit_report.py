@@ -92,7 +92,8 @@ def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[
             label = "Blinn-Phong (n_s = " + ("(0,0,1))" if flat_ns else "n)")
             bp, t = f.run(label, btf_fit.fit_blinn_phong, samples, seed, args.solver,
                           max_exponent=args.max_exponent, flat_specular_normal=flat_ns,
-                          visibility=args.visibility)
+                          visibility=args.visibility,
+                          luminance_normals=getattr(args, "luminance_normals", False))
             f.add(name, bp.material, t, solver=bp.solver, mean_iterations=bp.mean_iterations,
                   shadowed_fraction=getattr(bp, "shadowed_fraction", None))
         by = {s.name: s for s in f.scored}
