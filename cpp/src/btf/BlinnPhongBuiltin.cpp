@@ -518,20 +518,6 @@ BlinnPhongResult blinnPhongProject(const BlinnPhongTexel& texel, const double th
     return ev.result;
 }
 
-double blinnPhongBestEta(const BlinnPhongTexel& tx, const double* etas, int count) {
-    static thread_local Evaluation ev;
-    double best = etas[0], bestCost = INFINITY;
-    for (int i = 0; i < count; ++i) {
-        const double theta[3] = {tx.start[0], tx.start[1], etas[i]};
-        evaluateCost(tx, theta, ev);
-        if (ev.result.cost < bestCost) {
-            bestCost = ev.result.cost;
-            best = etas[i];
-        }
-    }
-    return best;
-}
-
 BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, double etaMin,
                                    double etaMax, int maxIterations) {
     // per-thread scratch: no allocation per texel once the sample arrays have their size

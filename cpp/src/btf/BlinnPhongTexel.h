@@ -62,10 +62,6 @@ struct BlinnPhongResult {
 /// For fixed (u, v, η): the optimal (m, b, k) >= 0 per channel and the cost (variable projection).
 BlinnPhongResult blinnPhongProject(const BlinnPhongTexel& texel, const double theta[3]);
 
-/// Of `count` candidate η, the one with the lowest cost at the start normal (variable
-/// projection, no derivatives): a start for LM that does not depend on the seed's exponent.
-double blinnPhongBestEta(const BlinnPhongTexel& texel, const double* etas, int count);
-
 /// Levenberg-Marquardt over (u, v, η) with Kaufman's variable-projection Jacobian, η kept in
 /// [etaMin, etaMax] by projecting each step; starts at (start[0], start[1], eta0).
 BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& texel, double eta0, double etaMin,

@@ -19,8 +19,6 @@ namespace {
 // The share of its peak a fitted lobe must show at some used sample to count as observed, and
 // the same share at the neighbouring half vector bounds the exponent (btfResolvableExponent).
 constexpr double kSeenFraction = 0.01;
-// Start exponents tried besides the seed's, evenly spaced in log e over the allowed range.
-constexpr int kEtaGrid = 6;
 
 // Cast shadows of a texel's samples for the fit r (BtfShadowClassify.h): writes the weights of
 // the next round into `weights` and returns the number left out.
@@ -180,16 +178,7 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                     return blinnPhongCeres(tx, blinnPhongProject(tx, start), etaMin, etaMax,
                                            options.maxIterations);
                 };
-                // The seed's exponent comes from a fit of another model (the θ_l = 0 residual);
-                // where it is far off, LM stalls in a local minimum of η (broad weak lobes traded
-                // against the diffuse term). Start instead from the best of it and an η grid
-                // over the allowed range, one cost evaluation each.
-                double etas[kEtaGrid + 1];
-                etas[0] = eta0;
-                for (int i = 0; i < kEtaGrid; ++i)
-                    etas[i + 1] = etaMin + (etaMax - etaMin) * (i + 0.5) / kEtaGrid;
-                const double start[3] = {tx.start[0], tx.start[1],
-                                         blinnPhongBestEta(tx, etas, kEtaGrid + 1)};
+                const double start[3] = {tx.start[0], tx.start[1], eta0};
                 BlinnPhongResult r = solve(start);
                 int iters = r.iterations, left = 0;
                 if (options.visibility) {
