@@ -558,6 +558,15 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
                     jtj[j][q] += dd[j][q] - proj;
                 }
         }
+        // η at a bound with the descent pointing out of the range: hold it there (active
+        // set), so the step in (u, v) is the constrained optimum rather than the projection of
+        // a step that assumed η free (which crawls along the bound for many iterations)
+        const double eta = cur.result.theta[2];
+        if ((eta >= etaMax - 1e-12 && grad[2] < 0.0) || (eta <= etaMin + 1e-12 && grad[2] > 0.0)) {
+            for (int j = 0; j < 3; ++j) jtj[2][j] = jtj[j][2] = 0.0;
+            jtj[2][2] = 1.0;
+            grad[2] = 0.0;
+        }
         bool accepted = false;
         for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
             double a[3][3];
@@ -577,8 +586,9 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
             evaluate(tx, next, false, trial); // derivatives only once accepted
             if (trial.result.cost < cur.result.cost) {
                 const double gain = cur.result.cost - trial.result.cost;
+                const double taken = next[2] - cur.result.theta[2]; // after the projection
                 const double stepSize = std::sqrt(step[0] * step[0] + step[1] * step[1] +
-                                                  step[2] * step[2]);
+                                                  taken * taken);
                 accepted = true;
                 ++done;
                 std::swap(cur, trial);
