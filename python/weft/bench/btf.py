@@ -236,14 +236,20 @@ def speed_rows(repeats: int, numpy_peer: bool, size: int) -> Dict[str, Any]:
                            "read_pass_ms": t_read * 1e3, "linear_ms": t_lin * 1e3,
                            "linear_vs_read_pass": t_lin / t_read, "memcpy_GBps": bandwidth / 1e9,
                            "bandwidth_bound_ms": values.nbytes / bandwidth * 1e3}
-    flat = btf.fit_specular(samples, linear, True).material
-    fitted = btf.fit_specular(samples, linear, False).material
-    for key, seed, flat_ns in (("n", fitted, False), ("flat", flat, True)):
-        t, _ = best_time(lambda: btf.fit_blinn_phong(samples, seed, "builtin",
-                                                     threads=SPEED_THREADS,
-                                                     flat_specular_normal=flat_ns),
-                         min(repeats, 2))
-        out[f"blinn_phong_{key}_texels_per_s"] = size * size / t
+    # Blinn-Phong on the material without and with cast shadows (where the visibility pass
+    # refits texels), each highlight model
+    for suffix, data in (("", samples),
+                         ("_shadows", synth.synthesize_random(SPEED_SEED, size, noise=NOISE,
+                                                              shadows=True)[0])):
+        lin = linear if suffix == "" else btf.fit_linear(data)
+        flat = btf.fit_specular(data, lin, True).material
+        fitted = btf.fit_specular(data, lin, False).material
+        for key, seed, flat_ns in (("n", fitted, False), ("flat", flat, True)):
+            t, _ = best_time(lambda: btf.fit_blinn_phong(data, seed, "builtin",
+                                                         threads=SPEED_THREADS,
+                                                         flat_specular_normal=flat_ns),
+                             min(repeats, 2))
+            out[f"blinn_phong_{key}{suffix}_texels_per_s"] = size * size / t
     if numpy_peer:
         from weft.reference import btf as ref
 
