@@ -182,14 +182,14 @@ def run_case(case: Case, size: int, crop_n: int, tmp: str) -> List[Dict[str, Any
         t, r = best_time(lambda: btf.fit_blinn_phong(data, seed, "builtin",
                                                      flat_specular_normal=flat_ns,
                                                      luminance_normals=luma))
-        bp[key] = add(f"Blinn-Phong n_s={key}", "builtin", t, r.material,
-                      shadowed_fraction=getattr(r, "shadowed_fraction", None))
-    chosen = min(bp, key=lambda k: bp[k].deviation)
+        bp[key] = (add(f"Blinn-Phong n_s={key}", "builtin", t, r.material,
+                       shadowed_fraction=r.shadowed_fraction), r.shadowed_fraction)
+    chosen = scoring.highlight_choice(data, bp)["chosen"]
     rows.append(dict(next(r for r in rows if r["model"] == f"Blinn-Phong n_s={chosen}"),
                      model="Blinn-Phong (chosen)", chosen=f"n_s={chosen}"))
     # Lafortune keeps the chosen Blinn-Phong normal: with the frontal view its lobe depends on
     # l_z only and trades off with the diffuse term (free normals went 89° off under shadows)
-    bp_seed = bp[chosen].model
+    bp_seed = bp[chosen][0].model
     for lobes in (1, 2):
         t, laf = best_time(lambda: btf.fit_lafortune(data, bp_seed, lobes, fixed_normal=True))
         add(f"Lafortune {lobes} lobe{'s' if lobes > 1 else ''}", "builtin", t, laf)

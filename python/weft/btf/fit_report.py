@@ -97,10 +97,11 @@ def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[
             f.add(name, bp.material, t, solver=bp.solver, mean_iterations=bp.mean_iterations,
                   shadowed_fraction=getattr(bp, "shadowed_fraction", None))
         by = {s.name: s for s in f.scored}
-        n_dev, flat_dev = by["blinn_phong_n"].deviation, by["blinn_phong_flat"].deviation
-        choice = {"chosen": "blinn_phong_flat" if flat_dev < n_dev else "blinn_phong_n",
-                  "deviation_n": n_dev, "deviation_flat": flat_dev,
-                  "rule": "lower total deviation as drawn"}
+        pick = scoring.highlight_choice(
+            samples, {k: (by[k], by[k].extra.get("shadowed_fraction"))
+                      for k in ("blinn_phong_n", "blinn_phong_flat")})
+        choice = {"chosen": pick["chosen"], "deviation_n": by["blinn_phong_n"].deviation,
+                  "deviation_flat": by["blinn_phong_flat"].deviation, "rule": pick["rule"]}
     # Lafortune keeps the chosen Blinn-Phong normal when there is one: with a frontal view its
     # lobe depends on l_z only and trades off with the diffuse term
     laf_seed = by[choice["chosen"]].model if choice else flat.material
