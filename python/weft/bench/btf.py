@@ -5,7 +5,8 @@ tuned to: with and without a specular lobe, with cast shadows), frontal view, se
 written as PNG and as JPEG quality 90 in the Bonn layout and read back.
 Models per dataset: linear (plain, robust), linear + specular (eq. 4.29, 4.30), per-texel
 Blinn-Phong (built-in LM, highlight around n and around n_s = (0,0,1), and the one of the two
-with the lower deviation as drawn, "blinn_phong (chosen)"), the same with Ceres on a crop when
+picked by weft.btf.scoring.highlight_choice, "blinn_phong (chosen)"; JPEG: normals from the
+luma), the same with Ceres on a crop when
 built with it, and diffuse + 1 / 2 Lafortune lobes.
 Per model: texels outside the physical space, normal error (mean, p95), exponent and k_s median
 relative error, deviation as fitted and as drawn (Lafortune: not drawable, as fitted), the noise
@@ -184,9 +185,11 @@ def run_case(case: Case, size: int, crop_n: int, tmp: str) -> List[Dict[str, Any
                                                      luminance_normals=luma))
         bp[key] = (add(f"Blinn-Phong n_s={key}", "builtin", t, r.material,
                        shadowed_fraction=r.shadowed_fraction), r.shadowed_fraction)
-    chosen = scoring.highlight_choice(data, bp)["chosen"]
+    pick = scoring.highlight_choice(data, bp)
+    chosen = pick["chosen"]
     rows.append(dict(next(r for r in rows if r["model"] == f"Blinn-Phong n_s={chosen}"),
-                     model="Blinn-Phong (chosen)", chosen=f"n_s={chosen}"))
+                     model="Blinn-Phong (chosen)", chosen=f"n_s={chosen}",
+                     choice_rule=pick["rule"]))
     # Lafortune keeps the chosen Blinn-Phong normal: with the frontal view its lobe depends on
     # l_z only and trades off with the diffuse term (free normals went 89° off under shadows)
     bp_seed = bp[chosen][0].model

@@ -157,7 +157,8 @@ def render_markdown(data: Dict[str, Any]) -> str:
              f"{data['noise']}, PNG and JPEG q{data['jpeg_quality']})", "", f"`{data['command']}`",
              "", f"## Targets (issue 12){judged}", "",
              target_table(tg), "",
-             f"The Blinn-Phong highlight chosen by deviation as drawn (n_s = n or (0,0,1)) is "
+             f"The Blinn-Phong highlight chosen by deviation as drawn (n_s = n or (0,0,1); over "
+             f"θ_l <= 45° where a fit found cast shadows, `scoring.highlight_choice`) is "
              f"the truth's on {tg['highlight_choice']['matches_truth']} of "
              f"{tg['highlight_choice']['datasets']} datasets with a specular lobe (chosen by the "
              f"float model's deviation instead: "
