@@ -78,11 +78,12 @@ def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[
     if args.robust:
         seed_fit, t = f.run("robust linear fit", btf_fit.fit_linear, samples, robust=True)
         f.add("linear_robust", seed_fit.material(samples), t)
+    search_max = args.max_exponent or 4096
     flat, t = f.run("specular (n_s = (0,0,1))", btf_fit.fit_specular, samples, seed_fit, True,
-                    args.max_exponent, args.per_texel_exponent)
+                    search_max, args.per_texel_exponent)
     f.add("specular_eq4.30", flat.material, t)
     fitted, t = f.run("specular (fitted n)", btf_fit.fit_specular, samples, seed_fit, False,
-                      args.max_exponent)
+                      search_max)
     f.add("specular_eq4.29", fitted.material, t)
     choice: Dict[str, Any] = {}
     if args.nonlinear:
@@ -90,18 +91,24 @@ def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[
                                     ("blinn_phong_flat", flat.material, True)):
             label = "Blinn-Phong (n_s = " + ("(0,0,1))" if flat_ns else "n)")
             bp, t = f.run(label, btf_fit.fit_blinn_phong, samples, seed, args.solver,
-                          max_exponent=float(args.max_exponent), flat_specular_normal=flat_ns,
-                          visibility=args.visibility)
+                          max_exponent=args.max_exponent, flat_specular_normal=flat_ns,
+                          visibility=args.visibility,
+                          luminance_normals=getattr(args, "luminance_normals", False))
             f.add(name, bp.material, t, solver=bp.solver, mean_iterations=bp.mean_iterations,
                   shadowed_fraction=getattr(bp, "shadowed_fraction", None))
         by = {s.name: s for s in f.scored}
-        n_dev, flat_dev = by["blinn_phong_n"].deviation, by["blinn_phong_flat"].deviation
-        choice = {"chosen": "blinn_phong_flat" if flat_dev < n_dev else "blinn_phong_n",
-                  "deviation_n": n_dev, "deviation_flat": flat_dev,
-                  "rule": "lower total deviation as drawn"}
+        pick = scoring.highlight_choice(
+            samples, {k: (by[k], by[k].extra.get("shadowed_fraction"))
+                      for k in ("blinn_phong_n", "blinn_phong_flat")})
+        choice = {"chosen": pick["chosen"], "deviation_n": by["blinn_phong_n"].deviation,
+                  "deviation_flat": by["blinn_phong_flat"].deviation, "rule": pick["rule"]}
+    # Lafortune keeps the chosen Blinn-Phong normal when there is one: with a frontal view its
+    # lobe depends on l_z only and trades off with the diffuse term
+    laf_seed = by[choice["chosen"]].model if choice else flat.material
     for count in lobes:
         laf, t = f.run(f"Lafortune ({count} lobe{'s' if count > 1 else ''})",
-                       btf_fit.fit_lafortune, samples, flat.material, count)
+                       btf_fit.fit_lafortune, samples, laf_seed, count,
+                       fixed_normal=bool(choice))
         f.add(f"lafortune_{count}", laf, t, mean_iterations=laf.mean_iterations)
     f.progress.close()
     return f.scored, choice, linear
