@@ -72,8 +72,10 @@ private:
     void allocateSets(Slot& slot, uint32_t draws);
     void writeSets(Slot& slot);
     void ensureImages(const RenderSettings& settings, uint32_t width, uint32_t height);
+    /// The camera's view of the opaque or the transparent strands; `strips`: as triangles (the
+    /// ribbon indices; anti-aliased frames draw lines as one-pixel strips too).
     void drawCamera(VkCommandBuffer cmd, const Targets& t, VkPipeline pipeline,
-                    VkDescriptorSet domSet, bool transparent) const;
+                    VkDescriptorSet domSet, bool transparent, bool strips) const;
     /// Shadow-casting strands as lines; push constants: light view-projection * model, params.
     void drawFromLight(VkCommandBuffer cmd, VkPipeline pipeline, const glm::mat4& viewProj,
                        const glm::vec4& params) const;
@@ -84,12 +86,16 @@ private:
     HairGpuCache mCache;
     std::array<Slot, 2> mSlots;
     vk::Image mDomDepth, mDomOpacity, mDomMeshDepth, mDummyDom, mNoMeshes, mAccum, mWeight;
+    // anti-aliased frames, per pixel (R32_UINT layers): the samples hair covers, the nearest
+    // fringe depth, the sum of the fringe's shares (glsl/hair/hair_oit_main.glsl)
+    vk::Image mSampleMask;
     std::vector<HairDraw> mDraws;
     std::vector<Dom> mDoms;
     std::vector<HairDomInfo> mLastDoms; // by scene light, size 0 where none
     VkDescriptorSet mZ0Set = VK_NULL_HANDLE, mOpacitySet = VK_NULL_HANDLE;
     VkDescriptorSet mOitSet = VK_NULL_HANDLE;
     bool mRibbons = false, mOit = false;
+    bool mAntialias = false; // strips with coverage (MSAA frames; debug frames never)
     bool mMeshesShadowHair = false; // DOMs and mesh casters this frame: the hair_dom_meshes pass
     uint32_t mWidth = 0, mHeight = 0, mDomSize = 0;
 };
