@@ -8,8 +8,8 @@
 // frames; the entirely covered ones were drawn opaque, with depth, before), so that a pixel's
 // coverage approaches the union of its strands' footprints rather than independent alphas (the
 // product of 1 - coverage), which leave a dense head of hair see-through where strands lie side
-// by side. hairMask, per pixel: layer 0 the samples of a 32-point pattern taken so far, layer 1
-// the nearest depth, layer 2 the sum of the shares taken (fixed point). A fragment's share is
+// by side. hairMask, per pixel: layer 0 the nearest depth, layer 1 the sum of the shares taken
+// (fixed point), layers 2-5 the samples of a 128-point pattern taken so far. A fragment's share is
 // its exact coverage times the fraction of its own samples still free (all of them for the first
 // strand, or a strand beside the others); it adds C w share and multiplies the revealage by
 // 1 - share / (1 - shares before it), which telescopes to 1 - (sum of shares) in any order. The
@@ -56,17 +56,36 @@ float oitWeight(float z, float a, float zNdc) {
 #ifdef HAIR_AA_MASK
 const float HAIR_SHARE_ONE = 65536.0; // fixed-point unit of the shares' sum
 
-// Samples of the pixel (offsets from its centre) inside the strip: a Hammersley set, x stratified
-// by 32 and y by the bit-reversed index, so that its projection across a strand of any direction
-// is spread evenly.
-uint hairSampleMask(vec2 strip, vec2 across) {
+// Samples of the pixel (offsets from its centre) inside the strip, HAIR_SAMPLE_WORDS x 32 of
+// them: a Hammersley set, x stratified by their count and y by the bit-reversed index, so that
+// its projection across a strand of any direction is spread evenly.
+const uint HAIR_SAMPLE_WORDS = 4u;
+const uint HAIR_SAMPLE_BITS = 7u; // log2(32 HAIR_SAMPLE_WORDS)
+const float HAIR_SAMPLES = float(32u * HAIR_SAMPLE_WORDS);
+const uvec4 HAIR_ALL_SAMPLES = uvec4(~0u, HAIR_SAMPLE_WORDS > 1u ? ~0u : 0u,
+                                     HAIR_SAMPLE_WORDS > 2u ? ~0u : 0u,
+                                     HAIR_SAMPLE_WORDS > 3u ? ~0u : 0u);
+uvec4 hairSampleMask(vec2 strip, vec2 across) {
     float h = 0.5 * strip.y;
-    uint mask = 0u;
-    for (uint i = 0u; i < 32u; ++i) {
-        vec2 o = vec2((float(i) + 0.5) / 32.0, (float(bitfieldReverse(i) >> 27) + 0.5) / 32.0);
-        if (abs(strip.x + dot(o - 0.5, across)) <= h) mask |= 1u << i;
+    uvec4 mask = uvec4(0u);
+    for (uint i = 0u; i < 32u * HAIR_SAMPLE_WORDS; ++i) {
+        vec2 o = (vec2(i, bitfieldReverse(i) >> (32u - HAIR_SAMPLE_BITS)) + 0.5) / HAIR_SAMPLES;
+        if (abs(strip.x + dot(o - 0.5, across)) <= h) mask[i >> 5] |= 1u << (i & 31u);
     }
     return mask;
+}
+
+// ORs the samples into the pixel's (layers 2...), returning those taken before.
+uvec4 hairTakeSamples(ivec2 pixel, uvec4 mask) {
+    uvec4 before = uvec4(0u);
+    for (uint k = 0u; k < HAIR_SAMPLE_WORDS; ++k)
+        before[k] = imageAtomicOr(hairMask, ivec3(pixel, 2 + int(k)), mask[k]);
+    return before;
+}
+
+float hairSampleCount(uvec4 mask) {
+    uvec4 n = uvec4(bitCount(mask));
+    return float(n.x + n.y + n.z + n.w);
 }
 #endif
 
@@ -80,11 +99,11 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     uint depth = floatBitsToUint(gl_FragCoord.z);
 #if HAIR_AA_PASS == 0
-    imageAtomicMin(hairMask, ivec3(pixel, 1), depth);
+    imageAtomicMin(hairMask, ivec3(pixel, 0), depth);
 #else
-    if (depth == imageLoad(hairMask, ivec3(pixel, 1)).r) { // the nearest takes its samples
-        imageAtomicOr(hairMask, ivec3(pixel, 0), hairSampleMask(inStrip, across));
-        imageAtomicAdd(hairMask, ivec3(pixel, 2), uint(coverage * HAIR_SHARE_ONE + 0.5));
+    if (depth == imageLoad(hairMask, ivec3(pixel, 0)).r) { // the nearest takes its samples
+        hairTakeSamples(pixel, hairSampleMask(inStrip, across));
+        imageAtomicAdd(hairMask, ivec3(pixel, 1), uint(coverage * HAIR_SHARE_ONE + 0.5));
     }
 #endif
     // nothing drawn (colour write mask 0): the inputs are read so that these passes use the
@@ -95,21 +114,21 @@ void main() {
 #if defined(HAIR_AA_MASK)
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     float a, reveal;
-    if (floatBitsToUint(gl_FragCoord.z) == imageLoad(hairMask, ivec3(pixel, 1)).r) {
+    if (floatBitsToUint(gl_FragCoord.z) == imageLoad(hairMask, ivec3(pixel, 0)).r) {
         a = coverage; // taken in pass 1, first
         reveal = coverage >= 0.999 ? 1.0 : coverage;
     } else {
-        uint mask = hairSampleMask(inStrip, across);
-        uint before = imageAtomicOr(hairMask, ivec3(pixel, 0), mask);
-        float own = float(bitCount(mask));
-        float share = coverage * (own > 0.0 ? float(bitCount(mask & ~before)) / own : 1.0);
+        uvec4 mask = hairSampleMask(inStrip, across);
+        uvec4 before = hairTakeSamples(pixel, mask);
+        float own = hairSampleCount(mask);
+        float share = coverage * (own > 0.0 ? hairSampleCount(mask & ~before) / own : 1.0);
         uint fixedShare = uint(share * HAIR_SHARE_ONE + 0.5);
         if (fixedShare == 0u) discard;
-        float free = 1.0 - float(imageAtomicAdd(hairMask, ivec3(pixel, 2), fixedShare)) /
+        float free = 1.0 - float(imageAtomicAdd(hairMask, ivec3(pixel, 1), fixedShare)) /
                                HAIR_SHARE_ONE;
         a = clamp(min(float(fixedShare) / HAIR_SHARE_ONE, free), 0.0, 1.0);
         reveal = free > 0.0 ? a / free : 1.0;
-        if ((before | mask) == ~0u) { // the last free samples: the rest of the pixel is hair
+        if (all(equal(before | mask, HAIR_ALL_SAMPLES))) { // the last free samples: the rest of the pixel is hair
             a = max(a, free);
             reveal = 1.0;
         }

@@ -282,12 +282,16 @@ def test_aa_targets_at_default_settings():
 
 def test_hair_aa_today():
     """Hair anti-aliases itself with coverage (it is drawn after the MSAA resolve): 1-pixel
-    ribbons score 8.5/255 against the 4x4 supersampled frame (27 when they were drawn aliased);
-    the issue's 6/255 is not met yet. A ceiling for regressions."""
+    ribbons score 7.1/255 against the 4x4 supersampled frame at 160 x 120 (27 when they were
+    drawn aliased, one strand per pixel, as msaa=1 still draws them); the issue's 6/255 is not
+    met yet. The measured value + 25% as a ceiling for regressions."""
     hscene, hcamera, width = aa.hair_scene(160, 120)
     r = weft.Renderer(160, 120)
     r.hair_primitive = "ribbons"
     r.hair_width = width
     hair = aa.aa_edge_error(hscene, hcamera, r)
     assert hair["hair_edges_pixels"] > 300
-    assert hair["hair_edges"] <= 10.5, hair["hair_edges"]
+    assert hair["hair_edges"] <= 8.8, hair["hair_edges"]
+    r.msaa = 1
+    aliased = aa.aa_edge_error(hscene, hcamera, r)
+    assert aliased["hair_edges"] > 2.5 * hair["hair_edges"], aliased["hair_edges"]

@@ -155,7 +155,7 @@ void HairPasses::ensureImages(const RenderSettings& settings, uint32_t width, ui
         vk::ImageDesc d;
         d.width = width;
         d.height = height;
-        d.layers = 3;
+        d.layers = 6;
         d.format = VK_FORMAT_R32_UINT;
         d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
         mSampleMask = vk::Image(&mCtx, d);
@@ -470,8 +470,8 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                                           VK_PIPELINE_STAGE_2_CLEAR_BIT,
                                           VK_ACCESS_2_TRANSFER_WRITE_BIT);
                            VkClearColorValue clear{};
-                           for (uint32_t layer = 0; layer < 3; ++layer) {
-                               clear.uint32[0] = layer == 1 ? ~0u : 0u;
+                           for (uint32_t layer = 0; layer < 6; ++layer) {
+                               clear.uint32[0] = layer == 0 ? ~0u : 0u;
                                const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0,
                                                                    1, layer, 1};
                                vkCmdClearColorImage(cmd, mSampleMask.get(),

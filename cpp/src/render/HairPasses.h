@@ -86,8 +86,8 @@ private:
     HairGpuCache mCache;
     std::array<Slot, 2> mSlots;
     vk::Image mDomDepth, mDomOpacity, mDomMeshDepth, mDummyDom, mNoMeshes, mAccum, mWeight;
-    // anti-aliased frames, per pixel (R32_UINT layers): the samples hair covers, the nearest
-    // fringe depth, the sum of the fringe's shares (glsl/hair/hair_oit_main.glsl)
+    // anti-aliased frames, per pixel (R32_UINT layers): the nearest fringe depth, the sum of the
+    // fringe's shares, the samples it covers (glsl/hair/hair_oit_main.glsl)
     vk::Image mSampleMask;
     std::vector<HairDraw> mDraws;
     std::vector<Dom> mDoms;
