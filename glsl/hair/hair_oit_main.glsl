@@ -128,7 +128,8 @@ void main() {
                                HAIR_SHARE_ONE;
         a = clamp(min(float(fixedShare) / HAIR_SHARE_ONE, free), 0.0, 1.0);
         reveal = free > 0.0 ? a / free : 1.0;
-        if (all(equal(before | mask, HAIR_ALL_SAMPLES))) { // the last free samples: the rest of the pixel is hair
+        // the last free samples: the rest of the pixel is hair
+        if (all(equal(before | mask, HAIR_ALL_SAMPLES))) {
             a = max(a, free);
             reveal = 1.0;
         }

@@ -242,8 +242,8 @@ void HairPasses::writeSets(Slot& slot) {
     write(mZ0Set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[4];
     write(mOpacitySet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[1];
     write(mOpacitySet, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[4];
-    const VkDescriptorImageInfo mask{VK_NULL_HANDLE, mSampleMask ? mSampleMask.view() : VK_NULL_HANDLE,
-                                     VK_IMAGE_LAYOUT_GENERAL};
+    const VkDescriptorImageInfo mask{
+        VK_NULL_HANDLE, mSampleMask ? mSampleMask.view() : VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
     if (mAntialias && mPipes.sampleMasks)
         write(mOpacitySet, 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)->pImageInfo = &mask;
     if (mAccum) {
@@ -409,7 +409,8 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
         if (t.debug)
             for (int i = 0; i < 4; ++i) writes.push_back({t.debug[i], Use::ColorWrite});
         const bool debug = t.debug != nullptr;
-        g.addPass({"hair", shadingReads, writes, [this, t, debug, ribbons, aa](VkCommandBuffer cmd) {
+        g.addPass({"hair", shadingReads, writes,
+                   [this, t, debug, ribbons, aa](VkCommandBuffer cmd) {
                        std::vector<VkRenderingAttachmentInfo> colors = {attachment(
                            t.hdrImage->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false)};
                        if (debug)

@@ -3,7 +3,10 @@
 // shadow-casting directional lights (pass 1 depth, pass 2 opacity layers), opaque hair shaded
 // per fragment, and weighted blended OIT (accumulation + composite over the opaque image).
 // Only what the scene needs is added: no hair, no passes; no transparent hair or OIT off, no
-// OIT passes; no shadow-casting directional light or DOM off, no DOM passes.
+// OIT passes; no shadow-casting directional light or DOM off, no DOM passes. Anti-aliased frames
+// (msaa > 1, never debug frames) draw strands as screen-space strips with their pixel coverage:
+// "hair" the pixels a strand covers entirely, "hair_fringe" the partly covered ones accumulated
+// with the OIT targets, "hair_composite" both over the frame (glsl/hair/hair_oit_main.glsl).
 #include <array>
 #include <functional>
 #include <vector>
@@ -40,7 +43,7 @@ public:
         /// a depth view of a size: the meshes that shadow hair under a deep opacity map.
         std::function<void(VkCommandBuffer, VkImageView, uint32_t, const glm::mat4&)> meshDepth;
     };
-    /// Adds the DOM, hair and OIT passes after the forward pass.
+    /// Adds the DOM, hair, fringe and OIT passes after the forward pass.
     void addPasses(FrameGraph& graph, const Targets& targets);
     /// The last frame's deep opacity map of a light (InvalidArgument if it had none).
     HairDomInfo domInfo(int lightIndex);
