@@ -281,13 +281,30 @@ def test_aa_targets_at_default_settings():
 
 
 def test_hair_aa_today():
-    """Hair is drawn after the MSAA resolve, so 1-pixel ribbons still alias: 27/255 against the
-    issue's 6/255 (not met yet). A ceiling for regressions, to be lowered when hair gets
-    coverage-based anti-aliasing."""
+    """Hair anti-aliases itself with coverage (it is drawn after the MSAA resolve): 1-pixel
+    ribbons score 7.1/255 against the 4x4 supersampled frame at 160 x 120 (27 when they were
+    drawn aliased, one strand per pixel, as msaa=1 still draws them); the issue's 6/255 is not
+    met yet. The measured value + 25% as a ceiling for regressions."""
     hscene, hcamera, width = aa.hair_scene(160, 120)
     r = weft.Renderer(160, 120)
     r.hair_primitive = "ribbons"
     r.hair_width = width
     hair = aa.aa_edge_error(hscene, hcamera, r)
     assert hair["hair_edges_pixels"] > 300
-    assert hair["hair_edges"] <= 34.0, hair["hair_edges"]
+    assert hair["hair_edges"] <= 8.8, hair["hair_edges"]
+    r.msaa = 1
+    aliased = aa.aa_edge_error(hscene, hcamera, r)
+    assert aliased["hair_edges"] > 2.5 * hair["hair_edges"], aliased["hair_edges"]
+
+
+def test_fur_aa_target():
+    """The demo's fur ball (transparent: WBOIT with coverage) meets the issue's hair target at
+    the default 4x MSAA: <= 6/255 on hair edges against the 4x4 supersampled frame (measured
+    5.5 at 160 x 120, 4.9 at 320 x 240; drawn aliased 8.1 and 9.2)."""
+    fscene, fcamera, width = aa.fur_scene(160, 120)
+    r = weft.Renderer(160, 120)
+    r.hair_primitive = "ribbons"
+    r.hair_width = width
+    fur = aa.aa_edge_error(fscene, fcamera, r)
+    assert fur["hair_edges_pixels"] > 3000
+    assert fur["hair_edges"] <= 6.0, fur["hair_edges"]
