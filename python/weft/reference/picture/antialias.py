@@ -28,15 +28,22 @@ def box_downsample(image: np.ndarray, factor: int) -> np.ndarray:
     return image[:h * factor, :w * factor].reshape(h, factor, w, factor, -1).mean(axis=(1, 3))
 
 
-def _copy_settings(src, dst) -> None:
+def _copy_settings(src, dst, factor: int) -> None:
+    """The frame's settings for the supersampled reference -- except anti-aliasing: the
+    reference is point-sampled (msaa 1, so hair is drawn without its coverage strips), a truth
+    that shares no AA code with the frame it judges; blurs in pixels scale with the factor."""
     for name in ("shadow_map_size", "pcf_radius", "bias_constant", "bias_slope", "bias_max",
                  "normal_offset", "hair_primitive", "hair_width", "hair_transparency",
-                 "hair_dom", "hair_dom_size", "msaa"):
+                 "hair_dom", "hair_dom_size", "bounce", "ambient_occlusion"):
         if hasattr(src, name):
             try:
                 setattr(dst, name, getattr(src, name))
             except (AttributeError, TypeError):
                 pass  # read-only on this build
+    if hasattr(dst, "msaa"):
+        dst.msaa = 1
+    if hasattr(src, "ambient_occlusion_blur"):
+        dst.ambient_occlusion_blur = min(64.0, src.ambient_occlusion_blur * factor)
 
 
 def aa_edge_error(scene, camera, renderer, factor: int = FACTOR,
@@ -59,7 +66,7 @@ def aa_edge_error(scene, camera, renderer, factor: int = FACTOR,
             renderer.hair_transparency = True
     normal = np.asarray(renderer.render_linear(scene, camera), np.float64)[..., :3]
     big = (make_renderer or (lambda ww, hh: weft.Renderer(ww, hh)))(w * factor, h * factor)
-    _copy_settings(renderer, big)
+    _copy_settings(renderer, big, factor)
     hi = np.asarray(big.render_linear(scene, camera), np.float64)[..., :3]
     reference = box_downsample(hi, factor)
     diff = np.abs(to_display(normal, exposure) - to_display(reference, exposure)).mean(axis=-1)
