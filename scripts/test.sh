@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Every test: install, build, then ctest (C++ unit tests, demo, consumer project against the
-# installed CMake package) and pytest (Python API, shading oracle, shadows, window, CLI, bench).
-# Vulkan validation layers are on throughout; any validation message fails the test.
+# installed CMake package), pytest (Python API, shading oracle, shadows, window, CLI, bench) and
+# the sanitizer lane (the C++ tests again under AddressSanitizer + UndefinedBehaviorSanitizer,
+# scripts/sanitize.sh). Vulkan validation layers are on throughout; any validation message or
+# sanitizer finding fails the test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -10,3 +12,4 @@ source scripts/env.sh
 export WEFT_VALIDATION=1
 ctest --test-dir build/py --output-on-failure --timeout 600
 python3 -m pytest tests/python -q -p no:cacheprovider
+bash scripts/sanitize.sh
