@@ -22,3 +22,7 @@ from weft.batch.btf_stages import BtfJob
 from weft.batch.cluster import executor
 
 __all__ = ["BtfJob", "dataset_views", "executor", "fit_btf_batch", "make_jobs"]
+from weft.batch.render_batch import render_batch  # noqa: E402
+from weft.batch.render_jobs import RenderJob, load_render_jobs, make_render_job  # noqa: E402
+
+__all__ += ["RenderJob", "load_render_jobs", "make_render_job", "render_batch"]

@@ -121,6 +121,9 @@ class SerialPool:
             except Exception as exc:
                 yield item, None, exc
 
+    def close(self) -> None:
+        self.worker = None
+
 
 def _failure(exc: BaseException) -> BaseException:
     """The user's error inside a Ray error (the first line names it), else ``exc``."""
