@@ -110,7 +110,8 @@ def fit_btf_batch(jobs: Sequence[BtfJob], out: str, executor: Any, progress: boo
     owner: Dict[int, Tuple[BtfJob, str, str]] = {}
     for job, key in todo:
         parts = executor.submit(btf_stages.prepare, job, num_returns=job.tiles + 1,
-                                memory=job.memory, label=f"{job.name} prepare", track=[0])
+                                memory=job.memory, label=f"{job.name} prepare", track=[0],
+                                spread=True)
         owner[parts[0].id] = (job, key, "prepare")
         fits = []
         for k in range(job.tiles):

@@ -213,5 +213,5 @@ def assemble(job: BtfJob, header: Dict[str, Any], *tiles: Optional[Dict[str, Any
         shutil.rmtree(tmp, ignore_errors=True)
     return dict(files=files, best=best.name, deviation=best.deviation,
                 texels=samples.width * samples.height, samples=samples.count,
-                tile_seconds=[t["seconds"] for t in tiles],
+                tile_seconds=[t["seconds"] for t in tiles], worker=where(),
                 workers=[header["worker"]] + [t["worker"] for t in tiles] + [where()])

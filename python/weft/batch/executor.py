@@ -46,7 +46,8 @@ class SerialExecutor:
         self._uses: Dict[int, int] = {}  # queued tasks that still need a result (then freed)
 
     def submit(self, fn: Callable[..., Any], *args: Any, num_returns: int = 1,
-               memory: int = 0, label: str = "", track: Optional[Sequence[int]] = None) -> Any:
+               memory: int = 0, label: str = "", track: Optional[Sequence[int]] = None,
+               spread: bool = False) -> Any:
         """Queues ``fn(*args)``; with ``num_returns`` > 1 returns one handle per result, and
         :meth:`finished` reports those in ``track`` (default all)."""
         h = Handle(next(self._ids), label=label)
@@ -160,9 +161,14 @@ class RayExecutor:
         return self._remote[fn]
 
     def submit(self, fn: Callable[..., Any], *args: Any, num_returns: int = 1,
-               memory: int = 0, label: str = "", track: Optional[Sequence[int]] = None) -> Any:
+               memory: int = 0, label: str = "", track: Optional[Sequence[int]] = None,
+               spread: bool = False) -> Any:
+        """``spread``: place the task on the least loaded node (Ray's SPREAD; for tasks that
+        start a job's work, e.g. one per dataset), else where its inputs are (DEFAULT)."""
         opts: Dict[str, Any] = dict(num_returns=num_returns, max_retries=self.retries,
                                     retry_exceptions=False, num_cpus=self.cpus)
+        if spread:
+            opts["scheduling_strategy"] = "SPREAD"
         if memory > 0:
             opts["memory"] = int(memory)
         refs = self._fn(fn).options(**opts).remote(

@@ -12,6 +12,7 @@ import hashlib
 import json
 import os
 import socket
+import sys
 import time
 from typing import Any, Dict, Mapping, Optional
 
@@ -104,5 +105,10 @@ class Manifest:
 
 
 def where() -> Dict[str, Any]:
-    """The worker that ran a task: host name, process id."""
-    return {"host": socket.gethostname(), "pid": os.getpid()}
+    """The worker that ran a task: host name, process id and, on Ray, the node id (nodes on
+    one machine share the host name)."""
+    out: Dict[str, Any] = {"host": socket.gethostname(), "pid": os.getpid()}
+    ray = sys.modules.get("ray")  # never imports Ray: a serial run has none
+    if ray is not None and ray.is_initialized():
+        out["node"] = ray.get_runtime_context().get_node_id()
+    return out
