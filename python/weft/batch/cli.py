@@ -64,7 +64,7 @@ def add_parser(sub: Any) -> None:
                    help="tasks by bands of texels of one fit (default) or one fit per view")
     b.add_argument("--memory-gb", type=float, default=2.0,
                    help="memory a task may use, GiB (2): reserved on the cluster; a dataset "
-                        "that needs more (3 x its float samples) fails with a message")
+                        "that needs more (4 x its float samples) fails with a message")
     b.add_argument("--cpus-per-task", type=float, default=1.0,
                    help="CPUs a task reserves on the cluster, and its native fit threads (1)")
     b.add_argument("--no-times", dest="times", action="store_false",

@@ -18,8 +18,8 @@ from typing import Any, Iterator, Optional
 import weft
 from weft.batch.executor import RayExecutor, SerialExecutor
 
-#: Version range of Ray this package is tested with (pyproject extra ``weft[batch]``).
-RAY_REQUIREMENT = "ray[default]>=2.40,<3"
+#: The Ray this package is tested with (pyproject extra ``weft[batch]``).
+RAY_REQUIREMENT = "ray==2.60.0"
 
 
 def import_ray() -> Any:

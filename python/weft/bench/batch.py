@@ -7,6 +7,10 @@ Each configuration runs the same batch into a fresh folder:
   CPU, one fit thread per task), started before the clock runs; Ray's worker processes are
   started by a warm-up task each, as they stay up in a real batch.
 
+Every worker gets one CPU: one fit thread, and lavapipe (Vulkan on the CPU) one rasteriser
+thread (``LP_NUM_THREADS=1``, set here unless given), so that 2 workers can gain what 2 CPUs
+give instead of two renderers each spreading over every core.
+
 Figures: wall seconds, throughput (texels/s for BTF: texels x datasets; frames/s), the
 overhead per task (``(t_ray1 - t_serial) / tasks``: what one worker pays over the serial run
 for serialising, scheduling and moving results), scaling efficiency (throughput with 2
@@ -92,6 +96,7 @@ def _configs() -> List[Tuple[str, str, int]]:
 def run(args: argparse.Namespace) -> int:
     import weft.batch as wb
 
+    os.environ.setdefault("LP_NUM_THREADS", "1")  # before any Vulkan device; workers inherit it
     quick = bool(args.quick)
     datasets = args.datasets or (4 if quick else 8)
     size = args.size or (24 if quick else 64)
@@ -139,6 +144,7 @@ def run(args: argparse.Namespace) -> int:
     _derive(rows)
     command = "python -m weft.bench batch" + (" --quick" if quick else "")
     report = {"benchmark": "batch", "command": command, "machine": machine_info(),
+              "lp_num_threads": os.environ.get("LP_NUM_THREADS"),
               "load_average": {"before": load_before, "after": os.getloadavg()},
               "inputs": dict(datasets=datasets, size=size, tiles=args.tiles, frames=frames,
                              frame_size=[w, h]),
@@ -184,7 +190,8 @@ def _markdown(report: Dict[str, Any]) -> str:
         f"BTF: {i['datasets']} synthetic datasets of {i['size']}x{i['size']} texels x 81 "
         f"samples, {i['tiles']} bands each (tasks = datasets x (bands + 2)), every model, no "
         f"figures, one fit thread per task. Render: {i['frames']} frames of the default scene "
-        f"at {i['frame_size'][0]}x{i['frame_size'][1]} on an orbit, one render worker per CPU. "
+        f"at {i['frame_size'][0]}x{i['frame_size'][1]} on an orbit, one render worker per CPU "
+        f"(LP_NUM_THREADS={report.get('lp_num_threads')}). "
         "Ray clusters are local and started (and their workers warmed) before the clock runs.",
         "",
         markdown_table(["batch", "run", "wall s", "throughput", "tasks", "overhead / task",
