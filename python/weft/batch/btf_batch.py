@@ -98,7 +98,8 @@ def fit_btf_batch(jobs: Sequence[BtfJob], out: str, executor: Any, progress: boo
     """Fits ``jobs`` (:func:`make_jobs`) on ``executor`` (:func:`weft.batch.executor`) into
     ``out``. Finished jobs (same key in the manifest, metrics.json present) are skipped; a
     failing job is recorded and the others go on. Returns the summary (also in the manifest):
-    done, skipped, failed {name: error}, seconds, texels, texels_per_s."""
+    done, skipped, failed {name: error}, seconds, texels, texels_per_s, task_seconds (time
+    spent inside the tasks of the finished jobs, summed)."""
     os.makedirs(out, exist_ok=True)
     manifest = Manifest(out, "btf")
     t0 = time.perf_counter()
@@ -123,7 +124,7 @@ def fit_btf_batch(jobs: Sequence[BtfJob], out: str, executor: Any, progress: boo
                             label=f"{job.name} assemble")
         owner[h.id] = (job, key, "assemble")
     failed: Dict[str, str] = {}
-    texels = 0
+    texels, task_seconds = 0, 0.0
     for handle, value, error in executor.finished():
         job, key, stage = owner[handle.id]
         bar.step(handle.label)
@@ -140,16 +141,18 @@ def fit_btf_batch(jobs: Sequence[BtfJob], out: str, executor: Any, progress: boo
         for rel in sorted(files, key=lambda r: (r == "metrics.json", r)):
             write_bytes(os.path.join(out, job.name, rel), files[rel])
         texels += value["texels"]
+        task_seconds += value["task_seconds"]
         manifest.record(job.name, "fit", dict(
             file=os.path.join(job.name, "metrics.json"), key=key, files=len(files),
             best=value["best"], deviation=value["deviation"], texels=value["texels"],
             samples=value["samples"], tile_seconds=value["tile_seconds"],
+            task_seconds=value["task_seconds"],
             workers=value["workers"], device="cpu"))
     bar.close()
     _write_view_indexes(out, jobs, manifest)
     seconds = time.perf_counter() - t0
     summary = dict(jobs=len(jobs), done=len(todo) - len(failed), skipped=len(skipped),
-                   failed=failed, seconds=seconds, texels=texels,
+                   failed=failed, seconds=seconds, texels=texels, task_seconds=task_seconds,
                    texels_per_s=texels / seconds if seconds > 0 else None,
                    executor=executor.kind, workers=executor.workers)
     manifest.save(force=True, **summary)

@@ -111,6 +111,7 @@ def prepare(job: BtfJob) -> Tuple[Any, ...]:
     each band its rows of the samples and of the two specular seeds."""
     from weft.btf.fit_report import seed_fits
 
+    t0 = time.perf_counter()
     samples, load_s = load(job)
     _check_memory(job, 4 * samples.count * 3 * samples.width * samples.height, "the dataset")
     seeds = seed_fits(samples, job.args(), _timer(job.times))
@@ -126,6 +127,7 @@ def prepare(job: BtfJob) -> Tuple[Any, ...]:
                         values=np.ascontiguousarray(values[:, :, y0:y1, :]),
                         flat=_crop(seeds.flat.material, y0, y1),
                         fitted=_crop(seeds.fitted.material, y0, y1)))
+    header["seconds"] = time.perf_counter() - t0
     return tuple(out)
 
 
@@ -191,6 +193,7 @@ def assemble(job: BtfJob, header: Dict[str, Any], *tiles: Optional[Dict[str, Any
     outputs; returns {"files": {relative path: bytes}, "best", "deviation", ...}."""
     from weft.btf.fit_report import blinn_phong_choice, score_all, write_fit
 
+    t0 = time.perf_counter()
     tiles = tuple(t for t in tiles if t is not None)
     samples, _ = load(job)
     texel_models: List[Any] = []
@@ -212,7 +215,9 @@ def assemble(job: BtfJob, header: Dict[str, Any], *tiles: Optional[Dict[str, Any
                     files[os.path.relpath(full, tmp)] = f.read()
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    return dict(files=files, best=best.name, deviation=best.deviation,
+    task_seconds = header["seconds"] + sum(t["seconds"] for t in tiles) + \
+        (time.perf_counter() - t0)
+    return dict(files=files, best=best.name, deviation=best.deviation, task_seconds=task_seconds,
                 texels=samples.width * samples.height, samples=samples.count,
                 tile_seconds=[t["seconds"] for t in tiles], worker=where(),
                 workers=[header["worker"]] + [t["worker"] for t in tiles] + [where()])

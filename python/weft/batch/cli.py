@@ -81,6 +81,8 @@ def add_parser(sub: Any) -> None:
         epilog=_EPILOG)
     r.add_argument("jobs", metavar="JOBS", help="job file (JSON)")
     r.add_argument("--out", required=True, help="output folder")
+    r.add_argument("--gpus-per-worker", type=float, default=0.0, metavar="G",
+                   help="GPUs a render worker reserves on a cluster's GPU nodes (0)")
     _common(r)
     r.set_defaults(handler=cmd_render)
 
@@ -129,5 +131,5 @@ def cmd_render(args: argparse.Namespace) -> int:
     with wb.executor("serial" if args.serial else "ray", args.address, args.workers,
                      retries=args.retries) as ex:
         summary = wb.render_batch(jobs, args.out, ex, workers=args.workers,
-                                  progress=args.progress)
+                                  progress=args.progress, gpus=args.gpus_per_worker)
     return _finish(summary, args, "frames")

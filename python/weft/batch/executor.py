@@ -100,7 +100,8 @@ class SerialExecutor:
             for r in report:
                 yield r, (value if r is h else value[r.index]), None
 
-    def pool(self, factory: Callable[[], Any], size: int, memory: int = 0) -> "SerialPool":
+    def pool(self, factory: Callable[[], Any], size: int, memory: int = 0,
+             gpus: float = 0.0) -> "SerialPool":
         return SerialPool(factory())
 
     def close(self) -> None:
@@ -198,8 +199,9 @@ class RayExecutor:
                     continue
                 yield h, value, None
 
-    def pool(self, factory: Callable[[], Any], size: int, memory: int = 0) -> "RayPool":
-        return RayPool(self.ray, factory, size, memory, self.retries, self.cpus)
+    def pool(self, factory: Callable[[], Any], size: int, memory: int = 0,
+             gpus: float = 0.0) -> "RayPool":
+        return RayPool(self.ray, factory, size, memory, self.retries, self.cpus, gpus)
 
     def close(self) -> None:
         self._pending.clear()
@@ -212,10 +214,12 @@ class RayPool:
     actor that is free."""
 
     def __init__(self, ray: Any, factory: Callable[[], Any], size: int, memory: int,
-                 retries: int, cpus: float) -> None:
+                 retries: int, cpus: float, gpus: float = 0.0) -> None:
         self.ray = ray
         opts: Dict[str, Any] = dict(max_restarts=retries, max_task_retries=retries,
                                     num_cpus=cpus)
+        if gpus > 0:  # Ray then sets CUDA_VISIBLE_DEVICES; Vulkan picks by WEFT_DEVICE
+            opts["num_gpus"] = gpus
         if memory > 0:
             opts["memory"] = int(memory)
         cls = ray.remote(_ActorShell).options(**opts)

@@ -29,12 +29,13 @@ def frame_file(job: RenderJob, frame: int) -> str:
 
 
 def render_batch(jobs: Sequence[RenderJob], out: str, executor: Any, workers: Optional[int] = None,
-                 progress: bool = True, memory: int = WORKER_MEMORY,
+                 progress: bool = True, memory: int = WORKER_MEMORY, gpus: float = 0.0,
                  on_event: Optional[Callable[[Dict[str, Any]], None]] = None) -> Dict[str, Any]:
     """Renders every frame of ``jobs`` (:func:`~weft.batch.render_jobs.load_render_jobs`) into
-    ``out`` on ``workers`` render workers (default: one per CPU the executor has). Returns the
+    ``out`` on ``workers`` render workers (default: one per CPU the executor has), each
+    reserving ``memory`` bytes and ``gpus`` GPUs on its node (Ray). Returns the
     summary (also in the manifest): frames done, skipped, failed {"job/frame": error}, seconds,
-    frames_per_s, workers, the devices used."""
+    frames_per_s, task_seconds (inside the workers, summed), workers, the devices used."""
     os.makedirs(out, exist_ok=True)
     manifest = Manifest(out, "render")
     t0 = time.perf_counter()
@@ -51,10 +52,10 @@ def render_batch(jobs: Sequence[RenderJob], out: str, executor: Any, workers: Op
     bar = Progress(len(todo), enabled=progress)
     failed: Dict[str, str] = {}
     devices: Dict[str, int] = {}
-    done = 0
+    done, task_seconds = 0, 0.0
     if todo:
         size = max(1, min(len(todo), workers or executor.workers))
-        pool = executor.pool(FrameRenderer, size, memory=memory)
+        pool = executor.pool(FrameRenderer, size, memory=memory, gpus=gpus)
         try:
             for (job, frame), value, error in pool.map_unordered("render", todo):
                 name = f"{job.name}/{frame:04d}"
@@ -67,6 +68,8 @@ def render_batch(jobs: Sequence[RenderJob], out: str, executor: Any, workers: Op
                     continue
                 write_bytes(os.path.join(out, frame_file(job, frame)), value["png"])
                 devices[value["device"]] = devices.get(value["device"], 0) + 1
+                task_seconds += sum(value["timings"][k] for k in
+                                    ("setup_s", "scene_s", "render_s", "encode_s"))
                 done += 1
                 manifest.record(job.name, f"{frame:04d}", dict(
                     file=frame_file(job, frame), key=_frame_key(keys, job, frame),
@@ -81,6 +84,7 @@ def render_batch(jobs: Sequence[RenderJob], out: str, executor: Any, workers: Op
     seconds = time.perf_counter() - t0
     summary = dict(frames=len(todo) + skipped, done=done, skipped=skipped, failed=failed,
                    seconds=seconds, frames_per_s=done / seconds if seconds > 0 else None,
+                   task_seconds=task_seconds,
                    executor=executor.kind, workers=executor.workers, devices=devices)
     manifest.save(force=True, **summary)
     return summary
