@@ -39,7 +39,7 @@ def _stop(procs) -> None:
             os.killpg(p.pid, signal.SIGTERM)
         except ProcessLookupError:
             pass
-    deadline = time.monotonic() + 10
+    deadline = time.monotonic() + 3  # a clean stop is quick; what is left then gets SIGKILL
     for p in procs:
         try:
             p.wait(max(0.1, deadline - time.monotonic()))
@@ -50,12 +50,24 @@ def _stop(procs) -> None:
         except ProcessLookupError:
             pass
     for p in procs:  # the nodes' daemons (GCS, raylet) leave after their parent: wait for them
-        while time.monotonic() < deadline + 10:
-            try:
-                os.killpg(p.pid, 0)
-            except ProcessLookupError:
-                break
+        while time.monotonic() < deadline + 10 and _running_in_group(p.pid):
             time.sleep(0.2)
+
+
+def _running_in_group(pgid: int) -> bool:
+    """Whether a process of group ``pgid`` still runs (zombies, which a container's init may
+    never reap, do not count)."""
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat", encoding="utf-8", errors="replace") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[2]) == pgid and fields[0] != "Z":
+            return True
+    return False
 
 
 @pytest.fixture(scope="module")
@@ -120,7 +132,11 @@ def test_btf_datasets_on_the_cluster_equal_the_serial_run(cluster, tmp_path):
     a, b = tree(str(tmp_path / "serial")), tree(str(tmp_path / "ray"))
     assert sorted(a) == sorted(b) and len(a) > 4 * 20
     assert [k for k in a if a[k] != b[k]] == []
-    assert len({json.loads(w)["node"] for w in workers}) == 2  # both nodes took tasks
+    # the tasks ran in Ray's worker processes (not here); which node takes them is Ray's
+    # choice (tasks this short often all go to one leased worker): the render test below
+    # checks that both nodes work
+    assert workers and all(json.loads(w)["node"] and json.loads(w)["pid"] != os.getpid()
+                           for w in workers)
 
 
 def test_frames_survive_a_killed_worker_and_equal_the_serial_run(cluster, tmp_path):
@@ -150,3 +166,5 @@ def test_frames_survive_a_killed_worker_and_equal_the_serial_run(cluster, tmp_pa
     assert len(frames) == 10 and all(not o["validation_messages"] for o in frames)
     pids = {o["worker"]["pid"] for o in frames}
     assert len(pids) >= 2 and any(p != killed[0] for p in pids)
+    # two workers of one CPU each on two nodes of one CPU each: both nodes rendered
+    assert len({o["worker"]["node"] for o in frames}) == 2
