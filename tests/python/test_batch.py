@@ -197,3 +197,20 @@ def test_cli_serial(tmp_path, capsys):
     with pytest.raises(SystemExit):
         weft_main(["batch", "btf", *paths, "--out", str(tmp_path / "x"), "--serial",
                    "--address", "auto"])
+
+
+def test_the_serial_path_needs_no_ray(tmp_path):
+    """A serial batch never imports Ray (it runs where Ray is not installed)."""
+    import subprocess
+    import sys
+
+    path = write_datasets(str(tmp_path), count=1, size=8)[0]
+    code = ("import sys, weft.batch as wb\n"
+            f"jobs = wb.make_jobs([{path!r}], dict(figures=False, nonlinear=False), tiles=2)\n"
+            "with wb.executor('serial') as ex:\n"
+            f"    s = wb.fit_btf_batch(jobs, {str(tmp_path / 'out')!r}, ex, progress=False)\n"
+            "assert s['done'] == 1, s\n"
+            "assert 'ray' not in sys.modules\n")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 0, proc.stderr
