@@ -325,12 +325,13 @@ void bindBtf(py::module_& m) {
     }, py::arg("samples"), py::arg("maps"), py::arg("reconstruct") = false,
        py::arg("threads") = 0);
     m.def("btf_fit_lafortune", [](const BtfSamples& s, py::dict seed, int lobes,
-                                  int maxIterations, int threads) {
+                                  int maxIterations, int threads, bool visibility,
+                                  bool fixedNormal) {
         const BtfMaterialMaps mm = mapsFrom(s, seed);
         BtfLafortuneFit f;
         {
             py::gil_scoped_release release;
-            f = fitBtfLafortune(s, mm, lobes, maxIterations, threads);
+            f = fitBtfLafortune(s, mm, lobes, maxIterations, threads, visibility, fixedNormal);
         }
         const py::ssize_t h = f.height, w = f.width, l = f.lobes;
         py::dict d;
@@ -342,7 +343,8 @@ void bindBtf(py::module_& m) {
         d["mean_iterations"] = f.meanIterations;
         return d;
     }, py::arg("samples"), py::arg("seed"), py::arg("lobes") = 1,
-       py::arg("max_iterations") = 30, py::arg("threads") = 0);
+       py::arg("max_iterations") = 30, py::arg("threads") = 0, py::arg("visibility") = false,
+       py::arg("fixed_normal") = false);
     m.def("btf_lafortune_errors", [](const BtfSamples& s, py::dict fit, int threads) {
         const py::ssize_t h = s.height(), w = s.width();
         BtfLafortuneFit f;
@@ -366,11 +368,15 @@ void bindBtf(py::module_& m) {
         return e;
     }, py::arg("samples"), py::arg("fit"), py::arg("threads") = 0);
     m.def("btf_have_ceres", &btfHaveCeres);
+    m.def("btf_resolvable_exponent", &btfResolvableExponent, py::arg("samples"),
+          py::arg("fraction") = 0.01);
     m.def("btf_fit_blinn_phong", [](const BtfSamples& s, py::dict seed, const std::string& solver,
                                     int maxIterations, float minExponent, float maxExponent,
-                                    int threads, bool flatSpecularNormal, bool visibility) {
+                                    int threads, bool flatSpecularNormal, bool visibility,
+                                    bool luminanceNormals) {
         const BtfMaterialMaps mm = mapsFrom(s, seed);
         BtfNonlinearOptions o;
+        o.luminanceNormals = luminanceNormals;
         o.flatSpecularNormal = flatSpecularNormal;
         o.visibility = visibility;
         o.solver = solverFrom(solver);
@@ -391,8 +397,9 @@ void bindBtf(py::module_& m) {
         return d;
     }, py::arg("samples"), py::arg("seed"), py::arg("solver") = "auto",
        py::arg("max_iterations") = 30, py::arg("min_exponent") = 1.0f,
-       py::arg("max_exponent") = 4096.0f, py::arg("threads") = 0,
-       py::arg("flat_specular_normal") = false, py::arg("visibility") = true);
+       py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
+       py::arg("flat_specular_normal") = false, py::arg("visibility") = true,
+       py::arg("luminance_normals") = false);
 }
 
 } // namespace weft::py_bind

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstring>
 
+#include <pybind11/operators.h>
 #include <pybind11/stl.h>
 
 #include <weft/Cloth.h>
@@ -108,17 +109,31 @@ Collider makeCollider(Collider::Kind kind, float friction) {
 } // namespace
 
 void bindCloth(py::module_& m) {
-    py::class_<Wind>(m, "Wind", "Global wind: per-particle acceleration s (n.r) n (SPEC eq. 3.5).")
+    py::class_<Wind>(m, "Wind", "Global wind: per-particle acceleration s (n.r) n (SPEC eq. 3.5).\n"
+                                "A value: Cloth.wind returns a copy; assign Cloth.wind to change it.\n"
+                                "direction: finite, non-zero; |strength| <= 1e4 m/s^2.")
         .def(py::init([](py::handle direction, float strength) {
             Wind w;
             w.direction = toVec3(direction, "direction");
-            if (!std::isfinite(strength)) throw InvalidArgument("wind strength must be finite");
             w.strength = strength;
+            w.validate();
             return w;
         }), py::arg("direction") = py::make_tuple(1, 0, 0), py::arg("strength") = 0.0f)
         .def_property("direction", [](const Wind& w) { return fromVec3(w.direction); },
-                      [](Wind& w, py::handle v) { w.direction = toVec3(v, "direction"); })
-        .def_readwrite("strength", &Wind::strength)
+                      [](Wind& w, py::handle v) {
+                          Wind next = w;
+                          next.direction = toVec3(v, "direction");
+                          next.validate();
+                          w = next;
+                      })
+        .def_property("strength", [](const Wind& w) { return w.strength; },
+                      [](Wind& w, float v) {
+                          Wind next = w;
+                          next.strength = v;
+                          next.validate();
+                          w = next;
+                      })
+        .def(py::self == py::self)
         .def("__repr__", [](const Wind& w) {
             return "<weft.Wind direction=(" + std::to_string(w.direction.x) + ", " +
                    std::to_string(w.direction.y) + ", " + std::to_string(w.direction.z) +
@@ -195,7 +210,11 @@ void bindCloth(py::module_& m) {
     py::class_<Cloth, std::shared_ptr<Cloth>>(m, "Cloth",
         "Grid cloth simulated with position-based dynamics (SPEC §2): Verlet + XPBD distance\n"
         "constraints over a graph-coloured parallel Gauss-Seidel, colliders, wind, grabbing,\n"
-        "holes, tearing, self-collision, sleeping. Particle p = j * nx + i.")
+        "holes, tearing, self-collision, sleeping. Particle p = j * nx + i.\n"
+        "Accepted ranges (else weft.InvalidArgument): size 1e-3..1e3 m per side, |origin| <= 1e7 m,\n"
+        "mass 1e-6..1e6 kg, |gravity| and |wind strength| <= 1e4 m/s^2, compliance <= 1e6 m/N,\n"
+        "thickness and self_thickness <= 1 m, tear_strain <= 100, sleep_threshold <= 100 m/s,\n"
+        "advance(max_steps) <= 1000. Calls from several threads are serialised.")
         .def_static("soa_kernels_available", &Cloth::soaKernelsAvailable,
                     "Whether this CPU runs the structure-of-arrays relaxation (AVX-512; cloths\n"
                     "without colliders, unless WEFT_CLOTH_AOS=1); results are bit-identical.")
@@ -321,7 +340,8 @@ void bindCloth(py::module_& m) {
             for (int k = 0; k < nx * ny; ++k) out.mutable_data()[k] = c.isHole(k);
             return out;
         })
-        .def_property("wind", &Cloth::wind, &Cloth::setWind)
+        .def_property("wind", [](const Cloth& c) { return c.wind(); }, &Cloth::setWind,
+                      "A copy of the wind (changing it changes nothing until assigned back).")
         .def("add_collider", &Cloth::addCollider, py::arg("collider"))
         .def("set_collider", &Cloth::setCollider, py::arg("id"), py::arg("collider"))
         .def("clear_colliders", &Cloth::clearColliders)

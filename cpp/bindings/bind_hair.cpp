@@ -365,7 +365,17 @@ void bindHair(py::module_& m) {
         .def(py::init([](const std::string& model, py::kwargs kwargs) {
             py::object obj = py::cast(HairMaterial{});
             obj.attr("model") = model;
-            for (auto item : kwargs) py::setattr(obj, item.first, item.second);
+            py::object type = py::type::of(obj);
+            for (auto item : kwargs) {
+                const std::string key = py::str(item.first);
+                // only the properties below: a mistyped keyword must not become a plain attribute
+                // error (or, worse, be accepted)
+                if (!py::hasattr(type, key.c_str()) || key.empty() || key[0] == '_' ||
+                    !py::isinstance(type.attr(key.c_str()), py::module_::import("builtins").attr("property")))
+                    throw InvalidArgument("weft.HairMaterial(): unknown keyword argument '" + key +
+                                          "'; it takes model and any property of HairMaterial");
+                py::setattr(obj, item.first, item.second);
+            }
             return obj.cast<HairMaterial>();
         }), py::arg("model") = "sadeghi",
            "HairMaterial(model='sadeghi', **attributes): any property below as a keyword.")

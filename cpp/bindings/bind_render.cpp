@@ -89,7 +89,7 @@ void bindRender(py::module_& m) {
                          bool reuseShadowMaps, int64_t msaa, float exposure, const std::string& toneMap,
                          bool bounce, int64_t ambientOcclusion, float ambientOcclusionBlur) {
             if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
-                throw InvalidArgument("render target size must be positive (got " +
+                throw InvalidArgument("render target size must be 1..65535 pixels per side (got " +
                                       std::to_string(width) + "x" + std::to_string(height) + ")");
             if (shadowMapSize <= 0 || shadowMapSize > 65535)
                 throw InvalidArgument("shadow_map_size out of range");
@@ -125,7 +125,7 @@ void bindRender(py::module_& m) {
         .def_property_readonly("device_name", &Renderer::deviceName)
         .def("resize", [](Renderer& r, int64_t w, int64_t h) {
             if (w <= 0 || h <= 0 || w > 65535 || h > 65535)
-                throw InvalidArgument("render target size must be positive (got " +
+                throw InvalidArgument("render target size must be 1..65535 pixels per side (got " +
                                       std::to_string(w) + "x" + std::to_string(h) + ")");
             r.resize(uint32_t(w), uint32_t(h));
         }, py::arg("width"), py::arg("height"))

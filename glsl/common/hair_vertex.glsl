@@ -1,5 +1,13 @@
 // Hair strands seen from the camera: lines, or ribbons facing the eye (index = 2 point + side).
 // With HAIR_OIT defined it also passes the opacity and view depth the OIT weights need.
+// With HAIR_AA defined (anti-aliased frames) both are drawn as screen-space strips around the
+// strand's centre line, widened by the pixel square's reach across the strand (half a pixel to
+// 0.71 of one) on each side so that every pixel the strand touches gets a fragment; the fragment
+// turns its distance from the centre line into the fraction of the pixel the strand covers
+// (hair_coverage.glsl). The strand's width in pixels is its projected ribbon width, or one pixel
+// for lines. With HAIR_AA_CORE as well the strip is
+// narrowed to the pixels the strand covers entirely (none for strands under 1 to 1.4 pixels
+// wide, by direction).
 #include "frame.glsl"
 #include "hair_frame.glsl"
 
@@ -11,6 +19,12 @@ layout(location = 3) flat out uint outStrand;
 layout(location = 4) out float outAlpha;
 layout(location = 5) out float outViewDepth;
 #endif
+#ifdef HAIR_AA
+// x: signed distance from the centre line, y: the strand's width (both in pixels); linear in
+// screen space, so interpolated without perspective
+layout(location = 6) noperspective out vec2 outStrip;
+layout(location = 7) noperspective out vec2 outAcross; // unit screen direction across the strand
+#endif
 
 void main() {
     uint index = uint(gl_VertexIndex);
@@ -18,21 +32,52 @@ void main() {
     mat4 model = hairInstances[push.instance].model;
     vec3 p = (model * vec4(hv.position.xyz, 1.0)).xyz;
     vec3 t = normalize(mat3(model) * hv.tangent.xyz);
-    if (hairFrame.params.x == 1) {
+    float side = (index & 1u) == 1u ? 0.5 : -0.5;
+    bool ribbons = hairFrame.params.x == 1;
+    vec3 s = vec3(0.0); // the ribbon's half-width vector (world)
+    if (ribbons) {
         vec3 e = frame.cameraPos.xyz - p;
-        vec3 s = cross(t, e);
+        s = cross(t, e);
         if (dot(s, s) <= 1e-12 * dot(e, e))
             s = cross(t, abs(t.y) > 0.99 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0));
-        float side = (index & 1u) == 1u ? 0.5 : -0.5;
-        p += normalize(s) * (side * hairFrame.cameraForward.w * hv.position.w);
+        s = normalize(s) * (0.5 * hairFrame.cameraForward.w * hv.position.w);
     }
+#ifdef HAIR_AA
+    vec4 clip = frame.viewProj * vec4(p, 1.0);
+    vec2 pixels = 0.5 / frame.viewport.xy; // pixels per NDC unit
+    // the strand's direction on screen: d(clip.xy / clip.w) along t (times clip.w^2)
+    vec4 clipT = frame.viewProj * vec4(t, 0.0);
+    vec2 dir = (clipT.xy * clip.w - clip.xy * clipT.w) * pixels;
+    float len = length(dir);
+    vec2 n = len > 1e-20 ? vec2(-dir.y, dir.x) / len : vec2(1.0, 0.0);
+    float width = 1.0;
+    if (ribbons) { // the ribbon's extent across the strand on screen
+        vec4 clipS = frame.viewProj * vec4(p + s, 1.0);
+        width = 2.0 * abs(dot((clipS.xy / clipS.w - clip.xy / clip.w) * pixels, n));
+    }
+    // how far the pixel square reaches across the strand from its centre
+    float reach = 0.5 * (abs(n.x) + abs(n.y));
+#ifdef HAIR_AA_CORE
+    float halfDrawn = max(0.5 * width - reach, 0.0); // pixels whose whole square is inside
+#else
+    float halfDrawn = 0.5 * width + reach; // every pixel the strand touches
+#endif
+    float signedHalf = side > 0.0 ? halfDrawn : -halfDrawn;
+    clip.xy += n * (signedHalf / pixels) * clip.w;
+    outStrip = vec2(signedHalf, width);
+    outAcross = n;
+    outWorldPos = p + 2.0 * side * s; // shaded across the ribbon's true width
+    gl_Position = clip;
+#else
+    p += 2.0 * side * s;
     outWorldPos = p;
+    gl_Position = frame.viewProj * vec4(p, 1.0);
+#endif
     outTangent = t;
     outColor = hv.color;
 #ifdef HAIR_OIT
     outAlpha = hv.tangent.w;
-    outViewDepth = dot(p - frame.cameraPos.xyz, hairFrame.cameraForward.xyz);
+    outViewDepth = dot(outWorldPos - frame.cameraPos.xyz, hairFrame.cameraForward.xyz);
 #endif
     outStrand = hv.strand;
-    gl_Position = frame.viewProj * vec4(p, 1.0);
 }

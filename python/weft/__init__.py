@@ -6,12 +6,26 @@ here: build a :class:`Scene` from :class:`Mesh` instances with :class:`Material`
 ``uint8`` (H, W, 4) NumPy array (``render_linear`` and ``render_debug`` give float outputs).
 
 Errors raise :class:`Error` (a ``RuntimeError``); bad input raises :class:`InvalidArgument`
-(also a ``ValueError``) and file problems :class:`IoError` (also an ``OSError``).
+(also a ``ValueError``; arguments that do not fit a signature raise its subclass
+:class:`ArgumentError`, naming the bad keyword or values) and file problems :class:`IoError` (also
+an ``OSError``).
 ``weft.reference`` holds NumPy reference implementations, ``python -m weft`` is the command
 line (demo, devices, render) and ``python -m weft.bench`` runs the benchmarks.
 """
 
-from weft._core import (
+from weft import _arguments, _core
+from weft._core import InvalidArgument as _InvalidArgument
+
+
+class ArgumentError(_InvalidArgument, TypeError):
+    """Arguments that do not fit a compiled function's parameters (a mistyped keyword, a negative
+    count, a wrong type): a :class:`InvalidArgument` that names the function, the bad keyword or
+    values and the signature that applies (and, for older code, a ``TypeError``)."""
+
+
+_arguments.install(_core, ArgumentError)
+
+from weft._core import (  # noqa: E402 (after the compiled callables are wrapped)
     BtfSamples,
     Camera,
     Cloth,
@@ -62,6 +76,7 @@ from weft._core import (
 from weft.fur import add_fur
 
 __all__ = [
+    "ArgumentError",
     "BtfMaterial",
     "BtfSamples",
     "add_fur",

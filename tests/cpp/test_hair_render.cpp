@@ -61,14 +61,23 @@ TEST(HairScene, FrameRunsOnlyTheHairPassesTheSceneNeeds) {
     settings.ambientOcclusion = 0; // the hair would occlude the ambient through a dome
     weft::Renderer r(32, 32, settings);
     r.render(scene, camera, weft::OutputLinear);
+    // anti-aliased (msaa 4, the default): opaque strands' partly covered pixels are accumulated
+    // and composited after the entirely covered ones
     EXPECT_EQ(passNames(r), (std::vector<std::string>{"shadow[0]", "forward", "hair_dom_depth",
-                                                      "hair_dom_opacity", "hair", "readback"}));
+                                                      "hair_dom_opacity", "hair", "hair_fringe",
+                                                      "hair_composite", "readback"}));
     EXPECT_EQ(r.hairDeepOpacity(0).texels.size(), 32u * 32u * 4u);
     scene.addHair(twoStrands(0.5f));
     settings.hairDeepOpacity = false;
     r.setSettings(settings);
     r.render(scene, camera, weft::OutputLinear);
-    EXPECT_EQ(passNames(r), (std::vector<std::string>{"shadow[0]", "forward", "hair", "hair_oit",
+    EXPECT_EQ(passNames(r), (std::vector<std::string>{"shadow[0]", "forward", "hair",
+                                                      "hair_fringe", "hair_oit", "hair_composite",
+                                                      "readback"}));
+    settings.msaa = 1; // no anti-aliasing: one strand per pixel (the shadow map is reused)
+    r.setSettings(settings);
+    r.render(scene, camera, weft::OutputLinear);
+    EXPECT_EQ(passNames(r), (std::vector<std::string>{"forward", "hair", "hair_oit",
                                                       "hair_composite", "readback"}));
     for (const auto& m : weft::validationMessages()) ADD_FAILURE() << "validation: " << m;
 }

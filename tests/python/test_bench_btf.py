@@ -42,16 +42,19 @@ def test_bench_btf_quick(tmp_path: Path) -> None:
         if r["model"] == "Blinn-Phong (chosen)":
             pair = [x["dev_drawn"] for x in rows if x["case"] == r["case"]
                     and x["model"] in ("Blinn-Phong n_s=n", "Blinn-Phong n_s=(0,0,1)")]
-            assert r["dev_drawn"] == min(pair)
+            if "cast shadows" not in r["choice_rule"]:
+                assert r["dev_drawn"] == min(pair)
     # the noise floor is the truth's own deviation: no fit of the noisy data is far below it
     for r in rows:
         if r["model"] == "linear":
             assert r["dev_fitted"] > 0.5 * r["noise_floor"]
     targets = data["targets"]
-    assert targets["evaluated"] is False and len(targets["items"]) == 10
+    assert targets["evaluated"] is False and len(targets["items"]) == 12
     speed = data["speed"]
     assert speed["read_pass_ms"] > 0 and speed["linear_ms"] > 0
     assert speed["blinn_phong_n_texels_per_s"] > 0
+    assert speed["blinn_phong_flat_shadows_texels_per_s"] > 0
+    assert speed["blinn_phong_flat_shadows_cpu_texels_per_s"] > 0
     markdown = (out / "bench.md").read_text()
     assert "## Targets (issue 12)" in markdown and "not judged" in markdown
     assert data["plot"] == "error_vs_time.png"

@@ -96,6 +96,10 @@ def test_bounce_captures_are_reused_while_the_scene_stands_still(make_renderer):
     scene.set_transform(sphere, _translate(0.0, 2.0, 0.0))  # moved: captured again
     r.render(scene, camera)
     assert "bounce_sh" in [p["name"] for p in r.stats["passes"]]
+    r.render(scene, camera)
+    r.pcf_radius = 2  # new settings shade the receivers differently: captured again
+    r.render(scene, camera)
+    assert "bounce_sh" in [p["name"] for p in r.stats["passes"]]
 
 
 def test_no_bounce_passes_without_receivers(make_renderer):

@@ -35,6 +35,11 @@ def hair_passes(renderer):
     return [n for n in pass_names(renderer) if n.startswith("hair")]
 
 
+#: Opaque hair in an anti-aliased frame (msaa > 1, the default): the pixels strands cover
+#: entirely, then the partly covered ones accumulated and composited over them.
+OPAQUE = ["hair", "hair_fringe", "hair_composite"]
+
+
 @pytest.fixture
 def small():
     r = weft.Renderer(48, 48, shadow_map_size=128)
@@ -56,8 +61,11 @@ def test_opaque_hair_without_shadow_caster_runs_only_the_hair_pass(small):
     scene.add_hair(strands_along_x([0.0, 0.1], [0.0, 0.0]))
     scene.add_light(weft.DirectionalLight((0, -1, 0), (1, 1, 1), 1.0, False))
     small.render(scene, camera_at())
-    assert hair_passes(small) == ["hair"]
+    assert hair_passes(small) == OPAQUE
     assert not any(n.startswith("shadow") for n in pass_names(small))
+    small.msaa = 1  # no anti-aliasing: one strand per pixel, one pass
+    small.render(scene, camera_at())
+    assert hair_passes(small) == ["hair"]
 
 
 def test_shadow_casting_directional_light_adds_deep_opacity_passes(small):
@@ -66,11 +74,11 @@ def test_shadow_casting_directional_light_adds_deep_opacity_passes(small):
     scene.add_light(weft.DirectionalLight((0, -1, 0), (1, 1, 1), 1.0, True))
     small.render(scene, camera_at())
     names = pass_names(small)
-    assert hair_passes(small) == ["hair_dom_depth", "hair_dom_opacity", "hair"]
+    assert hair_passes(small) == ["hair_dom_depth", "hair_dom_opacity"] + OPAQUE
     assert names.index("shadow[0]") < names.index("forward") < names.index("hair")
     small.hair_dom = False
     small.render(scene, camera_at())
-    assert hair_passes(small) == ["hair"]
+    assert hair_passes(small) == OPAQUE
 
 
 def test_point_light_shadows_hair_without_deep_opacity(small):
@@ -78,7 +86,7 @@ def test_point_light_shadows_hair_without_deep_opacity(small):
     scene.add_hair(strands_along_x([0.0, 0.1], [0.0, 0.0]))
     scene.add_light(weft.PointLight((0, 1, 0), (1, 1, 1), 1.0, cast_shadows=True))
     small.render(scene, camera_at())
-    assert hair_passes(small) == ["hair"]
+    assert hair_passes(small) == OPAQUE
     assert sum(n.startswith("shadow[0]") for n in pass_names(small)) == 6
 
 
@@ -89,10 +97,10 @@ def test_transparent_hair_adds_oit_passes_only_when_enabled(small):
     assert hair_passes(small) == ["hair_oit", "hair_composite"]
     scene.add_hair(strands_along_x([0.2], [0.0]))  # an opaque one as well
     small.render(scene, camera_at())
-    assert hair_passes(small) == ["hair", "hair_oit", "hair_composite"]
+    assert hair_passes(small) == ["hair", "hair_fringe", "hair_oit", "hair_composite"]
     small.hair_transparency = False
     small.render(scene, camera_at())
-    assert hair_passes(small) == ["hair"]
+    assert hair_passes(small) == OPAQUE
 
 
 def test_hair_draws_and_casts_into_shadow_maps(small):
@@ -211,7 +219,7 @@ def test_add_fur_grows_fur_on_a_mesh_instance(small):
     lo, hi = scene.bounds()
     assert hi[1] > 0.2 + 0.3 + 0.05  # the fur sticks out of the moved sphere
     small.render(scene, camera_at(2.0, target=(0, 0.2, 0)))
-    assert hair_passes(small) == ["hair"]
+    assert hair_passes(small) == OPAQUE
     with pytest.raises(ValueError):
         weft.add_fur(scene, mesh, segments=0)
 

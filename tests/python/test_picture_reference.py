@@ -274,20 +274,38 @@ def test_aa_reference_measures_todays_aliasing():
 
 def test_aa_targets_at_default_settings():
     """Issue 18's mesh target for the renderer's defaults (4x MSAA): <= 4/255 on mesh edges
-    against the 4x4 supersampled frame (measured 3.5 at 160 x 120; 6.8 without MSAA)."""
+    against the point-sampled 4x4 supersampled frame (measured 3.52 at 160 x 120; 6.86 without
+    MSAA)."""
     scene, camera = weft.default_scene()
     mesh = aa.aa_edge_error(scene, camera, weft.Renderer(160, 120))
     assert mesh["mesh_edges"] <= 4.0, mesh["mesh_edges"]
 
 
 def test_hair_aa_today():
-    """Hair is drawn after the MSAA resolve, so 1-pixel ribbons still alias: 27/255 against the
-    issue's 6/255 (not met yet). A ceiling for regressions, to be lowered when hair gets
-    coverage-based anti-aliasing."""
+    """Hair anti-aliases itself with coverage (it is drawn after the MSAA resolve): 1-pixel
+    ribbons score 9.2/255 against the point-sampled 4x4 supersampled frame at 160 x 120 (27
+    when they were drawn aliased, one strand per pixel, as msaa=1 still draws them); the issue's
+    6/255 is not met on this dense plain hair yet. The measured value + 25% as a ceiling."""
     hscene, hcamera, width = aa.hair_scene(160, 120)
     r = weft.Renderer(160, 120)
     r.hair_primitive = "ribbons"
     r.hair_width = width
     hair = aa.aa_edge_error(hscene, hcamera, r)
     assert hair["hair_edges_pixels"] > 300
-    assert hair["hair_edges"] <= 34.0, hair["hair_edges"]
+    assert hair["hair_edges"] <= 11.5, hair["hair_edges"]
+    r.msaa = 1
+    aliased = aa.aa_edge_error(hscene, hcamera, r)
+    assert aliased["hair_edges"] > 2.5 * hair["hair_edges"], aliased["hair_edges"]
+
+
+def test_fur_aa_target():
+    """The demo's fur ball (transparent: WBOIT with coverage) meets the issue's hair target at
+    the default 4x MSAA: <= 6/255 on hair edges against the point-sampled 4x4 supersampled
+    frame (measured 5.44 at 320 x 240, 5.94 at 160 x 120; drawn aliased 9.2 and 8.2)."""
+    fscene, fcamera, width = aa.fur_scene(320, 240)
+    r = weft.Renderer(320, 240)
+    r.hair_primitive = "ribbons"
+    r.hair_width = width
+    fur = aa.aa_edge_error(fscene, fcamera, r)
+    assert fur["hair_edges_pixels"] > 3000
+    assert fur["hair_edges"] <= 6.0, fur["hair_edges"]

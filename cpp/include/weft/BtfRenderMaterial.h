@@ -10,7 +10,9 @@
 // - albedo ρ -> base texture T, K_D = scale (baseColor = 1);
 // - ρ ⊙ a (the constant term) -> ambient map with Material::ambientMapIsRadiance, K_A = scale:
 //   one quantised product, not two (ρ tiny with a large stays exact to 1/510 of the maximum);
-// - specular k -> specular map RGB, K_S = scale (none: K_S = 0);
+// - specular k -> specular map RGB, K_S = scale (none: K_S = 0), except that per channel the
+//   scale is at most 4x the 99th percentile of the non-zero k (100 or more of them): rare
+//   needle lobes above that are clipped rather than rounding every other texel's k to 0;
 // - exponent -> shininess; an exponent map -> the specular map's alpha, log-encoded between
 //   its minimum and maximum over texels whose specular texel is not 0 (Material::shininessMax);
 //   exponents below 1e-3 are drawn as 1e-3;

@@ -18,9 +18,27 @@ namespace weft {
 /// Constraint families of the 12(+4)-neighbour pattern (seed fig. 3.4 / 3.8).
 enum class ConstraintFamily : uint8_t { Stretch = 0, Shear = 1, Bend = 2 };
 
+/// The physical ranges ClothParams::validate, Wind and Collider accept (SI units). Outside them
+/// float32 positions, inverse masses or accelerations lose the precision the solver needs (or
+/// overflow), so values there are rejected with InvalidArgument instead of turning into NaN.
+namespace cloth_limits {
+constexpr float kMinSize = 1e-3f, kMaxSize = 1e3f;          // cloth side (m)
+constexpr float kMaxCoordinate = 1e7f;                      // |origin|, collider, grab, ray (m)
+constexpr float kMinMass = 1e-6f, kMaxMass = 1e6f;          // total mass (kg)
+constexpr float kMaxAcceleration = 1e4f;                    // |gravity|, |wind strength| (m/s^2)
+constexpr float kMaxCompliance = 1e6f;                      // XPBD compliance (m/N)
+constexpr float kMaxThickness = 1.0f;                       // collider / self thickness (m)
+constexpr float kMaxTearStrain = 100.0f;
+constexpr float kMaxSleepSpeed = 100.0f;                    // sleep threshold (m/s)
+/// advance(): at most this many steps per call (its max_steps); backlog beyond is dropped.
+constexpr int kMaxCatchUpSteps = 1000;
+} // namespace cloth_limits
+
 struct ClothParams {
     int nx = 32, ny = 32;                // particles along u and v
     glm::vec2 size{1.0f, 1.0f};          // metres along u and v
+    // The solver works in a frame centred on origin (positions relative to it, rest lengths
+    // in double), so a cloth far from the world origin behaves like one near it.
     glm::vec3 origin{-0.5f, 1.0f, -0.5f}; // position of particle (0, 0)
     glm::vec3 axisU{1.0f, 0.0f, 0.0f};   // grid direction of i (unit)
     glm::vec3 axisV{0.0f, 0.0f, 1.0f};   // grid direction of j (unit)
@@ -38,18 +56,25 @@ struct ClothParams {
     float thickness = 0.005f;            // collision distance to colliders (m)
     bool selfCollision = false;
     float selfThickness = 0.0f;          // particle-particle distance; 0 = 0.9 x grid spacing
-    float tearStrain = 0.0f;             // break constraints above this strain; 0 = never
+    // Tearing: a face (grid triangle) tears when it is stretched beyond 1 + tearStrain (crack
+    // tips first); a constraint lives while the faces it runs through do. 0 = never.
+    float tearStrain = 0.0f;
     float sleepThreshold = 0.0f;         // sleep below this mean speed (m/s); 0 = never sleep
     int sleepSteps = 30;                 // ... for this many consecutive steps
     int threads = 0;                     // worker threads; 0 = hardware concurrency
 
-    /// Throws InvalidArgument for impossible values (sizes, NaN, counts, axes).
+    /// Throws InvalidArgument for impossible values (sizes, NaN, counts, axes) and values
+    /// outside the ranges of cloth_limits.
     void validate() const;
 };
 
 struct Wind {
     glm::vec3 direction{1.0f, 0.0f, 0.0f}; // r, normalised on use
     float strength = 0.0f;                 // s: acceleration per particle w_i = s (n.r) n (eq. 3.5)
+
+    /// Direction finite and non-zero, |strength| <= cloth_limits::kMaxAcceleration.
+    void validate() const;
+    bool operator==(const Wind& o) const { return direction == o.direction && strength == o.strength; }
 };
 
 /// A collider the cloth is projected out of (SPEC §2.2). Kinds and their fields:
@@ -80,11 +105,12 @@ struct ClothMesh {
     std::vector<glm::vec3> positions, normals;
     std::vector<glm::vec2> uvs;
     std::vector<glm::vec4> tangents; // xyz along +u, w = handedness of the bitangent (+v)
-    std::vector<uint32_t> indices;   // triangles whose three edges are intact
+    std::vector<uint32_t> indices;   // triangles whose three edges are intact (see tearing)
 };
 
 struct ClothStats {
-    float meanStrain = 0.0f, maxStrain = 0.0f; // |len - rest| / rest over active constraints
+    // |len - rest| / rest over active constraints; NaN when any position is not finite
+    float meanStrain = 0.0f, maxStrain = 0.0f;
     int activeConstraints = 0;
 };
 
@@ -99,7 +125,7 @@ public:
     Cloth(Cloth&&) noexcept;
     Cloth& operator=(Cloth&&) noexcept;
 
-    const ClothParams& params() const;
+    ClothParams params() const; // a copy, taken under the lock
     /// Changes solver parameters (iterations, substeps, compliance, damping, gravity, wind-free
     /// settings...). Grid size, size, origin, axes, mass and neighbour pattern need a new Cloth.
     void setParams(const ClothParams& params);
@@ -113,9 +139,14 @@ public:
     const float* normalData() const;
 
     /// Advances one fixed step of dt seconds (split into substeps). Sleeping cloth does nothing.
+    /// Every call on one Cloth is serialised by a lock (calls from several threads wait for
+    /// each other); the views of particleData/normalData are not, read them between steps.
+    /// Throws weft::Error if the state became non-finite (it cannot from accepted input).
     void step(float dt);
     /// Runs as many fixed steps of 1/rate seconds as real time needs (leftover time is kept),
-    /// at most maxSteps (the rest is dropped). Returns the number of steps run.
+    /// at most maxSteps in [1, cloth_limits::kMaxCatchUpSteps] (the rest of the backlog is
+    /// dropped). realDt must be finite and >= 0 (any size: the count never overflows).
+    /// Returns the number of steps run.
     int advance(float realDt, float rate = 60.0f, int maxSteps = 8);
     /// One constraint relaxation sweep (and collisions) without integration; XPBD multipliers
     /// start from zero, so with compliance 0 it is exactly eq. 3.3/3.4.
@@ -141,7 +172,7 @@ public:
     bool isHole(int particle) const;
 
     void setWind(const Wind& wind);
-    const Wind& wind() const;
+    Wind wind() const; // a copy: change it with setWind
     int addCollider(const Collider& collider);
     void setCollider(int id, const Collider& collider);
     void clearColliders();

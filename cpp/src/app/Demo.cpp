@@ -20,6 +20,7 @@
 
 #include "app/DemoScene.h"
 #include "app/StatsJson.h"
+#include "core/FileRead.h"
 
 namespace weft {
 namespace {
@@ -75,6 +76,7 @@ int keyCode(const std::string& name, const std::string& where) {
 std::vector<ScriptEvent> loadScript(const std::string& path) {
     std::vector<ScriptEvent> events;
     if (path.empty()) return events;
+    checkInputFile(path, "script", 64u << 20);
     std::ifstream in(path);
     if (!in) throw IoError("cannot open script '" + path + "'");
     std::string line;

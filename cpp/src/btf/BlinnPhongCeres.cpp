@@ -73,6 +73,10 @@ BlinnPhongResult blinnPhongCeres(const BlinnPhongTexel& tx, const BlinnPhongResu
             coef[c] = std::max(coef[c], 0.0);
             problem.SetParameterLowerBound(coef, c, 0.0);
         }
+    if (!tx.specular) {
+        for (int c = 0; c < 3; ++c) k[c] = 0.0;
+        problem.SetParameterBlockConstant(k);
+    }
     problem.SetParameterLowerBound(&eta, 0, etaMin);
     problem.SetParameterUpperBound(&eta, 0, etaMax);
     ceres::Solver::Options options;

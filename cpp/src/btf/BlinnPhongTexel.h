@@ -37,6 +37,9 @@ struct BlinnPhongTexel {
     double used = 0;                ///< Σ_s w_s
     std::vector<float> planeStore;
     double sums[3] = {0, 0, 0};
+    /// false: the model without its highlight (k = 0), for a texel whose fitted lobe no sample
+    /// sees (k and e then have no support in the data)
+    bool specular = true;
 
     /// The start (u, v) for a seed normal; a normal below the horizon starts at n_z = 0.05.
     void setSeedNormal(glm::vec3 n);

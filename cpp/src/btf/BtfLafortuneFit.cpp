@@ -13,6 +13,7 @@
 
 #include "btf/BlinnPhongTexel.h"
 #include "btf/BtfParallel.h"
+#include "btf/BtfShadowClassify.h"
 
 namespace weft {
 
@@ -61,6 +62,8 @@ struct Texel {
     const BtfSamples* samples = nullptr;
     const std::vector<glm::vec3>* views = nullptr;
     BlinnPhongTexel base; // values, squares, normal frame
+    const float* weights = nullptr; ///< per sample: 1 used, 0 left out (cast shadow); null: all
+    bool fixedNormal = false;       ///< keep (u, v) at the seed's normal
     int lobes = 1;
     int basis() const { return 2 + lobes; }
     int params() const { return 2 + 3 * lobes; }
@@ -153,13 +156,15 @@ void evaluate(const Texel& tx, const double* theta, bool derivatives, Eval& ev) 
     const glm::dvec3 nrm = w / len;
     const glm::dvec3 dn[2] = {(b.t1 - nrm * glm::dot(nrm, b.t1)) / len,
                               (b.t2 - nrm * glm::dot(nrm, b.t2)) / len};
-    double G[kMaxTheta][kMaxTheta] = {};
+    double G[kMaxTheta][kMaxTheta] = {}, squares[3] = {0, 0, 0};
     const int count = tx.samples->count();
     for (int s = 0; s < count; ++s) {
+        if (tx.weights && !(tx.weights[s] > 0.0f)) continue; // left out (cast shadow)
         double phi[kMaxBasis], delta[kMaxTheta];
         basisAt(tx, theta, nrm, dn, glm::dvec3(tx.samples->light(s)),
                 glm::dvec3((*tx.views)[size_t(s)]), phi, delta);
         const float* p = &b.values[size_t(s) * 3];
+        for (int c = 0; c < 3; ++c) squares[c] += double(p[c]) * p[c];
         for (int i = 0; i < M; ++i) {
             for (int j = i; j < M; ++j) G[i][j] += phi[i] * phi[j];
             for (int c = 0; c < 3; ++c) ev.b[c][i] += phi[i] * p[c];
@@ -175,7 +180,7 @@ void evaluate(const Texel& tx, const double* theta, bool derivatives, Eval& ev) 
     for (int i = 0; i < M; ++i)
         for (int j = 0; j < i; ++j) G[i][j] = G[j][i];
     double cost = 0.0;
-    for (int c = 0; c < 3; ++c) cost += nnlsN(G, M, ev.b[c], b.squares[c], ev.coef[c], ev.inv[c]);
+    for (int c = 0; c < 3; ++c) cost += nnlsN(G, M, ev.b[c], squares[c], ev.coef[c], ev.inv[c]);
     ev.cost = cost;
 }
 
@@ -211,6 +216,12 @@ int solveTexel(const Texel& tx, double* theta, int maxIterations, double etaMax,
                     jtj[k][q] += x[Texel::basisOf(k)] * x[Texel::basisOf(q)] * cur.sdd[k][q] - proj;
                 }
         }
+        if (tx.fixedNormal) // the normal's rows and columns: identity, no gradient (no step)
+            for (int k = 0; k < 2; ++k) {
+                for (int q = 0; q < K; ++q) jtj[k][q] = jtj[q][k] = 0.0;
+                jtj[k][k] = 1.0;
+                grad[k] = 0.0;
+            }
         bool accepted = false;
         for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
             double a[kMaxTheta][kMaxTheta], rhs[kMaxTheta], step[kMaxTheta];
@@ -251,6 +262,39 @@ int solveTexel(const Texel& tx, double* theta, int maxIterations, double etaMax,
     return done;
 }
 
+// Cast shadows of the texel's samples for the fit (ev, theta) (BtfShadowClassify.h).
+int classifyShadows(const Texel& tx, const double* theta, const Eval& ev,
+                    const std::vector<float>& lz, std::vector<float>& weights, int& misfit) {
+    const int count = tx.samples->count();
+    const BlinnPhongTexel& b = tx.base;
+    const glm::dvec3 w = b.n0 + theta[0] * b.t1 + theta[1] * b.t2;
+    const glm::dvec3 nrm = glm::normalize(w);
+    const glm::dvec3 dn[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+    const size_t n = static_cast<size_t>(count);
+    std::vector<double> lit(n), diffuse(n), seen(n);
+    double base = 0.0;
+    for (int c = 0; c < 3; ++c) base += ev.coef[c][1];
+    for (int s = 0; s < count; ++s) {
+        double phi[kMaxBasis], delta[kMaxTheta];
+        basisAt(tx, theta, nrm, dn, glm::dvec3(tx.samples->light(s)),
+                glm::dvec3((*tx.views)[size_t(s)]), phi, delta);
+        double l = 0.0, m = 0.0, p = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            m += ev.coef[c][0] * phi[0];
+            l += ev.coef[c][0] * phi[0];
+            for (int j = 0; j < tx.lobes; ++j) l += ev.coef[c][2 + j] * phi[2 + j];
+            p += b.values[size_t(s) * 3 + size_t(c)];
+        }
+        lit[size_t(s)] = l;
+        diffuse[size_t(s)] = m;
+        seen[size_t(s)] = p - base;
+    }
+    const std::vector<float> all(n, 1.0f);
+    return classifyCastShadows(size_t(count), lit.data(), diffuse.data(), seen.data(), base,
+                               lz.data(), tx.weights ? tx.weights : all.data(),
+                               tx.params() + 3 * tx.basis() + 2, weights.data(), misfit);
+}
+
 void evaluateFit(const BtfLafortuneFit& fit, size_t t, glm::vec3 l, glm::vec3 v, float out[3]) {
     const float* n = &fit.normal[t * 3];
     const float nl = std::max(n[0] * l.x + n[1] * l.y + n[2] * l.z, 0.0f);
@@ -267,7 +311,8 @@ void evaluateFit(const BtfLafortuneFit& fit, size_t t, glm::vec3 l, glm::vec3 v,
 } // namespace
 
 BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps& seed, int lobes,
-                                int maxIterations, int threads) {
+                                int maxIterations, int threads, bool visibility,
+                                bool fixedNormal) {
     seed.validate();
     samples.requireFinite();
     if (seed.width != samples.width() || seed.height != samples.height())
@@ -289,6 +334,8 @@ BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps
     fit.lobeAlbedo.resize(texels * size_t(lobes) * 3);
     fit.lobeShape.resize(texels * size_t(lobes) * 4);
     std::vector<int> iterations(texels, 0);
+    std::vector<float> lz(static_cast<size_t>(count));
+    for (int s = 0; s < count; ++s) lz[size_t(s)] = samples.light(s).z;
     const double etaMax = std::log(4096.0);
     const int blocks = int((texels + 63) / 64);
     btfParallelFor(blocks, threads, [&](int b0, int b1) {
@@ -296,8 +343,10 @@ BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps
         tx.samples = &samples;
         tx.views = &views;
         tx.lobes = lobes;
+        tx.fixedNormal = fixedNormal;
         tx.base.values.resize(size_t(count) * 3);
         Eval ev;
+        std::vector<float> used(static_cast<size_t>(count)), next(static_cast<size_t>(count));
         for (size_t t = size_t(b0) * 64; t < std::min(texels, size_t(b1) * 64); ++t) {
             for (int s = 0; s < count; ++s)
                 for (int c = 0; c < 3; ++c)
@@ -313,7 +362,25 @@ BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps
                 theta[4 + 3 * j] = j == 0 ? std::log(std::min(std::max(double(e0), 1.0), 4096.0))
                                           : std::log(4.0);
             }
+            tx.weights = nullptr;
             iterations[t] = solveTexel(tx, theta, maxIterations, etaMax, ev);
+            if (visibility) {
+                // as the Blinn-Phong fit: a texel with samples off its fit by more than the
+                // noise is fitted again from its steep lights (θ_l <= 46°), then from every
+                // sample not classified as shadowed, until the classification is stable
+                int misfit = 0;
+                classifyShadows(tx, theta, ev, lz, next, misfit);
+                if (misfit > 0) {
+                    for (int s = 0; s < count; ++s) next[size_t(s)] = lz[size_t(s)] >= 0.69f;
+                    for (int round = 0; round < 5; ++round) {
+                        used.swap(next);
+                        tx.weights = used.data();
+                        iterations[t] += solveTexel(tx, theta, maxIterations, etaMax, ev);
+                        classifyShadows(tx, theta, ev, lz, next, misfit);
+                        if (std::equal(next.begin(), next.end(), used.begin())) break;
+                    }
+                }
+            }
             const glm::dvec3 n = tx.base.normal(theta[0], theta[1]);
             for (int c = 0; c < 3; ++c) {
                 fit.normal[t * 3 + size_t(c)] = float(n[c]);

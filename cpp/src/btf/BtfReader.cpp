@@ -20,6 +20,7 @@
 #include "btf/BtfImageCodec.h"
 #include "btf/BtfParallel.h"
 #include "btf/ZipArchive.h"
+#include "core/FileRead.h"
 
 namespace fs = std::filesystem;
 
@@ -82,17 +83,7 @@ ImageF loadExrBytes(const std::vector<uint8_t>& bytes, const std::string& name) 
 }
 
 std::vector<uint8_t> readFile(const std::string& path) {
-    std::error_code ec;
-    const uintmax_t size = fs::file_size(path, ec);
-    if (!ec && size > kMaxBtfImageBytes)
-        throw IoError("BTF image '" + path + "' has " + std::to_string(size) +
-                      " bytes, more than a BTF image may have");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError("cannot open BTF image '" + path + "'");
-    std::vector<uint8_t> data((std::istreambuf_iterator<char>(in)),
-                              std::istreambuf_iterator<char>());
-    if (in.bad()) throw IoError("cannot read BTF image '" + path + "'");
-    return data;
+    return readInputFile(path, "BTF image", kMaxBtfImageBytes);
 }
 
 // macOS adds `__MACOSX/` folders and `._name` AppleDouble files (resource forks) when it zips

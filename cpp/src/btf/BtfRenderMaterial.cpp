@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 namespace weft {
 
@@ -23,6 +24,27 @@ glm::vec3 channelMax(const std::vector<float>& values) {
     glm::vec3 m(0.0f);
     for (size_t i = 0; i < values.size(); ++i) m[int(i % 3)] = std::max(m[int(i % 3)], values[i]);
     return m;
+}
+
+/// Per-channel scale for the specular map: the maximum, unless the brightest texels lie more
+/// than kSpecularFence times above the 99th percentile of the non-zero values, in which case
+/// they are clipped to that fence. One needle lobe (k ~ 10^3 where the rest is ~0.1) would
+/// otherwise set a scale that rounds every other texel's k to 0; the fence costs those rare
+/// texels part of a lobe the samples barely see, and keeps 99% of them resolved to 1/510 of at
+/// most 4x their own range.
+constexpr float kSpecularFence = 4.0f;
+glm::vec3 specularScale(const std::vector<float>& values) {
+    glm::vec3 out = channelMax(values);
+    for (int c = 0; c < 3; ++c) {
+        std::vector<float> v;
+        for (size_t i = size_t(c); i < values.size(); i += 3)
+            if (values[i] > 0.0f) v.push_back(values[i]);
+        if (v.size() < 100) continue; // too few for a percentile: the maximum
+        const size_t k = v.size() * 99 / 100;
+        std::nth_element(v.begin(), v.begin() + long(k), v.end());
+        out[c] = std::min(out[c], kSpecularFence * v[k]);
+    }
+    return out;
 }
 
 /// The textures' bytes (RGBA8, alpha 255 unless it holds the exponent) and the material's scalars.
@@ -95,7 +117,7 @@ Encoded encode(const BtfMaterialMaps& maps) {
     e.shininess = std::max(maps.exponent, kMinExponent);
     e.hasSpecular = !maps.specular.empty();
     if (e.hasSpecular) {
-        e.ks = channelMax(maps.specular);
+        e.ks = specularScale(maps.specular);
         e.specular = scaled(maps.specular, e.ks);
         if (!maps.exponentMap.empty()) encodeExponentMap(maps, e);
     }

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include "core/FileRead.h"
 
 namespace weft {
 
@@ -185,6 +186,7 @@ std::string quoted(const std::string& path) { return "'" + path + "'"; }
 } // namespace
 
 ImageU8 loadPng(const std::string& path) {
+    checkInputFile(path, "PNG");
     FilePtr file(std::fopen(path.c_str(), "rb"));
     if (!file) {
         throw IoError("cannot open PNG " + quoted(path) + ": " + std::strerror(errno));

@@ -19,6 +19,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include "core/FileRead.h"
 
 namespace weft {
 
@@ -64,10 +65,7 @@ std::string lowerExtension(const std::string& path) {
 }
 
 std::vector<unsigned char> readWholeFile(const std::string& path, const char* kind) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError(std::string("cannot open ") + kind + " " + quoted(path) + ": " +
-                           std::strerror(errno));
-    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
+    return readInputFile(path, kind);
 }
 
 // ---- OpenEXR -----------------------------------------------------------------------------------
@@ -86,9 +84,7 @@ void exrSingleThreaded() {
 ImageF loadExr(const std::string& path) {
     exrSingleThreaded();
     {
-        std::FILE* f = std::fopen(path.c_str(), "rb");
-        if (!f) throw IoError("cannot open EXR " + quoted(path) + ": " + std::strerror(errno));
-        std::fclose(f);
+        checkInputFile(path, "EXR");
     }
     try {
         Imf::InputFile file(path.c_str());

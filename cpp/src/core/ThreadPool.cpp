@@ -83,6 +83,11 @@ void ThreadPool::parallelFor(int n, const std::function<void(int, int)>& body, i
         body(0, n);
         return;
     }
+    std::unique_lock<std::mutex> job(mJob, std::try_to_lock);
+    if (!job.owns_lock()) { // another thread's job (or ours, nested) holds the workers
+        body(0, n);
+        return;
+    }
     mBody.store(&body, std::memory_order_relaxed);
     mCount.store(n, std::memory_order_relaxed);
     mDone.store(0, std::memory_order_relaxed);

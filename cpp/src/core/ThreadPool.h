@@ -25,7 +25,10 @@ public:
     ThreadPool& operator=(const ThreadPool&) = delete;
 
     int size() const { return mSize; }
-    /// Calls body(begin, end) over [0, n) in chunks; runs inline when n < minParallel.
+    /// Calls body(begin, end) over [0, n) in chunks; runs inline when n < minParallel. Safe to
+    /// call from several threads at once, and from inside a body: a call that finds the pool
+    /// busy runs body(0, n) on its own thread instead of waiting (no deadlock, same result for
+    /// independent iterations).
     void parallelFor(int n, const std::function<void(int, int)>& body, int minParallel = 2048);
 
 private:
@@ -36,6 +39,7 @@ private:
     int mSize;
     std::vector<std::thread> mWorkers;
     std::mutex mMutex;
+    std::mutex mJob; // held by the thread whose job the workers run
     std::condition_variable mWake;
     std::atomic<const std::function<void(int, int)>*> mBody{nullptr};
     std::atomic<int> mCount{0};

@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include <weft/Error.h>
+#include "core/FileRead.h"
 
 namespace weft {
 
@@ -152,10 +153,7 @@ HairStrands parseHair(const uint8_t* data, size_t size, bool zUp, const std::str
 }
 
 HairStrands loadHair(const std::string& path, bool zUp) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw IoError("cannot open .hair file '" + path + "'");
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    if (f.bad()) throw IoError("cannot read .hair file '" + path + "'");
+    const std::vector<uint8_t> bytes = readInputFile(path, ".hair file");
     return parseHair(bytes.data(), bytes.size(), zUp, path);
 }
 

@@ -33,25 +33,11 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
     const glm::vec4 push(f.data.frame.environment.x, float(BounceProbes::kFaceSize),
                          float(b.count()), 0.0f);
     g.addPass({"bounce_sh", {{rFaces, Use::Sampled}}, {{f.rBounceSh, Use::ColorWrite}},
-               [&f, push](VkCommandBuffer cmd) {
-                   const uint32_t w = BounceProbes::kShColumns, h = f.bounce.count();
-                   VkRenderingAttachmentInfo a = attachment(
-                       f.bounce.sh().view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
-                   a.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                   info.renderArea = {{0, 0}, {w, h}};
-                   info.layerCount = 1;
-                   info.colorAttachmentCount = 1;
-                   info.pColorAttachments = &a;
-                   f.ctx.fn().cmdBeginRendering(cmd, &info);
-                   setViewport(cmd, w, h);
-                   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.bounceSh.get());
-                   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.bounceShLayout,
-                                           0, 1, &f.sets.bounceSh, 0, nullptr);
-                   vkCmdPushConstants(cmd, f.pipes.bounceShLayout, vk::kGraphicsStages, 0,
-                                      sizeof(push), &push);
-                   vkCmdDraw(cmd, 3, 1, 0, 0);
-                   f.ctx.fn().cmdEndRendering(cmd);
+               [&f, push](VkCommandBuffer cmd) { // one fragment per coefficient and probe
+                   drawFullscreen(f, cmd, f.bounce.sh().view(), BounceProbes::kShColumns,
+                                  f.bounce.count(), VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+                                  f.pipes.bounceSh.get(), f.pipes.bounceShLayout, f.sets.bounceSh,
+                                  &push, sizeof(push));
                }});
 }
 

@@ -34,6 +34,8 @@ public:
     /// instances (GpuInstance::flags.y = probe + 1) and the frame (GpuFrame::sky.z = 1), and
     /// returns whether the captures must be taken again.
     bool prepare(const Scene& scene, FrameData& data, const RenderSettings& settings);
+    /// The next prepare() captures again (the renderer's settings changed).
+    void invalidate() { mKey.clear(); }
     uint32_t count() const { return uint32_t(mPositions.size()); }
     const glm::vec3& position(uint32_t probe) const { return mPositions[probe]; }
     vk::Image& faces() { return mFaces; } // layer 6 probe + face, kHdrFormat

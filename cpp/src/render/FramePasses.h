@@ -77,6 +77,10 @@ void drawCaptureFace(const FramePassContext& f, VkCommandBuffer cmd, VkImageView
 void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target,
                     VkAttachmentLoadOp load, VkPipeline pipeline, VkPipelineLayout layout,
                     VkDescriptorSet set, const void* push, uint32_t pushBytes);
+/// The same into a target of w x h.
+void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target, uint32_t w,
+                    uint32_t h, VkAttachmentLoadOp load, VkPipeline pipeline, VkPipelineLayout layout,
+                    VkDescriptorSet set, const void* push, uint32_t pushBytes);
 
 // The modules, in the order recordFrame calls them.
 void addShadowPasses(FrameGraph& g, FramePassContext& f);   // scene lights' shadow maps

@@ -149,7 +149,18 @@ void HairPasses::ensureImages(const RenderSettings& settings, uint32_t width, ui
         mDomMeshDepth = makeImage(mCtx, mDomSize, mDomSize, kMaxHairDoms, kDepthFormat,
                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
     }
-    if (mOit && (!mAccum || mWidth != width || mHeight != height)) {
+    const bool masks = mAntialias && mPipes.sampleMasks;
+    if (masks && (!mSampleMask || mSampleMask.desc().width != width ||
+                  mSampleMask.desc().height != height)) {
+        vk::ImageDesc d;
+        d.width = width;
+        d.height = height;
+        d.layers = 6;
+        d.format = VK_FORMAT_R32_UINT;
+        d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+        mSampleMask = vk::Image(&mCtx, d);
+    }
+    if ((mOit || mAntialias) && (!mAccum || mWidth != width || mHeight != height)) {
         mWidth = width;
         mHeight = height;
         mAccum = makeImage(mCtx, width, height, 1, kOitAccumFormat,
@@ -166,10 +177,11 @@ void HairPasses::allocateSets(Slot& slot, uint32_t draws) {
         const VkDescriptorPoolSize sizes[] = {
             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * slot.poolSets},
             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slot.poolSets},
-            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6}};
+            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6},
+            {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
         VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         info.maxSets = slot.poolSets;
-        info.poolSizeCount = 3;
+        info.poolSizeCount = 4;
         info.pPoolSizes = sizes;
         VkDescriptorPool p;
         VK_CHECK(vkCreateDescriptorPool(mCtx.device(), &info, nullptr, &p));
@@ -222,15 +234,19 @@ void HairPasses::writeSets(Slot& slot) {
         {nearest, dom ? mDomDepth.view() : mDummyDom.view(),
          dom ? useState(Use::Sampled, true).layout : readOnly},
         {nearest, dom ? mDomOpacity.view() : mDummyDom.view(), readOnly},
-        {nearest, mOit ? mAccum.view() : mDummyDom.view(), readOnly},
-        {nearest, mOit ? mWeight.view() : mDummyDom.view(), readOnly},
+        {nearest, mAccum ? mAccum.view() : mDummyDom.view(), readOnly},
+        {nearest, mWeight ? mWeight.view() : mDummyDom.view(), readOnly},
         {nearest, mMeshesShadowHair ? mDomMeshDepth.view() : mNoMeshes.view(),
          mMeshesShadowHair ? useState(Use::Sampled, true).layout : readOnly}};
     write(mZ0Set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[0];
     write(mZ0Set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[4];
     write(mOpacitySet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[1];
     write(mOpacitySet, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[4];
-    if (mOit) {
+    const VkDescriptorImageInfo mask{
+        VK_NULL_HANDLE, mSampleMask ? mSampleMask.view() : VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
+    if (mAntialias && mPipes.sampleMasks)
+        write(mOpacitySet, 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)->pImageInfo = &mask;
+    if (mAccum) {
         write(mOitSet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[2];
         write(mOitSet, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[3];
     }
@@ -240,11 +256,14 @@ void HairPasses::writeSets(Slot& slot) {
 void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& camera,
                          const RenderSettings& settings, uint32_t width, uint32_t height) {
     mRibbons = settings.hairPrimitive == HairPrimitive::Ribbons;
+    // Hair is drawn after the forward pass's MSAA resolve, so it anti-aliases itself with
+    // coverage; msaa = 1 asks for no anti-aliasing and keeps one strand per pixel.
+    mAntialias = settings.msaa > 1;
     mDraws.clear();
     std::vector<GpuHairInstance> instances;
     bool anyTransparent = false;
     for (const HairInstance& h : scene.hairs()) {
-        HairGpu& gpu = mCache.get(h.strands, mRibbons);
+        HairGpu& gpu = mCache.get(h.strands, mRibbons || mAntialias);
         if (gpu.lineIndexCount == 0) continue; // single-point strands only: nothing to draw
         const bool transparent = settings.hairTransparency && gpu.transparent;
         anyTransparent |= transparent;
@@ -304,7 +323,7 @@ void HairPasses::drawFromLight(VkCommandBuffer cmd, VkPipeline pipeline, const g
 }
 
 void HairPasses::drawCamera(VkCommandBuffer cmd, const Targets& t, VkPipeline pipeline,
-                            VkDescriptorSet domSet, bool transparent) const {
+                            VkDescriptorSet domSet, bool transparent, bool strips) const {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 0, 1, &t.frameSet,
                             0, nullptr);
@@ -315,7 +334,7 @@ void HairPasses::drawCamera(VkCommandBuffer cmd, const Targets& t, VkPipeline pi
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 2, 1, &d.set,
                                 0, nullptr);
         vkCmdPushConstants(cmd, mPipes.layout, kStages, 0, sizeof(uint32_t), &d.instance);
-        const bool ribbons = mRibbons && d.gpu->ribbons;
+        const bool ribbons = strips && d.gpu->ribbons;
         vkCmdBindIndexBuffer(cmd, ribbons ? d.gpu->ribbons.get() : d.gpu->lines.get(), 0,
                              VK_INDEX_TYPE_UINT32);
         const uint32_t count = ribbons ? d.gpu->ribbonIndexCount : d.gpu->lineIndexCount;
@@ -326,6 +345,7 @@ void HairPasses::drawCamera(VkCommandBuffer cmd, const Targets& t, VkPipeline pi
 void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
     if (mDraws.empty()) return;
     const int ribbons = mRibbons ? 1 : 0;
+    const bool aa = mAntialias && !t.debug; // debug outputs: one strand per pixel, as drawn
     std::vector<ResourceUse> shadingReads = {{t.shadow, Use::Sampled}};
     if (!mDoms.empty()) {
         const int rZ0 = g.addResource("hair_dom_depth", &mDomDepth);
@@ -389,7 +409,8 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
         if (t.debug)
             for (int i = 0; i < 4; ++i) writes.push_back({t.debug[i], Use::ColorWrite});
         const bool debug = t.debug != nullptr;
-        g.addPass({"hair", shadingReads, writes, [this, t, debug, ribbons](VkCommandBuffer cmd) {
+        g.addPass({"hair", shadingReads, writes,
+                   [this, t, debug, ribbons, aa](VkCommandBuffer cmd) {
                        std::vector<VkRenderingAttachmentInfo> colors = {attachment(
                            t.hdrImage->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false)};
                        if (debug)
@@ -407,36 +428,74 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                        info.pDepthAttachment = &depth;
                        mCtx.fn().cmdBeginRendering(cmd, &info);
                        setViewport(cmd, desc.width, desc.height);
-                       const VkPipeline pipeline =
-                           debug ? mPipes.debug[ribbons].get() : mPipes.opaque[ribbons].get();
-                       drawCamera(cmd, t, pipeline, mOpacitySet, false);
+                       // anti-aliased: only the pixels strands cover entirely (hair_fringe adds
+                       // the rest)
+                       const VkPipeline pipeline = aa      ? mPipes.aaCore.get()
+                                                   : debug ? mPipes.debug[ribbons].get()
+                                                           : mPipes.opaque[ribbons].get();
+                       drawCamera(cmd, t, pipeline, mOpacitySet, false, aa || mRibbons);
                        mCtx.fn().cmdEndRendering(cmd);
                    }});
     }
-    if (!mOit) return;
+    const bool fringe = aa && anyOpaque;
+    if (!fringe && !mOit) return;
     const int rAccum = g.addResource("hair_oit_accum", &mAccum);
     const int rWeight = g.addResource("hair_oit_weight", &mWeight);
-    g.addPass({"hair_oit", shadingReads,
-               {{rAccum, Use::ColorWrite}, {rWeight, Use::ColorWrite}, {t.depth, Use::DepthWrite}},
-               [this, t, ribbons](VkCommandBuffer cmd) {
-                   VkRenderingAttachmentInfo colors[2] = {
-                       attachment(mAccum.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true),
-                       attachment(mWeight.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true)};
-                   colors[0].clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}}; // a: revealage
-                   colors[1].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
-                   VkRenderingAttachmentInfo depth = attachment(
-                       t.depthImage->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false);
-                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                   info.renderArea = {{0, 0}, {mWidth, mHeight}};
-                   info.layerCount = 1;
-                   info.colorAttachmentCount = 2;
-                   info.pColorAttachments = colors;
-                   info.pDepthAttachment = &depth;
-                   mCtx.fn().cmdBeginRendering(cmd, &info);
-                   setViewport(cmd, mWidth, mHeight);
-                   drawCamera(cmd, t, mPipes.oit[ribbons], mOpacitySet, true);
-                   mCtx.fn().cmdEndRendering(cmd);
-               }});
+    // Begins rendering into the accumulation targets (cleared by the first pass that draws
+    // into them), depth tested against the meshes and opaque hair.
+    auto beginAccumulation = [this, t](VkCommandBuffer cmd, bool clear) {
+        VkRenderingAttachmentInfo colors[2] = {
+            attachment(mAccum.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, clear),
+            attachment(mWeight.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, clear)};
+        colors[0].clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}}; // a: revealage
+        colors[1].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+        VkRenderingAttachmentInfo depth =
+            attachment(t.depthImage->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false);
+        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        info.renderArea = {{0, 0}, {mWidth, mHeight}};
+        info.layerCount = 1;
+        info.colorAttachmentCount = 2;
+        info.pColorAttachments = colors;
+        info.pDepthAttachment = &depth;
+        mCtx.fn().cmdBeginRendering(cmd, &info);
+        setViewport(cmd, mWidth, mHeight);
+    };
+    const std::vector<ResourceUse> accumulates = {
+        {rAccum, Use::ColorWrite}, {rWeight, Use::ColorWrite}, {t.depth, Use::DepthWrite}};
+    if (fringe)
+        g.addPass({"hair_fringe", shadingReads, accumulates,
+                   [this, t, beginAccumulation](VkCommandBuffer cmd) {
+                       const bool masks = mPipes.sampleMasks;
+                       if (masks) { // no sample taken, no depth, no share yet
+                           vk::transition(mCtx, cmd, mSampleMask, VK_IMAGE_LAYOUT_GENERAL,
+                                          VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                                          VK_ACCESS_2_TRANSFER_WRITE_BIT);
+                           VkClearColorValue clear{};
+                           for (uint32_t layer = 0; layer < 6; ++layer) {
+                               clear.uint32[0] = layer == 0 ? ~0u : 0u;
+                               const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                                                                   1, layer, 1};
+                               vkCmdClearColorImage(cmd, mSampleMask.get(),
+                                                    VK_IMAGE_LAYOUT_GENERAL, &clear, 1, &range);
+                           }
+                           vk::transition(mCtx, cmd, mSampleMask, VK_IMAGE_LAYOUT_GENERAL,
+                                          VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                          VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                                              VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                       }
+                       beginAccumulation(cmd, true);
+                       for (int i = 0; i < (masks ? 3 : 1); ++i)
+                           drawCamera(cmd, t, mPipes.aaFringe[i], mOpacitySet, false, true);
+                       mCtx.fn().cmdEndRendering(cmd);
+                   }});
+    if (mOit)
+        g.addPass({"hair_oit", shadingReads, accumulates,
+                   [this, t, ribbons, aa, fringe, beginAccumulation](VkCommandBuffer cmd) {
+                       beginAccumulation(cmd, !fringe);
+                       drawCamera(cmd, t, aa ? mPipes.aaOit.get() : mPipes.oit[ribbons].get(),
+                                  mOpacitySet, true, aa || mRibbons);
+                       mCtx.fn().cmdEndRendering(cmd);
+                   }});
     g.addPass({"hair_composite", {{rAccum, Use::Sampled}, {rWeight, Use::Sampled}},
                {{t.hdr, Use::ColorWrite}}, [this, t](VkCommandBuffer cmd) {
                    VkRenderingAttachmentInfo color = attachment(

@@ -3,7 +3,10 @@
 // shadow-casting directional lights (pass 1 depth, pass 2 opacity layers), opaque hair shaded
 // per fragment, and weighted blended OIT (accumulation + composite over the opaque image).
 // Only what the scene needs is added: no hair, no passes; no transparent hair or OIT off, no
-// OIT passes; no shadow-casting directional light or DOM off, no DOM passes.
+// OIT passes; no shadow-casting directional light or DOM off, no DOM passes. Anti-aliased frames
+// (msaa > 1, never debug frames) draw strands as screen-space strips with their pixel coverage:
+// "hair" the pixels a strand covers entirely, "hair_fringe" the partly covered ones accumulated
+// with the OIT targets, "hair_composite" both over the frame (glsl/hair/hair_oit_main.glsl).
 #include <array>
 #include <functional>
 #include <vector>
@@ -40,7 +43,7 @@ public:
         /// a depth view of a size: the meshes that shadow hair under a deep opacity map.
         std::function<void(VkCommandBuffer, VkImageView, uint32_t, const glm::mat4&)> meshDepth;
     };
-    /// Adds the DOM, hair and OIT passes after the forward pass.
+    /// Adds the DOM, hair, fringe and OIT passes after the forward pass.
     void addPasses(FrameGraph& graph, const Targets& targets);
     /// The last frame's deep opacity map of a light (InvalidArgument if it had none).
     HairDomInfo domInfo(int lightIndex);
@@ -72,8 +75,10 @@ private:
     void allocateSets(Slot& slot, uint32_t draws);
     void writeSets(Slot& slot);
     void ensureImages(const RenderSettings& settings, uint32_t width, uint32_t height);
+    /// The camera's view of the opaque or the transparent strands; `strips`: as triangles (the
+    /// ribbon indices; anti-aliased frames draw lines as one-pixel strips too).
     void drawCamera(VkCommandBuffer cmd, const Targets& t, VkPipeline pipeline,
-                    VkDescriptorSet domSet, bool transparent) const;
+                    VkDescriptorSet domSet, bool transparent, bool strips) const;
     /// Shadow-casting strands as lines; push constants: light view-projection * model, params.
     void drawFromLight(VkCommandBuffer cmd, VkPipeline pipeline, const glm::mat4& viewProj,
                        const glm::vec4& params) const;
@@ -84,12 +89,16 @@ private:
     HairGpuCache mCache;
     std::array<Slot, 2> mSlots;
     vk::Image mDomDepth, mDomOpacity, mDomMeshDepth, mDummyDom, mNoMeshes, mAccum, mWeight;
+    // anti-aliased frames, per pixel (R32_UINT layers): the nearest fringe depth, the sum of the
+    // fringe's shares, the samples it covers (glsl/hair/hair_oit_main.glsl)
+    vk::Image mSampleMask;
     std::vector<HairDraw> mDraws;
     std::vector<Dom> mDoms;
     std::vector<HairDomInfo> mLastDoms; // by scene light, size 0 where none
     VkDescriptorSet mZ0Set = VK_NULL_HANDLE, mOpacitySet = VK_NULL_HANDLE;
     VkDescriptorSet mOitSet = VK_NULL_HANDLE;
     bool mRibbons = false, mOit = false;
+    bool mAntialias = false; // strips with coverage (MSAA frames; debug frames never)
     bool mMeshesShadowHair = false; // DOMs and mesh casters this frame: the hair_dom_meshes pass
     uint32_t mWidth = 0, mHeight = 0, mDomSize = 0;
 };

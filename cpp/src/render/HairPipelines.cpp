@@ -30,7 +30,11 @@ HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) {
                                             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                             {2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}});
     domSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                           {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}});
+    VkPhysicalDeviceFeatures features{};
+    vkGetPhysicalDeviceFeatures(c.physicalDevice(), &features);
+    sampleMasks = features.fragmentStoresAndAtomics == VK_TRUE;
     oitSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                            {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     layout = vk::createPipelineLayout(
@@ -62,6 +66,37 @@ HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) {
                   VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA);
         d.blends = {accumulate, accumulate}; // hair_oit.frag: what each channel accumulates
         oit[ribbons] = vk::createGraphicsPipeline(c, d);
+    }
+
+    vk::GraphicsPipelineDesc a;
+    a.vertexShader = "hair/hair_aa_core.vert";
+    a.fragmentShader = "hair/hair_aa_core.frag";
+    a.vertexLayout = vk::VertexLayout::None;
+    a.cullMode = VK_CULL_MODE_NONE;
+    a.colorFormats = {kHdrFormat};
+    a.depthFormat = kDepthFormat;
+    a.layout = layout;
+    aaCore = vk::createGraphicsPipeline(c, a);
+    a.vertexShader = "hair/hair_aa_oit.vert";
+    a.fragmentShader = "hair/hair_aa_oit.frag"; // transparent: independent alphas (a * coverage)
+    a.colorFormats = {kOitAccumFormat, kOitWeightFormat};
+    a.depthWrite = false; // partial coverage hides nothing behind it
+    const VkPipelineColorBlendAttachmentState accumulate =
+        blend(VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ZERO,
+              VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA);
+    a.blends = {accumulate, accumulate};
+    aaOit = vk::createGraphicsPipeline(c, a);
+    if (sampleMasks) {
+        const char* passes[3] = {"hair/hair_aa_fringe0.frag", "hair/hair_aa_fringe1.frag",
+                                 "hair/hair_aa_fringe2.frag"};
+        for (int i = 2; i >= 0; --i) {
+            a.fragmentShader = passes[i];
+            if (i == 1) // passes 0 and 1 only take the nearest depth, samples and shares
+                for (VkPipelineColorBlendAttachmentState& b : a.blends) b.colorWriteMask = 0;
+            aaFringe[i] = vk::createGraphicsPipeline(c, a);
+        }
+    } else {
+        aaFringe[0] = vk::createGraphicsPipeline(c, a); // coverage as independent alphas
     }
 
     vk::GraphicsPipelineDesc l;

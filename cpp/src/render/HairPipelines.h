@@ -1,6 +1,8 @@
 #pragma once
 // Layouts and pipelines of the hair passes: camera views (opaque, debug, OIT accumulation) for
 // lines and ribbons, light views (shadow-map / DOM depth, DOM opacity) and the OIT composite.
+// Anti-aliased frames draw both primitives as screen-space strips with coverage (the aa*
+// pipelines, glsl/common/hair_vertex.glsl HAIR_AA); debug frames never do.
 #include "vk/Pipeline.h"
 
 namespace weft::render {
@@ -15,12 +17,20 @@ struct HairPipelines {
     HairPipelines(vk::Context& ctx, const ScenePipelines& scene);
 
     vk::DescriptorSetLayout hairSetLayout; // set 2: vertices, instances, hair frame
-    vk::DescriptorSetLayout domSetLayout;  // set 3: a DOM image array
+    vk::DescriptorSetLayout domSetLayout;  // set 3: a DOM image array, mesh depth, sample masks
     vk::DescriptorSetLayout oitSetLayout;  // composite: accumulation (+ revealage), weight sum
     vk::PipelineLayout layout;             // sets 0-3 + push constants (instance / light view)
     vk::PipelineLayout compositeLayout;
     // [0]: lines, [1]: ribbons
     vk::Pipeline opaque[2], debug[2], oit[2];
+    // Anti-aliased strips: the pixels a strand covers entirely (opaque, depth written), the
+    // partly covered ones accumulated like WBOIT (depth tested only; with sample masks in three
+    // passes: nearest depth, nearest strand, the rest; else one), transparent strands with
+    // coverage.
+    vk::Pipeline aaCore, aaFringe[3], aaOit;
+    /// The device can OR sample masks in fragment shaders: a pixel's partial coverage is the
+    /// union of its strands (hair_oit_main.glsl); without, independent alphas.
+    bool sampleMasks = false;
     vk::Pipeline lightDepth;  // lines into a depth target (shadow maps, DOM pass 1)
     vk::Pipeline domOpacity;  // DOM pass 2
     vk::Pipeline composite;

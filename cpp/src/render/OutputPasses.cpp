@@ -15,7 +15,13 @@ namespace weft::render {
 void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target,
                     VkAttachmentLoadOp load, VkPipeline pipeline, VkPipelineLayout layout,
                     VkDescriptorSet set, const void* push, uint32_t pushBytes) {
-    const uint32_t w = f.targets.width, h = f.targets.height;
+    drawFullscreen(f, cmd, target, f.targets.width, f.targets.height, load, pipeline, layout, set,
+                   push, pushBytes);
+}
+
+void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target, uint32_t w,
+                    uint32_t h, VkAttachmentLoadOp load, VkPipeline pipeline, VkPipelineLayout layout,
+                    VkDescriptorSet set, const void* push, uint32_t pushBytes) {
     VkRenderingAttachmentInfo a = attachment(target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
     a.loadOp = load;
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};

@@ -30,6 +30,8 @@ public:
     /// Finds this frame's probe (instance index, or -1 without one) and returns whether the faces
     /// must be captured again; the cube is (re)created at `size`.
     bool prepare(const Scene& scene, const FrameData& data, uint32_t size);
+    /// The next prepare() captures again (the renderer's settings changed).
+    void invalidate() { mKey.clear(); }
     int instance() const { return mInstance; }
     const glm::vec3& position() const { return mPosition; }
     vk::Image& cube() { return mCube; }

@@ -136,6 +136,9 @@ std::string Renderer::deviceName() const { return mImpl->ctx->properties().devic
 void Renderer::setSettings(const RenderSettings& settings) {
     settings.validate();
     mImpl->settings = settings;
+    // captures shade the scene with these settings: taken again at the next frame
+    mImpl->probe.invalidate();
+    mImpl->bounce.invalidate();
 }
 
 void Renderer::resize(uint32_t width, uint32_t height) {

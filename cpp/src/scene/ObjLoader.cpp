@@ -10,6 +10,7 @@
 #include <string_view>
 #include <unordered_map>
 #include <vector>
+#include "core/FileRead.h"
 
 namespace weft {
 
@@ -192,6 +193,7 @@ void ObjParser::computeMissingNormals() {
 }
 
 Mesh ObjParser::parse() {
+    checkInputFile(mPath, "OBJ file");
     std::ifstream file(mPath, std::ios::binary);
     if (!file) throw IoError("cannot open OBJ file '" + mPath + "'");
 

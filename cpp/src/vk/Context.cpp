@@ -329,6 +329,10 @@ void Context::createDevice() {
     v12.pNext = &sync2;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.pNext = &v12;
+    VkPhysicalDeviceFeatures supported{};
+    vkGetPhysicalDeviceFeatures(mPhysical, &supported);
+    // hair anti-aliasing ORs each strand's sample coverage into a storage image
+    features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo q{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

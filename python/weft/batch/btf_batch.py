@@ -107,22 +107,11 @@ def fit_btf_batch(jobs: Sequence[BtfJob], out: str, executor: Any, progress: boo
     for job in jobs:
         key = _job_key(job)
         (skipped if manifest.finished(job.name, "fit", key, out) else todo).append((job, key))
-    bar = Progress(sum(j.tiles + 2 for j, _ in todo), enabled=progress)
+    bar = Progress(sum(len(_stages(j)) for j, _ in todo), enabled=progress)
     owner: Dict[int, Tuple[BtfJob, str, str]] = {}
     for job, key in todo:
-        parts = executor.submit(btf_stages.prepare, job, num_returns=job.tiles + 1,
-                                memory=job.memory, label=f"{job.name} prepare", track=[0],
-                                spread=True)
-        owner[parts[0].id] = (job, key, "prepare")
-        fits = []
-        for k in range(job.tiles):
-            h = executor.submit(btf_stages.fit_tile, job, parts[k + 1], memory=job.memory,
-                                label=f"{job.name} band {k}")
-            owner[h.id] = (job, key, "fit")
-            fits.append(h)
-        h = executor.submit(btf_stages.assemble, job, parts[0], *fits, memory=job.memory,
-                            label=f"{job.name} assemble")
-        owner[h.id] = (job, key, "assemble")
+        for handle, stage in _submit(executor, job):
+            owner[handle.id] = (job, key, stage)
     failed: Dict[str, str] = {}
     texels, task_seconds = 0, 0.0
     for handle, value, error in executor.finished():
@@ -157,6 +146,46 @@ def fit_btf_batch(jobs: Sequence[BtfJob], out: str, executor: Any, progress: boo
                    executor=executor.kind, workers=executor.workers)
     manifest.save(force=True, **summary)
     return summary
+
+
+def _stages(job: BtfJob) -> List[str]:
+    """The tasks of a job, in order: prepare, Blinn-Phong bands, choose, Lafortune bands,
+    assemble (the nonlinear ones as the options ask)."""
+    from weft.btf.fit_report import lafortune_lobes
+
+    args = job.args()
+    bp = ["blinn_phong"] * job.tiles if args.nonlinear else []
+    laf = ["lafortune"] * job.tiles if lafortune_lobes(args) else []
+    return ["prepare"] + bp + (["choose"] if bp and laf else []) + laf + ["assemble"]
+
+
+def _submit(executor: Any, job: BtfJob) -> List[Tuple[Any, str]]:
+    """Submits a job's task graph; returns (handle, stage) of every task that reports."""
+    stages = _stages(job)
+    n, mem = job.tiles, job.memory
+    parts = executor.submit(btf_stages.prepare, job, num_returns=n + 1, memory=mem,
+                            label=f"{job.name} prepare", track=[0], spread=True)
+    out: List[Tuple[Any, str]] = [(parts[0], "prepare")]
+
+    def bands(kind: str, seeds: List[Any]) -> List[Any]:
+        hs = [executor.submit(btf_stages.fit_tile, job, parts[k + 1], kind, seeds[k],
+                              memory=mem, label=f"{job.name} {kind} band {k}")
+              for k in range(n)]
+        out.extend((h, kind) for h in hs)
+        return hs
+
+    bp = bands("blinn_phong", [None] * n) if "blinn_phong" in stages else []
+    chosen, seeds = None, [None] * n
+    if "choose" in stages:
+        c = executor.submit(btf_stages.choose, job, parts[0], *bp, num_returns=n + 1,
+                            memory=mem, label=f"{job.name} choose", track=[0])
+        out.append((c[0], "choose"))
+        chosen, seeds = c[0], c[1:]
+    laf = bands("lafortune", seeds) if "lafortune" in stages else []
+    h = executor.submit(btf_stages.assemble, job, parts[0], chosen, *bp, *laf, memory=mem,
+                        label=f"{job.name} assemble")
+    out.append((h, "assemble"))
+    return out
 
 
 def _worker(value: Any) -> Any:

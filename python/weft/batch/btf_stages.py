@@ -1,12 +1,15 @@
-"""The three task kinds of a BTF fit split by tiles of texels, on the code of ``btf fit``.
+"""The task kinds of a BTF fit split by bands of texel rows, on the code of ``btf fit``.
 
 1. :func:`prepare` (whole dataset): load, the linear and specular fits of
    :func:`weft.btf.fit_report.seed_fits` (one pass each; the specular exponent is chosen over all
    texels, so it cannot be split), then the samples and seed maps cut into bands of rows;
-2. :func:`fit_tile` (one band): the per-texel nonlinear fits of
-   :func:`weft.btf.fit_report.texel_fits` — the expensive part, and every texel is fitted on
-   its own, so a band's maps are exactly those rows of a whole-dataset fit;
-3. :func:`assemble` (whole dataset): the bands stitched back, every model scored on all
+2. :func:`fit_tile` with ``"blinn_phong"`` (one band): the per-texel Blinn-Phong fits
+   (:func:`weft.btf.fit_report.blinn_phong_fits`) — every texel is fitted on its own, so a
+   band's maps are exactly those rows of a whole-dataset fit;
+3. :func:`choose` (whole dataset, only with Lafortune after Blinn-Phong): the Blinn-Phong bands
+   stitched and scored on all samples to pick the highlight model, which seeds Lafortune;
+4. :func:`fit_tile` with ``"lafortune"`` (one band): the Lafortune fits from that seed;
+5. :func:`assemble` (whole dataset): the bands stitched back, every model scored on all
    samples and the maps, metrics, report and figures written by
    :func:`weft.btf.fit_report.write_fit`, returned as file bytes (the driver writes them, so
    a remote node needs no shared output folder).
@@ -32,10 +35,10 @@ import weft
 from weft.batch.manifest import where
 
 #: Options of ``btf fit`` a batch job takes (defaults as the CLI's).
-FIT_DEFAULTS: Dict[str, Any] = dict(views="frontal", gamma="raw", robust=False, max_exponent=4096,
-                                    per_texel_exponent=False, nonlinear=True, solver="builtin",
-                                    visibility=True, lafortune=[1], figures=True,
-                                    threads=0)
+FIT_DEFAULTS: Dict[str, Any] = dict(views="frontal", gamma="raw", robust=False,
+                                    max_exponent=None, per_texel_exponent=False, nonlinear=True,
+                                    solver="builtin", luminance_normals=False, visibility=True,
+                                    lafortune=[1], figures=True, threads=0)
 
 #: How many times a task's memory is its samples' float bytes: the samples, one copy of
 #: their values (``BtfSamples.values``), one reconstruction (scoring, figures) and the
@@ -131,19 +134,53 @@ def prepare(job: BtfJob) -> Tuple[Any, ...]:
     return tuple(out)
 
 
-def fit_tile(job: BtfJob, band: Optional[Dict[str, Any]]) -> Optional[Dict[str, Any]]:
-    """The per-texel fits of one band (None for an empty band)."""
+def fit_tile(job: BtfJob, band: Optional[Dict[str, Any]], kind: str,
+             seed: Optional[Tuple[Any, bool]] = None) -> Optional[Dict[str, Any]]:
+    """The per-texel fits of one band (None for an empty band): ``kind`` "blinn_phong" (from
+    the band's specular seeds) or "lafortune" (from ``seed`` = (band of the seed material,
+    keep its normal); None: the band's eq. 4.30 specular fit, as without Blinn-Phong)."""
     if band is None:
         return None
-    from weft.btf.fit_report import texel_fits
+    from weft.btf.fit_report import blinn_phong_fits, lafortune_fits
 
     _check_memory(job, band["values"].nbytes, f"a band of {band['rows'][1] - band['rows'][0]} "
                   "rows")
     samples = weft.BtfSamples(band["values"], band["angles"])
     t0 = time.perf_counter()
-    models = texel_fits(samples, band["flat"], band["fitted"], job.args(), _timer(job.times))
+    if kind == "blinn_phong":
+        models = blinn_phong_fits(samples, band["flat"], band["fitted"], job.args(),
+                                  _timer(job.times))
+    else:
+        material, fixed = seed if seed is not None else (band["flat"], False)
+        models = lafortune_fits(samples, material, fixed, job.args(), _timer(job.times))
     return dict(rows=band["rows"], models=models, seconds=time.perf_counter() - t0,
                 texels=samples.width * samples.height, worker=where())
+
+
+def _stitch_all(tiles: Sequence[Optional[Dict[str, Any]]], count: int) -> List[Any]:
+    """The whole-dataset Fitted models of bands, in the bands' model order."""
+    tiles = sorted((t for t in tiles if t is not None), key=lambda t: t["rows"])
+    if not tiles:
+        return []
+    return [_stitch(f.name, [(t["texels"], t["models"][k]) for t in tiles], count)
+            for k, f in enumerate(tiles[0]["models"])]
+
+
+def choose(job: BtfJob, header: Dict[str, Any], *tiles: Optional[Dict[str, Any]]
+           ) -> Tuple[Any, ...]:
+    """Picks the Blinn-Phong highlight model on all samples, as ``btf fit`` does; returns
+    ({"choice", "seconds"}, the seed of each band's Lafortune fits)."""
+    from weft.btf.fit_report import blinn_phong_choice, lafortune_seed, score_all
+
+    t0 = time.perf_counter()
+    samples, _ = load(job)
+    scored = score_all(samples, _stitch_all(tiles, samples.count))
+    choice = blinn_phong_choice(samples, scored)
+    flat = next(m.model for m in header["models"] if m.name == "specular_eq4.30")
+    seed, fixed = lafortune_seed(flat, scored, choice)
+    seeds = [None if y1 <= y0 else (_crop(seed, y0, y1), fixed)
+             for y0, y1 in bands(samples.height, job.tiles)]
+    return (dict(choice=choice, seconds=time.perf_counter() - t0, worker=where()), *seeds)
 
 
 # Per-texel counts behind a band's means (iterations, samples left out as shadowed): the
@@ -187,22 +224,23 @@ def _stitch(name: str, parts: Sequence[Tuple[int, Any]], count: int) -> Any:
     return Fitted(name, model, seconds, extra)
 
 
-def assemble(job: BtfJob, header: Dict[str, Any], *tiles: Optional[Dict[str, Any]]
-             ) -> Dict[str, Any]:
-    """Stitches the bands, scores every model on all samples and writes the ``btf fit``
-    outputs; returns {"files": {relative path: bytes}, "best", "deviation", ...}."""
+def assemble(job: BtfJob, header: Dict[str, Any], chosen: Optional[Dict[str, Any]],
+             *tiles: Optional[Dict[str, Any]]) -> Dict[str, Any]:
+    """Stitches the bands (Blinn-Phong and Lafortune tiles, any order), scores every model on
+    all samples and writes the ``btf fit`` outputs; returns {"files": {relative path: bytes},
+    "best", "deviation", ...}."""
     from weft.btf.fit_report import blinn_phong_choice, score_all, write_fit
 
     t0 = time.perf_counter()
-    tiles = tuple(t for t in tiles if t is not None)
+    done = [t for t in tiles if t is not None]
     samples, _ = load(job)
-    texel_models: List[Any] = []
-    if tiles:
-        for k, fitted in enumerate(tiles[0]["models"]):
-            parts = [(t["texels"], t["models"][k]) for t in sorted(tiles, key=lambda t: t["rows"])]
-            texel_models.append(_stitch(fitted.name, parts, samples.count))
-    scored = score_all(samples, list(header["models"]) + texel_models)
-    choice = blinn_phong_choice(scored)
+    bp = [t for t in done if t["models"] and t["models"][0].name.startswith("blinn_phong")]
+    laf = [t for t in done if t["models"] and t["models"][0].name.startswith("lafortune")]
+    scored = score_all(samples, list(header["models"]) + _stitch_all(bp, samples.count))
+    choice = blinn_phong_choice(samples, scored)
+    if chosen is not None and chosen["choice"] != choice:
+        raise weft.Error(f"{job.name}: the highlight choice changed between stages")
+    scored += score_all(samples, _stitch_all(laf, samples.count))
     tmp = tempfile.mkdtemp(prefix="weft-batch-")
     try:
         args = job.args(out=tmp)
@@ -215,9 +253,11 @@ def assemble(job: BtfJob, header: Dict[str, Any], *tiles: Optional[Dict[str, Any
                     files[os.path.relpath(full, tmp)] = f.read()
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    task_seconds = header["seconds"] + sum(t["seconds"] for t in tiles) + \
-        (time.perf_counter() - t0)
-    return dict(files=files, best=best.name, deviation=best.deviation, task_seconds=task_seconds,
+    stage_seconds = [header["seconds"]] + [t["seconds"] for t in done] + \
+        ([chosen["seconds"]] if chosen else [])
+    workers = [header["worker"]] + [t["worker"] for t in done] + \
+        ([chosen["worker"]] if chosen else []) + [where()]
+    return dict(files=files, best=best.name, deviation=best.deviation,
+                task_seconds=sum(stage_seconds) + time.perf_counter() - t0,
                 texels=samples.width * samples.height, samples=samples.count,
-                tile_seconds=[t["seconds"] for t in tiles], worker=where(),
-                workers=[header["worker"]] + [t["worker"] for t in tiles] + [where()])
+                tile_seconds=[t["seconds"] for t in done], worker=where(), workers=workers)

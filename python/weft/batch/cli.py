@@ -89,7 +89,7 @@ def add_parser(sub: Any) -> None:
 
 def _options(args: argparse.Namespace) -> Dict[str, Any]:
     keys = ("views", "gamma", "robust", "max_exponent", "per_texel_exponent", "nonlinear",
-            "solver", "visibility", "lafortune", "figures")
+            "solver", "luminance_normals", "visibility", "lafortune", "figures")
     opts = {k: getattr(args, k) for k in keys}
     if args.split == "views":
         if args.views != "frontal":

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 
 Finished = Tuple["Handle", Any, Optional[BaseException]]
+Mapped = Tuple[Any, Any, Optional[BaseException]]  # (item, result, error)
 
 
 @dataclass(eq=False)
@@ -115,8 +116,7 @@ class SerialPool:
         self.worker = worker
         self.size = 1
 
-    def map_unordered(self, method: str, items: Sequence[Any]) -> Iterator[Tuple[Any, Any,
-                                                                               Optional[BaseException]]]:
+    def map_unordered(self, method: str, items: Sequence[Any]) -> Iterator[Mapped]:
         for item in items:
             try:
                 yield item, getattr(self.worker, method)(item), None
@@ -226,8 +226,7 @@ class RayPool:
         self.actors = [cls.remote(factory) for _ in range(max(1, int(size)))]
         self.size = len(self.actors)
 
-    def map_unordered(self, method: str, items: Sequence[Any]) -> Iterator[Tuple[Any, Any,
-                                                                               Optional[BaseException]]]:
+    def map_unordered(self, method: str, items: Sequence[Any]) -> Iterator[Mapped]:
         queue = list(items)
         inflight: Dict[Any, Tuple[Any, Any]] = {}
         load = {id(a): 0 for a in self.actors}

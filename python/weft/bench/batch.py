@@ -15,9 +15,9 @@ Figures: wall seconds, throughput (texels/s for BTF: texels x datasets; frames/s
 overhead per task (``(wall x workers - time inside the tasks) / tasks``: what a task costs
 besides its own work, for serialising, scheduling, moving results and writing them, and idle
 workers; measured inside each run, so it does not depend on the other runs' load), scaling
-efficiency (throughput with 2 workers / (2 x with 1)), and the error: files whose bytes differ from the serial run (must
-be 0). The machine's load average is recorded before and after: on a shared machine it
-decides what 2 workers can gain.
+efficiency (throughput with 2 workers / (2 x with 1)), and the error: files whose bytes differ
+from the serial run (must be 0). The machine's load average is recorded before and after:
+on a shared machine it decides what 2 workers can gain.
 """
 
 from __future__ import annotations
@@ -49,7 +49,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="frame size (quick 96 72, else 320 240)")
 
 
-def _inputs(root: str, datasets: int, size: int, frames: int, w: int, h: int) -> Tuple[List[str], str]:
+def _inputs(root: str, datasets: int, size: int, frames: int, w: int,
+            h: int) -> Tuple[List[str], str]:
     import json
 
     import weft.btf.synth as synth
@@ -124,7 +125,7 @@ def run(args: argparse.Namespace) -> int:
                     out = os.path.join(root, f"{kind}-{mode}-{workers}")
                     if kind == "btf":
                         s = wb.fit_btf_batch(btf_jobs, out, ex, progress=False)
-                        tasks, amount = datasets * (args.tiles + 2), s["texels"]
+                        tasks, amount = sum(len(_stages(j)) for j in btf_jobs), s["texels"]
                     else:
                         s = wb.render_batch(render_jobs, out, ex, workers=workers,
                                             progress=False)
@@ -190,7 +191,8 @@ def _markdown(report: Dict[str, Any]) -> str:
         f"({m.get('cpu_count')} cores), load average {load['before'][0]:.2f} before, "
         f"{load['after'][0]:.2f} after.", "",
         f"BTF: {i['datasets']} synthetic datasets of {i['size']}x{i['size']} texels x 81 "
-        f"samples, {i['tiles']} bands each (tasks = datasets x (bands + 2)), every model, no "
+        f"samples, {i['tiles']} bands each (tasks per dataset: prepare, Blinn-Phong bands, "
+        f"choose, Lafortune bands, assemble), every model, no "
         f"figures, one fit thread per task. Render: {i['frames']} frames of the default scene "
         f"at {i['frame_size'][0]}x{i['frame_size'][1]} on an orbit, one render worker per CPU "
         f"(LP_NUM_THREADS={report.get('lp_num_threads')}). "

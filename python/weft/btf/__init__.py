@@ -21,6 +21,7 @@ from weft.btf.fit import (
     have_ceres,
     load,
     normal_stats,
+    resolvable_exponent,
     sample_errors,
     solve_linear,
 )
@@ -29,5 +30,6 @@ from weft.btf.synth import PRESETS, SynthTruth, synthesize, write
 
 __all__ = ["BtfMaterial", "BtfSamples", "LafortuneFit", "LinearFit", "NonlinearFit", "PRESETS", "SpecularFit",
            "SynthTruth", "angular_error_deg", "deviation", "fit_blinn_phong", "fit_lafortune", "fit_linear",
-           "fit_specular", "have_ceres", "load", "normal_stats", "sample_errors", "solve_linear",
+           "fit_specular", "have_ceres", "load", "normal_stats", "resolvable_exponent", "sample_errors",
+           "solve_linear",
            "synthesize", "write"]

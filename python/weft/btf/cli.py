@@ -74,11 +74,16 @@ def add_fit_options(f: Any, truth: bool = True) -> None:
     f.add_argument("--views", default="frontal", help="'frontal', 'all' or 'T,P;T,P' degrees")
     f.add_argument("--gamma", choices=("raw", "linear"), default="raw")
     f.add_argument("--robust", action="store_true", help="outlier-robust linear fit (IRLS)")
-    f.add_argument("--max-exponent", type=int, default=4096)
+    f.add_argument("--max-exponent", type=int, default=None,
+                   help="largest exponent (default: 4096 for the specular search, the "
+                        "resolvable exponent of the light directions for Blinn-Phong)")
     f.add_argument("--per-texel-exponent", action="store_true")
     f.add_argument("--no-nonlinear", dest="nonlinear", action="store_false",
                    help="skip the per-texel Blinn-Phong fits")
     f.add_argument("--solver", choices=("auto", "builtin", "ceres"), default="builtin")
+    f.add_argument("--luminance-normals", action="store_true",
+                   help="Blinn-Phong: fit normals and exponents to the luma, colours to RGB "
+                        "(for JPEG input, whose chroma is subsampled)")
     f.add_argument("--no-visibility", dest="visibility", action="store_false",
                    help="Blinn-Phong: fit every sample (no cast-shadow estimation)")
     f.add_argument("--lafortune", type=int, choices=(0, 1, 2), nargs="+", default=[1],

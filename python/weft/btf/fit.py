@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
-from typing import Any, Dict, Sequence, Union
+from typing import Any, Dict, Optional, Sequence, Union
 
 import numpy as np
 
@@ -114,23 +114,41 @@ class NonlinearFit:
 
 def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
                     max_iterations: int = 30, min_exponent: float = 1.0,
-                    max_exponent: float = 4096.0, threads: int = 0,
-                    flat_specular_normal: bool = False, visibility: bool = True) -> NonlinearFit:
+                    max_exponent: Optional[float] = None, threads: int = 0,
+                    flat_specular_normal: bool = False, visibility: bool = True,
+                    luminance_normals: bool = False) -> NonlinearFit:
     """Per-texel Blinn-Phong in the renderer's model, seeded by ``seed`` (normal, exponent):
     ``P = albedo (ambient + max(n.l, 0)) + specular [n.l > 0] max(n_s.h, 0)^e``.
 
     Every texel stays physically valid: albedo, ambient, specular >= 0, unit normals with
-    n_z > 0, ``min_exponent <= e <= max_exponent`` (the solver searches inside that space).
+    n_z > 0, ``min_exponent <= e <= max_exponent`` (the solver searches inside that space);
+    ``max_exponent`` None: :func:`resolvable_exponent` of the samples (519 for the Bonn
+    frontal layout), the narrowest lobe the light directions can pin down. A texel whose fitted
+    lobe no sample sees at >= 1% of its peak gets no highlight (k = 0): its k and e would
+    be unconstrained by the data (needle lobes).
     ``flat_specular_normal``: the highlight around n_s = (0, 0, 1) (seed eq. 4.30) instead of
     the fitted normal. ``visibility``: samples far darker than the fit (cast shadows) are left
-    out and the texel refitted; ``shadowed_fraction`` says how many. ``solver``: "auto"
+    out and the texel refitted; ``shadowed_fraction`` says how many. ``luminance_normals``: the
+    normal and exponent are fitted to the luma (BT.601), the colours to RGB at that fit: for
+    JPEG data, whose chroma is stored at half resolution and coarser precision. ``solver``: "auto"
     (= "builtin", the fastest and as accurate), "builtin" (Levenberg-Marquardt by variable
     projection with non-negative least squares), "ceres" (when built with it)."""
     r = _core.btf_fit_blinn_phong(samples, seed.core_maps(), solver, int(max_iterations),
-                                  float(min_exponent), float(max_exponent), int(threads),
-                                  bool(flat_specular_normal), bool(visibility))
+                                  float(min_exponent),
+                                  0.0 if max_exponent is None else float(max_exponent),
+                                  int(threads),
+                                  bool(flat_specular_normal), bool(visibility),
+                                  bool(luminance_normals))
     return NonlinearFit(BtfMaterial.from_core(r["maps"]), r["solver"], r["mean_iterations"],
                         float(r["shadowed_fraction"]))
+
+
+def resolvable_exponent(samples: Any, fraction: float = 0.01) -> float:
+    """The largest Blinn-Phong exponent the samples' directions resolve: a lobe cos^e centred
+    on one sample's half vector keeps ``fraction`` of its peak at the nearest other half vector
+    (median spacing δ over the samples): e_max = ln(1/fraction) / -ln cos δ. For the Bonn frontal
+    layout δ = 7.6° (half the 15° light spacing), e_max = 519."""
+    return float(_core.btf_resolvable_exponent(samples, float(fraction)))
 
 
 @dataclass
@@ -158,11 +176,19 @@ class LafortuneFit:
 
 
 def fit_lafortune(samples: Any, seed: BtfMaterial, lobes: int = 1, max_iterations: int = 30,
-                  threads: int = 0) -> LafortuneFit:
+                  threads: int = 0, visibility: bool = False,
+                  fixed_normal: bool = False) -> LafortuneFit:
     """Per-texel diffuse + ``lobes`` Lafortune lobes (built-in LM), seeded by the normal and
-    exponent of ``seed``."""
+    exponent of ``seed`` (the Blinn-Phong fit is the best seed under cast shadows).
+    ``visibility``: cast shadows estimated per sample and left out, as in
+    :func:`fit_blinn_phong` (off by default: with a Blinn-Phong normal kept it only raises the
+    deviation over all samples; with a free normal it helps on some cast-shadow data and hurts
+    on other). ``fixed_normal``: keep the seed's normal (with a frontal view the
+    lobe depends on l_z only and trades off with the diffuse term, so the normal is poorly
+    determined by this model; a Blinn-Phong seed pins it down)."""
     return LafortuneFit(**_core.btf_fit_lafortune(samples, seed.core_maps(), int(lobes),
-                                                  int(max_iterations), int(threads)))
+                                                  int(max_iterations), int(threads),
+                                                  bool(visibility), bool(fixed_normal)))
 
 
 def have_ceres() -> bool:

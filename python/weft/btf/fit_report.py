@@ -113,49 +113,73 @@ def seed_fits(samples: Any, args: argparse.Namespace, run: Any) -> SeedFits:
         seed_fit, t = run("robust linear fit", btf_fit.fit_linear, samples, robust=True,
                           threads=threads)
         models.append(Fitted("linear_robust", seed_fit.material(samples), t))
+    search_max = args.max_exponent or 4096
     flat, t = run("specular (n_s = (0,0,1))", btf_fit.fit_specular, samples, seed_fit, True,
-                  args.max_exponent, args.per_texel_exponent, threads=threads)
+                  search_max, args.per_texel_exponent, threads=threads)
     models.append(Fitted("specular_eq4.30", flat.material, t))
     fitted, t = run("specular (fitted n)", btf_fit.fit_specular, samples, seed_fit, False,
-                    args.max_exponent, threads=threads)
+                    search_max, threads=threads)
     models.append(Fitted("specular_eq4.29", fitted.material, t))
     return SeedFits(models, linear, flat, fitted)
 
 
-def texel_fits(samples: Any, flat: BtfMaterial, fitted: BtfMaterial, args: argparse.Namespace,
-               run: Any) -> List[Fitted]:
-    """The per-texel nonlinear fits (Blinn-Phong with both highlights, Lafortune), seeded by the
-    specular fits ``fitted`` (eq. 4.29) and ``flat`` (eq. 4.30). Every texel is fitted on its
-    own, so a tile of texels (samples and seeds cropped alike) gives that tile of these maps."""
-    threads = _threads(args)
+def blinn_phong_fits(samples: Any, flat: BtfMaterial, fitted: BtfMaterial,
+                     args: argparse.Namespace, run: Any) -> List[Fitted]:
+    """Per-texel Blinn-Phong with both highlights, seeded by the specular fits ``fitted``
+    (eq. 4.29) and ``flat`` (eq. 4.30). Every texel is fitted on its own (the exponent bound
+    comes from the light directions only), so a band of texels, samples and seeds cropped
+    alike, gives those rows of these maps."""
     out: List[Fitted] = []
-    if args.nonlinear:
-        for name, seed, flat_ns in (("blinn_phong_n", fitted, False),
-                                    ("blinn_phong_flat", flat, True)):
-            label = "Blinn-Phong (n_s = " + ("(0,0,1))" if flat_ns else "n)")
-            bp, t = run(label, btf_fit.fit_blinn_phong, samples, seed, args.solver,
-                        max_exponent=float(args.max_exponent), flat_specular_normal=flat_ns,
-                        visibility=args.visibility, threads=threads)
-            out.append(Fitted(name, bp.material, t, dict(
-                solver=bp.solver, mean_iterations=bp.mean_iterations,
-                shadowed_fraction=getattr(bp, "shadowed_fraction", None))))
-    for count in lafortune_lobes(args):
-        laf, t = run(f"Lafortune ({count} lobe{'s' if count > 1 else ''})",
-                     btf_fit.fit_lafortune, samples, flat, count, threads=threads)
-        out.append(Fitted(f"lafortune_{count}", laf, t,
-                          dict(mean_iterations=laf.mean_iterations)))
+    if not args.nonlinear:
+        return out
+    for name, seed, flat_ns in (("blinn_phong_n", fitted, False),
+                                ("blinn_phong_flat", flat, True)):
+        label = "Blinn-Phong (n_s = " + ("(0,0,1))" if flat_ns else "n)")
+        bp, t = run(label, btf_fit.fit_blinn_phong, samples, seed, args.solver,
+                    max_exponent=args.max_exponent, flat_specular_normal=flat_ns,
+                    visibility=args.visibility, threads=_threads(args),
+                    luminance_normals=getattr(args, "luminance_normals", False))
+        out.append(Fitted(name, bp.material, t, dict(
+            solver=bp.solver, mean_iterations=bp.mean_iterations,
+            shadowed_fraction=getattr(bp, "shadowed_fraction", None))))
     return out
 
 
-def blinn_phong_choice(scored: List[Scored]) -> Dict[str, Any]:
-    """Which Blinn-Phong highlight (n_s = n or (0, 0, 1)) is drawn: the lower deviation."""
+def blinn_phong_choice(samples: Any, scored: List[Scored]) -> Dict[str, Any]:
+    """Which Blinn-Phong highlight (n_s = n or (0, 0, 1)) is drawn
+    (:func:`weft.btf.scoring.highlight_choice`); {} without the Blinn-Phong fits."""
     by = {s.name: s for s in scored}
     if "blinn_phong_n" not in by or "blinn_phong_flat" not in by:
         return {}
-    n_dev, flat_dev = by["blinn_phong_n"].deviation, by["blinn_phong_flat"].deviation
-    return {"chosen": "blinn_phong_flat" if flat_dev < n_dev else "blinn_phong_n",
-            "deviation_n": n_dev, "deviation_flat": flat_dev,
-            "rule": "lower total deviation as drawn"}
+    pick = scoring.highlight_choice(
+        samples, {k: (by[k], by[k].extra.get("shadowed_fraction"))
+                  for k in ("blinn_phong_n", "blinn_phong_flat")})
+    return {"chosen": pick["chosen"], "deviation_n": by["blinn_phong_n"].deviation,
+            "deviation_flat": by["blinn_phong_flat"].deviation, "rule": pick["rule"]}
+
+
+def lafortune_seed(flat: BtfMaterial, scored: List[Scored],
+                   choice: Dict[str, Any]) -> Tuple[BtfMaterial, bool]:
+    """(seed, fixed_normal) of the Lafortune fits: the chosen Blinn-Phong fit with its normal
+    kept when there is one (with a frontal view the lobe depends on l_z only and trades off with
+    the diffuse term), else the eq. 4.30 specular fit."""
+    if not choice:
+        return flat, False
+    return next(s.model for s in scored if s.name == choice["chosen"]), True
+
+
+def lafortune_fits(samples: Any, seed: BtfMaterial, fixed_normal: bool,
+                   args: argparse.Namespace, run: Any) -> List[Fitted]:
+    """Per-texel diffuse + Lafortune lobes (every count asked for), seeded by ``seed``; per
+    texel like :func:`blinn_phong_fits`, so it splits into bands the same way."""
+    out: List[Fitted] = []
+    for count in lafortune_lobes(args):
+        laf, t = run(f"Lafortune ({count} lobe{'s' if count > 1 else ''})",
+                     btf_fit.fit_lafortune, samples, seed, count, threads=_threads(args),
+                     fixed_normal=fixed_normal)
+        out.append(Fitted(f"lafortune_{count}", laf, t,
+                          dict(mean_iterations=laf.mean_iterations)))
+    return out
 
 
 def score_all(samples: Any, models: List[Fitted]) -> List[Scored]:
@@ -167,11 +191,13 @@ def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[
     """Fits every model; returns (scored models, Blinn-Phong choice, plain linear fit)."""
     f = Fitter(samples, fit_steps(args), args.progress)
     seeds = seed_fits(samples, args, f.run)
-    models = seeds.models + texel_fits(samples, seeds.flat.material, seeds.fitted.material,
-                                       args, f.run)
+    scored = score_all(samples, seeds.models + blinn_phong_fits(
+        samples, seeds.flat.material, seeds.fitted.material, args, f.run))
+    choice = blinn_phong_choice(samples, scored)
+    seed, fixed = lafortune_seed(seeds.flat.material, scored, choice)
+    scored += score_all(samples, lafortune_fits(samples, seed, fixed, args, f.run))
     f.progress.close()
-    scored = score_all(samples, models)
-    return scored, blinn_phong_choice(scored), seeds.linear
+    return scored, choice, seeds.linear
 
 
 def model_results(scored: List[Scored], best: Scored) -> Dict[str, Dict[str, Any]]:

@@ -105,7 +105,8 @@ class BtfMaterial:
         - ``albedo`` -> base texture T with K_D = its scale;
         - ``albedo * ambient`` (the constant term) -> the ambient map as radiance
           (``ambient_map_is_radiance``: not multiplied by T or the scene's ambient), K_A = scale;
-        - ``specular`` -> the specular map's RGB with K_S = scale (none: K_S = 0);
+        - ``specular`` -> the specular map's RGB with K_S = scale (none: K_S = 0), the scale
+          at most 4x the channel's 99th percentile of non-zero values (rare outliers clipped);
         - ``exponent`` -> shininess; ``exponent_map`` -> the specular map's alpha, log-encoded
           between its minimum and maximum over texels with a non-zero specular texel
           (``shininess_max``); exponents below 1e-3 are drawn as 1e-3;

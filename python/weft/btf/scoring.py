@@ -70,6 +70,31 @@ def score(samples: Any, name: str, model: Model, seconds: float = 0.0,
                   btf_fit.deviation(samples, fitted), drawn, fitted, dict(extra))
 
 
+#: A Blinn-Phong fit that left out more than this share of its samples as cast shadows marks the
+#: data as shadowed: the highlight models are then compared on the steep lights only.
+SHADOWED_SHARE = 0.005
+#: Cast shadows fall at grazing light; up to θ_l = 45° both highlight models see lit samples.
+STEEP_THETA_DEG = 45.5
+
+
+def highlight_choice(samples: Any, fits: Dict[str, Any]) -> Dict[str, Any]:
+    """Picks the Blinn-Phong highlight model from ``fits`` (key -> (Scored, shadowed_fraction)):
+    the lower deviation as drawn over every sample, or, where either fit found cast shadows
+    (more than :data:`SHADOWED_SHARE` of its samples), over the samples with θ_l <= 45°: neither
+    model draws cast shadows, and their share of the total (noise floor x 30 on shadowed data)
+    would decide between the models instead of the highlight. Returns ``chosen``, ``rule`` and
+    the deviation each was ranked by."""
+    shadowed = any(float(f or 0.0) > SHADOWED_SHARE for _, f in fits.values())
+    if shadowed:
+        steep = np.asarray(samples.angles)[:, 0] <= STEEP_THETA_DEG
+        ranked = {k: float(np.mean(sc.errors[steep]) * 100) for k, (sc, _) in fits.items()}
+        rule = "lower deviation as drawn over θ_l <= 45° (cast shadows found)"
+    else:
+        ranked = {k: sc.deviation for k, (sc, _) in fits.items()}
+        rule = "lower total deviation as drawn"
+    return {"chosen": min(ranked, key=ranked.get), "rule": rule, "ranked_by": ranked}
+
+
 def best_of(scored: Sequence[Scored], drawable_only: bool = True) -> Scored:
     """The model with the lowest deviation as drawn (only drawable models by default: the
     material a renderer can use)."""

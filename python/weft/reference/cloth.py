@@ -73,6 +73,7 @@ from weft.reference.cloth_grid import (  # noqa: E402  (re-exported: the cloth's
     SHEAR,
     STRETCH,
     constraint_pattern,
+    constraints_on_surface,
     grid_normals,
     grid_positions,
     grid_triangles,
@@ -365,11 +366,11 @@ class ClothReference:
         if m.shape != (self.ny, self.nx):
             raise ValueError(f"mask must be ({self.ny}, {self.nx}), got {m.shape}")
         self.hole = (m != 0).reshape(-1)
-        gone = self.hole[self.a] | self.hole[self.b]
-        if self.tear_strain == 0.0:  # constraints come back where both ends are cloth again
-            self.active = ~gone
-        else:  # torn ones stay torn
-            self.active &= ~gone
+        # A constraint goes with its ends and with the faces it runs through (nothing spans
+        # a hole); this reference does not tear faces, so the faces are those without holes.
+        faces = grid_triangles(self.nx, self.ny, hole=self.hole)
+        self.active = constraints_on_surface(self.nx, faces, self.a, self.b)
+        self.active &= ~(self.hole[self.a] | self.hole[self.b])
         self._changed()
         self.wake()
 

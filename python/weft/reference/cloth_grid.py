@@ -154,3 +154,42 @@ def strain(positions: np.ndarray, a: np.ndarray, b: np.ndarray, rest: np.ndarray
         return 0.0, 0.0
     s = np.abs(np.linalg.norm(x[b] - x[a], axis=1) - rest) / rest
     return float(s.mean()), float(s.max())
+
+
+def constraints_on_surface(nx: int, tris: np.ndarray, a: np.ndarray, b: np.ndarray
+                           ) -> np.ndarray:
+    """Whether each constraint (a, b) runs on the surface of the triangles ``tris`` (M, 3)
+    (issue 17: a constraint lives while the faces it runs through are there; nothing spans a
+    hole or a tear). Geometric, in grid coordinates (i, j): points along the segment (the ends,
+    the lattice points and the midpoints between them) must each lie in some closed triangle.
+    """
+    a = np.asarray(a, dtype=np.int64)
+    b = np.asarray(b, dtype=np.int64)
+    tris = np.asarray(tris, dtype=np.int64).reshape(-1, 3)
+    out = np.zeros(len(a), dtype=bool)
+    if len(tris) == 0:
+        return out
+    corner = np.stack([tris % nx, tris // nx], axis=-1).astype(np.float64)  # (M, 3, 2)
+    # a triangle covers the points of its unit quad: index triangles by their quad
+    quad = np.minimum.reduce(corner, axis=1).astype(np.int64)  # (M, 2) lower-left corner
+    by_quad: dict = {}
+    for m, (qi, qj) in enumerate(quad.tolist()):
+        by_quad.setdefault((qi, qj), []).append(m)
+
+    def covered(p: np.ndarray) -> bool:
+        for qi in (int(np.floor(p[0])) - 1, int(np.floor(p[0]))):
+            for qj in (int(np.floor(p[1])) - 1, int(np.floor(p[1]))):
+                for m in by_quad.get((qi, qj), ()):
+                    t = corner[m]
+                    d = [(t[(e + 1) % 3][0] - t[e][0]) * (p[1] - t[e][1])
+                         - (t[(e + 1) % 3][1] - t[e][1]) * (p[0] - t[e][0]) for e in range(3)]
+                    if min(d) >= -1e-9 or max(d) <= 1e-9:
+                        return True
+        return False
+
+    for c, (pa, pb) in enumerate(zip(a.tolist(), b.tolist())):
+        p0 = np.array([pa % nx, pa // nx], dtype=np.float64)
+        p1 = np.array([pb % nx, pb // nx], dtype=np.float64)
+        steps = 2 * int(np.max(np.abs(p1 - p0)))
+        out[c] = all(covered(p0 + (p1 - p0) * s / steps) for s in range(steps + 1))
+    return out

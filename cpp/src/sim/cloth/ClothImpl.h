@@ -1,6 +1,7 @@
 #pragma once
 // Private state of weft::Cloth, shared by the files of the solver.
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include <weft/Cloth.h>
@@ -32,8 +33,21 @@ namespace weft {
 struct Cloth::Impl {
     ClothParams params;
     int n = 0;
+    // Serialises every public call: the pool and the state admit one stepper at a time.
+    mutable std::recursive_mutex lock;
 
-    std::vector<cloth::Particle> particles; // current positions + inverse mass
+    // The solver's frame: positions are stored relative to frame (the cloth's origin when
+    // that is far from the world origin, else 0), so float32 keeps its precision for a cloth
+    // far away. With a frame, world holds the published world-space records (particleData),
+    // refreshed by publish(); without one the records are published as they are.
+    glm::dvec3 frame{0.0};
+    std::vector<cloth::Particle> world;
+    glm::vec3 toLocal(const glm::vec3& p) const { return glm::vec3(glm::dvec3(p) - frame); }
+    glm::vec3 toWorld(const glm::vec3& p) const { return glm::vec3(glm::dvec3(p) + frame); }
+    /// Copies the particles to world; returns whether all of them are finite.
+    bool publish();
+
+    std::vector<cloth::Particle> particles; // current positions + inverse mass (local frame)
     std::vector<cloth::Particle> previous;  // x_prev of Verlet (w unused)
     std::vector<glm::vec3> rest;            // initial positions
     std::vector<float> baseInvMass;         // inverse mass without pins/grabs
@@ -49,6 +63,11 @@ struct Cloth::Impl {
     std::vector<int> endA;                      // constraints[c].a, contiguous
     std::vector<float> restLength;              // constraints[c].rest, contiguous
     std::vector<uint8_t> family, active;
+    // Tearing (ClothTearing.cpp): the grid's triangles, 2 per quad; a constraint is active
+    // while no end is a hole and (once anything tore) the faces it runs through are alive.
+    std::vector<uint8_t> faceAlive;
+    std::vector<float> faceStretch; // scratch of tearFaces
+    bool torn = false, anyHole = false;
     std::vector<float> lambda;
     std::vector<cloth::Batch> batches;
     // The structure-of-arrays path of the relaxation (CPUs with AVX-512, no colliders,
@@ -75,9 +94,11 @@ struct Cloth::Impl {
     std::vector<float> tetherLength;
 
     std::vector<int> grabbed;
-    std::vector<glm::vec3> grabTargets;
+    std::vector<glm::vec3> grabTargets; // local frame
+    std::vector<glm::vec3> grabWorld;   // as given
     Wind wind;
-    std::vector<Collider> colliders;
+    std::vector<Collider> colliders;      // as given (world space)
+    std::vector<Collider> localColliders; // the same in the local frame (used by collide)
 
     double accumulator = 0.0;
     uint64_t steps = 0;
@@ -110,6 +131,13 @@ struct Cloth::Impl {
         return normals;
     }
     void afterStep(float dt);        // tearing, sleeping
+    bool faceOpen(int f) const;      // alive and no corner is a hole
+    bool quadAny(int i, int j) const;
+    bool quadBoth(int i, int j) const;
+    bool supported(size_t c) const;  // the faces constraint c runs through are alive
+    void updateActive();             // active from holes and faces
+    bool tearFaces();                // tears overstretched faces; whether any tore
+    void tethersAlongCloth(const std::vector<int>& anchors);
 };
 
 } // namespace weft

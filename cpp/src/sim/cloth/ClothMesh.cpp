@@ -8,6 +8,7 @@ namespace weft {
 
 ClothMesh Cloth::mesh() const {
     const Impl& m = *mImpl;
+    std::lock_guard<std::recursive_mutex> lock(m.lock);
     const std::vector<glm::vec4>& normals = m.currentNormals();
     const int nx = m.params.nx, ny = m.params.ny;
     ClothMesh out;
@@ -20,7 +21,7 @@ ClothMesh Cloth::mesh() const {
         for (int i = 0; i < nx; ++i) {
             const int k = j * nx + i;
             const glm::vec3 nrm(normals[size_t(k)]);
-            out.positions[size_t(k)] = at(i, j);
+            out.positions[size_t(k)] = m.frame == glm::dvec3(0.0) ? at(i, j) : m.world[size_t(k)].x;
             out.normals[size_t(k)] = nrm;
             out.uvs[size_t(k)] = glm::vec2(nx > 1 ? float(i) / float(nx - 1) : 0.0f,
                                            ny > 1 ? float(j) / float(ny - 1) : 0.0f);

@@ -11,34 +11,65 @@
 
 namespace weft {
 
+namespace {
+
+using namespace cloth_limits;
+
+std::string num(float v) { return std::to_string(v); }
+
+void requireRange(float v, float lo, float hi, const char* what, const char* unit) {
+    if (!(std::isfinite(v) && v >= lo && v <= hi))
+        throw InvalidArgument(std::string(what) + " must be in [" + num(lo) + ", " + num(hi) + "] " +
+                              unit + " (got " + num(v) + ")");
+}
+
+void requireMagnitude(const glm::vec3& v, float hi, const char* what, const char* unit) {
+    requireFinite(v, what);
+    if (glm::length(glm::dvec3(v)) > double(hi))
+        throw InvalidArgument(std::string(what) + " must have magnitude at most " + num(hi) + " " + unit);
+}
+
+} // namespace
+
 void ClothParams::validate() const {
     if (nx < 1 || ny < 1 || int64_t(nx) * ny < 2 || nx > 4096 || ny > 4096)
         throw InvalidArgument("cloth grid must have 1..4096 particles per side and at least 2 "
                               "in all (got " + std::to_string(nx) + "x" + std::to_string(ny) + ")");
-    requirePositive(size.x, "cloth size_x");
-    requirePositive(size.y, "cloth size_y");
+    requireRange(size.x, kMinSize, kMaxSize, "cloth size_x", "m");
+    requireRange(size.y, kMinSize, kMaxSize, "cloth size_y", "m");
     requireFinite(origin, "cloth origin");
+    for (int c = 0; c < 3; ++c)
+        if (std::abs(origin[c]) > kMaxCoordinate)
+            throw InvalidArgument("cloth origin coordinates must be within +-" + num(kMaxCoordinate) + " m");
     requireFinite(axisU, "cloth axis_u");
     requireFinite(axisV, "cloth axis_v");
     if (glm::length(axisU) < 1e-6f || glm::length(axisV) < 1e-6f ||
         glm::length(glm::cross(glm::normalize(axisU), glm::normalize(axisV))) < 1e-3f)
         throw InvalidArgument("cloth axes must be non-zero and not parallel");
-    requirePositive(mass, "cloth mass");
+    requireRange(mass, kMinMass, kMaxMass, "cloth mass", "kg");
     if (bendDistance < 2 || bendDistance > 64)
         throw InvalidArgument("bend_distance must be in [2, 64] (seed: 2, 4 or 6)");
     requireFinite(damping, "damping");
     if (damping < 0.0f || damping > 1.0f) throw InvalidArgument("damping must be in [0, 1]");
-    requireFinite(gravity, "gravity");
+    requireMagnitude(gravity, kMaxAcceleration, "gravity", "m/s^2");
     if (iterations < 1 || iterations > 1000) throw InvalidArgument("iterations must be in [1, 1000]");
     if (substeps < 1 || substeps > 1000) throw InvalidArgument("substeps must be in [1, 1000]");
-    for (float c : {complianceStretch, complianceShear, complianceBend})
-        if (!(std::isfinite(c) && c >= 0.0f)) throw InvalidArgument("compliance must be finite and >= 0");
-    for (float v : {thickness, selfThickness, tearStrain, sleepThreshold})
-        if (!(std::isfinite(v) && v >= 0.0f))
-            throw InvalidArgument("thickness, self_thickness, tear_strain and sleep_threshold "
-                                  "must be finite and >= 0");
+    requireRange(complianceStretch, 0.0f, kMaxCompliance, "compliance_stretch", "m/N");
+    requireRange(complianceShear, 0.0f, kMaxCompliance, "compliance_shear", "m/N");
+    requireRange(complianceBend, 0.0f, kMaxCompliance, "compliance_bend", "m/N");
+    requireRange(thickness, 0.0f, kMaxThickness, "thickness", "m");
+    requireRange(selfThickness, 0.0f, kMaxThickness, "self_thickness", "m");
+    requireRange(tearStrain, 0.0f, kMaxTearStrain, "tear_strain", "");
+    requireRange(sleepThreshold, 0.0f, kMaxSleepSpeed, "sleep_threshold", "m/s");
     if (sleepSteps < 1) throw InvalidArgument("sleep_steps must be >= 1");
     if (threads < 0 || threads > 256) throw InvalidArgument("threads must be in [0, 256]");
+}
+
+void Wind::validate() const {
+    requireFinite(direction, "wind direction");
+    if (glm::length(glm::dvec3(direction)) < 1e-12)
+        throw InvalidArgument("wind direction must not be zero");
+    requireRange(strength, -kMaxAcceleration, kMaxAcceleration, "wind strength", "m/s^2");
 }
 
 namespace {
@@ -52,12 +83,24 @@ void Cloth::Impl::build() {
     const ClothParams& p = params;
     n = p.nx * p.ny;
     const glm::vec3 u = glm::normalize(p.axisU), v = glm::normalize(p.axisV);
+    // Rest positions relative to the origin, in double (rest lengths come from them), so
+    // neither the distance from the world origin nor the scale rounds them away.
+    // Near the world origin (within a few cloth sizes) world coordinates lose nothing and
+    // the step publishes no copy; farther out the frame moves to the origin.
+    const double extent = double(std::max(p.size.x, p.size.y));
+    const double far = std::max({std::abs(double(p.origin.x)), std::abs(double(p.origin.y)),
+                                 std::abs(double(p.origin.z))});
+    frame = far > 4.0 * extent ? glm::dvec3(p.origin) : glm::dvec3(0.0);
+    const glm::dvec3 start = glm::dvec3(p.origin) - frame;
+    std::vector<glm::dvec3> restD(static_cast<size_t>(n));
     rest.resize(size_t(n));
     for (int j = 0; j < p.ny; ++j)
         for (int i = 0; i < p.nx; ++i) {
-            const float fu = p.nx > 1 ? float(i) / float(p.nx - 1) : 0.0f;
-            const float fv = p.ny > 1 ? float(j) / float(p.ny - 1) : 0.0f;
-            rest[size_t(j * p.nx + i)] = p.origin + u * (p.size.x * fu) + v * (p.size.y * fv);
+            const double fu = p.nx > 1 ? double(i) / double(p.nx - 1) : 0.0;
+            const double fv = p.ny > 1 ? double(j) / double(p.ny - 1) : 0.0;
+            const glm::dvec3 r = start + glm::dvec3(u) * (double(p.size.x) * fu) + glm::dvec3(v) * (double(p.size.y) * fv);
+            restD[size_t(j * p.nx + i)] = r;
+            rest[size_t(j * p.nx + i)] = glm::vec3(r);
         }
     baseInvMass.assign(size_t(n), float(n) / p.mass);
     pinned.assign(size_t(n), 0);
@@ -91,7 +134,7 @@ void Cloth::Impl::build() {
                     const int colour = (o.dx != 0 ? i / std::abs(o.dx) : j / std::abs(o.dy)) % 2;
                     if (colour != parity) continue;
                     const int a = j * p.nx + i, b = j2 * p.nx + i2;
-                    constraints.push_back({a, b, glm::length(rest[size_t(b)] - rest[size_t(a)])});
+                    constraints.push_back({a, b, float(glm::length(restD[size_t(b)] - restD[size_t(a)]))});
                     family.push_back(uint8_t(o.family));
                 }
             batch.end = int(constraints.size());
@@ -105,6 +148,8 @@ void Cloth::Impl::build() {
         restLength[c] = constraints[c].rest;
     }
     active.assign(constraints.size(), 1);
+    faceAlive.assign(size_t(2) * size_t(std::max(p.nx - 1, 0)) * size_t(std::max(p.ny - 1, 0)), 1);
+    torn = false;
     lambda.assign(constraints.size(), 0.0f);
     // WEFT_CLOTH_AOS=1 keeps the record layout (for A/B timings and the identity tests)
     const char* aos = std::getenv("WEFT_CLOTH_AOS");
@@ -186,11 +231,10 @@ void Cloth::Impl::applyInverseMasses() {
         particles[size_t(k)].w = fixed ? 0.0f : baseInvMass[size_t(k)];
     }
     for (int g : grabbed) particles[size_t(g)].w = 0.0f;
-    // Constraints touching a hole are gone for good (the mesh leaves them out too).
-    for (size_t c = 0; c < constraints.size(); ++c)
-        if (hole[size_t(constraints[c].a)] || hole[size_t(constraints[c].b)]) active[c] = 0;
-    denseStale = true;
+    // Constraints touching a hole are gone (the mesh leaves them out too), and torn ones.
+    updateActive();
     rebuildTethers();
+    publish(); // the records carry w
 }
 
 void Cloth::Impl::rebuildTethers() {
@@ -208,6 +252,12 @@ void Cloth::Impl::rebuildTethers() {
     for (int k = 0; k < n; ++k)
         if (!hole[size_t(k)] && particles[size_t(k)].w == 0.0f) anchors.push_back(k);
     if (anchors.empty()) return;
+    // Holes or tears: straight rest distances may cross empty space (too short a tether) or
+    // tie a piece to an anchor it is no longer attached to; measure along the cloth instead.
+    if (std::find(active.begin(), active.end(), uint8_t(0)) != active.end()) {
+        tethersAlongCloth(anchors);
+        return;
+    }
     tetherSlots = int(std::min(kMaxAnchors, anchors.size()));
     tetherAnchor.resize(size_t(tetherSlots) * size_t(n));
     tetherLength.assign(size_t(tetherSlots) * size_t(n), std::numeric_limits<float>::infinity());

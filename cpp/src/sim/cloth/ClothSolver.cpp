@@ -82,7 +82,7 @@ void Cloth::Impl::collide(int begin, int end) {
     for (int k = begin; k < end; ++k) {
         Particle& p = particles[size_t(k)];
         if (p.w == 0.0f) continue;
-        for (const Collider& c : colliders) {
+        for (const Collider& c : localColliders) {
             glm::vec3 n;
             const float s = c.distance(p.x, n);
             if (s >= thickness) continue;
@@ -259,17 +259,7 @@ void Cloth::Impl::substep(float h, float damping) {
 }
 
 void Cloth::Impl::afterStep(float dt) {
-    if (params.tearStrain > 0.0f) {
-        for (size_t c = 0; c < constraints.size(); ++c) {
-            if (!active[c]) continue;
-            const cloth::Constraint& k = constraints[c];
-            const float len = glm::length(particles[size_t(k.b)].x - particles[size_t(k.a)].x);
-            if (std::abs(len - k.rest) > params.tearStrain * k.rest) {
-                active[c] = 0;
-                denseStale = true;
-            }
-        }
-    }
+    if (params.tearStrain > 0.0f) tearFaces();
     if (params.sleepThreshold > 0.0f) {
         double sum = 0.0;
         int count = 0;

@@ -28,15 +28,22 @@ def box_downsample(image: np.ndarray, factor: int) -> np.ndarray:
     return image[:h * factor, :w * factor].reshape(h, factor, w, factor, -1).mean(axis=(1, 3))
 
 
-def _copy_settings(src, dst) -> None:
+def _copy_settings(src, dst, factor: int) -> None:
+    """The frame's settings for the supersampled reference -- except anti-aliasing: the
+    reference is point-sampled (msaa 1, so hair is drawn without its coverage strips), a truth
+    that shares no AA code with the frame it judges; blurs in pixels scale with the factor."""
     for name in ("shadow_map_size", "pcf_radius", "bias_constant", "bias_slope", "bias_max",
                  "normal_offset", "hair_primitive", "hair_width", "hair_transparency",
-                 "hair_dom", "hair_dom_size", "msaa"):
+                 "hair_dom", "hair_dom_size", "bounce", "ambient_occlusion"):
         if hasattr(src, name):
             try:
                 setattr(dst, name, getattr(src, name))
             except (AttributeError, TypeError):
                 pass  # read-only on this build
+    if hasattr(dst, "msaa"):
+        dst.msaa = 1
+    if hasattr(src, "ambient_occlusion_blur"):
+        dst.ambient_occlusion_blur = min(64.0, src.ambient_occlusion_blur * factor)
 
 
 def aa_edge_error(scene, camera, renderer, factor: int = FACTOR,
@@ -49,9 +56,17 @@ def aa_edge_error(scene, camera, renderer, factor: int = FACTOR,
 
     w, h = int(renderer.width), int(renderer.height)
     debug = renderer.render_debug(scene, camera)  # never multisampled: ids and masks only
+    if getattr(renderer, "hair_transparency", False) and getattr(scene, "hair_count", 0):
+        # transparent strands (WBOIT) are not in the debug "hair" id map: take their pixels
+        # from a debug frame that draws them opaque
+        renderer.hair_transparency = False
+        try:
+            debug["hair"] = renderer.render_debug(scene, camera)["hair"]
+        finally:
+            renderer.hair_transparency = True
     normal = np.asarray(renderer.render_linear(scene, camera), np.float64)[..., :3]
     big = (make_renderer or (lambda ww, hh: weft.Renderer(ww, hh)))(w * factor, h * factor)
-    _copy_settings(renderer, big)
+    _copy_settings(renderer, big, factor)
     hi = np.asarray(big.render_linear(scene, camera), np.float64)[..., :3]
     reference = box_downsample(hi, factor)
     diff = np.abs(to_display(normal, exposure) - to_display(reference, exposure)).mean(axis=-1)
@@ -94,4 +109,31 @@ def hair_scene(width: int = 160, height: int = 120, strands: int = 300):
     camera = weft.Camera(position=tuple(centre + (0.0, 0.0, distance)), target=tuple(centre),
                          fov_y=fov)
     pixel = 2.0 * distance * np.tan(fov / 2) / height
+    return scene, camera, float(pixel)
+
+
+def fur_scene(width: int = 320, height: int = 240):
+    """The demo's furry ball (cpp/src/app/DemoScene.cpp: 9000 strands/m^2, 6 segments, 9 cm,
+    25% transparent, so drawn through WBOIT) on a ground under a sun; returns (scene, camera,
+    ribbon width in metres about one pixel of a ``height``-row frame at the ball)."""
+    import weft
+
+    scene = weft.Scene()
+    ball = weft.Mesh.uv_sphere(0.28, 24, 12)
+    at = np.eye(4)
+    at[:3, 3] = (0.0, 0.3, 0.0)
+    scene.add_mesh(ball, weft.Material(kd=(0.35, 0.22, 0.1)), transform=at)
+    fur = weft.generate_fur(ball, density=9000.0, segments=6, length=0.09, length_jitter=0.3,
+                            direction_jitter=0.35, down=(0.0, -6.0, 0.0))
+    fur = weft.HairStrands(np.asarray(fur.points), np.asarray(fur.segments),
+                           default_transparency=0.25)
+    scene.add_hair(fur, weft.HairMaterial("kajiya_kay", diffuse=(0.5, 0.32, 0.15),
+                                          specular=(0.15, 0.15, 0.15)), at)
+    scene.add_mesh(weft.Mesh.plane(4.0, 4.0), weft.Material(kd=(0.4, 0.5, 0.3)),
+                   cast_shadows=False)
+    scene.add_light(weft.DirectionalLight(direction=(-0.4, -1.0, -0.5), intensity=2.0))
+    scene.ambient = (0.25, 0.28, 0.35)
+    eye, target, fov = np.array([0.0, 0.55, 1.3]), np.array([0.0, 0.3, 0.0]), 0.6
+    camera = weft.Camera(position=tuple(eye), target=tuple(target), fov_y=fov)
+    pixel = 2.0 * float(np.linalg.norm(eye - target)) * np.tan(fov / 2) / height
     return scene, camera, float(pixel)

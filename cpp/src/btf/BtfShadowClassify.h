@@ -1,0 +1,58 @@
+#pragma once
+// Cast-shadow classification of one texel's samples against a fit (SPEC §3.5 robustness),
+// shared by the Blinn-Phong and Lafortune fits. A cast shadow removes the diffuse and specular
+// light and leaves the constant term, so a sample is taken as shadowed when it lies below
+// base + diffuse / 2 (half the diffuse light; channel sums) and below the prediction by more
+// than 4 robust standard deviations of the texel's residuals under steep light (and 2% of the
+// prediction): noise and model error stay in.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace weft {
+
+/// Per sample s < count: lit[s] the fit's light-dependent part, diffuse[s] its diffuse part,
+/// seen[s] the observed value minus `base` (the constant term), lz[s] the light's z, used[s] > 0
+/// for a sample the fit used. Writes weights (1 used, 0 left out; all 1 when fewer than
+/// `minUsed` would remain) and returns the number left out; `misfit` counts the samples off the
+/// prediction by more than 3 σ either way (a fit pulled by shadows may hide them from the first
+/// test).
+inline int classifyCastShadows(size_t count, const double* lit, const double* diffuse,
+                               const double* seen, double base, const float* lz,
+                               const float* used, int minUsed, float* weights, int& misfit) {
+    std::vector<double> res;
+    res.reserve(count);
+    // σ from the steep lights (θ_l <= 31°), which cast shadows rarely reach: a fit pulled by
+    // shadowed grazing samples misses all samples by more than the noise
+    for (size_t s = 0; s < count; ++s)
+        if (used[s] > 0.0f && lz[s] >= 0.85f) res.push_back(std::fabs(seen[s] - lit[s]));
+    if (res.size() < 5)
+        for (size_t s = 0; s < count; ++s)
+            if (used[s] > 0.0f) res.push_back(std::fabs(seen[s] - lit[s]));
+    // robust σ of those residuals (median absolute residual / 0.6745)
+    double sigma = 0.0;
+    if (!res.empty()) {
+        std::nth_element(res.begin(), res.begin() + long(res.size() / 2), res.end());
+        sigma = res[res.size() / 2] / 0.6745;
+    }
+    int left = 0;
+    misfit = 0;
+    for (size_t s = 0; s < count; ++s) {
+        const double margin = std::max(4.0 * sigma, 0.02 * (lit[s] + base));
+        const bool below = lit[s] - seen[s] > margin;
+        // half the diffuse light, not of the whole prediction: a highlight that overshoots a
+        // sample must not make it look shadowed (it would then be left out and never corrected)
+        const bool dark = below && seen[s] < 0.5 * diffuse[s];
+        weights[s] = dark ? 0.0f : 1.0f;
+        left += dark ? 1 : 0;
+        misfit += std::fabs(lit[s] - seen[s]) > 0.75 * margin ? 1 : 0;
+    }
+    if (int(count) - left < minUsed) { // too few left to fit the unknowns well: use them all
+        std::fill(weights, weights + count, 1.0f);
+        return 0;
+    }
+    return left;
+}
+
+} // namespace weft
