@@ -97,6 +97,7 @@ def _configs() -> List[Tuple[str, str, int]]:
 
 def run(args: argparse.Namespace) -> int:
     import weft.batch as wb
+    from weft.batch.btf_batch import _stages
 
     os.environ.setdefault("LP_NUM_THREADS", "1")  # before any Vulkan device; workers inherit it
     quick = bool(args.quick)
