@@ -1,4 +1,4 @@
-"""Command line of weft: ``python -m weft {demo,devices,render,btf,ibl} ...``.
+"""Command line of weft: ``python -m weft {demo,devices,render,btf,ibl,batch} ...``.
 
     python -m weft demo [--width W] [--height H] [--frames N] [--headless] [--no-vsync]
                         [--out PNG|DIR] [--screenshot PNG] [--stats JSON] [--script FILE]
@@ -9,6 +9,8 @@
                           [--dome N] [--sun-lights N]] [--background PNG]
     python -m weft btf {synth PRESET OUT, fit PATH --out DIR} ...   (see weft.btf.cli)
     python -m weft ibl {convert,irradiance,extract-lights} ...   (see python -m weft ibl --help)
+    python -m weft batch {btf DATASET... --out DIR, render JOBS.json --out DIR} [--serial |
+                         --address HOST:PORT] ...   (Ray; see python -m weft batch --help)
 
 Benchmarks have their own entry point: ``python -m weft.bench --help``.
 """
@@ -54,7 +56,8 @@ def build_parser() -> argparse.ArgumentParser:
         description="weft: real-time cloth, hair and fur with BTF materials and image-based "
                     "lighting (Vulkan). Run the demo, list Vulkan devices, render the default "
                     "or the cloth scene to a PNG (lit by a captured environment, composited "
-                    "over a photo), synthesise or fit BTFs, convert and filter environments.",
+                    "over a photo), synthesise or fit BTFs, convert and filter environments, and run "
+                    "batches of BTF fits or frames on a Ray cluster.",
         epilog="Environment: WEFT_DEVICE=<index|name substring> picks the Vulkan device, "
                "WEFT_VALIDATION=1 enables the validation layers. Benchmarks: "
                "python -m weft.bench --help",
@@ -174,6 +177,10 @@ def build_parser() -> argparse.ArgumentParser:
     from weft.ibl.cli import add_ibl_parser
 
     add_ibl_parser(sub)
+
+    from weft.batch.cli import add_parser as add_batch_parser
+
+    add_batch_parser(sub)
     return parser
 
 

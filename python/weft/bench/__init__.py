@@ -28,6 +28,7 @@ SUBSYSTEMS: Dict[str, str] = {
     "btf": "weft.bench.btf",
     "ibl": "weft.bench.ibl",
     "picture": "weft.bench.picture",
+    "batch": "weft.bench.batch",
 }
 
 __all__ = ["SUBSYSTEMS", "main", "load_subsystem", "machine_info", "Progress", "write_report",

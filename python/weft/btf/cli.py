@@ -63,6 +63,14 @@ def add_parsers(sub: Any) -> None:
     f = cmds.add_parser("fit", help="fit a BTF folder/zip and write maps, metrics and a report")
     f.add_argument("path", help="BTF folder or zip (Bonn layout)")
     f.add_argument("--out", required=True, help="output folder")
+    add_fit_options(f)
+    f.add_argument("--no-progress", dest="progress", action="store_false")
+    f.set_defaults(handler=fit_report.cmd_fit)
+
+
+def add_fit_options(f: Any, truth: bool = True) -> None:
+    """The fit options of ``btf fit`` (also taken by ``python -m weft batch btf``, where each
+    dataset's truth is found next to it: ``truth=False`` leaves out --truth)."""
     f.add_argument("--views", default="frontal", help="'frontal', 'all' or 'T,P;T,P' degrees")
     f.add_argument("--gamma", choices=("raw", "linear"), default="raw")
     f.add_argument("--robust", action="store_true", help="outlier-robust linear fit (IRLS)")
@@ -81,9 +89,11 @@ def add_parsers(sub: Any) -> None:
     f.add_argument("--lafortune", type=int, choices=(0, 1, 2), nargs="+", default=[1],
                    help="also fit diffuse + this many Lafortune lobes, e.g. '1 2' (0 = none; "
                         "default 1)")
-    f.add_argument("--truth", default=None, help="ground-truth BtfMaterial folder")
-    f.add_argument("--no-progress", dest="progress", action="store_false")
-    f.set_defaults(handler=fit_report.cmd_fit)
+    f.add_argument("--no-figures", dest="figures", action="store_false",
+                   help="write maps, metrics.json and report.md without the matplotlib figures "
+                        "(most of a small dataset's time)")
+    if truth:
+        f.add_argument("--truth", default=None, help="ground-truth BtfMaterial folder")
 
 
 def cmd_synth(args: argparse.Namespace) -> int:

@@ -14,6 +14,7 @@ import argparse
 import json
 import os
 import time
+from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
@@ -66,52 +67,137 @@ class Fitter:
         return s
 
 
+@dataclass
+class Fitted:
+    """One fitted model before scoring: its name, the model, fit seconds and report extras."""
+
+    name: str
+    model: Any
+    seconds: float
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass
+class SeedFits:
+    """The whole-dataset fits (one pass over all texels each; the specular exponent is chosen
+    over all texels): the per-texel fits start from ``flat`` and ``fitted``."""
+
+    models: List[Fitted]
+    linear: btf_fit.LinearFit
+    flat: btf_fit.SpecularFit
+    fitted: btf_fit.SpecularFit
+
+
+def lafortune_lobes(args: argparse.Namespace) -> List[int]:
+    return sorted({int(v) for v in args.lafortune if int(v) > 0})
+
+
+def fit_steps(args: argparse.Namespace) -> int:
+    """How many fits :func:`fit_all` runs for these options."""
+    return 4 + int(args.robust) + 2 * int(args.nonlinear) + len(lafortune_lobes(args))
+
+
+def _threads(args: argparse.Namespace) -> int:
+    return int(getattr(args, "threads", 0) or 0)
+
+
+def seed_fits(samples: Any, args: argparse.Namespace, run: Any) -> SeedFits:
+    """Linear (and robust linear) fit and both specular fits. ``run(label, fn, *a, **k)``
+    returns (result, seconds) (:meth:`Fitter.run`)."""
+    threads = _threads(args)
+    models: List[Fitted] = []
+    linear, t = run("linear fit", btf_fit.fit_linear, samples, threads=threads)
+    models.append(Fitted("linear", linear.material(samples), t))
+    seed_fit = linear
+    if args.robust:
+        seed_fit, t = run("robust linear fit", btf_fit.fit_linear, samples, robust=True,
+                          threads=threads)
+        models.append(Fitted("linear_robust", seed_fit.material(samples), t))
+    search_max = args.max_exponent or 4096
+    flat, t = run("specular (n_s = (0,0,1))", btf_fit.fit_specular, samples, seed_fit, True,
+                  search_max, args.per_texel_exponent, threads=threads)
+    models.append(Fitted("specular_eq4.30", flat.material, t))
+    fitted, t = run("specular (fitted n)", btf_fit.fit_specular, samples, seed_fit, False,
+                    search_max, threads=threads)
+    models.append(Fitted("specular_eq4.29", fitted.material, t))
+    return SeedFits(models, linear, flat, fitted)
+
+
+def blinn_phong_fits(samples: Any, flat: BtfMaterial, fitted: BtfMaterial,
+                     args: argparse.Namespace, run: Any) -> List[Fitted]:
+    """Per-texel Blinn-Phong with both highlights, seeded by the specular fits ``fitted``
+    (eq. 4.29) and ``flat`` (eq. 4.30). Every texel is fitted on its own (the exponent bound
+    comes from the light directions only), so a band of texels, samples and seeds cropped
+    alike, gives those rows of these maps."""
+    out: List[Fitted] = []
+    if not args.nonlinear:
+        return out
+    for name, seed, flat_ns in (("blinn_phong_n", fitted, False),
+                                ("blinn_phong_flat", flat, True)):
+        label = "Blinn-Phong (n_s = " + ("(0,0,1))" if flat_ns else "n)")
+        bp, t = run(label, btf_fit.fit_blinn_phong, samples, seed, args.solver,
+                    max_exponent=args.max_exponent, flat_specular_normal=flat_ns,
+                    visibility=args.visibility, threads=_threads(args),
+                    luminance_normals=getattr(args, "luminance_normals", False))
+        out.append(Fitted(name, bp.material, t, dict(
+            solver=bp.solver, mean_iterations=bp.mean_iterations,
+            shadowed_fraction=getattr(bp, "shadowed_fraction", None))))
+    return out
+
+
+def blinn_phong_choice(samples: Any, scored: List[Scored]) -> Dict[str, Any]:
+    """Which Blinn-Phong highlight (n_s = n or (0, 0, 1)) is drawn
+    (:func:`weft.btf.scoring.highlight_choice`); {} without the Blinn-Phong fits."""
+    by = {s.name: s for s in scored}
+    if "blinn_phong_n" not in by or "blinn_phong_flat" not in by:
+        return {}
+    pick = scoring.highlight_choice(
+        samples, {k: (by[k], by[k].extra.get("shadowed_fraction"))
+                  for k in ("blinn_phong_n", "blinn_phong_flat")})
+    return {"chosen": pick["chosen"], "deviation_n": by["blinn_phong_n"].deviation,
+            "deviation_flat": by["blinn_phong_flat"].deviation, "rule": pick["rule"]}
+
+
+def lafortune_seed(flat: BtfMaterial, scored: List[Scored],
+                   choice: Dict[str, Any]) -> Tuple[BtfMaterial, bool]:
+    """(seed, fixed_normal) of the Lafortune fits: the chosen Blinn-Phong fit with its normal
+    kept when there is one (with a frontal view the lobe depends on l_z only and trades off with
+    the diffuse term), else the eq. 4.30 specular fit."""
+    if not choice:
+        return flat, False
+    return next(s.model for s in scored if s.name == choice["chosen"]), True
+
+
+def lafortune_fits(samples: Any, seed: BtfMaterial, fixed_normal: bool,
+                   args: argparse.Namespace, run: Any) -> List[Fitted]:
+    """Per-texel diffuse + Lafortune lobes (every count asked for), seeded by ``seed``; per
+    texel like :func:`blinn_phong_fits`, so it splits into bands the same way."""
+    out: List[Fitted] = []
+    for count in lafortune_lobes(args):
+        laf, t = run(f"Lafortune ({count} lobe{'s' if count > 1 else ''})",
+                     btf_fit.fit_lafortune, samples, seed, count, threads=_threads(args),
+                     fixed_normal=fixed_normal)
+        out.append(Fitted(f"lafortune_{count}", laf, t,
+                          dict(mean_iterations=laf.mean_iterations)))
+    return out
+
+
+def score_all(samples: Any, models: List[Fitted]) -> List[Scored]:
+    return [scoring.score(samples, m.name, m.model, m.seconds, **m.extra) for m in models]
+
+
 def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[str, Any],
                                                                btf_fit.LinearFit]:
     """Fits every model; returns (scored models, Blinn-Phong choice, plain linear fit)."""
-    lobes = sorted({int(v) for v in args.lafortune if int(v) > 0})
-    steps = 4 + int(args.robust) + 2 * int(args.nonlinear) + len(lobes)
-    f = Fitter(samples, steps, args.progress)
-    linear, t = f.run("linear fit", btf_fit.fit_linear, samples)
-    f.add("linear", linear.material(samples), t)
-    seed_fit = linear
-    if args.robust:
-        seed_fit, t = f.run("robust linear fit", btf_fit.fit_linear, samples, robust=True)
-        f.add("linear_robust", seed_fit.material(samples), t)
-    search_max = args.max_exponent or 4096
-    flat, t = f.run("specular (n_s = (0,0,1))", btf_fit.fit_specular, samples, seed_fit, True,
-                    search_max, args.per_texel_exponent)
-    f.add("specular_eq4.30", flat.material, t)
-    fitted, t = f.run("specular (fitted n)", btf_fit.fit_specular, samples, seed_fit, False,
-                      search_max)
-    f.add("specular_eq4.29", fitted.material, t)
-    choice: Dict[str, Any] = {}
-    if args.nonlinear:
-        for name, seed, flat_ns in (("blinn_phong_n", fitted.material, False),
-                                    ("blinn_phong_flat", flat.material, True)):
-            label = "Blinn-Phong (n_s = " + ("(0,0,1))" if flat_ns else "n)")
-            bp, t = f.run(label, btf_fit.fit_blinn_phong, samples, seed, args.solver,
-                          max_exponent=args.max_exponent, flat_specular_normal=flat_ns,
-                          visibility=args.visibility,
-                          luminance_normals=getattr(args, "luminance_normals", False))
-            f.add(name, bp.material, t, solver=bp.solver, mean_iterations=bp.mean_iterations,
-                  shadowed_fraction=getattr(bp, "shadowed_fraction", None))
-        by = {s.name: s for s in f.scored}
-        pick = scoring.highlight_choice(
-            samples, {k: (by[k], by[k].extra.get("shadowed_fraction"))
-                      for k in ("blinn_phong_n", "blinn_phong_flat")})
-        choice = {"chosen": pick["chosen"], "deviation_n": by["blinn_phong_n"].deviation,
-                  "deviation_flat": by["blinn_phong_flat"].deviation, "rule": pick["rule"]}
-    # Lafortune keeps the chosen Blinn-Phong normal when there is one: with a frontal view its
-    # lobe depends on l_z only and trades off with the diffuse term
-    laf_seed = by[choice["chosen"]].model if choice else flat.material
-    for count in lobes:
-        laf, t = f.run(f"Lafortune ({count} lobe{'s' if count > 1 else ''})",
-                       btf_fit.fit_lafortune, samples, laf_seed, count,
-                       fixed_normal=bool(choice))
-        f.add(f"lafortune_{count}", laf, t, mean_iterations=laf.mean_iterations)
+    f = Fitter(samples, fit_steps(args), args.progress)
+    seeds = seed_fits(samples, args, f.run)
+    scored = score_all(samples, seeds.models + blinn_phong_fits(
+        samples, seeds.flat.material, seeds.fitted.material, args, f.run))
+    choice = blinn_phong_choice(samples, scored)
+    seed, fixed = lafortune_seed(seeds.flat.material, scored, choice)
+    scored += score_all(samples, lafortune_fits(samples, seed, fixed, args, f.run))
     f.progress.close()
-    return f.scored, choice, linear
+    return scored, choice, seeds.linear
 
 
 def model_results(scored: List[Scored], best: Scored) -> Dict[str, Dict[str, Any]]:
@@ -176,11 +262,11 @@ def write_figures(out: str, samples: Any, ordered: List[Scored]) -> Dict[str, An
     return files
 
 
-def cmd_fit(args: argparse.Namespace) -> int:
-    t0 = time.perf_counter()
-    samples = btf_fit.load(args.path, parse_views(args.views), args.gamma)
-    load_s = time.perf_counter() - t0
-    scored, choice, linear = fit_all(samples, args)
+def write_fit(args: argparse.Namespace, samples: Any, scored: List[Scored],
+              choice: Dict[str, Any], linear: btf_fit.LinearFit,
+              load_s: float) -> Tuple[Scored, Dict[str, Dict[str, Any]]]:
+    """Ranks the scored models and writes maps, metrics.json, report.md and figures into
+    ``args.out``; returns (best model, per-model results)."""
     best = scoring.best_of(scored)
     accurate = scoring.best_of(scored, drawable_only=False)
     ordered = [best] + [s for s in scored if s is not best]
@@ -188,6 +274,15 @@ def cmd_fit(args: argparse.Namespace) -> int:
     truth_dir = args.truth or truth_folder(args.path)
     truth = truth_table(truth_dir, ordered) if truth_dir else None
     write_outputs(args, samples, ordered, results, choice, best, accurate, linear, truth, load_s)
+    return best, results
+
+
+def cmd_fit(args: argparse.Namespace) -> int:
+    t0 = time.perf_counter()
+    samples = btf_fit.load(args.path, parse_views(args.views), args.gamma)
+    load_s = time.perf_counter() - t0
+    scored, choice, linear = fit_all(samples, args)
+    best, results = write_fit(args, samples, scored, choice, linear, load_s)
     print(f"wrote maps, metrics.json, report.md and figures to {args.out}")
     print(f"best model (deviation as drawn): {best.name} {best.deviation:.4f}%")
     print(report.seed_tables(results))
@@ -226,19 +321,25 @@ def write_outputs(args: argparse.Namespace, samples: Any, ordered: List[Scored],
                   accurate: Scored, linear: btf_fit.LinearFit, truth: Optional[Dict[str, Any]],
                   load_s: float) -> None:
     out = args.out
-    os.makedirs(os.path.join(out, "figures"), exist_ok=True)
+    draw = getattr(args, "figures", True)  # --no-figures: matplotlib is most of a small fit's time
+    os.makedirs(os.path.join(out, "maps"), exist_ok=True)
     previews = {s.name: write_maps(out, s) for s in ordered}
     texture, how = report.preview("texture", linear.texture)
     weft.save_png(os.path.join(out, "maps", "texture.png"), texture)
     previews["texture"] = {"texture": how}
-    figures = write_figures(out, samples, ordered)
-    for s in ordered:
-        name = f"{s.name}_maps.png"
-        report.plot_maps(os.path.join(out, "figures", name), f"{s.label}: fitted maps",
-                         report.model_maps(s.model))
-        figures.setdefault("maps", {})[s.name] = name
-    bins = report.plot_histogram(os.path.join(out, "figures", "histogram.png"),
-                                 {s.label: s.errors * 100 for s in ordered}, best.label)
+    errors = {s.label: s.errors * 100 for s in ordered}
+    figures: Dict[str, Any] = {}
+    if draw:
+        figures = write_figures(out, samples, ordered)
+        for s in ordered:
+            name = f"{s.name}_maps.png"
+            report.plot_maps(os.path.join(out, "figures", name), f"{s.label}: fitted maps",
+                             report.model_maps(s.model))
+            figures.setdefault("maps", {})[s.name] = name
+        bins = report.plot_histogram(os.path.join(out, "figures", "histogram.png"), errors,
+                                     best.label)
+    else:
+        bins = report.histogram_rows(errors, best.label)
     h, w = samples.height, samples.width
     metrics = {"path": os.path.abspath(args.path), "samples": samples.count, "size": [w, h],
                "gamma": args.gamma, "robust": args.robust, "best": best.name,
@@ -303,14 +404,19 @@ def markdown(args: argparse.Namespace, samples: Any, ordered: List[Scored],
               "texels do not turn the rest black); normals are (n + 1) / 2.", ""]
     for s in ordered:
         scales = ", ".join(f"{k}: {v}" for k, v in previews[s.name].items())
-        lines += [f"**{results[s.name]['label']}** ({scales})", "",
-                  f"![{s.name} maps](figures/{figures['maps'][s.name]})", ""]
+        lines += [f"**{results[s.name]['label']}** ({scales})", ""]
+        if figures:
+            lines += [f"![{s.name} maps](figures/{figures['maps'][s.name]})", ""]
     lines += [f"Texture T: {previews['texture']['texture']}.", "",
-              f"## Per-sample deviation histogram (best: {best.name}, filled)", "",
-              "![histogram](figures/histogram.png)", "",
-              markdown_table(["from %", "to %", f"samples ({best.name})"],
-                             [[f"{a:.4f}", f"{b:.4f}", c] for a, b, c in bins if c]), "",
-              "## Difference images (first sample of each θ_l group; colour bar in luminance)",
+              f"## Per-sample deviation histogram (best: {best.name}, filled)", ""]
+    if figures:
+        lines += ["![histogram](figures/histogram.png)", ""]
+    lines += [markdown_table(["from %", "to %", f"samples ({best.name})"],
+                             [[f"{a:.4f}", f"{b:.4f}", c] for a, b, c in bins if c]), ""]
+    if not figures:
+        lines += ["Figures were not drawn (--no-figures).", ""]
+        return "\n".join(lines)
+    lines += ["## Difference images (first sample of each θ_l group; colour bar in luminance)",
               ""]
     for s in ordered:
         lines += [f"**{results[s.name]['label']}**", "",

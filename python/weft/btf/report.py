@@ -180,6 +180,14 @@ def plot_polar(path: str, texel: Tuple[int, int], angles: np.ndarray, measured: 
     return scale
 
 
+def histogram_rows(errors: Dict[str, np.ndarray], best: str) -> List[Any]:
+    """The best model's (low, high, count) bins of :func:`plot_histogram`, without drawing."""
+    every = np.concatenate([np.asarray(e, np.float64) for e in errors.values()])
+    edges = np.histogram_bin_edges(every[np.isfinite(every)], bins=30)
+    counts, _ = np.histogram(errors[best], bins=edges)
+    return [(float(edges[i]), float(edges[i + 1]), int(c)) for i, c in enumerate(counts)]
+
+
 def plot_histogram(path: str, errors: Dict[str, np.ndarray], best: str) -> List[Any]:
     """Per-sample deviation (mean squared error x 100, %) of every model as step histograms on
     shared bins, the best model filled; returns the best model's (low, high, count) bins."""
