@@ -89,3 +89,37 @@ def test_compiled_callables_have_signatures():
     assert math.isclose(sig.parameters["curl_radius"].default, 0.01)  # not 0.00999999977...
     assert str(sig.parameters["strands"].annotation) == "int"
     assert list(inspect.signature(weft.Renderer.render).parameters) == ["self", "scene", "camera"]
+
+
+def _sweep_cases():
+    """Every keyword of every constructor with a value no parameter may take: NaN, +-inf and
+    -1e30 for floats; -1 and 2**40 for ints (counts and sizes)."""
+    cases = []
+    for cls in CLASSES:
+        try:
+            params = list(inspect.signature(cls.__init__).parameters.values())[1:]
+        except (TypeError, ValueError):
+            continue
+        if any(p.default is inspect.Parameter.empty for p in params):
+            continue  # needs arguments this sweep cannot invent
+        for p in params:
+            ann = str(p.annotation)
+            values = {"float": (math.nan, math.inf, -math.inf, -1e30),
+                      "int": (-1, 2 ** 40)}.get(ann, ())
+            cases += [(cls, p.name, v) for v in values]
+    return cases
+
+
+SWEEP = _sweep_cases()
+
+
+def test_the_sweep_covers_the_constructors():
+    assert len(SWEEP) > 40 and len({c for c, _, _ in SWEEP}) >= 5
+
+
+@pytest.mark.parametrize("cls,name,value", SWEEP,
+                         ids=[f"{c.__name__}.{n}={v}" for c, n, v in SWEEP])
+def test_impossible_values_are_refused(cls, name, value):
+    """weft.InvalidArgument (ArgumentError included), never acceptance or another error."""
+    with pytest.raises(weft.InvalidArgument):
+        cls(**{name: value})
