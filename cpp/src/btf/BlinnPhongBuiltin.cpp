@@ -383,20 +383,39 @@ bool invertSubset(const double g[3][3], int mask, double inv[3][3]) {
     return true;
 }
 
-// Non-negative least squares for 3 coefficients: min Σp² - 2 bᵀx + xᵀGx over x >= 0. The
-// optimum is the unconstrained solution on its free set, so of the (at most 7) subsets whose
-// unconstrained solution is positive the cheapest is the optimum; the full set is tried first
-// and is the answer whenever its solution is feasible. Returns the cost; x and inv (see
-// Evaluation::inv) describe the optimum.
-double nnls3(const double g[3][3], const double b[3], double squares, double x[3],
+// The inverses of G's principal submatrices, computed when first asked for: the three channels
+// share G, so one evaluation inverts each subset at most once (per channel it was 19% of a fit).
+struct SubsetInverses {
+    const double (*g)[3];
+    double inv[8][3][3];
+    signed char state[8] = {0, 0, 0, 0, 0, 0, 0, 0}; // 0 not yet, 1 invertible, -1 singular
+    explicit SubsetInverses(const double gram[3][3]) : g(gram) {}
+    const double (*get(int mask))[3] {
+        if (state[mask] == 0) state[mask] = invertSubset(g, mask, inv[mask]) ? 1 : -1;
+        return state[mask] > 0 ? inv[mask] : nullptr;
+    }
+};
+
+// Non-negative least squares for 3 coefficients: min Σp² - 2 bᵀx + xᵀGx over x >= 0. G is
+// positive definite on every subset that inverts, so the optimum is the unique point meeting
+// the KKT conditions: the unconstrained solution y on its free set F is positive there and the
+// gradient G y - b is >= 0 on the coefficients held at 0. Free sets are tried in the order they
+// occur (all free; no highlight; no ambient; diffuse only; ...), so the first test usually
+// decides. Without a KKT point (a singular subset) the cheapest positive subset solution is
+// taken, as an exhaustive search would. Returns the cost; x and inv (see Evaluation::inv)
+// describe the optimum.
+double nnls3(SubsetInverses& subsets, const double b[3], double squares, double x[3],
              double inv[3][3]) {
-    double best = squares, tmp[3][3];
+    static const int order[7] = {7, 3, 5, 1, 6, 2, 4};
+    const double(*g)[3] = subsets.g;
+    double best = squares;
     int bestMask = 0;
     x[0] = x[1] = x[2] = 0.0;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) inv[i][j] = 0.0;
-    for (int mask = 7; mask >= 1; --mask) {
-        if (!invertSubset(g, mask, tmp)) continue;
+    for (int mask : order) {
+        const double(*tmp)[3] = subsets.get(mask);
+        if (!tmp) continue;
         double y[3], gain = 0.0;
         bool feasible = true;
         for (int i = 0; i < 3; ++i) {
@@ -405,7 +424,12 @@ double nnls3(const double g[3][3], const double b[3], double squares, double x[3
             gain += b[i] * y[i];
         }
         if (!feasible) continue;
-        if (squares - gain < best || bestMask == 0) {
+        bool kkt = true;
+        for (int i = 0; i < 3; ++i)
+            if (!(mask & (1 << i)) &&
+                g[i][0] * y[0] + g[i][1] * y[1] + g[i][2] * y[2] - b[i] < 0.0)
+                kkt = false;
+        if (squares - gain < best || bestMask == 0 || kkt) {
             best = squares - gain;
             bestMask = mask;
             for (int i = 0; i < 3; ++i) {
@@ -413,7 +437,7 @@ double nnls3(const double g[3][3], const double b[3], double squares, double x[3
                 for (int j = 0; j < 3; ++j) inv[i][j] = tmp[i][j];
             }
         }
-        if (mask == 7) break; // the unconstrained optimum is feasible
+        if (kkt) break;
     }
     return std::max(best, 0.0);
 }
@@ -451,11 +475,12 @@ void evaluateCost(const BlinnPhongTexel& tx, const double theta[3], Evaluation& 
     G[1][2] = G[2][1] = sums.sg;
     G[2][2] = sums.sgg;
     double cost = 0.0;
+    SubsetInverses subsets(G);
     for (int c = 0; c < 3; ++c) {
         ev.b[c][0] = sums.sdp[c];
         ev.b[c][1] = tx.sums[c];
         ev.b[c][2] = sums.sgp[c];
-        cost += nnls3(G, ev.b[c], tx.squares[c], ev.result.coef[c], ev.inv[c]);
+        cost += nnls3(subsets, ev.b[c], tx.squares[c], ev.result.coef[c], ev.inv[c]);
     }
     for (int i = 0; i < 3; ++i) ev.result.theta[i] = theta[i];
     ev.result.cost = cost;
@@ -498,20 +523,22 @@ void evaluate(const BlinnPhongTexel& tx, const double theta[3], bool derivatives
 
 void blinnPhongTerms(const BlinnPhongTexel& tx, const double theta[3], std::vector<double>& d,
                      std::vector<double>& g) {
+    // the cost kernel with every sample used: the same single-precision terms the fit saw
+    // (libm's scalar powf, underflowing through its errno path, was 10% of a shadowed fit)
     const BlinnPhongGeometry& geo = *tx.geometry;
+    static thread_local std::vector<float> fd, fg, flg;
+    const size_t np = size_t(geo.padded);
+    fd.resize(np);
+    fg.resize(np);
+    flg.resize(np);
     const glm::dvec3 n = tx.normal(theta[0], theta[1]);
-    const glm::dvec3 ns = geo.flatSpecular ? glm::dvec3(0, 0, 1) : n;
-    const double e = std::exp(theta[2]);
-    d.resize(size_t(geo.count));
-    g.resize(size_t(geo.count));
-    for (size_t s = 0; s < size_t(geo.count); ++s) {
-        const double nl = n.x * geo.l[0][s] + n.y * geo.l[1][s] + n.z * geo.l[2][s];
-        const double nh = ns.x * geo.h[0][s] + ns.y * geo.h[1][s] + ns.z * geo.h[2][s];
-        d[s] = std::max(nl, 0.0);
-        // float pow: these terms classify samples, single precision is ample and double
-        // pow was 10% of a fit with cast shadows
-        g[s] = nl > 0.0 && nh > 0.0 ? double(std::pow(float(nh), float(e))) : 0.0;
-    }
+    CostInput in{&geo, {plane(tx, 0), plane(tx, 1), plane(tx, 2)}, geo.ones.data(),
+                 {float(n.x), float(n.y), float(n.z)}, float(std::exp(theta[2])),
+                 fd.data(), fg.data(), flg.data()};
+    CostSums unused;
+    costFn(in, unused);
+    d.assign(fd.begin(), fd.begin() + geo.count);
+    g.assign(fg.begin(), fg.begin() + geo.count);
 }
 
 BlinnPhongResult blinnPhongProject(const BlinnPhongTexel& texel, const double theta[3]) {
