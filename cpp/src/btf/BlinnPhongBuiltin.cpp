@@ -596,6 +596,22 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
             jtj[2][2] = 1.0;
             grad[2] = 0.0;
         }
+        // Converged when even the undamped Gauss-Newton step predicts a gain below the stopping
+        // threshold (the decrement gradᵀ (JᵀJ)⁻¹ grad): near the optimum the single-precision
+        // terms make the cost itself uncertain by about that much, and trial steps there were
+        // rejected up to 8 times before giving up.
+        {
+            double a[3][3];
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) a[i][j] = jtj[i][j] + (i == j ? 1e-12 : 0.0);
+            Cholesky3 f;
+            if (f.factor(a, 1e-14)) {
+                double gn[3];
+                f.solve(grad, gn);
+                const double decrement = grad[0] * gn[0] + grad[1] * gn[1] + grad[2] * gn[2];
+                if (decrement <= 1e-4 * cur.result.cost + 1e-20) break;
+            }
+        }
         bool accepted = false;
         for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
             double a[3][3];
