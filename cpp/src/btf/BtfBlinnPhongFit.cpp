@@ -19,8 +19,6 @@ namespace {
 // The share of its peak a fitted lobe must show at some used sample to count as observed, and
 // the same share at the neighbouring half vector bounds the exponent (btfResolvableExponent).
 constexpr double kSeenFraction = 0.01;
-// LM iterations per round of the cast-shadow classification (the last fit is not capped).
-constexpr int kRoundIterations = 2;
 
 // Cast shadows of a texel's samples for the fit r (BtfShadowClassify.h): writes the weights of
 // the next round into `weights` and returns the number left out.
@@ -177,9 +175,9 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                 const float e0 = seed.exponentMap.empty() ? seed.exponent : seed.exponentMap[t];
                 const double eta0 =
                     std::min(std::max(std::log(std::max(double(e0), 1e-2)), etaMin), etaMax);
-                auto solve = [&](const double start[3], int cap = 1000) {
+                auto solve = [&](const double start[3]) {
                     if (!ceres) return blinnPhongBuiltin(tx, start[2], etaMin, etaMax,
-                                                         std::min(cap, options.maxIterations));
+                                                         options.maxIterations);
                     return blinnPhongCeres(tx, blinnPhongProject(tx, start), etaMin, etaMax,
                                            options.maxIterations);
                 };
@@ -217,25 +215,15 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                     if (!settled) {
                         for (int s = 0; s < count; ++s)
                             next[size_t(s)] = geometry.l[2][size_t(s)] >= 0.69f ? 1.0f : 0.0f;
-                        // A round's fit only has to classify the samples: two LM iterations
-                        // (from the previous round's fit) do, and the fit on the final set runs
-                        // to convergence. Rounds to convergence took 18% more cost
-                        // evaluations for the same or larger normal errors (BENCHMARKS.md, btf).
                         for (int round = 0; round < 5; ++round) {
                             weights.swap(next);
                             tx.setPlanes(planes, weights.data());
                             tx.start[0] = r.theta[0];
                             tx.start[1] = r.theta[1];
-                            r = solve(r.theta, kRoundIterations);
+                            r = solve(r.theta);
                             iters += r.iterations;
                             left = classifyShadows(tx, r, planes, np, d, g, next, misfit);
                             if (std::equal(next.begin(), next.end(), weights.begin())) break;
-                        }
-                        if (r.iterations >= kRoundIterations) { // stopped by the cap: converge
-                            tx.start[0] = r.theta[0];
-                            tx.start[1] = r.theta[1];
-                            r = solve(r.theta);
-                            iters += r.iterations;
                         }
                         // The rounds restart from the steep lights and may settle in a worse
                         // minimum than the first fit: keep the first one (re-projected) where it
