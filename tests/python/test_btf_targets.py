@@ -131,3 +131,23 @@ def test_jpeg_normals_from_the_luma(tmp_path) -> None:
         assert scoring.physical_violations(m)["texels"] == 0
         err[luma] = scoring.truth_errors(m, truth)["mean_deg"]
     assert err[True] < 0.8 * err[False]
+
+
+
+# The speed target (Blinn-Phong >= 150 k texels/s on 2 cores, cast shadows included) is measured
+# by `python -m weft.bench btf` from CPU time; wall clock on the shared test machine is no basis
+# for a test. Most of the gain is per cost evaluation (NNLS inverses shared by the channels, the
+# shadow terms and log h_z from the SIMD kernel); what a test can see without a clock is the LM
+# stopping at the Gauss-Newton decrement: seed 8 took 13.3 / 14.4 iterations per texel before
+# (n_s = n / (0,0,1)), 11.5 / 12.2 now, with the cast-shadow normal targets still met.
+@pytest.mark.parametrize("seed", [8, 42])
+def test_cast_shadow_fit_iterations(seed: int) -> None:
+    samples, truth = synth.synthesize_random(seed, SIZE, shadows=True, noise=NOISE)
+    linear = btf.fit_linear(samples)
+    for flat in (False, True):
+        seed_material = btf.fit_specular(samples, linear, flat).material
+        fit = btf.fit_blinn_phong(samples, seed_material, flat_specular_normal=flat)
+        assert fit.mean_iterations <= 12.5
+        if flat == truth.material.flat_specular_normal:
+            t = scoring.truth_errors(fit.material, truth.material)
+            assert t["mean_deg"] <= 2.0 and t["p95_deg"] <= 6.0

@@ -31,22 +31,6 @@ void BlinnPhongTexel::updateSquares() {
     for (size_t i = 0; i < values.size(); ++i) squares[i % 3] += double(values[i]) * values[i];
 }
 
-BlinnPhongGeometry::BlinnPhongGeometry(const std::vector<glm::vec3>& lights,
-                                       const std::vector<glm::vec3>& halves) {
-    count = int(lights.size());
-    padded = (count + kBlinnPhongLanes - 1) / kBlinnPhongLanes * kBlinnPhongLanes;
-    ones.assign(size_t(padded), 0.0f);
-    std::fill(ones.begin(), ones.begin() + count, 1.0f);
-    for (int k = 0; k < 3; ++k) {
-        l[k].assign(size_t(padded), 0.0f);
-        h[k].assign(size_t(padded), 0.0f);
-        for (int s = 0; s < count; ++s) {
-            l[k][size_t(s)] = lights[size_t(s)][k];
-            h[k][size_t(s)] = halves[size_t(s)][k];
-        }
-    }
-}
-
 void BlinnPhongTexel::prepare() {
     const size_t n = size_t(geometry->count), np = size_t(geometry->padded);
     planeStore.assign(3 * np, 0.0f);
@@ -194,7 +178,8 @@ template <int W> WEFT_INLINE void costKernel(const CostInput& in, CostSums& out)
                                 nz * load<F>(&geo.h[2][s]);
         const I lpos = nl > 0.0f;
         const I hpos = nh > 0.0f;
-        const F lg = select(hpos, logv<F, I>(hpos ? nh : splat<F>(1.0f)));
+        const F lg = flat ? load<F>(&geo.logHz[s])
+                          : select(hpos, logv<F, I>(hpos ? nh : splat<F>(1.0f)));
         store(in.d + s, select(lpos, nl) * w);
         store(in.lg + s, lg);
         store(in.g + s, select(hpos & lpos, expv<F, I>(ef * lg)) * w);
@@ -241,7 +226,9 @@ struct DerivSums {
 // float sums: no cancellation left (the residuals are formed per sample) and LM needs JᵀJ and
 // the gradient to a few digits only. Padded and left-out samples have D = 0 (d and g carry w;
 // ∂d needs it explicitly), so r_cᵀD and ΦᵀD need no weighting either.
-template <int W> WEFT_INLINE void derivKernel(const DerivInput& in, DerivSums& out) {
+// Flat (n_s = (0,0,1)): the highlight does not move with n, so ∂g_u = ∂g_v = 0 and their sums
+// (exact zeros) are skipped, 40% of the pass.
+template <int W, bool Flat> WEFT_INLINE void derivKernel(const DerivInput& in, DerivSums& out) {
     typedef typename Vec<W>::F F;
     typedef typename Vec<W>::I I;
     const BlinnPhongGeometry& geo = *in.geo;
@@ -253,7 +240,8 @@ template <int W> WEFT_INLINE void derivKernel(const DerivInput& in, DerivSums& o
         dv[k] = splat<F>(in.dn[1][k]);
     }
     const F ef = splat<F>(in.e);
-    const bool flat = geo.flatSpecular;
+    constexpr bool flat = Flat;
+    constexpr bool use[5] = {true, true, !Flat, !Flat, true};
     F x[3][3];
     for (int c = 0; c < 3; ++c)
         for (int i = 0; i < 3; ++i) x[c][i] = splat<F>(in.x[c][i]);
@@ -276,14 +264,17 @@ template <int W> WEFT_INLINE void derivKernel(const DerivInput& in, DerivSums& o
         D[3] = q * (hx * dv[0] + hy * dv[1] + hz * dv[2]);
         D[4] = g * ef * lg;
         for (int j = 0; j < 5; ++j) {
-            for (int k = j; k < 5; ++k) dd[j][k] += D[j] * D[k];
+            if (!use[j]) continue;
+            for (int k = j; k < 5; ++k)
+                if (use[k]) dd[j][k] += D[j] * D[k];
             phiD[0][j] += d * D[j];
             phiD[1][j] += D[j];
             phiD[2][j] += g * D[j];
         }
         for (int c = 0; c < 3; ++c) {
             const F r = load<F>(in.p[c] + s) - x[c][0] * d - x[c][1] * w - x[c][2] * g;
-            for (int j = 0; j < 5; ++j) rD[c][j] += r * D[j];
+            for (int j = 0; j < 5; ++j)
+                if (use[j]) rD[c][j] += r * D[j];
         }
     }
     for (int j = 0; j < 5; ++j) {
@@ -295,17 +286,38 @@ template <int W> WEFT_INLINE void derivKernel(const DerivInput& in, DerivSums& o
     }
 }
 
+// log x where x > 0, else 0, with the cost kernel's code: the n_s = (0,0,1) logs of h_z are
+// the values the kernel would compute per evaluation.
+template <int W> WEFT_INLINE void logKernel(const float* x, float* out, int n) {
+    typedef typename Vec<W>::F F;
+    typedef typename Vec<W>::I I;
+    for (int s = 0; s < n; s += W) {
+        const F v = load<F>(x + s);
+        const I pos = v > 0.0f;
+        store(out + s, select(pos, logv<F, I>(pos ? v : splat<F>(1.0f))));
+    }
+}
+
 void costGeneric(const CostInput& in, CostSums& out) { costKernel<4>(in, out); }
-void derivGeneric(const DerivInput& in, DerivSums& out) { derivKernel<4>(in, out); }
+void derivGeneric(const DerivInput& in, DerivSums& out) {
+    if (in.geo->flatSpecular) derivKernel<4, true>(in, out);
+    else derivKernel<4, false>(in, out);
+}
+void logGeneric(const float* x, float* out, int n) { logKernel<4>(x, out, n); }
 void (*chooseCost())(const CostInput&, CostSums&);
 void (*chooseDeriv())(const DerivInput&, DerivSums&);
+void (*chooseLog())(const float*, float*, int);
 
 #if defined(__GNUC__) && defined(__x86_64__)
 __attribute__((target("avx2,fma"))) void costAvx2(const CostInput& in, CostSums& out) {
     costKernel<8>(in, out);
 }
 __attribute__((target("avx2,fma"))) void derivAvx2(const DerivInput& in, DerivSums& out) {
-    derivKernel<8>(in, out);
+    if (in.geo->flatSpecular) derivKernel<8, true>(in, out);
+    else derivKernel<8, false>(in, out);
+}
+__attribute__((target("avx2,fma"))) void logAvx2(const float* x, float* out, int n) {
+    logKernel<8>(x, out, n);
 }
 bool haveAvx2() {
     __builtin_cpu_init();
@@ -315,7 +327,9 @@ void (*chooseCost())(const CostInput&, CostSums&) { return haveAvx2() ? costAvx2
 void (*chooseDeriv())(const DerivInput&, DerivSums&) {
     return haveAvx2() ? derivAvx2 : derivGeneric;
 }
+void (*chooseLog())(const float*, float*, int) { return haveAvx2() ? logAvx2 : logGeneric; }
 #else
+void (*chooseLog())(const float*, float*, int) { return logGeneric; }
 void (*chooseCost())(const CostInput&, CostSums&) { return costGeneric; }
 void (*chooseDeriv())(const DerivInput&, DerivSums&) { return derivGeneric; }
 #endif
@@ -328,6 +342,29 @@ bool forceGeneric() {
 void (*const costFn)(const CostInput&, CostSums&) = forceGeneric() ? costGeneric : chooseCost();
 void (*const derivFn)(const DerivInput&, DerivSums&) =
     forceGeneric() ? derivGeneric : chooseDeriv();
+void (*const logFn)(const float*, float*, int) = forceGeneric() ? logGeneric : chooseLog();
+
+} // namespace
+
+BlinnPhongGeometry::BlinnPhongGeometry(const std::vector<glm::vec3>& lights,
+                                       const std::vector<glm::vec3>& halves) {
+    count = int(lights.size());
+    padded = (count + kBlinnPhongLanes - 1) / kBlinnPhongLanes * kBlinnPhongLanes;
+    ones.assign(size_t(padded), 0.0f);
+    std::fill(ones.begin(), ones.begin() + count, 1.0f);
+    for (int k = 0; k < 3; ++k) {
+        l[k].assign(size_t(padded), 0.0f);
+        h[k].assign(size_t(padded), 0.0f);
+        for (int s = 0; s < count; ++s) {
+            l[k][size_t(s)] = lights[size_t(s)][k];
+            h[k][size_t(s)] = halves[size_t(s)][k];
+        }
+    }
+    logHz.assign(size_t(padded), 0.0f);
+    logFn(h[2].data(), logHz.data(), padded);
+}
+
+namespace {
 
 // Sums over the samples of products of the basis Φ = (d, 1, g), its derivatives ∂d_j (j = u, v;
 // ∂d/∂η = 0), ∂g_j (j = u, v, η) and the residuals r_c = p_c - Φ x_c: everything Kaufman's JᵀJ
@@ -383,20 +420,39 @@ bool invertSubset(const double g[3][3], int mask, double inv[3][3]) {
     return true;
 }
 
-// Non-negative least squares for 3 coefficients: min Σp² - 2 bᵀx + xᵀGx over x >= 0. The
-// optimum is the unconstrained solution on its free set, so of the (at most 7) subsets whose
-// unconstrained solution is positive the cheapest is the optimum; the full set is tried first
-// and is the answer whenever its solution is feasible. Returns the cost; x and inv (see
-// Evaluation::inv) describe the optimum.
-double nnls3(const double g[3][3], const double b[3], double squares, double x[3],
+// The inverses of G's principal submatrices, computed when first asked for: the three channels
+// share G, so one evaluation inverts each subset at most once (per channel it was 19% of a fit).
+struct SubsetInverses {
+    const double (*g)[3];
+    double inv[8][3][3];
+    signed char state[8] = {0, 0, 0, 0, 0, 0, 0, 0}; // 0 not yet, 1 invertible, -1 singular
+    explicit SubsetInverses(const double gram[3][3]) : g(gram) {}
+    const double (*get(int mask))[3] {
+        if (state[mask] == 0) state[mask] = invertSubset(g, mask, inv[mask]) ? 1 : -1;
+        return state[mask] > 0 ? inv[mask] : nullptr;
+    }
+};
+
+// Non-negative least squares for 3 coefficients: min Σp² - 2 bᵀx + xᵀGx over x >= 0. G is
+// positive definite on every subset that inverts, so the optimum is the unique point meeting
+// the KKT conditions: the unconstrained solution y on its free set F is positive there and the
+// gradient G y - b is >= 0 on the coefficients held at 0. Free sets are tried in the order they
+// occur (all free; no highlight; no ambient; diffuse only; ...), so the first test usually
+// decides. Without a KKT point (a singular subset) the cheapest positive subset solution is
+// taken, as an exhaustive search would. Returns the cost; x and inv (see Evaluation::inv)
+// describe the optimum.
+double nnls3(SubsetInverses& subsets, const double b[3], double squares, double x[3],
              double inv[3][3]) {
-    double best = squares, tmp[3][3];
+    static const int order[7] = {7, 3, 5, 1, 6, 2, 4};
+    const double(*g)[3] = subsets.g;
+    double best = squares;
     int bestMask = 0;
     x[0] = x[1] = x[2] = 0.0;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) inv[i][j] = 0.0;
-    for (int mask = 7; mask >= 1; --mask) {
-        if (!invertSubset(g, mask, tmp)) continue;
+    for (int mask : order) {
+        const double(*tmp)[3] = subsets.get(mask);
+        if (!tmp) continue;
         double y[3], gain = 0.0;
         bool feasible = true;
         for (int i = 0; i < 3; ++i) {
@@ -405,7 +461,12 @@ double nnls3(const double g[3][3], const double b[3], double squares, double x[3
             gain += b[i] * y[i];
         }
         if (!feasible) continue;
-        if (squares - gain < best || bestMask == 0) {
+        bool kkt = true;
+        for (int i = 0; i < 3; ++i)
+            if (!(mask & (1 << i)) &&
+                g[i][0] * y[0] + g[i][1] * y[1] + g[i][2] * y[2] - b[i] < 0.0)
+                kkt = false;
+        if (squares - gain < best || bestMask == 0 || kkt) {
             best = squares - gain;
             bestMask = mask;
             for (int i = 0; i < 3; ++i) {
@@ -413,7 +474,7 @@ double nnls3(const double g[3][3], const double b[3], double squares, double x[3
                 for (int j = 0; j < 3; ++j) inv[i][j] = tmp[i][j];
             }
         }
-        if (mask == 7) break; // the unconstrained optimum is feasible
+        if (kkt) break;
     }
     return std::max(best, 0.0);
 }
@@ -451,11 +512,12 @@ void evaluateCost(const BlinnPhongTexel& tx, const double theta[3], Evaluation& 
     G[1][2] = G[2][1] = sums.sg;
     G[2][2] = sums.sgg;
     double cost = 0.0;
+    SubsetInverses subsets(G);
     for (int c = 0; c < 3; ++c) {
         ev.b[c][0] = sums.sdp[c];
         ev.b[c][1] = tx.sums[c];
         ev.b[c][2] = sums.sgp[c];
-        cost += nnls3(G, ev.b[c], tx.squares[c], ev.result.coef[c], ev.inv[c]);
+        cost += nnls3(subsets, ev.b[c], tx.squares[c], ev.result.coef[c], ev.inv[c]);
     }
     for (int i = 0; i < 3; ++i) ev.result.theta[i] = theta[i];
     ev.result.cost = cost;
@@ -498,20 +560,22 @@ void evaluate(const BlinnPhongTexel& tx, const double theta[3], bool derivatives
 
 void blinnPhongTerms(const BlinnPhongTexel& tx, const double theta[3], std::vector<double>& d,
                      std::vector<double>& g) {
+    // the cost kernel with every sample used: the same single-precision terms the fit saw
+    // (libm's scalar powf, underflowing through its errno path, was 10% of a shadowed fit)
     const BlinnPhongGeometry& geo = *tx.geometry;
+    static thread_local std::vector<float> fd, fg, flg;
+    const size_t np = size_t(geo.padded);
+    fd.resize(np);
+    fg.resize(np);
+    flg.resize(np);
     const glm::dvec3 n = tx.normal(theta[0], theta[1]);
-    const glm::dvec3 ns = geo.flatSpecular ? glm::dvec3(0, 0, 1) : n;
-    const double e = std::exp(theta[2]);
-    d.resize(size_t(geo.count));
-    g.resize(size_t(geo.count));
-    for (size_t s = 0; s < size_t(geo.count); ++s) {
-        const double nl = n.x * geo.l[0][s] + n.y * geo.l[1][s] + n.z * geo.l[2][s];
-        const double nh = ns.x * geo.h[0][s] + ns.y * geo.h[1][s] + ns.z * geo.h[2][s];
-        d[s] = std::max(nl, 0.0);
-        // float pow: these terms classify samples, single precision is ample and double
-        // pow was 10% of a fit with cast shadows
-        g[s] = nl > 0.0 && nh > 0.0 ? double(std::pow(float(nh), float(e))) : 0.0;
-    }
+    CostInput in{&geo, {plane(tx, 0), plane(tx, 1), plane(tx, 2)}, geo.ones.data(),
+                 {float(n.x), float(n.y), float(n.z)}, float(std::exp(theta[2])),
+                 fd.data(), fg.data(), flg.data()};
+    CostSums unused;
+    costFn(in, unused);
+    d.assign(fd.begin(), fd.begin() + geo.count);
+    g.assign(fg.begin(), fg.begin() + geo.count);
 }
 
 BlinnPhongResult blinnPhongProject(const BlinnPhongTexel& texel, const double theta[3]) {
@@ -568,6 +632,22 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
             for (int j = 0; j < 3; ++j) jtj[2][j] = jtj[j][2] = 0.0;
             jtj[2][2] = 1.0;
             grad[2] = 0.0;
+        }
+        // Converged when even the undamped Gauss-Newton step predicts a gain below the stopping
+        // threshold (the decrement gradᵀ (JᵀJ)⁻¹ grad): near the optimum the single-precision
+        // terms make the cost itself uncertain by about that much, and trial steps there were
+        // rejected up to 8 times before giving up.
+        {
+            double a[3][3];
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) a[i][j] = jtj[i][j] + (i == j ? 1e-12 : 0.0);
+            Cholesky3 f;
+            if (f.factor(a, 1e-14)) {
+                double gn[3];
+                f.solve(grad, gn);
+                const double decrement = grad[0] * gn[0] + grad[1] * gn[1] + grad[2] * gn[2];
+                if (decrement <= 1e-4 * cur.result.cost + 1e-20) break;
+            }
         }
         bool accepted = false;
         for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {

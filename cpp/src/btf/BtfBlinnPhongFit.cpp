@@ -30,7 +30,10 @@ int classifyShadows(const BlinnPhongTexel& tx, const BlinnPhongResult& r, const 
     blinnPhongTerms(tx, r.theta, d, g);
     double base = 0.0;
     for (int c = 0; c < 3; ++c) base += r.coef[c][1];
-    std::vector<double> lit(count), diffuse(count), seen(count);
+    static thread_local std::vector<double> lit, diffuse, seen; // no allocation per texel
+    lit.resize(count);
+    diffuse.resize(count);
+    seen.resize(count);
     for (size_t s = 0; s < count; ++s) {
         double l = 0.0, p = 0.0, m = 0.0;
         for (int c = 0; c < 3; ++c) {

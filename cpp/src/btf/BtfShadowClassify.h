@@ -21,8 +21,8 @@ namespace weft {
 inline int classifyCastShadows(size_t count, const double* lit, const double* diffuse,
                                const double* seen, double base, const float* lz,
                                const float* used, int minUsed, float* weights, int& misfit) {
-    std::vector<double> res;
-    res.reserve(count);
+    static thread_local std::vector<double> res; // no allocation per texel
+    res.clear();
     // σ from the steep lights (θ_l <= 31°), which cast shadows rarely reach: a fit pulled by
     // shadowed grazing samples misses all samples by more than the noise
     for (size_t s = 0; s < count; ++s)
