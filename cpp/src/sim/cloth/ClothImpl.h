@@ -133,6 +133,7 @@ struct Cloth::Impl {
     // Each pass moves a particle by the mean of its pairs' corrections, which resolves one
     // deep contact among shallow ones only partly: a few passes per substep.
     std::vector<glm::vec3> selfStart, selfStartNormal;
+    std::vector<int> candidates, candidateCount; // pairs of the substep, per particle
     void rememberSelfStart();
     void selfCollide();
     void computeNormals() const;

@@ -36,7 +36,11 @@ constexpr float kLayerRest = 2.0f;
 constexpr float kGroundSlack = 0.01f;
 // The hash's cell grows with the spread of the substep's motion (below); past this many T
 // the search would cost too much, and faster relative motion may still tunnel.
-constexpr float kMaxCellOverT = 3.0f;
+constexpr float kMaxCellOverT = 2.0f;
+// Candidate pairs: relative paths within this many T; at most kMaxCandidates per particle
+// (a dozen per layer within reach: room for ~5 stacked layers).
+constexpr float kCandidateOverT = 2.0f;
+constexpr int kMaxCandidates = 64;
 } // namespace
 
 void Cloth::Impl::rememberSelfStart() {
@@ -82,16 +86,6 @@ void Cloth::Impl::selfCollide() {
             spread = std::max(spread, glm::length(particles[size_t(k)].x - selfStart[size_t(k)] - mean));
     const float cell = std::min(T + spread, kMaxCellOverT * T);
 
-    std::vector<uint8_t> grounded(static_cast<size_t>(n), 0);
-    if (!colliders.empty()) {
-        pool->parallelFor(n, [&](int k0, int k1) {
-            for (int k = k0; k < k1; ++k)
-                for (const Collider& c : localColliders) {
-                    glm::vec3 nrm;
-                    if (c.distance(particles[size_t(k)].x, nrm) < params.thickness + kGroundSlack * T) grounded[size_t(k)] = 1;
-                }
-        }, 1024);
-    }
     std::vector<glm::vec3> mid(static_cast<size_t>(n));
     for (int k = 0; k < n; ++k) mid[size_t(k)] = 0.5f * (selfStart[size_t(k)] + particles[size_t(k)].x);
     const size_t tableSize = size_t(2 * n + 1);
@@ -107,11 +101,15 @@ void Cloth::Impl::selfCollide() {
     std::vector<int> fill(start.begin(), start.end() - 1);
     for (int k = 0; k < n; ++k) order[size_t(fill[hashOf(cellOf(mid[size_t(k)]))]++)] = k;
 
-    std::vector<glm::vec3> delta(size_t(n), glm::vec3(0.0f));
+    // Candidates, once per substep: pairs whose relative path comes within kCandidateOverT T
+    // (the passes move particles by up to ~T, so closer pairs may form after the first one).
+    // The sign of q records whether the pair may be in different layers (rest > kLayerRest T).
+    candidateCount.assign(size_t(n), 0);
+    candidates.resize(size_t(n) * kMaxCandidates);
+    const float reach2 = kCandidateOverT * kCandidateOverT * T * T;
     pool->parallelFor(n, [&](int k0, int k1) {
         for (int k = k0; k < k1; ++k) {
-            const Particle& p = particles[size_t(k)];
-            if (p.w == 0.0f || hole[size_t(k)]) continue;
+            if (particles[size_t(k)].w == 0.0f || hole[size_t(k)]) continue;
             const glm::ivec3 c = cellOf(mid[size_t(k)]);
             // The 27 cells may share buckets (hash collisions): visit each bucket once, so
             // no neighbour is counted twice.
@@ -124,16 +122,53 @@ void Cloth::Impl::selfCollide() {
                         if (std::find(buckets, buckets + bucketCount, h) == buckets + bucketCount)
                             buckets[bucketCount++] = h;
                     }
-            glm::vec3 sum(0.0f);
-            int contacts = 0;
-            for (int bi = 0; bi < bucketCount; ++bi) {
+            int* list = candidates.data() + size_t(k) * kMaxCandidates;
+            int count = 0;
+            for (int bi = 0; bi < bucketCount && count < kMaxCandidates; ++bi) {
                 const size_t h = buckets[bi];
-                for (int s = start[h]; s < start[h + 1]; ++s) {
+                for (int s = start[h]; s < start[h + 1] && count < kMaxCandidates; ++s) {
                     const int q = order[size_t(s)];
                     if (q == k || hole[size_t(q)]) continue;
                     // Neighbours that are closer than T at rest are the constraints' job.
                     const float restDistance = glm::length(rest[size_t(k)] - rest[size_t(q)]);
                     if (restDistance <= T) continue;
+                    const glm::vec3 r0 = selfStart[size_t(k)] - selfStart[size_t(q)];
+                    const glm::vec3 dr = (particles[size_t(k)].x - particles[size_t(q)].x) - r0;
+                    const float dr2 = glm::dot(dr, dr);
+                    const float t = dr2 > 0.0f ? std::clamp(-glm::dot(r0, dr) / dr2, 0.0f, 1.0f) : 0.0f;
+                    const glm::vec3 closest = r0 + t * dr;
+                    if (glm::dot(closest, closest) >= reach2) continue;
+                    list[count++] = restDistance > kLayerRest * T ? q : -1 - q;
+                }
+            }
+            candidateCount[size_t(k)] = count;
+        }
+    }, 1024);
+
+    std::vector<uint8_t> grounded(static_cast<size_t>(n), 0);
+    std::vector<glm::vec3> delta(static_cast<size_t>(n));
+    for (int pass = 0; pass < cloth::kSelfCollisionPasses; ++pass) {
+        if (!colliders.empty()) {
+            pool->parallelFor(n, [&](int k0, int k1) {
+                for (int k = k0; k < k1; ++k) {
+                    grounded[size_t(k)] = 0;
+                    for (const Collider& c : localColliders) {
+                        glm::vec3 nrm;
+                        if (c.distance(particles[size_t(k)].x, nrm) < params.thickness + kGroundSlack * T)
+                            grounded[size_t(k)] = 1;
+                    }
+                }
+            }, 1024);
+        }
+        pool->parallelFor(n, [&](int k0, int k1) {
+            for (int k = k0; k < k1; ++k) {
+                const Particle& p = particles[size_t(k)];
+                const int* list = candidates.data() + size_t(k) * kMaxCandidates;
+                glm::vec3 sum(0.0f);
+                int contacts = 0;
+                for (int ci = 0; ci < candidateCount[size_t(k)]; ++ci) {
+                    const bool layers = list[ci] >= 0;
+                    const int q = layers ? list[ci] : -1 - list[ci];
                     // A particle resting on a collider does not give way (the collider would
                     // push it straight back): the other one takes the whole correction.
                     float share = p.w / (p.w + particles[size_t(q)].w);
@@ -142,7 +177,7 @@ void Cloth::Impl::selfCollide() {
                     const glm::vec3 r1 = p.x - particles[size_t(q)].x;
                     const glm::vec3& nq = selfStartNormal[size_t(q)];
                     const float side0 = glm::dot(r0, nq), side1 = glm::dot(r1, nq);
-                    if (restDistance > kLayerRest * T && side0 != 0.0f && (side0 > 0.0f) != (side1 > 0.0f)) {
+                    if (layers && side0 != 0.0f && (side0 > 0.0f) != (side1 > 0.0f)) {
                         // p went through q's tangent plane: through the layer if it did so
                         // within T of q (the cloth is there)
                         const float t = side0 / (side0 - side1);
@@ -161,14 +196,19 @@ void Cloth::Impl::selfCollide() {
                     sum += r1 * ((T - len) / len * share);
                     ++contacts;
                 }
+                delta[size_t(k)] = contacts ? sum / float(contacts) : glm::vec3(0.0f);
             }
-            delta[size_t(k)] = contacts ? sum / float(contacts) : glm::vec3(0.0f);
+        }, 1024);
+        bool moved = false;
+        for (int k = 0; k < n; ++k) {
+            particles[size_t(k)].x += delta[size_t(k)];
+            moved = moved || delta[size_t(k)] != glm::vec3(0.0f);
         }
-    }, 1024);
-    for (int k = 0; k < n; ++k) particles[size_t(k)].x += delta[size_t(k)];
-    // The pushes may have moved particles into a collider's thickness: out again (the
-    // colliders have the last word, as in the relaxation).
-    if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b, false); }, 1024);
+        if (!moved) break; // no contact left: the next passes would do nothing
+        // The pushes may have moved particles into a collider's thickness: out again (the
+        // colliders have the last word, as in the relaxation).
+        if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b, false); }, 1024);
+    }
 }
 
 } // namespace weft

@@ -196,8 +196,7 @@ void Cloth::Impl::substep(float h, float damping) {
         if (compliant) std::fill(lambda.begin(), lambda.end(), 0.0f);
         for (int it = 0; it < params.iterations; ++it) relax(h);
     }
-    if (params.selfCollision)
-        for (int pass = 0; pass < cloth::kSelfCollisionPasses; ++pass) selfCollide();
+    if (params.selfCollision) selfCollide();
 }
 
 void Cloth::Impl::afterStep(float dt) {
