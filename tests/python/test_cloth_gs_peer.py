@@ -16,10 +16,8 @@ import weft.bench.cloth_peer_gs as gs
 
 @pytest.mark.parametrize("setting", [Setting("sub2", 1, 2), Setting("tethers-it2", 2, 1, tethers=True),
                                      Setting("xpbd", 2, 2, (0.0, 1e-2, 1.0))])
-def test_peer_in_weft_order_reproduces_weft(setting: Setting, monkeypatch) -> None:
-    monkeypatch.setattr(gs.np, "lexsort", lambda keys: np.arange(len(keys[0])))
-    peer = gs.NaturalGsEngine().make(16, setting)
-    monkeypatch.undo()
+def test_peer_in_weft_order_reproduces_weft(setting: Setting) -> None:
+    peer = gs.NaturalGsCloth(16, setting, order="weft")
     cloth = WeftEngine(threads=1).make(16, setting)
     for _ in range(30):
         peer.step(1 / 60)
@@ -31,3 +29,10 @@ def test_peer_orders_constraints_naturally() -> None:
     peer = gs.NaturalGsEngine().make(8, Setting("seed"))
     key = peer.a * 64 + peer.b
     assert np.all(np.diff(key) > 0) and np.all(peer.a < peer.b)
+
+
+def test_peer_rejects_an_order_that_is_not_a_permutation() -> None:
+    with pytest.raises(ValueError):
+        gs.NaturalGsCloth(4, Setting("seed"), order=[0, 0, 1])
+    with pytest.raises(ValueError):
+        gs.NaturalGsCloth(4, Setting("seed"), order="backwards")

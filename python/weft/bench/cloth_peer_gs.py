@@ -23,14 +23,23 @@ from weft.bench.cloth import Engine, Setting, WeftEngine
 class NaturalGsCloth:
     """A stepping cloth with the interface the benchmark's engines use."""
 
-    def __init__(self, n: int, setting: Setting) -> None:
+    def __init__(self, n: int, setting: Setting, order: Any = "natural") -> None:
+        """``order``: "natural", "weft" (weft's colour-batched order, which the peer then
+        reproduces), or a permutation of weft's constraint list (to measure other orders)."""
         from weft import _core
 
         template = WeftEngine(threads=1).make(n, setting)
         c = template.constraints()
         a, b = c["a"].astype(np.int64), c["b"].astype(np.int64)
         lo, hi = np.minimum(a, b), np.maximum(a, b)
-        order = np.lexsort((hi, lo))  # natural order: by the lower index, then the higher
+        if isinstance(order, str):
+            if order not in ("natural", "weft"):
+                raise ValueError(f"order must be 'natural', 'weft' or a permutation, got {order!r}")
+            # natural order: by the lower index, then the higher
+            order = np.lexsort((hi, lo)) if order == "natural" else np.arange(len(a))
+        order = np.asarray(order, dtype=np.int64)
+        if sorted(order.tolist()) != list(range(len(a))):
+            raise ValueError("order must be a permutation of the constraint list")
         self.a, self.b = lo[order], hi[order]
         self.rest = np.asarray(c["rest"], dtype=np.float64)[order]
         compliance = np.asarray(setting.compliance, dtype=np.float64)[c["family"][order]]
