@@ -7,6 +7,8 @@
 
 #include <weft/Cloth.h>
 
+#include "sim/cloth/NaturalGsPeer.h"
+
 #include "Convert.h"
 
 namespace weft::py_bind {
@@ -109,6 +111,41 @@ Collider makeCollider(Collider::Kind kind, float friction) {
 } // namespace
 
 void bindCloth(py::module_& m) {
+    // The benchmark's natural-order Gauss-Seidel peer (issue 17): not public API.
+    py::class_<cloth::NaturalGsPeer>(m, "_NaturalGsPeer")
+        .def(py::init([](py::handle positions, py::handle inverseMass, py::handle a, py::handle b,
+                         py::handle rest, py::handle compliance, py::handle tetherParticle,
+                         py::handle tetherAnchor, py::handle tetherLength, py::handle gravity,
+                         float damping, int iterations, int substeps) {
+                 auto floats = [](py::handle h) {
+                     auto arr = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(h);
+                     if (!arr) throw py::type_error("expected a float array");
+                     return std::vector<float>(arr.data(), arr.data() + arr.size());
+                 };
+                 cloth::NaturalGsPeerSetup s;
+                 s.positions = points(positions, "positions");
+                 s.inverseMass = floats(inverseMass);
+                 s.a = indices(a, "a");
+                 s.b = indices(b, "b");
+                 s.rest = floats(rest);
+                 s.compliance = floats(compliance);
+                 s.tetherParticle = indices(tetherParticle, "tether_particle");
+                 s.tetherAnchor = indices(tetherAnchor, "tether_anchor");
+                 s.tetherLength = floats(tetherLength);
+                 s.gravity = toVec3(gravity, "gravity");
+                 s.damping = damping;
+                 s.iterations = iterations;
+                 s.substeps = substeps;
+                 return cloth::NaturalGsPeer(std::move(s));
+             }),
+             py::arg("positions"), py::arg("inverse_mass"), py::arg("a"), py::arg("b"), py::arg("rest"),
+             py::arg("compliance"), py::arg("tether_particle"), py::arg("tether_anchor"),
+             py::arg("tether_length"), py::arg("gravity"), py::arg("damping"), py::arg("iterations"),
+             py::arg("substeps"))
+        .def("step", &cloth::NaturalGsPeer::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())
+        .def_property_readonly("positions", [](const cloth::NaturalGsPeer& p) { return pyPoints(p.positions()); })
+        .def("kinetic_energy", &cloth::NaturalGsPeer::kineticEnergy, py::arg("particle_mass"));
+
     py::class_<Wind>(m, "Wind", "Global wind: per-particle acceleration s (n.r) n (SPEC eq. 3.5).\n"
                                 "A value: Cloth.wind returns a copy; assign Cloth.wind to change it.\n"
                                 "direction: finite, non-zero; |strength| <= 1e4 m/s^2.")

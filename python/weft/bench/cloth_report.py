@@ -9,7 +9,7 @@ from typing import Any, Dict, Optional, Sequence
 
 from weft.bench import markdown_table
 from weft.bench.cloth import (
-    NUMPY_RATIO_TARGET, PEER_RATIO_TARGET, REST_ENERGY, STRAIN_SLACK, STRAIN_STEPS, TARGET_MAX,
+    GS_RATIO_TARGET, NUMPY_RATIO_TARGET, PEER_RATIO_TARGET, REST_ENERGY, STRAIN_SLACK, STRAIN_STEPS, TARGET_MAX,
     TARGET_MEAN, TARGET_SIZE, TARGET_SPEED, XPBD, pareto_front,
 )
 
@@ -63,6 +63,8 @@ def to_markdown(report: Dict[str, Any]) -> str:
               "max strain", "equilibrium err", "rest steps", "NumPy steps/s", "weft/NumPy"]
     if any(r["engine"] == "warp" for r in report["results"]):
         header += ["Warp steps/s", "weft/Warp", "Warp mean strain"]
+    if any(r["engine"] == "gs-natural" for r in report["results"]):
+        header += ["GS steps/s", "weft/GS", "GS mean strain"]
     rows = []
     for r in report["results"]:
         if r["engine"] != "weft":
@@ -81,6 +83,13 @@ def to_markdown(report: Dict[str, Any]) -> str:
             row += [_num(wr["steps_per_s"]) if wr else "—",
                     _num(r["steps_per_s"] / wr["steps_per_s"], ".1f") + "x" if wr else "—",
                     _pct(wr["mean_strain"]) if wr else "—"]
+        if "GS steps/s" in header:
+            gr = peer.get("gs-natural")
+            row += [_num(gr["steps_per_s"]) if gr else "—",
+                    _num(r["steps_per_s"] / gr["steps_per_s"], ".1f") + "x" if gr else "—",
+                    (_pct(gr["mean_strain"]) if gr["mean_strain"] is not None
+                     else ("diverged" if "diverged" in gr["strain_source"] else "n/a"))
+                    if gr else "—"]
         rows.append(row)
     lines.append(markdown_table(header, rows))
 
@@ -110,6 +119,24 @@ def to_markdown(report: Dict[str, Any]) -> str:
                      f"weft's float32 trajectory spread at the peer's setting{spread_note}) runs "
                      f"≥ {_num(v['min_ratio'], '.1f')}x the peer's steps/s "
                      f"(target ≥ {PEER_RATIO_TARGET:g}x){detail}")
+    for key, v in (s.get("equal_accuracy_vs_gs_natural") or {}).items():
+        pts = v["points"]
+        diverged = [p["setting"] for p in pts if p["gs_mean_strain"] is None]
+        matched = [p for p in pts if p["ratio"] is not None]
+        worst = min(matched, key=lambda p: p["ratio"], default=None)
+        text = (f"- {v['n']}² {'with' if v['tethers'] else 'without'} tethers, natural-order "
+                f"Gauss-Seidel peer (target ≥ {GS_RATIO_TARGET:g}x at equal accuracy): ")
+        if worst:
+            text += (f"weft ≥ {worst['ratio']:.1f}x; tightest: gs {worst['setting']} at "
+                     f"{_pct(worst['gs_mean_strain'])}, {worst['gs_steps_per_s']:.1f} steps/s vs "
+                     f"weft {worst['weft_setting']} {worst['weft_steps_per_s']:.1f} steps/s")
+        else:
+            text += "no point to compare"
+        if v["unmatched"]:
+            text += "; no weft setting as accurate as gs " + ", ".join(v["unmatched"])
+        if diverged:
+            text += "; no accuracy point (diverged or over budget): " + ", ".join(diverged)
+        lines.append(text)
     t = s["target_128"]
     if t["evaluated"]:
         if t["met"]:
@@ -150,7 +177,8 @@ def plot_pareto(results: Sequence[Dict[str, Any]], sizes: Sequence[int], path: s
     except Exception as exc:
         return f"skipped: matplotlib is not available ({exc})"
     fig, axes = plt.subplots(1, len(sizes), figsize=(6.5 * len(sizes), 5.2), squeeze=False)
-    style = {"weft": ("o", "tab:blue"), "numpy": ("s", "tab:orange"), "warp": ("^", "tab:green")}
+    style = {"weft": ("o", "tab:blue"), "numpy": ("s", "tab:orange"), "warp": ("^", "tab:green"),
+             "gs-natural": ("D", "tab:red")}
     for ax, n in zip(axes[0], sizes):
         for engine, (marker, colour) in style.items():
             pts = [r for r in results if r["engine"] == engine and r["n"] == n

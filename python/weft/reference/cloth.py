@@ -80,6 +80,11 @@ from weft.reference.cloth_grid import (  # noqa: E402  (re-exported: the cloth's
     hole_mask_from_image,
     strain,
 )
+from weft.reference.cloth_self import (  # noqa: E402
+    GROUND_SLACK,
+    SELF_COLLISION_PASSES,
+    self_collide_pass,
+)
 
 
 # --------------------------------------------------------------------------------------------
@@ -461,21 +466,28 @@ class ClothReference:
                 if np.any(far):
                     pf, qf = p[far], q[far]
                     x[pf] = x[qf] + length[far][:, None] * rel[far] / dist[far][:, None]
-        if self.colliders:
-            free = np.flatnonzero(self.inverse_masses > 0.0)
-            for shape in self.colliders:
-                s, n = shape.distance(x[free])
-                s, n = np.asarray(s, dtype=np.float64), np.asarray(n, dtype=np.float64)
-                hit = s < self.thickness
-                if not np.any(hit):
-                    continue
-                idx, nh = free[hit], n[hit]
-                x[idx] += (self.thickness - s[hit])[:, None] * nh
-                f = float(getattr(shape, "friction", 0.0))
-                if f > 0.0:
-                    v = x[idx] - self.x_prev[idx]
-                    vt = v - np.einsum("ij,ij->i", v, nh)[:, None] * nh
-                    self.x_prev[idx] += f * vt
+        self._collide(friction=True)
+
+    def _collide(self, friction: bool) -> None:
+        """Projects the free particles out of the colliders (to ``thickness``); friction only
+        in the relaxation, not in the re-projection after self-collision."""
+        if not self.colliders:
+            return
+        x = self.x
+        free = np.flatnonzero(self.inverse_masses > 0.0)
+        for shape in self.colliders:
+            s, n = shape.distance(x[free])
+            s, n = np.asarray(s, dtype=np.float64), np.asarray(n, dtype=np.float64)
+            hit = s < self.thickness
+            if not np.any(hit):
+                continue
+            idx, nh = free[hit], n[hit]
+            x[idx] += (self.thickness - s[hit])[:, None] * nh
+            f = float(getattr(shape, "friction", 0.0))
+            if friction and f > 0.0:
+                v = x[idx] - self.x_prev[idx]
+                vt = v - np.einsum("ij,ij->i", v, nh)[:, None] * nh
+                self.x_prev[idx] += f * vt
 
     def self_thickness_used(self) -> float:
         """T of self-collision: ``self_thickness``, or 0.9 x the smaller grid spacing."""
@@ -485,27 +497,18 @@ class ClothReference:
         sv = self.size[1] / (self.ny - 1) if self.ny > 1 else self.size[0]
         return 0.9 * min(su, sv)
 
-    def _self_collide(self) -> None:
-        """Self-collision (brute force, Jacobi): every free particle p is pushed away from each
-        other cloth particle q closer than T whose rest distance exceeds T, by
-        ``(T - |x_p - x_q|) w_p / (w_p + w_q)`` along ``x_p - x_q``; all pushes are summed
-        from the same positions, then applied (an isolated pair ends exactly T apart)."""
-        w = self.inverse_masses
-        solid = np.flatnonzero(~self.hole)
-        if len(solid) < 2:
-            return
-        t = self.self_thickness_used()
-        x = self.x
-        rel = x[solid][:, None, :] - x[solid][None, :, :]
-        dist = np.linalg.norm(rel, axis=2)
-        rest = np.linalg.norm(self.rest_positions[solid][:, None, :]
-                              - self.rest_positions[solid][None, :, :], axis=2)
-        wp = w[solid][:, None]
-        wq = w[solid][None, :]
-        hit = (dist < t) & (dist > 1e-12) & (rest > t) & (wp > 0.0)
-        scale = np.where(hit, (t - dist) / np.where(hit, dist, 1.0) * wp
-                         / np.where(hit, wp + wq, 1.0), 0.0)
-        x[solid] += np.einsum("pq,pqk->pk", scale, rel)
+    def _self_collide(self, start: np.ndarray, start_normals: np.ndarray) -> None:
+        """Self-collision passes of :func:`weft.reference.cloth_self.self_collide_pass`, then
+        the colliders again."""
+        for _ in range(SELF_COLLISION_PASSES):
+            grounded = np.zeros(self.nx * self.ny, dtype=bool)
+            t = self.self_thickness_used()
+            for shape in self.colliders:
+                s, _ = shape.distance(self.x)
+                grounded |= np.asarray(s, dtype=np.float64) < self.thickness + GROUND_SLACK * t
+            self_collide_pass(self.x, start, start_normals, self.rest_positions,
+                              self.inverse_masses, self.hole, grounded, t)
+            self._collide(friction=False)
 
     def _substep(self, h: float, d: float) -> None:
         w = self.inverse_masses
@@ -518,6 +521,9 @@ class ClothReference:
         if self._pending_velocity is not None:
             self.x_prev = self.x - self._pending_velocity * h + 0.5 * self.gravity * h * h
             self._pending_velocity = None
+        if self.self_collision:  # the start of the substep: which side of each layer
+            start = self.x.copy()
+            start_normals = grid_normals(start, self.nx, self.ny)
         free = w > 0.0
         x_new = np.where(free[:, None], self.x + d * (self.x - self.x_prev) + acc * h * h, self.x)
         still = free | (self.pinned & ~self.hole)  # pinned particles have no velocity
@@ -530,7 +536,7 @@ class ClothReference:
         for _ in range(self.iterations):
             self._relax(h, lambdas)
         if self.self_collision:
-            self._self_collide()
+            self._self_collide(start, start_normals)
 
     def step(self, dt: float = 1.0 / 60.0) -> None:
         """One step of ``dt`` seconds split into ``substeps`` (SPEC §2.3, seed alg. 3.1)."""

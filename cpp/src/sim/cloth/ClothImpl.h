@@ -11,6 +11,8 @@
 
 namespace weft::cloth {
 
+constexpr int kSelfCollisionPasses = 3;
+
 struct Constraint {
     int a, b;
     float rest;
@@ -123,7 +125,16 @@ struct Cloth::Impl {
     void fromSoa();
     void relaxSoa(float h);
     int soaSplit() const;            // minParallel of the SoA passes over rows: all or none
-    void collide(int begin, int end);
+    /// Projects particles [begin, end) out of the colliders; friction only in the relaxation
+    /// (the re-projection after self-collision must not brake the cloth a second time).
+    void collide(int begin, int end, bool friction);
+    // Self-collision (ClothSelfCollision.cpp) keeps each close pair on the side of each other's
+    // layer it was on at the start of the substep: the start positions and their normals.
+    // Each pass moves a particle by the mean of its pairs' corrections, which resolves one
+    // deep contact among shallow ones only partly: a few passes per substep.
+    std::vector<glm::vec3> selfStart, selfStartNormal;
+    std::vector<int> candidates, candidateCount; // pairs of the substep, per particle
+    void rememberSelfStart();
     void selfCollide();
     void computeNormals() const;
     const std::vector<glm::vec4>& currentNormals() const {

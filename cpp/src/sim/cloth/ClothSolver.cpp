@@ -77,7 +77,7 @@ void Cloth::Impl::projectBatch(const cloth::Batch& batch, float alphaTilde) {
     }, kMinParallelConstraints);
 }
 
-void Cloth::Impl::collide(int begin, int end) {
+void Cloth::Impl::collide(int begin, int end, bool friction) {
     const float thickness = params.thickness;
     for (int k = begin; k < end; ++k) {
         Particle& p = particles[size_t(k)];
@@ -87,7 +87,7 @@ void Cloth::Impl::collide(int begin, int end) {
             const float s = c.distance(p.x, n);
             if (s >= thickness) continue;
             p.x += (thickness - s) * n;
-            if (c.friction > 0.0f) {
+            if (friction && c.friction > 0.0f) {
                 const glm::vec3 v = p.x - previous[size_t(k)].x;
                 previous[size_t(k)].x += (v - n * glm::dot(v, n)) * c.friction;
             }
@@ -104,7 +104,7 @@ void Cloth::Impl::relax(float h) {
                                                      tetherLength.data()}, isa);
         }, kMinParallelParticles);
     }
-    if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b); }, 1024);
+    if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b, true); }, 1024);
 }
 
 int Cloth::Impl::soaSplit() const { return n >= soaMinParallel() ? 1 : INT_MAX; }
@@ -151,66 +151,6 @@ void Cloth::Impl::relaxSoa(float h) {
     }
 }
 
-void Cloth::Impl::selfCollide() {
-    const float spacingU = params.nx > 1 ? params.size.x / float(params.nx - 1) : params.size.y;
-    const float spacingV = params.ny > 1 ? params.size.y / float(params.ny - 1) : params.size.x;
-    const float T = params.selfThickness > 0.0f ? params.selfThickness
-                                                : 0.9f * std::min(spacingU, spacingV);
-    // Spatial hash with cell size T: the 27 cells around a particle hold every neighbour
-    // closer than T. Corrections are gathered per particle (Jacobi), so the result does not
-    // depend on the thread count.
-    const size_t tableSize = size_t(2 * n + 1);
-    auto cellOf = [&](const glm::vec3& x) { return glm::ivec3(glm::floor(x / T)); };
-    auto hashOf = [&](const glm::ivec3& c) {
-        return size_t((uint32_t(c.x) * 73856093u) ^ (uint32_t(c.y) * 19349663u) ^
-                      (uint32_t(c.z) * 83492791u)) % tableSize;
-    };
-    std::vector<int> start(tableSize + 1, 0);
-    std::vector<int> order(static_cast<size_t>(n));
-    for (int k = 0; k < n; ++k) ++start[hashOf(cellOf(particles[size_t(k)].x)) + 1];
-    for (size_t b = 0; b < tableSize; ++b) start[b + 1] += start[b];
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int k = 0; k < n; ++k) order[size_t(fill[hashOf(cellOf(particles[size_t(k)].x))]++)] = k;
-
-    std::vector<glm::vec3> delta(size_t(n), glm::vec3(0.0f));
-    pool->parallelFor(n, [&](int k0, int k1) {
-        for (int k = k0; k < k1; ++k) {
-            const Particle& p = particles[size_t(k)];
-            if (p.w == 0.0f || hole[size_t(k)]) continue;
-            const glm::ivec3 c = cellOf(p.x);
-            // The 27 cells may share buckets (hash collisions): visit each bucket once, so
-            // no neighbour is counted twice.
-            size_t buckets[27];
-            int bucketCount = 0;
-            for (int dz = -1; dz <= 1; ++dz)
-                for (int dy = -1; dy <= 1; ++dy)
-                    for (int dx = -1; dx <= 1; ++dx) {
-                        const size_t h = hashOf(c + glm::ivec3(dx, dy, dz));
-                        if (std::find(buckets, buckets + bucketCount, h) == buckets + bucketCount)
-                            buckets[bucketCount++] = h;
-                    }
-            glm::vec3 sum(0.0f);
-            for (int bi = 0; bi < bucketCount; ++bi) {
-                const size_t h = buckets[bi];
-                for (int s = start[h]; s < start[h + 1]; ++s) {
-                    const int q = order[size_t(s)];
-                    if (q == k || hole[size_t(q)]) continue;
-                    const glm::vec3 d = p.x - particles[size_t(q)].x;
-                    const float len2 = glm::dot(d, d);
-                    if (len2 >= T * T || len2 < 1e-24f) continue;
-                    // Neighbours that are closer than T at rest are the constraints' job.
-                    if (glm::length(rest[size_t(k)] - rest[size_t(q)]) <= T) continue;
-                    const float len = std::sqrt(len2);
-                    const float wq = particles[size_t(q)].w;
-                    sum += d * ((T - len) / len * p.w / (p.w + wq));
-                }
-            }
-            delta[size_t(k)] = sum;
-        }
-    }, 1024);
-    for (int k = 0; k < n; ++k) particles[size_t(k)].x += delta[size_t(k)];
-}
-
 void Cloth::Impl::substep(float h, float damping) {
     const bool windy = wind.strength != 0.0f;
     if (windy) computeNormals();
@@ -221,6 +161,7 @@ void Cloth::Impl::substep(float h, float damping) {
             previous[size_t(k)].x = particles[size_t(k)].x - pendingVelocity[size_t(k)] * h + 0.5f * g * h * h;
         hasPendingVelocity = false;
     }
+    if (params.selfCollision) rememberSelfStart();
     for (size_t q = 0; q < grabbed.size(); ++q) {
         const int k = grabbed[q];
         previous[size_t(k)].x = particles[size_t(k)].x;
