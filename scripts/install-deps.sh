@@ -4,7 +4,8 @@
 # and Python build/test packages from PyPI (av = PyAV, its wheels bundle FFmpeg: video files as
 # environment captures, weft.ibl.read_video_frames; matplotlib draws the BTF report's figures and
 # the benchmarks' plots; mitsuba and flip-evaluator are the path-traced reference and the image
-# metric of weft.reference.picture, variant scalar_rgb; ray runs weft.batch on a cluster).
+# metric of weft.reference.picture, variant scalar_rgb; ray runs weft.batch on a cluster;
+# atheris fuzzes the loaders, tests/fuzz).
 set -euo pipefail
 
 packages=(g++ pkg-config ccache libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc
@@ -25,10 +26,10 @@ if ((${#missing[@]})); then
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.22" "pytest>=7" "av>=11" "matplotlib>=3.5" "mitsuba>=3.5" "flip-evaluator>=1.5" "ray==2.60.0"
+python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.22" "pytest>=7" "av>=11" "matplotlib>=3.5" "mitsuba>=3.5" "flip-evaluator>=1.5" "ray==2.60.0" "atheris>=2.3"
 import importlib.util, sys
 need = ["scikit_build_core", "pybind11", "numpy", "pytest", "av", "matplotlib", "mitsuba",
-        "flip_evaluator", "ray"]
+        "flip_evaluator", "ray", "atheris"]
 sys.exit(0 if all(importlib.util.find_spec(n) for n in need) else 1)
 PY
 python3 -c "import av" || { echo "install-deps: PyAV (pip package av) was installed but does not import" >&2; exit 1; }

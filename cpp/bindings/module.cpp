@@ -102,15 +102,23 @@ PYBIND11_MODULE(_core, m) {
     m.attr("Error") = py::handle(gError);
     m.attr("InvalidArgument") = py::handle(gInvalidArgument);
     m.attr("IoError") = py::handle(gIoError);
+    // Messages may quote bytes of a corrupt file that are not UTF-8 (found by the loaders'
+    // fuzzer): decoded with backslash escapes, never a UnicodeDecodeError in place of the error.
+    static const auto raise = [](PyObject* type, const char* what) {
+        PyObject* text = PyUnicode_DecodeUTF8(what, Py_ssize_t(std::strlen(what)), "backslashreplace");
+        if (!text) return; // the decoder's own error stands
+        PyErr_SetObject(type, text);
+        Py_DECREF(text);
+    };
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const weft::InvalidArgument& e) {
-            PyErr_SetString(gInvalidArgument, e.what());
+            raise(gInvalidArgument, e.what());
         } catch (const weft::IoError& e) {
-            PyErr_SetString(gIoError, e.what());
+            raise(gIoError, e.what());
         } catch (const weft::Error& e) {
-            PyErr_SetString(gError, e.what());
+            raise(gError, e.what());
         }
     });
 

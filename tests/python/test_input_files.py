@@ -60,3 +60,17 @@ def test_a_truncated_hair_file_is_refused(tmp_path):
     open(path, "wb").write(data[: len(data) // 2])
     with pytest.raises(weft.IoError, match="truncated"):
         weft.load_hair(path)
+
+
+def test_an_error_quoting_bytes_that_are_not_utf8_is_still_the_error(tmp_path):
+    """Found by the HDR fuzzer: a corrupt header whose bytes the message quotes raised a
+    UnicodeDecodeError instead of weft.IoError; they are escaped now."""
+    import base64
+
+    data = base64.b64decode("Iz9SQURJQU5DRQpGT1JNQVQ9MzItYml0X3JsZV9yZ2JlCgotWSAzICtYIMz1/4oVga"
+                            "iKkoBSQURJQU5DRQpGT1JNQVQ9MzEtYml0X3JsZV9yZ2JlCgri6oJ4fIB/")
+    path = tmp_path / "crash.hdr"
+    path.write_bytes(data)
+    with pytest.raises(weft.IoError) as info:
+        weft.load_hdr(str(path))
+    assert "\\x" in str(info.value)  # the undecodable byte, escaped

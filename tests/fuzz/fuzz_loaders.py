@@ -1,0 +1,92 @@
+"""Fuzz targets for weft's loaders (issue 13), run with atheris (PyPI) over the Python entry
+points: every input must give a result or a weft.Error (InvalidArgument / IoError) -- any other
+exception, a crash, a hang or a sanitizer report is a finding.
+
+    python tests/fuzz/fuzz_loaders.py TARGET [libFuzzer flags] [CORPUS_DIR ...]
+    python tests/fuzz/fuzz_loaders.py hair -runs=1000000 tests/fuzz/corpus/hair
+
+Targets: hair (.hair bytes), obj (OBJ text), png, hdr (Radiance), exr, script (the demo's
+--script files are parsed by weft-demo itself and are not reachable from Python; not a target).
+Seeds: ``python tests/fuzz/fuzz_loaders.py --write-seeds`` writes small valid files of every kind
+into tests/fuzz/corpus/ (checked in).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CORPUS = os.path.join(HERE, "corpus")
+SUFFIX = {"hair": ".hair", "obj": ".obj", "png": ".png", "hdr": ".hdr", "exr": ".exr"}
+
+
+def _loader(target: str):
+    import weft
+
+    return {"obj": weft.load_obj, "png": weft.load_png, "hdr": weft.load_hdr,
+            "exr": weft.load_exr}[target]
+
+
+def make_target(target: str):
+    import weft
+
+    if target == "hair":
+        def one(data: bytes) -> None:
+            try:
+                weft.hair_from_bytes(data)
+            except weft.Error:
+                pass
+        return one
+    load = _loader(target)
+    fd, path = tempfile.mkstemp(suffix=SUFFIX[target], prefix="weft-fuzz-")
+    os.close(fd)
+
+    def one(data: bytes) -> None:
+        with open(path, "wb") as f:
+            f.write(data)
+        try:
+            load(path)
+        except weft.Error:
+            pass
+    return one
+
+
+def write_seeds() -> None:
+    import numpy as np
+    import weft
+
+    for target in SUFFIX:
+        os.makedirs(os.path.join(CORPUS, target), exist_ok=True)
+    hair = weft.generate_hair(3, 18, seed=2)
+    weft.save_hair(os.path.join(CORPUS, "hair", "three.hair"), hair)
+    with open(os.path.join(CORPUS, "obj", "quad.obj"), "w") as f:
+        f.write("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\nf -1 -2 -3\n")
+    rgba = (np.arange(4 * 4 * 4, dtype=np.uint8).reshape(4, 4, 4) * 3)
+    weft.save_png(os.path.join(CORPUS, "png", "rgba.png"), rgba)
+    weft.save_png(os.path.join(CORPUS, "png", "grey.png"), rgba[..., :1].copy())
+    img = np.linspace(0.0, 4.0, 3 * 4 * 3, dtype=np.float32).reshape(3, 4, 3)
+    weft.save_hdr(os.path.join(CORPUS, "hdr", "ramp.hdr"), img)
+    weft.save_exr(os.path.join(CORPUS, "exr", "ramp.exr"), img)
+
+
+def main(argv) -> None:
+    if len(argv) > 1 and argv[1] == "--write-seeds":
+        write_seeds()
+        return
+    if len(argv) < 2 or argv[1] not in SUFFIX:
+        sys.exit(__doc__)
+    import atheris
+
+    target = argv[1]
+    with atheris.instrument_imports():
+        import weft  # noqa: F401  (Python-level coverage of the wrappers)
+    one = make_target(target)
+    atheris.Setup([argv[0]] + argv[2:], one)
+    atheris.Fuzz()
+
+
+if __name__ == "__main__":
+    main(sys.argv)
