@@ -12,9 +12,11 @@ would write; tests use it as the oracle and ``python -m weft.bench cloth`` as a 
 
 The module also has the literal formulas the tests compare against: :func:`project_distance`
 (eq. 3.3/3.4), signed distances of the collider shapes, free fall and the pendulum period.
-The collider shapes live in :mod:`weft.reference.cloth_colliders`, the grid (positions,
-constraint pattern, normals, triangles, strain) in :mod:`weft.reference.cloth_grid`; both are
-re-exported here. Nothing here calls weft's compiled code.
+The formulas live in :mod:`weft.reference.cloth_formulas`, the collider shapes in
+:mod:`weft.reference.cloth_colliders`, the grid (positions, constraint pattern, normals,
+triangles, strain) in :mod:`weft.reference.cloth_grid` -- all re-exported here -- what a user
+does between steps (pins, grabs, holes, wind, colliders) in
+:mod:`weft.reference.cloth_interaction` and self-collision in :mod:`weft.reference.cloth_self`. Nothing here calls weft's compiled code.
 """
 
 from __future__ import annotations
@@ -80,50 +82,17 @@ from weft.reference.cloth_grid import (  # noqa: E402  (re-exported: the cloth's
     hole_mask_from_image,
     strain,
 )
+from weft.reference.cloth_formulas import (  # noqa: E402  (re-exported: the cloth's API)
+    free_fall,
+    pendulum_period,
+    project_distance,
+)
+from weft.reference.cloth_interaction import ClothInteraction  # noqa: E402
 from weft.reference.cloth_self import (  # noqa: E402
     GROUND_SLACK,
     SELF_COLLISION_PASSES,
     self_collide_pass,
 )
-
-
-# --------------------------------------------------------------------------------------------
-# Literal formulas
-# --------------------------------------------------------------------------------------------
-
-def project_distance(xa: ArrayLike, xb: ArrayLike, wa: float, wb: float,
-                     rest: float) -> Tuple[np.ndarray, np.ndarray]:
-    """One distance-constraint projection, eq. 3.3/3.4 of the seed (SPEC §2.1), literally::
-
-        d   = (|x_b - x_a| - l) (x_b - x_a) / |x_b - x_a|
-        x_a += w_a / (w_a + w_b) d
-        x_b -= w_b / (w_a + w_b) d
-
-    ``w`` are inverse masses (0 pins). Returns the new ``(x_a, x_b)``; unchanged when both are
-    pinned or the points coincide (the direction is undefined).
-    """
-    a = np.asarray(xa, dtype=np.float64)
-    b = np.asarray(xb, dtype=np.float64)
-    delta = b - a
-    length = float(np.linalg.norm(delta))
-    if wa + wb <= 0.0 or length <= _EPS:
-        return a.copy(), b.copy()
-    d = (length - rest) * delta / length
-    return a + wa / (wa + wb) * d, b - wb / (wa + wb) * d
-
-
-def free_fall(x0: ArrayLike, v0: ArrayLike, gravity: ArrayLike, t: float) -> np.ndarray:
-    """Free fall ``x0 + v0 t + g t^2 / 2`` (Position Verlet is exact for it, SPEC §2.3)."""
-    return (np.asarray(x0, dtype=np.float64) + np.asarray(v0, dtype=np.float64) * t
-            + 0.5 * np.asarray(gravity, dtype=np.float64) * t * t)
-
-
-def pendulum_period(length: float, g: float = 9.81, amplitude: float = 0.0) -> float:
-    """Period of a simple pendulum, ``2 pi sqrt(L/g)`` for small angles; with ``amplitude``
-    (radians) the series ``1 + theta^2/16 + 11 theta^4/3072`` corrects for finite swing."""
-    t0 = 2.0 * math.pi * math.sqrt(length / g)
-    th2 = amplitude * amplitude
-    return t0 * (1.0 + th2 / 16.0 + 11.0 * th2 * th2 / 3072.0)
 
 
 # --------------------------------------------------------------------------------------------
@@ -141,7 +110,7 @@ class _Batch:
 _SolveBatch = Tuple[int, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
 
-class ClothReference:
+class ClothReference(ClothInteraction):
     """The cloth solver of SPEC §2 in NumPy (float64), step for step what ``weft.Cloth`` does.
 
     Keyword arguments are those of ``weft.Cloth`` (``threads`` is accepted and ignored).
@@ -319,82 +288,6 @@ class ClothReference:
         self.grab_targets = np.zeros((0, 3))
         self._accumulator = 0.0
         self._changed()
-        self.wake()
-
-    # ---- interaction -------------------------------------------------------------------------
-
-    def _indices(self, indices: ArrayLike) -> np.ndarray:
-        idx = np.asarray(indices, dtype=np.int64).reshape(-1)
-        if np.any((idx < 0) | (idx >= self.n)):
-            raise ValueError(f"particle index out of range [0, {self.n})")
-        return idx
-
-    def pin(self, indices: ArrayLike) -> None:
-        self.pinned[self._indices(indices)] = True
-        self._changed()
-        self.wake()
-
-    def unpin(self, indices: ArrayLike) -> None:
-        self.pinned[self._indices(indices)] = False
-        self._changed()
-        self.wake()
-
-    def grab(self, indices: ArrayLike, targets: ArrayLike) -> None:
-        """Grabbed particles get inverse mass 0 and follow ``targets`` exactly (SPEC §2.2)."""
-        idx = self._indices(indices)
-        t = _points(targets, "targets")
-        if t.shape != (len(idx), 3) or not np.all(np.isfinite(t)):
-            raise ValueError("targets must be finite (k, 3) for k indices")
-        self.grabbed, self.grab_targets = idx, t.copy()
-        self._changed()
-        self.wake()
-
-    def move_grab(self, targets: ArrayLike) -> None:
-        t = _points(targets, "targets")
-        if t.shape != (len(self.grabbed), 3) or not np.all(np.isfinite(t)):
-            raise ValueError("targets must be finite (k, 3) for the k grabbed particles")
-        self.grab_targets = t.copy()
-        self.wake()
-
-    def release(self) -> None:
-        self.grabbed = np.zeros(0, dtype=np.int64)
-        self.grab_targets = np.zeros((0, 3))
-        self._changed()
-        self.wake()
-
-    def set_holes(self, mask: ArrayLike) -> None:
-        """Hole mask (ny, nx), nonzero = hole; the particles and their constraints go (see
-        :func:`hole_mask_from_image` for image masks)."""
-        m = np.asarray(mask)
-        if m.dtype == np.uint8:
-            m = hole_mask_from_image(m, self.nx, self.ny)
-        if m.shape != (self.ny, self.nx):
-            raise ValueError(f"mask must be ({self.ny}, {self.nx}), got {m.shape}")
-        self.hole = (m != 0).reshape(-1)
-        # A constraint goes with its ends and with the faces it runs through (nothing spans
-        # a hole); this reference does not tear faces, so the faces are those without holes.
-        faces = grid_triangles(self.nx, self.ny, hole=self.hole)
-        self.active = constraints_on_surface(self.nx, faces, self.a, self.b)
-        self.active &= ~(self.hole[self.a] | self.hole[self.b])
-        self._changed()
-        self.wake()
-
-    def set_wind(self, direction: ArrayLike = (1.0, 0.0, 0.0), strength: float = 0.0) -> None:
-        self.wind = WindSetting(tuple(_vec(direction, 3, "direction")), float(strength))
-        self.wake()
-
-    def add_collider(self, shape: Any) -> int:
-        """Adds a shape with ``distance(points) -> (s, n)`` and ``friction``; returns its id."""
-        self.colliders.append(shape)
-        self.wake()
-        return len(self.colliders) - 1
-
-    def set_collider(self, index: int, shape: Any) -> None:
-        self.colliders[index] = shape
-        self.wake()
-
-    def clear_colliders(self) -> None:
-        self.colliders = []
         self.wake()
 
     # ---- solver ------------------------------------------------------------------------------
