@@ -39,11 +39,7 @@ bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSett
         d.format = kHdrFormat; // the forward pipelines draw into it as they draw the frame
         d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
         mFaces = vk::Image(&mCtx, d);
-        vk::ImageDesc z;
-        z.width = z.height = kFaceSize;
-        z.format = kDepthFormat;
-        z.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-        mDepth = vk::Image(&mCtx, z);
+        mDepth = captureDepth(mCtx, kFaceSize);
         vk::ImageDesc s;
         s.width = kShColumns;
         s.height = kMaxProbes;

@@ -37,6 +37,14 @@ std::vector<uint64_t> captureKey(const Scene& scene, const FrameData& data) {
     return key;
 }
 
+vk::Image captureDepth(vk::Context& ctx, uint32_t size) {
+    vk::ImageDesc z;
+    z.width = z.height = size;
+    z.format = kDepthFormat;
+    z.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    return vk::Image(&ctx, z);
+}
+
 bool ReflectionProbe::prepare(const Scene& scene, const FrameData& data, uint32_t size) {
     mInstance = -1;
     for (size_t i = 0; i < scene.instances().size(); ++i)
@@ -63,11 +71,7 @@ bool ReflectionProbe::prepare(const Scene& scene, const FrameData& data, uint32_
         d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                   VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
         mCube = vk::Image(&mCtx, d);
-        vk::ImageDesc z;
-        z.width = z.height = size;
-        z.format = kDepthFormat;
-        z.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-        mDepth = vk::Image(&mCtx, z);
+        mDepth = captureDepth(mCtx, size);
         mKey.clear();
     }
     if (key == mKey) return false;
