@@ -13,11 +13,9 @@ namespace weft::render {
 std::vector<int> DomeShadows::prepare(const Scene& scene, const RenderSettings& settings,
                                       const std::vector<uint64_t>& casterKey, uint64_t frame) {
     const EnvironmentLighting& env = scene.environment();
-    glm::vec3 lo, hi;
-    scene.bounds(lo, hi, true);
-    const bool casters = lo.x <= hi.x;
     const glm::vec3 ambient = scene.ambient();
-    mAmbient = !env.environment && settings.ambientOcclusion > 0 && casters &&
+    // casterKey is empty exactly when nothing casts a shadow
+    mAmbient = !env.environment && settings.ambientOcclusion > 0 && !casterKey.empty() &&
                glm::max(ambient.x, glm::max(ambient.y, ambient.z)) > 0.0f;
     if (!mAmbient && (!env.environment || env.domeLights == 0)) {
         mLights.clear();
@@ -25,6 +23,8 @@ std::vector<int> DomeShadows::prepare(const Scene& scene, const RenderSettings& 
         mFrustumKey.clear();
         return {};
     }
+    glm::vec3 lo, hi;
+    scene.bounds(lo, hi, true);
     // Cached by the environment's content version: unchanged radiance integrates nothing. The
     // ambient's sky is one uniform environment for every renderer.
     static const std::shared_ptr<Environment> uniformSky = [] {
