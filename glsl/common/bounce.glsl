@@ -6,12 +6,23 @@ layout(set = 0, binding = 14) uniform sampler2D bounceSh; // row: probe, column:
 // The instance's bounce capture, or -1 (none, or a frame without bounce light).
 int bounceProbe(Instance ins) { return frame.sky.z > 0.5 ? int(ins.flags.y) - 1 : -1; }
 
-vec3 bounceIrradiance(int probe, int set, vec3 n) {
-    float b[9] = float[9](0.282095, 0.488603 * n.y, 0.488603 * n.z, 0.488603 * n.x,
-                          1.092548 * n.x * n.y, 1.092548 * n.y * n.z,
-                          0.315392 * (3.0 * n.z * n.z - 1.0), 1.092548 * n.x * n.z,
-                          0.546274 * (n.x * n.x - n.y * n.y));
+// SH9 basis at unit n, each band scaled by w (x: l = 0, y: l = 1, z: l = 2).
+void shBasis9(vec3 n, vec3 w, out float b[9]) {
+    b = float[9](w.x * 0.282095, w.y * 0.488603 * n.y, w.y * 0.488603 * n.z,
+                 w.y * 0.488603 * n.x, w.z * 1.092548 * n.x * n.y, w.z * 1.092548 * n.y * n.z,
+                 w.z * 0.315392 * (3.0 * n.z * n.z - 1.0), w.z * 1.092548 * n.x * n.z,
+                 w.z * 0.546274 * (n.x * n.x - n.y * n.y));
+}
+
+// Set `set` of capture `probe` at n with its bands scaled by w (1: the set's own E(n) / pi).
+vec3 bounceSet(int probe, int set, vec3 n, vec3 w) {
+    float b[9];
+    shBasis9(n, w, b);
     vec3 e = vec3(0.0);
     for (int k = 0; k < 9; ++k) e += b[k] * texelFetch(bounceSh, ivec2(9 * set + k, probe), 0).rgb;
-    return max(e, vec3(0.0));
+    return e;
+}
+
+vec3 bounceIrradiance(int probe, int set, vec3 n) {
+    return max(bounceSet(probe, set, n, vec3(1.0)), vec3(0.0));
 }

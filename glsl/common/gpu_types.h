@@ -23,6 +23,7 @@ using uint = std::uint32_t;
 
 WEFT_CONST(int, MAX_COOKIES, 4);       // distinct spot-light cookie textures per frame
 WEFT_CONST(int, MAX_SHADOW_LAYERS, 32); // shadow-map layers per frame (a point light takes 6)
+WEFT_CONST(int, MAX_BOUNCE_CASTERS, 8); // casters with a bounce capture (render/BounceProbes.h)
 
 // Light::position.w
 WEFT_CONST(int, LIGHT_DIRECTIONAL, 0);
@@ -96,6 +97,10 @@ struct Frame {
     vec4 sky;      // x: the environment is the background, y: its level in the glossy chain
                    // (< 0: the sharp radiance cube), z: bounce light (BounceProbes.h) in this
                    // frame, w: the dome stands for the ambient's uniform sky (ambient occlusion)
+    // The casters with a bounce capture, as the proxy spheres whose light the rest of the scene
+    // receives (caster_bounce.glsl): xyz centre, w radius (0: no caster in this slot) ...
+    vec4 bounceSpheres[MAX_BOUNCE_CASTERS];
+    ivec4 bounceInstances[MAX_BOUNCE_CASTERS / 4]; // ... and their instances, four per vector
 };
 
 #ifdef __cplusplus

@@ -181,11 +181,13 @@ Surface surfaceAt(vec3 p, vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins
     return s;
 }
 
+#include "caster_bounce.glsl"
+
 // The terms of eq. 2.10 summed over lights, plus the environment's (environment.glsl).
 struct Shading {
     vec3 ambient;           // I_A K_A T (less what receivers hide from a caster: bounce.glsl)
     float ambientVisibility; // the part of the ambient's sky no caster occludes (ambient dome)
-    vec3 bounce;            // light bounced off the receivers (bounce.glsl)
+    vec3 bounce;            // light bounced off receivers and casters (caster_bounce.glsl)
     vec3 diffuse;           // direct diffuse, shadows applied
     vec3 diffuseUnshadowed; // direct diffuse without shadows (phantoms' reference)
     vec3 specular;          // direct specular, shadows applied
@@ -245,6 +247,8 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
         sh.ambient *= 1.0 - covered;
         sh.bounce = bounceIrradiance(bp, 0, n) * ins.kd.rgb * sf.T;
     }
+    // ... and the casters send theirs to everything else (caster_bounce.glsl)
+    sh.bounce += casterBounce(p, n, bp, frame.sky.w > 0.5) * ins.kd.rgb * sf.T;
     return sh;
 }
 

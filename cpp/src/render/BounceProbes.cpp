@@ -1,5 +1,6 @@
 #include "render/BounceProbes.h"
 
+#include <cmath>
 #include <cstring>
 
 #include "render/ReflectionProbe.h"
@@ -10,6 +11,7 @@ namespace weft::render {
 bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSettings& settings) {
     mPositions.clear();
     data.frame.sky.z = 0.0f;
+    for (glm::vec4& s : data.frame.bounceSpheres) s = glm::vec4(0.0f);
     std::vector<uint32_t> casters;
     bool receivers = false;
     for (const Draw& d : data.draws) {
@@ -26,8 +28,13 @@ bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSett
     for (uint32_t i = 0; i < casters.size(); ++i) {
         glm::vec3 lo, hi;
         scene.instanceBounds(casters[i], lo, hi);
-        mPositions.push_back(0.5f * (lo + hi));
+        const glm::vec3 centre = 0.5f * (lo + hi), half = 0.5f * (hi - lo);
+        mPositions.push_back(centre);
         data.instances[casters[i]].flags.y = i + 1;
+        // the proxy sphere whose light the others receive: the RMS of the half extents is the
+        // radius of a sphere (exact) and a middle measure of a flat or long caster
+        data.frame.bounceSpheres[i] = glm::vec4(centre, std::sqrt(glm::dot(half, half) / 3.0f));
+        data.frame.bounceInstances[i / 4][i % 4] = int(casters[i]);
     }
     data.frame.sky.z = 1.0f;
 

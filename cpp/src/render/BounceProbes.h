@@ -17,13 +17,14 @@
 #include <weft/Scene.h>
 
 #include "render/FrameData.h"
+#include "render/GpuTypes.h"
 #include "vk/Resources.h"
 
 namespace weft::render {
 
 class BounceProbes {
 public:
-    static constexpr uint32_t kMaxProbes = 8;  // casters beyond these get no bounce light
+    static constexpr uint32_t kMaxProbes = gpu::MAX_BOUNCE_CASTERS; // casters beyond get none
     static constexpr uint32_t kFaceSize = 16;  // texels per face: SH9 needs no more
     static constexpr uint32_t kShColumns = 27; // three sets of nine coefficients
     static constexpr VkFormat kShFormat = VK_FORMAT_R32G32B32A32_SFLOAT;

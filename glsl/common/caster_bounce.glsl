@@ -1,0 +1,73 @@
+// The light the shadow casters reflect onto the rest of the scene (issue 18): the ground beside
+// a sphere, the sphere beside another. bounce.glsl gives each caster the light of the receivers;
+// this is the way back. Each caster with a bounce capture stands in as a proxy sphere (centre c,
+// radius r; frame.bounceSpheres) whose radiance towards a point p is that of a diffuse sphere:
+// the mean over the cap p sees of the light it reflects,
+//   L(a) = K_D <E>_a / pi + K_A I_A (1 - covered),   a = (p - c) / |p - c|.
+// Seen from afar the cap is the half facing a, and <E>_a, the irradiance averaged over its
+// normals with weight n.a / pi, is E convolved once more with the clamped cosine: in SH9 each
+// band l times A_l / pi = 1, 2/3, 1/4 (Ramamoorthi & Hanrahan 2001); for a directional light of
+// radiance L_i it is the Lambert sphere's phase law L_i 2 / (3 pi) (sin t + (pi - t) cos t), t
+// the angle between a and the light. From close by the cap shrinks to the pole facing p (its
+// half-angle b has cos b = r / D = s), whose normal is a itself: the band weights go from the
+// far values to 1 as the uniform cap means of the bands do, (2 + s) / 3 and
+// 1/4 + (3/4) s (1 + s) / 2, and the phase law to max(cos t, 0) in proportion to s. Each light
+// is shadowed as at the caster's lit pole. The sphere lights p (normal n) with
+// E / pi = L (r / D)^2 cos(theta) while it is wholly above p's horizon (exact for a sphere), and
+// with the C1 blend s^2 (h + s)^2 / (4 s) (s = r / D, h = cos theta) while the horizon cuts it.
+// Inside a proxy (a concave caster's hollow) its outside is not what p sees: faded out there.
+// Not counted: what the casters show each other in the captures (one bounce), the caster's
+// texture (its K_D stands for its colour). Included by shading.glsl after the shadow lookups.
+
+vec3 casterRadiance(int c, vec3 a, float s, bool ambientDome) {
+    Instance ci = instances[frame.bounceInstances[c / 4][c % 4]];
+    vec3 centre = frame.bounceSpheres[c].xyz;
+    float r = frame.bounceSpheres[c].w;
+    vec3 once = vec3(1.0, (2.0 + s) / 3.0, 0.25 + 0.375 * s * (1.0 + s));
+    vec3 e = bounceSet(c, 0, a, once); // the receivers' light
+    if (frame.environment.x > 0.0) {   // the sky, less what the receivers hide
+        float b[9];
+        shBasis9(a, once, b);
+        vec3 sky = vec3(0.0);
+        for (int k = 0; k < 9; ++k) sky += b[k] * frame.environmentSh[k].rgb;
+        e += ci.environment.w * (sky * frame.environment.x - bounceSet(c, 1, a, once));
+    }
+    vec3 radiance = ci.kd.rgb * max(e, vec3(0.0));
+    // the ambient's reflection: the multi-bounce fit of the ambient occlusion already has it
+    if (!ambientDome) {
+        float covered = clamp(bounceSet(c, 2, a, once).x, 0.0, 1.0);
+        radiance += frame.ambient.rgb * ci.ka.rgb * (1.0 - covered);
+    }
+    for (int i = 0; i < frame.counts.x; ++i) {
+        vec3 l;
+        vec3 L = incidentRadiance(lights[i], centre, l);
+        float t = acos(clamp(dot(a, l), -1.0, 1.0));
+        float phase = mix(0.212207 * (sin(t) + (3.14159265 - t) * cos(t)), // 2 / (3 pi) (...)
+                          max(cos(t), 0.0), s);
+        if (phase <= 0.0) continue;
+        float vis = 1.0, depth;
+        if (lights[i].radiance.w >= 0.0) vis = shadowVisibility(lights[i], centre + l * r, l, l, depth);
+        radiance += vis * phase * L * ci.kd.rgb;
+    }
+    return radiance;
+}
+
+// E / pi at p (normal n) from every caster's proxy but `self` (the surface's own capture).
+vec3 casterBounce(vec3 p, vec3 n, int self, bool ambientDome) {
+    vec3 e = vec3(0.0);
+    if (frame.sky.z < 0.5) return e; // no bounce light in this frame, or a capture
+    for (int c = 0; c < MAX_BOUNCE_CASTERS; ++c) {
+        float r = frame.bounceSpheres[c].w;
+        if (r <= 0.0 || c == self) continue;
+        vec3 d = frame.bounceSpheres[c].xyz - p;
+        float D = length(d);
+        if (D <= 0.5 * r) continue;
+        vec3 w = d / D;
+        float s = min(r / D, 1.0), h = dot(n, w);
+        if (h <= -s) continue;
+        float f = h >= s ? h * s * s : s * s * (h + s) * (h + s) / (4.0 * s);
+        f *= smoothstep(0.5 * r, r, D);
+        if (f > 1e-4) e += f * casterRadiance(c, -w, s, ambientDome);
+    }
+    return e;
+}
