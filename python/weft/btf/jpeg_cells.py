@@ -166,7 +166,8 @@ def _params(material: BtfMaterial, flat: bool) -> np.ndarray:
 
 def refine_luma(samples: Any, material: BtfMaterial, cells: Dict[str, np.ndarray], *,
                 max_exponent: float, shadowed: Optional[np.ndarray] = None,
-                iterations: int = 10, sigma: float = 1.08, cg_iterations: int = 25,
+                iterations: int = 10, sigma: float = 0.77, prior: float = 0.0,
+                cg_iterations: int = 25,
                 chunk: int = 256) -> Tuple[np.ndarray, Dict[str, Any]]:
     """Per-texel luma parameters (H*W, 6) minimising the dead-zone cost over each block.
     ``shadowed`` (S, H, W) bool: samples left out."""
@@ -196,6 +197,7 @@ def refine_luma(samples: Any, material: BtfMaterial, cells: Dict[str, np.ndarray
         c = coef[:, blk].transpose(1, 0, 2)                           # (nb, S, 64)
         qq = quant[:, blk].transpose(1, 0, 2)
         lo, hi = (c - 0.5) * qq, (c + 0.5) * qq
+        pvar = 1.0 / (qq * qq / 12.0 + sigma * sigma)
         yd = ydat_b[:, blk].transpose(1, 0, 2)
         keep = None if sh_b is None else ~sh_b[:, blk].transpose(1, 0, 2)
 
@@ -206,6 +208,11 @@ def refine_luma(samples: Any, material: BtfMaterial, cells: Dict[str, np.ndarray
                 y = np.where(keep, y, yd)
             f = (y - 128.0) @ B.T                                     # block DCT
             nll, d1, d2 = cell_nll(f, lo, hi, sigma)
+            if prior > 0:   # the decoded value as a measurement of variance q^2/12 + sigma^2
+                dv = f - (lo + hi) * 0.5
+                nll = nll + prior * dv * dv * 0.5 * pvar
+                d1 = d1 + prior * dv * pvar
+                d2 = d2 + prior * pvar
             cost = np.sum(nll, (1, 2))
             if not jac:
                 return cost, None
@@ -293,14 +300,15 @@ def colours(samples: Any, p: np.ndarray, flat: bool,
 
 def refine(samples: Any, material: BtfMaterial, *, max_exponent: float,
            shadowed: Optional[np.ndarray] = None, iterations: int = 10,
-           sigma: float = 1.08) -> Tuple[BtfMaterial, Dict[str, Any]]:
+           sigma: float = 0.77, prior: float = 0.0) -> Tuple[BtfMaterial, Dict[str, Any]]:
     """The material refined against the samples' JPEG cells (unchanged when there are none)."""
     cells = luma_cells(samples)
     if cells is None:
         return material, {"refined": False}
     flat = bool(material.flat_specular_normal)
     p, stats = refine_luma(samples, material, cells, max_exponent=max_exponent,
-                           shadowed=shadowed, iterations=iterations, sigma=sigma)
+                           shadowed=shadowed, iterations=iterations, sigma=sigma,
+                           prior=prior)
     m, b, k = colours(samples, p, flat, shadowed)
     h, w = samples.height, samples.width
     n = np.stack([p[:, 0], p[:, 1], np.ones(len(p))], 1)
