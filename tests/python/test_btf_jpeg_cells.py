@@ -100,3 +100,34 @@ def test_no_cells_without_jpeg(tmp_path, jpeg_data):
     assert btf.load(png).jpeg_cells is None
     # samples built from arrays have no file behind them
     assert weft.BtfSamples(np.ascontiguousarray(s.values), s.angles).jpeg_cells is None
+
+
+def _fit(samples, truth, jpeg_cells):
+    from weft.btf import scoring
+    flat = truth.flat_specular_normal
+    seed = btf.fit_specular(samples, btf.fit_linear(samples), flat).material
+    fit = btf.fit_blinn_phong(samples, seed, flat_specular_normal=flat, luminance_normals=True,
+                              jpeg_cells=jpeg_cells)
+    return fit.material, scoring.truth_errors(fit.material, truth), \
+        scoring.physical_violations(fit.material)["texels"]
+
+
+def test_cell_refinement_lowers_the_normal_error(tmp_path):
+    """Seed 31 (not one of the tuning seeds 0, 1, 3, 21), unshadowed, JPEG q90, 32²: the block
+    solve against the luma cells brings normals nearer the truth (0.72° -> 0.49° when
+    measured) and keeps every texel physical. The issue's 0.5° is not asserted on JPEG: the
+    Cramér-Rao bound of the cells is above it for some materials (BENCHMARKS.md, btf)."""
+    samples, truth = synth.synthesize_random(31, SIZE, noise=0.004)
+    folder = str(tmp_path / "jpg")
+    btf.write(folder, samples, fmt="jpg", quality=90)
+    data = btf.load(folder)
+    _, before, _ = _fit(data, truth.material, False)
+    refined, after, outside = _fit(data, truth.material, True)
+    assert outside == 0
+    assert after["mean_deg"] < 0.85 * before["mean_deg"], (before, after)
+    assert after["k_s_median_rel_error"] <= before["k_s_median_rel_error"] + 0.01
+    # without cells the option changes nothing
+    plain = weft.BtfSamples(np.ascontiguousarray(data.values), data.angles)
+    m0, _, _ = _fit(plain, truth.material, False)
+    m1, _, _ = _fit(plain, truth.material, True)
+    np.testing.assert_array_equal(m0.normal, m1.normal)

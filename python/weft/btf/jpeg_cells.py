@@ -166,7 +166,7 @@ def _params(material: BtfMaterial, flat: bool) -> np.ndarray:
 
 def refine_luma(samples: Any, material: BtfMaterial, cells: Dict[str, np.ndarray], *,
                 max_exponent: float, shadowed: Optional[np.ndarray] = None,
-                iterations: int = 10, sigma: float = 0.77, prior: float = 0.0,
+                iterations: int = 6, sigma: float = 0.77, prior: float = 1.0,
                 cg_iterations: int = 25,
                 chunk: int = 256) -> Tuple[np.ndarray, Dict[str, Any]]:
     """Per-texel luma parameters (H*W, 6) minimising the dead-zone cost over each block.
@@ -299,9 +299,13 @@ def colours(samples: Any, p: np.ndarray, flat: bool,
 
 
 def refine(samples: Any, material: BtfMaterial, *, max_exponent: float,
-           shadowed: Optional[np.ndarray] = None, iterations: int = 10,
-           sigma: float = 0.77, prior: float = 0.0) -> Tuple[BtfMaterial, Dict[str, Any]]:
-    """The material refined against the samples' JPEG cells (unchanged when there are none)."""
+           shadowed: Optional[np.ndarray] = None, iterations: int = 6,
+           sigma: float = 0.77, prior: float = 1.0) -> Tuple[BtfMaterial, Dict[str, Any]]:
+    """The material refined against the samples' JPEG cells (unchanged, ``refined`` False, when
+    there are none or the blocks do not tile the image). ``sigma``: the sensor noise in 8-bit
+    luma levels (0.77: noise 0.004 per channel plus the encoder's rounding). ``prior``: weight of
+    the decoded value as a measurement of variance q^2/12 + sigma^2 (0: the cells alone, which
+    wander along directions they do not constrain). ``shadowed`` (S, H, W): samples left out."""
     cells = luma_cells(samples)
     if cells is None:
         return material, {"refined": False}
@@ -321,3 +325,18 @@ def refine(samples: Any, material: BtfMaterial, *, max_exponent: float,
                       flat_specular_normal=flat, clamp_diffuse=True)
     stats["refined"] = True
     return out, stats
+
+
+def shadow_mask(samples: Any, material: BtfMaterial, sigma: float = 0.77) -> np.ndarray:
+    """(S, H, W) samples the visibility pass would leave out, on the luma: darker than the
+    constant term plus half the lit part of the model by more than 4 sigma."""
+    flat = bool(material.flat_specular_normal)
+    model = _LumaModel(np.asarray(samples.light_dirs, np.float64),
+                       np.asarray(samples.view_dirs, np.float64), flat)
+    p = _params(material, flat)
+    y, _ = model.eval(p, False)                                       # (N, S)
+    base = 255.0 * p[:, 3:4]
+    vals = np.asarray(samples.values, np.float64)
+    y_data = (np.einsum("c,schw->shw", _YCC[0], vals) * 255.0).reshape(len(vals), -1).T
+    dark = y_data < base + 0.5 * (y - base) - 4 * sigma
+    return dark.T.reshape(len(vals), samples.height, samples.width)
