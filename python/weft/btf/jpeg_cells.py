@@ -99,13 +99,6 @@ def _blocks(a: np.ndarray) -> np.ndarray:
     return b.reshape(*lead, h // 8, w // 8, 64)
 
 
-def _unblocks(b: np.ndarray, h: int, w: int) -> np.ndarray:
-    *lead, by, bx, _ = b.shape
-    a = b.reshape(*lead, by, bx, 8, 8)
-    a = np.moveaxis(a, -2, -3)
-    return a.reshape(*lead, h, w)
-
-
 class _LumaModel:
     """Y (8-bit units) of the Blinn-Phong model per texel and sample, and its derivatives
     with respect to (u, v, m_Y, b_Y, k_Y, log e)."""
