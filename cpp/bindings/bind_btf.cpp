@@ -198,6 +198,36 @@ void bindBtf(py::module_& m) {
                 for (int k = 0; k < 3; ++k) out.mutable_data()[i * 3 + k] = s.view(i)[k];
             return out;
         })
+        .def_property_readonly("jpeg_cells", [](const BtfSamples& s) -> py::object {
+            const BtfJpegCells* cells = s.jpegCells();
+            if (!cells) return py::none();
+            const size_t count = size_t(s.count()), nc = cells->components.size();
+            py::list comps;
+            for (size_t c = 0; c < nc; ++c) {
+                const auto& comp = cells->components[c];
+                const size_t bh = size_t(comp.blocksHigh), bw = size_t(comp.blocksWide);
+                py::array_t<int16_t> coef({count, bh, bw, size_t(8), size_t(8)});
+                py::array_t<uint16_t> quant({count, size_t(8), size_t(8)});
+                int16_t* co = coef.mutable_data();
+                uint16_t* qo = quant.mutable_data();
+                for (size_t k = 0; k < count; ++k) {
+                    const int16_t* src = cells->coefficients.data() +
+                                         k * cells->coefficientsPerSample + comp.offset;
+                    std::copy(src, src + bh * bw * 64, co + k * bh * bw * 64);
+                    const uint16_t* q = cells->quant.data() + (k * nc + c) * 64;
+                    std::copy(q, q + 64, qo + k * 64);
+                }
+                py::dict d;
+                d["coefficients"] = coef;
+                d["quant"] = quant;
+                d["sampling"] = py::make_tuple(comp.hSampling, comp.vSampling);
+                comps.append(d);
+            }
+            py::dict out;
+            out["ycbcr"] = cells->ycbcr;
+            out["components"] = comps;
+            return out;
+        })
         .def("__repr__", [](const BtfSamples& s) {
             return "<weft.BtfSamples " + std::to_string(s.count()) + " samples of " +
                    std::to_string(s.width()) + "x" + std::to_string(s.height()) + " RGB>";
@@ -218,10 +248,11 @@ void bindBtf(py::module_& m) {
         return py::make_tuple(a.thetaLight, a.phiLight, a.thetaView, a.phiView);
     }, py::arg("name"));
     m.def("btf_load", [](const std::string& path, py::object views, const std::string& gamma,
-                         int threads) {
+                         int threads, bool jpegCells) {
         BtfLoadOptions o;
         o.gamma = gammaFrom(gamma);
         o.threads = threads;
+        o.jpegCells = jpegCells;
         if (views.is_none()) {
             o.views.clear();
         } else {
@@ -234,7 +265,8 @@ void bindBtf(py::module_& m) {
         }
         py::gil_scoped_release release;
         return loadBtf(path, o);
-    }, py::arg("path"), py::arg("views"), py::arg("gamma") = "raw", py::arg("threads") = 0);
+    }, py::arg("path"), py::arg("views"), py::arg("gamma") = "raw", py::arg("threads") = 0,
+       py::arg("jpeg_cells") = true);
     m.def("btf_write", [](const std::string& path, const BtfSamples& samples,
                           const std::string& format, int quality, bool zip,
                           const std::string& gamma, const std::string& prefix) {

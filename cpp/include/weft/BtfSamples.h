@@ -2,6 +2,8 @@
 // BTF measurements of one material: per sample (light direction, view direction) an RGB image,
 // stored planar as float32 [sample][channel][texel] so one pass streams over the samples.
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,25 @@ const std::vector<glm::vec2>& btfStandardDirections();
 enum class BtfGamma {
     Raw,   ///< value / 255, as the seed fitted the JPEG values (gamma-encoded)
     Linear ///< (value / 255)^2.2: linearised with the usual display gamma
+};
+
+/// For samples read from JPEG files: what the files store, per sample and colour component the
+/// quantised 8x8 block-DCT coefficients c and the quantisation steps q (libjpeg's
+/// jpeg_read_coefficients, natural order). The encoder's DCT of the 8-bit image (levels shifted
+/// by -128; JFIF YCbCr with chroma subsampled as `components` say) lay in the cells
+/// [(c - 1/2) q, (c + 1/2) q]: a constraint on the image, which the decoded values (the cells'
+/// centres) do not carry. 3 bytes per texel and sample for 4:2:0 colour (the floats take 12).
+struct BtfJpegCells {
+    struct Component {
+        int blocksWide = 0, blocksHigh = 0; ///< blocks holding image data
+        int hSampling = 1, vSampling = 1;   ///< sampling factors (luma 2 x 2 for 4:2:0)
+        size_t offset = 0;                  ///< first coefficient within a sample
+    };
+    bool ycbcr = false;                 ///< 3 components Y, Cb, Cr; false: 1 grey component
+    std::vector<Component> components;  ///< the same for every sample
+    size_t coefficientsPerSample = 0;
+    std::vector<int16_t> coefficients;  ///< [sample][component][blockRow][blockCol][64]
+    std::vector<uint16_t> quant;        ///< [sample][component][64]
 };
 
 class BtfSamples {
@@ -53,11 +74,17 @@ public:
     /// Throws InvalidArgument when a value is NaN/inf.
     void requireFinite() const;
 
+    /// The JPEG cells the samples were decoded from (loadBtf of JPEG files with raw gamma), or
+    /// null. They describe the values as loaded: changing values() makes them stale.
+    const BtfJpegCells* jpegCells() const { return mJpegCells.get(); }
+    void setJpegCells(std::shared_ptr<const BtfJpegCells> cells) { mJpegCells = std::move(cells); }
+
 private:
     int mWidth = 0, mHeight = 0;
     std::vector<BtfAngles> mAngles;
     std::vector<glm::vec3> mLights, mViews;
     std::vector<float> mValues;
+    std::shared_ptr<const BtfJpegCells> mJpegCells;
 };
 
 } // namespace weft

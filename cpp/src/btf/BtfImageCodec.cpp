@@ -98,6 +98,67 @@ DecodedImage decodeJpeg(const std::vector<uint8_t>& bytes, const std::string& na
     return img;
 }
 
+bool jpegReadCoefficients(JpegDecoder& d, const uint8_t* data, size_t size,
+                          jvirt_barray_ptr** arrays) {
+    if (setjmp(d.error.jump)) return false;
+    jpeg_mem_src(&d.info, data, static_cast<unsigned long>(size));
+    jpeg_read_header(&d.info, TRUE);
+    *arrays = jpeg_read_coefficients(&d.info);
+    return true;
+}
+
+// Copies block rows out of libjpeg's virtual arrays; access_virt_barray can longjmp.
+bool jpegCopyBlocks(JpegDecoder& d, jvirt_barray_ptr* arrays, int16_t* out) {
+    if (setjmp(d.error.jump)) return false;
+    for (int c = 0; c < d.info.num_components; ++c) {
+        const jpeg_component_info& ci = d.info.comp_info[c];
+        for (JDIMENSION row = 0; row < ci.height_in_blocks; ++row) {
+            JBLOCKARRAY line = (*d.info.mem->access_virt_barray)(
+                reinterpret_cast<j_common_ptr>(&d.info), arrays[c], row, 1, FALSE);
+            for (JDIMENSION col = 0; col < ci.width_in_blocks; ++col, out += 64)
+                for (int k = 0; k < 64; ++k) out[k] = int16_t(line[0][col][k]);
+        }
+    }
+    jpeg_finish_decompress(&d.info);
+    return true;
+}
+
+// The cells are only meaningful for grey or JFIF YCbCr baseline data whose blocks cover the
+// decoded image; anything else returns no components.
+JpegCoefficientImage readJpegCoefficients(const std::vector<uint8_t>& bytes,
+                                          const std::string& name, int width, int height) {
+    JpegDecoder d;
+    jvirt_barray_ptr* arrays = nullptr;
+    if (!jpegReadCoefficients(d, bytes.data(), bytes.size(), &arrays) || !arrays)
+        throw IoError("cannot read JPEG '" + name + "' coefficients (corrupt): " +
+                      d.error.message);
+    JpegCoefficientImage out;
+    const bool grey = d.info.num_components == 1 && d.info.jpeg_color_space == JCS_GRAYSCALE;
+    const bool ycc = d.info.num_components == 3 && d.info.jpeg_color_space == JCS_YCbCr;
+    if ((!grey && !ycc) || int(d.info.image_width) != width ||
+        int(d.info.image_height) != height)
+        return out;
+    size_t blocks = 0;
+    for (int c = 0; c < d.info.num_components; ++c) {
+        const jpeg_component_info& ci = d.info.comp_info[c];
+        if (!ci.quant_table) return JpegCoefficientImage{};
+        JpegCoefficientImage::Component comp;
+        comp.blocksWide = int(ci.width_in_blocks);
+        comp.blocksHigh = int(ci.height_in_blocks);
+        comp.hSampling = ci.h_samp_factor;
+        comp.vSampling = ci.v_samp_factor;
+        for (int k = 0; k < 64; ++k) comp.quant[k] = ci.quant_table->quantval[k];
+        out.components.push_back(comp);
+        blocks += size_t(comp.blocksWide) * size_t(comp.blocksHigh);
+    }
+    out.ycbcr = ycc;
+    out.coefficients.resize(blocks * 64);
+    if (!jpegCopyBlocks(d, arrays, out.coefficients.data()))
+        throw IoError("cannot read JPEG '" + name + "' coefficients (truncated or corrupt): " +
+                      d.error.message);
+    return out;
+}
+
 struct JpegEncoder {
     jpeg_compress_struct info;
     JpegError error;
@@ -137,10 +198,15 @@ bool jpegWrite(JpegEncoder& e, const uint8_t* rgb, int width, int height, int qu
 
 } // namespace
 
-DecodedImage decodeBtfImage(const std::vector<uint8_t>& bytes, const std::string& name) {
+DecodedImage decodeBtfImage(const std::vector<uint8_t>& bytes, const std::string& name,
+                            bool jpegCoefficients) {
     static const uint8_t pngSig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF)
-        return decodeJpeg(bytes, name);
+    if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) {
+        DecodedImage img = decodeJpeg(bytes, name);
+        if (jpegCoefficients)
+            img.coefficients = readJpegCoefficients(bytes, name, img.width, img.height);
+        return img;
+    }
     if (bytes.size() >= 8 && std::memcmp(bytes.data(), pngSig, 8) == 0)
         return decodePng(bytes, name);
     throw IoError("'" + name + "' is neither a JPEG nor a PNG (" + std::to_string(bytes.size()) +

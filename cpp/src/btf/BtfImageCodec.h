@@ -12,17 +12,37 @@ namespace weft {
 /// that a forged header cannot make the reader allocate gigabytes.
 constexpr uint64_t kMaxBtfImageBytes = uint64_t(256) << 20;
 
+/// What a JPEG stores, before the decoder's inverse DCT and colour conversion: per colour
+/// component the quantised 8x8 block-DCT coefficients (natural order, libjpeg's
+/// jpeg_read_coefficients) and the quantisation table. The stored integer c of a coefficient
+/// says the encoder's DCT value lay in [(c - 1/2) q, (c + 1/2) q].
+struct JpegCoefficientImage {
+    struct Component {
+        int blocksWide = 0, blocksHigh = 0; ///< blocks holding image data
+        int hSampling = 1, vSampling = 1;   ///< sampling factors (luma 2x2 for 4:2:0)
+        uint16_t quant[64] = {};            ///< natural order
+    };
+    bool ycbcr = false; ///< JFIF YCbCr (3 components); false: one grey component
+    std::vector<Component> components;
+    std::vector<int16_t> coefficients; ///< [component][blockRow][blockCol][64]
+};
+
 struct DecodedImage {
     int width = 0, height = 0, channels = 0; ///< channels 1 (grey) or 3 (RGB)
     std::vector<uint8_t> pixels;    ///< 8-bit values, interleaved (empty for 16-bit PNG)
     std::vector<uint16_t> pixels16; ///< 16-bit PNG values as stored, interleaved
+    /// JPEG only and only when asked for: the stored coefficients; empty (no components) when
+    /// the JPEG is neither grey nor YCbCr (then nothing is known of its cells)
+    JpegCoefficientImage coefficients;
 };
 
 /// Decodes JPEG or PNG by signature. Values are returned as stored (no gamma conversion, 16-bit
 /// PNG kept at 16 bits). An alpha channel that is opaque everywhere is dropped; any alpha below
 /// full opacity (including a tRNS colour key) is refused with IoError, because compositing on a
 /// background would change the measured radiance.
-DecodedImage decodeBtfImage(const std::vector<uint8_t>& bytes, const std::string& name);
+/// `jpegCoefficients`: also read a JPEG's stored coefficients (a second, entropy-only pass).
+DecodedImage decodeBtfImage(const std::vector<uint8_t>& bytes, const std::string& name,
+                            bool jpegCoefficients = false);
 
 /// PNG only (BtfPngDecode.cpp); same contract as decodeBtfImage.
 DecodedImage decodePng(const std::vector<uint8_t>& bytes, const std::string& name);

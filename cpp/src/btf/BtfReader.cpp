@@ -105,7 +105,8 @@ struct Decoded {
     int height() const { return isExr ? exr.height : image.height; }
 };
 
-Decoded decodeEntry(const Entry& e, const ZipReader* zip, std::mutex& zipMutex) {
+Decoded decodeEntry(const Entry& e, const ZipReader* zip, std::mutex& zipMutex,
+                    bool jpegCells) {
     Decoded d;
     d.isExr = isExr(e.name);
     if (d.isExr && !zip) {
@@ -119,7 +120,7 @@ Decoded decodeEntry(const Entry& e, const ZipReader* zip, std::mutex& zipMutex) 
             bytes = readFile(e.name);
         }
         if (d.isExr) d.exr = loadExrBytes(bytes, e.name);
-        else d.image = decodeBtfImage(bytes, e.name);
+        else d.image = decodeBtfImage(bytes, e.name, jpegCells);
     }
     if (d.isExr) {
         try {
@@ -207,6 +208,69 @@ private:
     std::once_flag mLut16Once;
     std::vector<float> mLut16;
 };
+// Gathers the JPEG cells of every sample; gives up (no cells) as soon as one image is not a
+// JPEG with the first one's layout. put() runs concurrently for different samples.
+class CellStore {
+public:
+    CellStore(const JpegCoefficientImage& first, int count) {
+        if (first.components.empty()) return;
+        auto cells = std::make_shared<BtfJpegCells>();
+        cells->ycbcr = first.ycbcr;
+        size_t offset = 0;
+        for (const auto& c : first.components) {
+            BtfJpegCells::Component comp;
+            comp.blocksWide = c.blocksWide;
+            comp.blocksHigh = c.blocksHigh;
+            comp.hSampling = c.hSampling;
+            comp.vSampling = c.vSampling;
+            comp.offset = offset;
+            offset += size_t(c.blocksWide) * size_t(c.blocksHigh) * 64;
+            cells->components.push_back(comp);
+        }
+        cells->coefficientsPerSample = offset;
+        try {
+            cells->coefficients.resize(offset * size_t(count));
+            cells->quant.resize(first.components.size() * 64 * size_t(count));
+        } catch (const std::bad_alloc&) {
+            return; // the cells are optional: the samples load without them
+        }
+        mCells = std::move(cells);
+        mValid = true;
+    }
+
+    void put(const JpegCoefficientImage& img, int s) {
+        if (!mValid.load()) return;
+        BtfJpegCells& cells = *mCells;
+        bool same = img.ycbcr == cells.ycbcr && img.components.size() == cells.components.size() &&
+                    img.coefficients.size() == cells.coefficientsPerSample;
+        for (size_t c = 0; same && c < img.components.size(); ++c) {
+            const auto& a = img.components[c];
+            const auto& b = cells.components[c];
+            same = a.blocksWide == b.blocksWide && a.blocksHigh == b.blocksHigh &&
+                   a.hSampling == b.hSampling && a.vSampling == b.vSampling;
+        }
+        if (!same) {
+            mValid = false;
+            return;
+        }
+        std::copy(img.coefficients.begin(), img.coefficients.end(),
+                  cells.coefficients.begin() +
+                      std::ptrdiff_t(size_t(s) * cells.coefficientsPerSample));
+        const size_t nq = cells.components.size() * 64;
+        for (size_t c = 0; c < img.components.size(); ++c)
+            std::copy(img.components[c].quant, img.components[c].quant + 64,
+                      cells.quant.begin() + std::ptrdiff_t(size_t(s) * nq + c * 64));
+    }
+
+    std::shared_ptr<const BtfJpegCells> result() const {
+        return mValid.load() ? mCells : nullptr;
+    }
+
+private:
+    std::shared_ptr<BtfJpegCells> mCells;
+    std::atomic<bool> mValid{false};
+};
+
 } // namespace
 
 bool parseBtfFileName(const std::string& name, BtfAngles& out) {
@@ -335,14 +399,20 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
     }
     SampleStore store(options.gamma);
     std::mutex zipMutex;
+    const bool wantCells = options.jpegCells && options.gamma == BtfGamma::Raw;
     auto decode = [&](size_t i) {
-        return decodeEntry(*chosen[i], zip.get(), zipMutex);
+        return decodeEntry(*chosen[i], zip.get(), zipMutex, wantCells);
     };
     BtfSamples samples;
+    std::unique_ptr<CellStore> cells;
     {
         const Decoded first = decode(0);
         samples = allocateSamples(first.width(), first.height(), std::move(angles), path);
         store.put(first, *chosen[0], *chosen[0], samples, 0);
+        if (wantCells && !first.isExr) {
+            cells = std::make_unique<CellStore>(first.image.coefficients, int(chosen.size()));
+            cells->put(first.image.coefficients, 0);
+        }
     }
     // Every other image is read, decoded and converted by one thread, then freed: memory holds
     // the samples plus one image per thread, never the whole archive.
@@ -353,7 +423,12 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
         for (int k = b; k < e && !failed.load(); ++k) {
             const size_t i = size_t(k) + 1;
             try {
-                store.put(decode(i), *chosen[i], *chosen[0], samples, int(i));
+                Decoded d = decode(i);
+                store.put(d, *chosen[i], *chosen[0], samples, int(i));
+                if (cells) {
+                    if (d.isExr) cells->put(JpegCoefficientImage{}, int(i));
+                    else cells->put(d.image.coefficients, int(i));
+                }
             } catch (...) {
                 std::lock_guard<std::mutex> lock(errorMutex);
                 if (!firstError) firstError = std::current_exception();
@@ -362,6 +437,7 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
         }
     });
     if (firstError) std::rethrow_exception(firstError);
+    if (cells) samples.setJpegCells(cells->result());
     return samples;
 }
 
