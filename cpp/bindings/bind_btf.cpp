@@ -266,7 +266,7 @@ void bindBtf(py::module_& m) {
         py::gil_scoped_release release;
         return loadBtf(path, o);
     }, py::arg("path"), py::arg("views"), py::arg("gamma") = "raw", py::arg("threads") = 0,
-       py::arg("jpeg_cells") = true);
+       py::arg("jpeg_cells") = false);
     m.def("btf_write", [](const std::string& path, const BtfSamples& samples,
                           const std::string& format, int quality, bool zip,
                           const std::string& gamma, const std::string& prefix) {

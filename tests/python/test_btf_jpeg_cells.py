@@ -39,7 +39,7 @@ def jpeg_data(tmp_path_factory):
     samples, _ = synth.synthesize_random(11, SIZE, noise=0.004)
     folder = str(tmp_path_factory.mktemp("cells") / "jpg")
     btf.write(folder, samples, fmt="jpg", quality=90)
-    return folder, btf.load(folder)
+    return folder, btf.load(folder, jpeg_cells=True)
 
 
 def test_cells_layout(jpeg_data):
@@ -92,12 +92,12 @@ def test_cells_contain_pillows_decode(jpeg_data):
 
 def test_no_cells_without_jpeg(tmp_path, jpeg_data):
     folder, s = jpeg_data
-    assert btf.load(folder, jpeg_cells=False).jpeg_cells is None
-    assert btf.load(folder, gamma="linear").jpeg_cells is None  # cells hold 8-bit raw values
+    assert btf.load(folder).jpeg_cells is None  # only when asked for
+    assert btf.load(folder, gamma="linear", jpeg_cells=True).jpeg_cells is None  # cells hold 8-bit raw values
     samples, _ = synth.synthesize_random(11, 16, noise=0.004)
     png = str(tmp_path / "png")
     btf.write(png, samples, fmt="png")
-    assert btf.load(png).jpeg_cells is None
+    assert btf.load(png, jpeg_cells=True).jpeg_cells is None
     # samples built from arrays have no file behind them
     assert weft.BtfSamples(np.ascontiguousarray(s.values), s.angles).jpeg_cells is None
 
@@ -120,7 +120,7 @@ def test_cell_refinement_lowers_the_normal_error(tmp_path):
     samples, truth = synth.synthesize_random(31, SIZE, noise=0.004)
     folder = str(tmp_path / "jpg")
     btf.write(folder, samples, fmt="jpg", quality=90)
-    data = btf.load(folder)
+    data = btf.load(folder, jpeg_cells=True)
     _, before, _ = _fit(data, truth.material, False)
     refined, after, outside = _fit(data, truth.material, True)
     assert outside == 0

@@ -20,8 +20,9 @@ struct BtfLoadOptions {
     int threads = 0; ///< decoding threads, 0 = all cores, else 1..256
     /// Keep the JPEG coefficients and quantisation tables (BtfSamples::jpegCells) when every
     /// image is a grey or YCbCr JPEG of one layout and gamma is Raw (the cells constrain the
-    /// 8-bit values, value / 255); a second entropy-decoding pass, 25% more memory.
-    bool jpegCells = true;
+    /// 8-bit values, value / 255); a second entropy-decoding pass, 25% more memory, so only
+    /// when asked for (the JPEG-cell refinement of the Blinn-Phong fit uses them).
+    bool jpegCells = false;
 };
 
 /// Angles parsed from a file name by their tl/pl/tv/pv keys (space or underscore separated).

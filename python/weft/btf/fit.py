@@ -23,14 +23,14 @@ Views = Union[str, Sequence[Sequence[float]]]
 
 
 def load(path: "str | os.PathLike[str]", views: Views = "frontal", gamma: str = "raw",
-         threads: int = 0, jpeg_cells: bool = True) -> Any:
+         threads: int = 0, jpeg_cells: bool = False) -> Any:
     """Reads a Bonn-layout folder or zip. ``views``: "frontal" (θ_v = 0, 81 images), "all", or a
     list of (θ_v, φ_v) degrees. ``gamma``: "raw" (value / 255, as the seed; value / 65535 for
     16-bit PNG) or "linear" ((value / 255)^2.2, (value / 65535)^2.2). File values are taken as
     stored: gAMA/sRGB chunks are ignored (as for JPEG), a PNG with any alpha below opaque is
     refused (IoError). EXR samples are used as stored. macOS ``__MACOSX/`` and ``._*`` entries
     are skipped. ``threads``: 0 = all cores, else 1..256. ``jpeg_cells``: for JPEG files
-    (raw gamma, every image grey or YCbCr of one layout) keep what the files store, the
+    (raw gamma, every image grey or YCbCr of one layout) also keep what the files store, the
     quantised DCT coefficients and tables (``samples.jpeg_cells``), which
     :func:`fit_blinn_phong` uses to refine the fit (:mod:`weft.btf.jpeg_cells`)."""
     try:
