@@ -191,6 +191,7 @@ struct Shading {
     vec3 diffuse;           // direct diffuse, shadows applied
     vec3 diffuseUnshadowed; // direct diffuse without shadows (phantoms' reference)
     vec3 specular;          // direct specular, shadows applied
+    vec3 skySpecular;       // the ambient's sky reflected (only where it stands for a sky)
     EnvironmentTerms environment;
 };
 
@@ -200,7 +201,7 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     vec3 v = normalize(frame.cameraPos.xyz - p);
     Shading sh;
     sh.ambient = sf.ambient * ins.ka.rgb * (hasFlag(ins, AMBIENT_RADIANCE) ? vec3(1.0) : sf.T);
-    sh.diffuse = sh.diffuseUnshadowed = sh.specular = sh.bounce = vec3(0.0);
+    sh.diffuse = sh.diffuseUnshadowed = sh.specular = sh.bounce = sh.skySpecular = vec3(0.0);
     // A scene without an environment reads its ambient as a uniform sky of radiance 1 times
     // I_A; its dome (frame.sky.w) gives the fraction of that sky's light that reaches p. The sky
     // an occluder hides is partly replaced by the light the occluder reflects, which nothing
@@ -208,11 +209,24 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     // occlusion", eq. 10) fit that multi-bounce visibility as a cubic in the visibility v whose
     // coefficients depend on the albedo rho around p (taken as the surface's own).
     sh.ambientVisibility = 1.0;
+    float ndv = clamp(dot(n, v), 0.0, 1.0);
     if (frame.sky.w > 0.5) {
         float v = clamp(1.0 - dot(domeOccluded(p, n), vec3(0.2126, 0.7152, 0.0722)), 0.0, 1.0);
         float rho = clamp(dot(ins.kd.rgb * sf.T, vec3(0.2126, 0.7152, 0.0722)), 0.0, 1.0);
         float a = 2.0404 * rho - 0.3324, b = -4.7951 * rho + 0.6417, c = 2.7552 * rho + 0.6903;
         sh.ambientVisibility = clamp(max(v, ((a * v + b) * v + c) * v), 0.0, 1.0);
+        // A sky reflects as well as lights: the sky's specular reflection I_A DFG(n.v), with
+        // the split-sum DFG of Karis 2014 ("Physically based shading on mobile", its analytic
+        // fit), occluded as its diffuse light. F0: the reflectivity, else what the highlight
+        // reflects of a uniform sky at normal view, K_S 8 / (s + 2) (its lobe's integral).
+        vec3 f0 = any(greaterThan(ins.environment.rgb, vec3(0.0)))
+                      ? ins.environment.rgb : sf.ks * (8.0 / (sf.shininess + 2.0));
+        float roughness = environmentRoughness(sf.shininess);
+        vec4 r = roughness * vec4(-1.0, -0.0275, -0.572, 0.022) + vec4(1.0, 0.0425, 1.04, -0.04);
+        float a004 = min(r.x * r.x, exp2(-9.28 * ndv)) * r.x + r.y;
+        vec2 ab = vec2(-1.04, 1.04) * a004 + r.zw;
+        if (any(greaterThan(f0, vec3(0.0)))) // a matte surface has no lobe to reflect with
+            sh.skySpecular = sf.ambient * (f0 * ab.x + ab.y) * sh.ambientVisibility;
     }
     debugVis = 1.0;
     debugDepth = 0.0;
@@ -276,5 +290,5 @@ vec3 shadedColor(Shading sh, Instance ins, out vec4 dome) {
         return bg * (deferDome ? direct : direct + domedLit) / unlit;
     }
     dome = vec4(domed, visibility);
-    return direct + sh.specular + e.specular + (deferDome ? vec3(0.0) : domedLit);
+    return direct + sh.specular + sh.skySpecular + e.specular + (deferDome ? vec3(0.0) : domedLit);
 }

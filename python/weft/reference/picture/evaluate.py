@@ -34,10 +34,13 @@ def render_reference(ref: ReferenceScene, width: int, height: int, spp: int,
 
 
 def render_weft(ref: ReferenceScene, renderer) -> Dict[str, np.ndarray]:
-    """weft's frame of a reference scene: ``render_debug``'s outputs (its ``linear`` is what
-    ``render_linear`` returns: the same frame)."""
+    """weft's frame of a reference scene: ``render_debug``'s outputs (one surface per pixel:
+    the region masks) with ``linear`` replaced by what ``render_linear`` returns at the
+    renderer's settings (MSAA included), which is the picture a user sees and is scored."""
     renderer.render(ref.scene, ref.camera)  # warm-up: shadow maps, bakes
-    return renderer.render_debug(ref.scene, ref.camera)
+    debug = dict(renderer.render_debug(ref.scene, ref.camera))
+    debug["linear"] = np.asarray(renderer.render_linear(ref.scene, ref.camera))
+    return debug
 
 
 def evaluate(ref: ReferenceScene, renderer, spp: int, reference: Optional[np.ndarray] = None,
