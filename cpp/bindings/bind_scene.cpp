@@ -250,16 +250,19 @@ void bindScene(py::module_& m) {
 
     py::class_<DirectionalLight>(m, "DirectionalLight",
         "Sun-like light. `direction` points from the light into the scene.")
-        .def(py::init([](py::handle direction, py::handle color, float intensity, bool shadows) {
+        .def(py::init([](py::handle direction, py::handle color, float intensity, bool shadows,
+                         float angularRadius) {
             DirectionalLight l;
             l.direction = toVec3(direction, "direction");
             l.color = toVec3(color, "color");
             l.intensity = intensity;
             l.castShadows = shadows;
+            l.angularRadius = angularRadius;
             l.validate();
             return l;
         }), py::arg("direction") = py::make_tuple(0, -1, 0), py::arg("color") = py::make_tuple(1, 1, 1),
-           py::arg("intensity") = 1.0f, py::arg("cast_shadows") = true)
+           py::arg("intensity") = 1.0f, py::arg("cast_shadows") = true,
+           py::arg("angular_radius") = 0.0f)
         .WEFT_VEC3_PROPERTY(DirectionalLight, "direction", direction)
         .WEFT_VEC3_PROPERTY(DirectionalLight, "color", color)
         .def_property("intensity", [](const DirectionalLight& l) { return l.intensity; },
@@ -267,6 +270,11 @@ void bindScene(py::module_& m) {
                           setChecked(l, [&](DirectionalLight& x) { x.intensity = v; });
                       })
         .def_readwrite("cast_shadows", &DirectionalLight::castShadows)
+        .def_property("angular_radius", [](const DirectionalLight& l) { return l.angularRadius; },
+                      [](DirectionalLight& l, float v) {
+                          setChecked(l, [&](DirectionalLight& x) { x.angularRadius = v; });
+                      }, "Radians of the disc the light comes from (the sun: 0.0047); > 0 softens "
+                         "its shadow by the penumbra that disc casts, 0 keeps the fixed PCF kernel.")
         .def("__repr__", [](const DirectionalLight& l) {
             return "<weft.DirectionalLight direction=" + vecRepr(l.direction) +
                    " color=" + vecRepr(l.color) + " intensity=" + std::to_string(l.intensity) +

@@ -47,7 +47,8 @@ struct Light {
                       // scene; w: cookie slot or -1
     vec4 radiance;    // rgb: colour * intensity; w: first shadow layer or -1
     vec4 attenuation; // k_c, k_l, k_q, radius (> 0: eq. 2.4)
-    vec4 cone;        // cos(inner), cos(outer), tan(outer), 0
+    vec4 cone;        // spot: cos(inner), cos(outer), tan(outer); directional: w = tan of its
+                      // angular radius (0: the fixed PCF kernel)
 };
 
 // One layer of the shadow-map array: the light view it was rendered from.

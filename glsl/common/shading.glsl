@@ -28,6 +28,57 @@ int cubeFace(vec3 d) {
     return d.z >= 0.0 ? 4 : 5;
 }
 
+// Depth of shadow-map layer `layer` at uv; outside the map nothing is (the views hold every
+// caster).
+float shadowDepth(vec2 uv, int layer, int size) {
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return 1.0;
+    return texelFetch(shadowMaps, ivec3(ivec2(uv * float(size)), layer), 0).r;
+}
+
+// The shadow of a directional light of angular radius a (tanA = tan a) from its orthographic
+// layer: PCSS (Fernando 2005) as the dome lights' (environment.glsl, domeOccluded) -- blockers
+// searched within the widest penumbra, the lit fraction of the disc that the blockers' mean
+// depth gives, taps on a Vogel spiral turned per receiver point, depths against the receiver's
+// plane -- with more taps, because nothing blurs the result afterwards.
+const int kSunBlockerTaps = 8;
+const int kSunPcfTaps = 24;
+float softShadow(ShadowLayer s, int layer, vec2 uv, float z, float bias, vec3 p, vec3 n,
+                 float tanA) {
+    vec3 r0 = vec3(s.viewProj[0][0], s.viewProj[1][0], s.viewProj[2][0]);
+    vec3 r1 = vec3(s.viewProj[0][1], s.viewProj[1][1], s.viewProj[2][1]);
+    vec3 r2 = vec3(s.viewProj[0][2], s.viewProj[1][2], s.viewProj[2][2]);
+    float zPerWorld = length(r2);
+    vec2 uvPerWorld = 0.5 * vec2(length(r0), length(r1));
+    vec3 m = vec3(dot(r0, n) / dot(r0, r0), dot(r1, n) / dot(r1, r1), dot(r2, n) / dot(r2, r2));
+    vec2 slope = clamp(-2.0 * m.xy / max(abs(m.z), 1e-6) * sign(m.z), vec2(-8.0), vec2(8.0));
+    int size = frame.counts.z;
+    float spin = 6.28318531 * domeHash(p);
+    vec2 searchUv = uvPerWorld * (tanA * z / zPerWorld);
+    float blockers = 0.0, blockerZ = 0.0;
+    for (int k = 0; k < kSunBlockerTaps; ++k) {
+        float rr = sqrt((float(k) + 0.5) / float(kSunBlockerTaps));
+        float a = spin + float(k) * kGoldenAngle;
+        vec2 o = rr * vec2(cos(a), sin(a)) * searchUv;
+        float b = shadowDepth(uv + o, layer, size);
+        if (min(z + dot(slope, o), 1.0) - bias > b) {
+            blockers += 1.0;
+            blockerZ += b;
+        }
+    }
+    if (blockers == 0.0) return 1.0;
+    blockerZ /= blockers;
+    vec2 filterUv = max(uvPerWorld * (tanA * max(z - blockerZ, 0.0) / zPerWorld),
+                        vec2(1.0 / float(size)));
+    float lit = 0.0;
+    for (int k = 0; k < kSunPcfTaps; ++k) {
+        float rr = sqrt((float(k) + 0.5) / float(kSunPcfTaps));
+        float a = spin + 1.3 + float(k) * kGoldenAngle;
+        vec2 o = rr * vec2(cos(a), sin(a)) * filterUv;
+        if (min(z + dot(slope, o), 1.0) - bias <= shadowDepth(uv + o, layer, size)) lit += 1.0;
+    }
+    return lit / float(kSunPcfTaps);
+}
+
 // Fraction of PCF taps of light `li` that see the light from p. `lightDepth` returns the
 // receiver's NDC depth in the layer used.
 float shadowVisibility(Light L, vec3 p, vec3 n, vec3 l, out float lightDepth) {
@@ -55,6 +106,8 @@ float shadowVisibility(Light L, vec3 p, vec3 n, vec3 l, out float lightDepth) {
     float receiver = perspective ? linearShadowDepth(z, s.params.z, s.params.w) -
                                        bias * (s.params.w - s.params.z)
                                  : z - bias;
+    if (type == LIGHT_DIRECTIONAL && L.cone.w > 0.0 && !perspective)
+        return softShadow(s, layer, uv, ndc.z, bias, p, n, L.cone.w);
     int size = frame.counts.z;
     int r = frame.counts.y;
     ivec2 texel = ivec2(floor(uv * float(size)));

@@ -167,9 +167,11 @@ def light_with_environment(scene: "weft.Scene", environment, dome_lights: int = 
         peak = float(colour.max())
         if peak <= 0.0:
             continue
+        # the disc it was taken from softens its shadow: solid angle 2 pi (1 - cos a)
+        radius = float(np.arccos(np.clip(1.0 - float(sun.solid_angle) / (2.0 * np.pi), -1.0, 1.0)))
         scene.add_light(weft.DirectionalLight(direction=tuple(-np.asarray(sun.direction)),
                                               color=tuple(colour / peak), intensity=peak,
-                                              cast_shadows=True))
+                                              cast_shadows=True, angular_radius=min(radius, 0.5)))
     if background:
         faces = np.asarray(env.radiance.faces, np.float64)
         dirs = weft.ibl.cube_texel_directions(faces.shape[1]).reshape(-1, 3)

@@ -15,8 +15,13 @@ struct DirectionalLight {
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
     bool castShadows = true;
+    /// Angular radius (radians) of the disc the light comes from: the sun's is 0.0047. Above 0
+    /// its shadow has the penumbra that disc casts (PCSS sized by it); 0 keeps the fixed PCF
+    /// kernel of RenderSettings::pcfRadius. At most 0.5.
+    float angularRadius = 0.0f;
 
-    /// Throws InvalidArgument for a zero/non-finite direction or negative/non-finite colour.
+    /// Throws InvalidArgument for a zero/non-finite direction, negative/non-finite colour or an
+    /// angular radius outside [0, 0.5].
     void validate() const;
     glm::vec3 toLight() const { return -glm::normalize(direction); }
     glm::vec3 radiance() const { return color * intensity; }

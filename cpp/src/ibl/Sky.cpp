@@ -220,6 +220,7 @@ DirectionalLight sunLight(const SkyParams& params) {
     light.color = peak > 0.0f ? colour / peak : glm::vec3(1.0f);
     light.intensity = peak;
     light.castShadows = peak > 0.0f;
+    light.angularRadius = float(kSunAngularRadius); // its shadow's penumbra
     return light;
 }
 

@@ -63,6 +63,7 @@ struct LightBuilder {
         g.position = glm::vec4(0, 0, 0, kLightDirectional);
         g.direction = glm::vec4(l.toLight(), -1);
         g.radiance = glm::vec4(l.radiance(), float(layer));
+        g.cone = glm::vec4(0.0f, 0.0f, 0.0f, std::tan(l.angularRadius));
         return g;
     }
 

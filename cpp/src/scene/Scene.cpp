@@ -54,6 +54,9 @@ void DirectionalLight::validate() const {
     requireNonNegative(color, "DirectionalLight.color");
     requireFinite(intensity, "DirectionalLight.intensity");
     if (intensity < 0) throw InvalidArgument("DirectionalLight.intensity must not be negative");
+    if (!(angularRadius >= 0.0f && angularRadius <= 0.5f)) // also NaN
+        throw InvalidArgument("DirectionalLight.angular_radius must be in [0, 0.5] radians, got " +
+                              std::to_string(angularRadius));
 }
 
 void Attenuation::validate() const {
