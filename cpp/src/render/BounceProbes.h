@@ -8,8 +8,11 @@
 //   1  the environment's radiance they hide      -> taken from the environment's irradiance,
 //   2  the solid angle they cover (radiance 1)   -> the fraction of the ambient I_A kept out.
 // Casters do not see each other or themselves here: the dome (and shadow maps) carry their
-// occlusion, so nothing is counted twice. Captured again only when what they show may have
-// changed (the same key as the reflection capture's).
+// occlusion, so nothing is counted twice. Taken in two rounds: the second shows the receivers
+// with the light the casters send them (caster_bounce.glsl, from the first round's SH), so the
+// light going back and forth between a caster and the ground beside it is counted twice over,
+// not once. Captured again only when what they show may have changed (the same key as the
+// reflection capture's).
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +30,7 @@ public:
     static constexpr uint32_t kMaxProbes = gpu::MAX_BOUNCE_CASTERS; // casters beyond get none
     static constexpr uint32_t kFaceSize = 16;  // texels per face: SH9 needs no more
     static constexpr uint32_t kShColumns = 27; // three sets of nine coefficients
+    static constexpr uint32_t kRounds = 2;     // captures per probe and face (see above)
     static constexpr VkFormat kShFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
     explicit BounceProbes(vk::Context& ctx) : mCtx(ctx) {}
@@ -42,10 +46,11 @@ public:
     vk::Image& faces() { return mFaces; } // layer 6 probe + face, kHdrFormat
     vk::Image& depth() { return mDepth; }
     vk::Image& sh() { return mSh; }       // row: probe, column: 9 set + coefficient
+    vk::Image& shFirst() { return mShFirst; } // the first round's (what the second one reads)
 
 private:
     vk::Context& mCtx;
-    vk::Image mFaces, mDepth, mSh;
+    vk::Image mFaces, mDepth, mSh, mShFirst;
     std::vector<glm::vec3> mPositions;
     std::vector<uint64_t> mKey;
 };

@@ -71,12 +71,16 @@ void Renderer::Impl::uploadFrame(FrameSlot& slot, const render::FrameData& data,
         slot.probeUbo.write(faces.data(), faces.size());
     }
     if (captureBounce) {
-        const uint32_t n = 6 * bounce.count();
+        const uint32_t perRound = 6 * bounce.count(),
+                       n = perRound * render::BounceProbes::kRounds;
         ensureBuffer(c, slot.bounceUbo, n * faceStride, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
         std::vector<uint8_t> faces(n * faceStride, 0);
         for (uint32_t i = 0; i < n; ++i) {
-            const render::GpuFrame face = captureFace(frame, int(i % 6), bounce.position(i / 6),
-                                                      render::BounceProbes::kFaceSize);
+            const uint32_t k = i % perRound;
+            render::GpuFrame face = captureFace(frame, int(k % 6), bounce.position(k / 6),
+                                                render::BounceProbes::kFaceSize);
+            // after the first round the receivers get the casters' light (caster_bounce.glsl)
+            if (i >= perRound) face.sky.z = 1.0f;
             std::memcpy(faces.data() + i * faceStride, &face, sizeof(face));
         }
         slot.bounceUbo.write(faces.data(), faces.size());
@@ -108,7 +112,8 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
     if (captureProbe)
         for (uint32_t f = 0; f < 6; ++f) layouts[setCount++] = pipes.frameSetLayout;
     const uint32_t bounceIndex = setCount;
-    const uint32_t bounceFaces = captureBounce ? 6 * bounce.count() : 0;
+    const uint32_t bounceFaces =
+        captureBounce ? 6 * bounce.count() * render::BounceProbes::kRounds : 0;
     for (uint32_t f = 0; f < bounceFaces; ++f) layouts[setCount++] = pipes.frameSetLayout;
     const uint32_t outputIndex = setCount;
     layouts[setCount++] = pipes.outputSetLayout;
@@ -210,9 +215,11 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
         for (uint32_t f = 0; f < 6; ++f)
             writeFrameSet(sets[1 + f], {slot.probeUbo.get(), f * faceStride, sizeof(frame)},
                           environment.black(), noBounce);
-    for (uint32_t f = 0; f < bounceFaces; ++f)
+    for (uint32_t f = 0; f < bounceFaces; ++f) // diffuse light: no reflection capture
         writeFrameSet(result.bounceFaces[f], {slot.bounceUbo.get(), f * faceStride, sizeof(frame)},
-                      environment.black(), noBounce); // diffuse light: no reflection capture
+                      environment.black(),
+                      f < bounceFaces / render::BounceProbes::kRounds ? noBounce
+                                                                      : bounce.shFirst().view());
     if (captureBounce) { // the projection reads the captures and the environment's chain
         VkDescriptorImageInfo infos[2] = {
             {pipes.nearestSampler, bounce.faces().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},

@@ -33,8 +33,8 @@ namespace render {
 constexpr uint32_t kFramesInFlight = 2;
 // timestamp pairs: shadow views + dome maps + probe faces + bounce faces + forward + output +
 // readback
-constexpr uint32_t kMaxPasses = 192;
-constexpr uint32_t kBounceFaces = 6 * BounceProbes::kMaxProbes;
+constexpr uint32_t kMaxPasses = 256;
+constexpr uint32_t kBounceFaces = 6 * BounceProbes::kMaxProbes * BounceProbes::kRounds;
 // the frame's, one per face of the reflection capture and one per face of the bounce captures
 constexpr uint32_t kFrameSets = 7 + kBounceFaces;
 
@@ -44,7 +44,7 @@ constexpr uint32_t kFrameSets = 7 + kBounceFaces;
 struct FrameSets {
     VkDescriptorSet frame = VK_NULL_HANDLE;
     std::array<VkDescriptorSet, 6> faces{};
-    std::array<VkDescriptorSet, kBounceFaces> bounceFaces{}; // 6 probe + face
+    std::array<VkDescriptorSet, kBounceFaces> bounceFaces{}; // 6 (count round + probe) + face
     VkDescriptorSet output = VK_NULL_HANDLE, domeRows = VK_NULL_HANDLE, domeBlur = VK_NULL_HANDLE,
                     bounceSh = VK_NULL_HANDLE;
 };
