@@ -36,8 +36,9 @@ options:
   --images           also save the last frame of every row as OUT/images/NN_<row>.png
   --device X         the Vulkan device: an index or a name substring (sets WEFT_DEVICE);
                      default: discrete, then integrated, then virtual, then CPU (lavapipe)
-  --list-devices     print the devices, which one would be chosen and whether the validation
-                     layers are installed, then exit
+  --list-devices     print the devices (tab-separated: device, index, type, name, Vulkan
+                     version, driver, "chosen" or "-"), then "validation" and whether the
+                     Khronos validation layer is installed, and exit
   --require-gpu      fail (exit 4) when the chosen device is a CPU rasteriser
   --fur-23m          also the 22,977,900-vertex fur (default on a GPU; ~1.3 GB of buffers)
   --no-fur-23m       leave it out
@@ -145,11 +146,13 @@ int main(int argc, char** argv) {
     try {
         const weft::bench::DeviceReport device = deviceReport();
         if (listOnly) {
+            // Tab-separated for scripts (gpu-check.sh): device, index, type, name, Vulkan
+            // version, driver, chosen; then whether the validation layer can be loaded.
             for (const weft::DeviceInfo& info : weft::listDevices())
-                std::cout << (info.selected ? "* " : "  ") << info.index << ": " << info.name << " ("
-                          << info.type << ", Vulkan " << info.apiVersion
-                          << (info.driver.empty() ? "" : ", " + info.driver) << ")\n";
-            std::cout << "validation layer VK_LAYER_KHRONOS_validation: "
+                std::cout << "device\t" << info.index << "\t" << info.type << "\t" << info.name
+                          << "\t" << info.apiVersion << "\t" << info.driver << "\t"
+                          << (info.selected ? "chosen" : "-") << "\n";
+            std::cout << "validation\t"
                       << (device.validationAvailable ? "installed" : "not installed") << "\n";
             return 0;
         }
