@@ -102,13 +102,14 @@ def test_bundle_is_relocatable(bundle: Path) -> None:
     ldd = subprocess.run(["ldd", *map(str, programs)], capture_output=True, text=True,
                          env=_env(), check=True).stdout
     resolved = re.findall(r"^\s*(\S+) => (\S+)", ldd, re.M)
-    assert resolved
+    assert len(resolved) > 30  # Debian's libraries (OpenEXR, GLFW, Ceres ...) and the system's
     for soname, path in resolved:
         assert path != "not", f"{soname} is not found"
+        path = os.path.realpath(path)
         if SYSTEM_LIB.match(soname):
-            assert not path.startswith(str(bundle)), (soname, path)
+            assert not path.startswith(os.path.realpath(bundle)), (soname, path)
         else:
-            assert path.startswith(str(bundle / "lib")), (soname, path)
+            assert path.startswith(os.path.realpath(bundle / "lib")), (soname, path)
     assert (bundle / "lib" / "fallback" / "libvulkan.so.1").exists()
     run = subprocess.run([str(bundle / "bin" / "weft-demo"), "--width", "nope"], capture_output=True,
                          text=True, env=_env())
