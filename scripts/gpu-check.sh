@@ -112,6 +112,15 @@ dev_api=$(echo "$chosen" | cut -f5)
 dev_driver=$(echo "$chosen" | cut -f6)
 [ -n "$dev_name" ] || { say "WEFT_DEVICE=$pick matches no usable device"; exit 2; }
 say "device $pick: $dev_name ($dev_type, Vulkan $dev_api, driver $dev_driver); loader: $loader"
+# The GPU's own report of itself, where its tool exists (name, driver, memory, clocks).
+gpu_info=""
+if command -v nvidia-smi >/dev/null 2>&1; then
+    gpu_info=$(nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm,power.limit \
+                          --format=csv,noheader 2>/dev/null | head -4 | tr '\n' ';' | sed 's/;$//')
+elif command -v rocm-smi >/dev/null 2>&1; then
+    gpu_info=$(rocm-smi --showproductname --showdriverversion 2>/dev/null | grep -v '^=' | tr -s ' \n' ' ')
+fi
+[ -n "$gpu_info" ] && say "GPU tool: $gpu_info"
 
 # 3. Validation: the system's layer, else the bundle's, else none (said, and the run goes on).
 validation_note=off
@@ -159,7 +168,7 @@ cat > "$out/gpu-check.json" <<EOF
  "host": "$(esc "$(uname -srm)")", "cpu": "$(esc "$(sed -n 's/^model name\t*: //p' /proc/cpuinfo | head -1)")",
  "device": {"index": "$(esc "$pick")", "name": "$(esc "$dev_name")", "type": "$(esc "$dev_type")",
             "api_version": "$(esc "$dev_api")", "driver": "$(esc "$dev_driver")"},
- "loader": "$(esc "$loader")", "validation": "$(esc "$validation_note")",
+ "gpu_tool": "$(esc "$gpu_info")", "loader": "$(esc "$loader")", "validation": "$(esc "$validation_note")",
  "tests": {"exit": $tests_rc, "passed": ${tests_passed:-0}, "failed": ${tests_failed:-0},
            "skipped": ${tests_skipped:-0}, "seconds": $tests_s, "log": "tests.log"},
  "bench": {"exit": $bench_rc, "seconds": $bench_s, "json": "bench/bench.json", "markdown": "bench/bench.md"}}
@@ -170,6 +179,7 @@ EOF
     ((gpu)) || echo "**No GPU on this machine: these figures are from the CPU rasteriser (--allow-cpu).**"
     ((gpu)) || echo
     echo "- device $pick: **$dev_name** ($dev_type, Vulkan $dev_api, driver $dev_driver)"
+    [ -n "$gpu_info" ] && echo "- GPU (vendor tool): $gpu_info"
     echo "- Vulkan loader: $loader; validation: $validation_note"
     echo "- host: $(uname -srm); $(sed -n 's/^model name\t*: //p' /proc/cpuinfo | head -1)"
     echo "- C++ tests: ${tests_passed:-0} passed, ${tests_failed:-0} failed, ${tests_skipped:-0} skipped (exit $tests_rc, ${tests_s} s)"
