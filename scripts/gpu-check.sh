@@ -32,7 +32,7 @@ while (($#)); do
         --frames) bench_args+=(--frames "${2:?--frames needs a number}"); shift 2 ;;
         --images) bench_args+=(--images); shift ;;
         --no-validation) validation=0; shift ;;
-        -h|--help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) awk 'NR > 1 && !/^#/ {exit} NR > 1 {sub(/^# ?/, ""); print}' "$0"; exit 0 ;;
         *) echo "gpu-check: unknown option '$1' (see --help)" >&2; exit 2 ;;
     esac
 done
