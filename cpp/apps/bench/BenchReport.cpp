@@ -43,15 +43,65 @@ std::string firstLine(const std::string& path, const std::string& key) {
     return "";
 }
 
-// The heaviest passes of a row, "name ms", largest first (at most `count`).
+// A row's passes with indexed ones (shadow[0], dome[12], bounce[2][5]) summed under their base
+// name, "dome (16)", in the order they first ran: per-view passes would swamp a table.
+std::vector<std::pair<std::string, double>> groupedPasses(const BenchRow& r) {
+    std::vector<std::pair<std::string, double>> out;
+    std::vector<int> counts;
+    for (const std::string& name : r.passOrder) {
+        const std::string base = name.substr(0, name.find('['));
+        size_t i = 0;
+        while (i < out.size() && out[i].first != base) ++i;
+        if (i == out.size()) {
+            out.push_back({base, 0.0});
+            counts.push_back(0);
+        }
+        out[i].second += r.passGpuMs.at(name);
+        ++counts[i];
+    }
+    for (size_t i = 0; i < out.size(); ++i)
+        if (counts[i] > 1) out[i].first += " (" + std::to_string(counts[i]) + ")";
+    return out;
+}
+
+// The heaviest (grouped) passes of a row, "name ms", largest first (at most `count`).
 std::string topPasses(const BenchRow& r, size_t count) {
     std::vector<std::pair<double, std::string>> p;
-    for (const auto& [name, ms] : r.passGpuMs) p.push_back({ms, name});
+    for (const auto& [name, ms] : groupedPasses(r)) p.push_back({ms, name});
     std::sort(p.rbegin(), p.rend());
     std::string out;
     for (size_t i = 0; i < p.size() && i < count; ++i)
         out += (i ? ", " : "") + p[i].second + " " + num(p[i].first, 2);
     return out.empty() ? "-" : out;
+}
+
+// Every (grouped) pass of a set's rows, one column per row (GPU ms), in the order they ran.
+void passTable(std::ostringstream& md, const std::vector<BenchRow>& rows, const std::string& set) {
+    std::vector<std::vector<std::pair<std::string, double>>> cols;
+    std::vector<std::string> heads, names;
+    for (const BenchRow& r : rows) {
+        if (r.set != set) continue;
+        cols.push_back(groupedPasses(r));
+        heads.push_back(std::to_string(r.width) + "x" + std::to_string(r.height));
+        for (const auto& [name, ms] : cols.back())
+            if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    }
+    if (cols.empty()) return;
+    md << "\nPer pass, GPU ms (indexed passes summed, their count in brackets):\n\n| pass |";
+    for (const std::string& h : heads) md << " " << h << " |";
+    md << "\n|---|";
+    for (size_t i = 0; i < cols.size(); ++i) md << "---|";
+    md << "\n";
+    for (const std::string& name : names) {
+        md << "| " << name << " |";
+        for (const auto& col : cols) {
+            std::string v = "-";
+            for (const auto& [n, ms] : col)
+                if (n == name) v = num(ms, 2);
+            md << " " << v << " |";
+        }
+        md << "\n";
+    }
 }
 
 } // namespace
@@ -153,6 +203,7 @@ std::string reportMarkdown(const BenchOptions& o, const DeviceReport& d, const M
         }
     };
     table("demo", "seed-000 demo scene (target on a GPU: >= 120 fps at 1920x1080)", false);
+    passTable(md, rows, "demo");
     table("hair", "seed 002: hair and fur, B / B+S / B+S+T (SPEC 5.5, GTX 980)", true);
     table("dome", "seed 001: dome shadow lights (SPEC 4.7, GeForce of 2006)", true);
     if (!validation.empty()) {

@@ -66,8 +66,12 @@ void measure(BenchRow& row, Renderer& renderer, const Scene& scene, const Camera
         const FrameStats& s = renderer.stats();
         if (s.gpuMs >= 0) gpu.push_back(s.gpuMs);
         std::map<std::string, double> byName;
-        for (const PassStats& p : s.passes)
-            if (p.gpuMs >= 0) byName[p.name] += p.gpuMs;
+        for (const PassStats& p : s.passes) {
+            if (p.gpuMs < 0) continue;
+            if (std::find(row.passOrder.begin(), row.passOrder.end(), p.name) == row.passOrder.end())
+                row.passOrder.push_back(p.name);
+            byName[p.name] += p.gpuMs;
+        }
         for (const auto& [name, ms] : byName) passes[name].push_back(ms);
     }
     row.width = int(renderer.width());

@@ -26,6 +26,7 @@ struct BenchRow {
     double wallMs = 0.0;  // median wall time of render() per frame (colour read back)
     double gpuMs = -1.0;  // median sum of the passes' GPU timestamps (negative: unmeasured)
     std::map<std::string, double> passGpuMs; // median per pass name (passes of one name summed)
+    std::vector<std::string> passOrder;      // the names in the order they first ran
     double seedFps = 0.0; // the seed's published fps for this workload (0: none)
     std::string seedSource;
 };
