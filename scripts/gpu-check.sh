@@ -84,6 +84,27 @@ if ! devices=$(list); then
     tail -n 3 "$log" >&2
     exit 2
 fi
+# Containers often get NVIDIA's driver libraries but not its Vulkan ICD manifest: then Vulkan
+# sees no GPU although nvidia-smi does. Write the manifest (what the driver installs as
+# nvidia_icd.json) into the output folder and point the loader at it.
+icd_note=""
+if ! echo "$devices" | awk -F'\t' '$1 == "device" && $3 != "cpu"' | grep -q . &&
+    command -v nvidia-smi >/dev/null 2>&1 && nvidia-smi -L >/dev/null 2>&1; then
+    for lib in libGLX_nvidia.so.0 libEGL_nvidia.so.0; do
+        ldconfig -p 2>/dev/null | grep -q "$lib" || continue
+        printf '{"file_format_version": "1.0.0", "ICD": {"library_path": "%s", "api_version": "1.3"}}\n' \
+            "$lib" > "$out/nvidia_icd.json"
+        if more=$(VK_ICD_FILENAMES="$out/nvidia_icd.json" VK_DRIVER_FILES="$out/nvidia_icd.json" list) &&
+            echo "$more" | awk -F'\t' '$1 == "device" && $3 != "cpu"' | grep -q .; then
+            export VK_ICD_FILENAMES="$out/nvidia_icd.json" VK_DRIVER_FILES="$out/nvidia_icd.json"
+            devices=$more
+            icd_note="NVIDIA's Vulkan ICD manifest was missing: wrote $out/nvidia_icd.json ($lib)"
+            say "$icd_note"
+            break
+        fi
+    done
+    [ -z "$icd_note" ] && say "nvidia-smi sees a GPU but Vulkan does not, and no NVIDIA ICD library (libGLX_nvidia.so.0 / libEGL_nvidia.so.0) loads: the driver's Vulkan part is missing here"
+fi
 echo "$devices" > "$out/devices.txt"
 pick=""
 for type in discrete integrated virtual; do
@@ -168,7 +189,7 @@ cat > "$out/gpu-check.json" <<EOF
  "host": "$(esc "$(uname -srm)")", "cpu": "$(esc "$(sed -n 's/^model name\t*: //p' /proc/cpuinfo | head -1)")",
  "device": {"index": "$(esc "$pick")", "name": "$(esc "$dev_name")", "type": "$(esc "$dev_type")",
             "api_version": "$(esc "$dev_api")", "driver": "$(esc "$dev_driver")"},
- "gpu_tool": "$(esc "$gpu_info")", "loader": "$(esc "$loader")", "validation": "$(esc "$validation_note")",
+ "gpu_tool": "$(esc "$gpu_info")", "icd": "$(esc "$icd_note")", "loader": "$(esc "$loader")", "validation": "$(esc "$validation_note")",
  "tests": {"exit": $tests_rc, "passed": ${tests_passed:-0}, "failed": ${tests_failed:-0},
            "skipped": ${tests_skipped:-0}, "seconds": $tests_s, "log": "tests.log"},
  "bench": {"exit": $bench_rc, "seconds": $bench_s, "json": "bench/bench.json", "markdown": "bench/bench.md"}}
