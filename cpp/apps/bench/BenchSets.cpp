@@ -54,7 +54,8 @@ void measure(BenchRow& row, Renderer& renderer, const Scene& scene, const Camera
         if (beforeFrame) beforeFrame(k);
         const auto t0 = Clock::now();
         const Frame frame = renderer.render(scene, camera);
-        if (k == frames - 1 && !gImageDir.empty()) {
+        wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+        if (k == frames - 1 && !gImageDir.empty()) { // after the clock: PNG encoding is not the frame
             char name[32];
             std::snprintf(name, sizeof name, "%02d_", gImageCount++);
             std::string file = name + row.set + "_" + std::to_string(row.vertices) + "_" + row.config;
@@ -62,7 +63,6 @@ void measure(BenchRow& row, Renderer& renderer, const Scene& scene, const Camera
                 if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '+') c = '-';
             savePng(gImageDir + "/" + file + ".png", frame.color);
         }
-        wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
         const FrameStats& s = renderer.stats();
         if (s.gpuMs >= 0) gpu.push_back(s.gpuMs);
         std::map<std::string, double> byName;
