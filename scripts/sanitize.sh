@@ -15,7 +15,7 @@ if command -v ccache >/dev/null; then
 fi
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWEFT_BUILD_TESTS=ON \
-    -DWEFT_BUILD_PYTHON=OFF -DWEFT_BUILD_DEMO=OFF "${launcher[@]}" \
+    -DWEFT_BUILD_PYTHON=OFF -DWEFT_BUILD_DEMO=OFF -DWEFT_BUILD_BENCH=OFF "${launcher[@]}" \
     -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
