@@ -8,26 +8,10 @@
 #ifndef WEFT_HAIR_SHADING_GLSL
 #define WEFT_HAIR_SHADING_GLSL
 
-#define HAIR_MODEL_KAJIYA_KAY 0
-#define HAIR_MODEL_MARSCHNER 1
-#define HAIR_MODEL_SADEGHI 2
+#include "hair_gpu_types.h" // HairShading, HAIR_MODEL_*
 
 const float HAIR_PI = 3.14159265358979;
 const float HAIR_MIN_COS2 = 1e-3; // floor of cos^2(theta_d) in the 1 / cos^2(theta_d) factor
-
-// std430/std140-compatible parameter block (cpp/src/hair/HairShadingGpu.h packs it).
-struct HairShading {
-    ivec4 model;      // x: HAIR_MODEL_*
-    vec4 diffuse;     // rgb: diffuse colour (every model)
-    vec4 specular;    // Kajiya-Kay: rgb colour, w: exponent
-    vec4 colorR;      // Sadeghi: rgb C_R, w: I_R
-    vec4 colorTT;     // Sadeghi: rgb C_TT, w: I_TT
-    vec4 colorTRT;    // Sadeghi: rgb C_TRT, w: I_TRT
-    vec4 shift;       // alpha_R, alpha_TT, alpha_TRT; w: Marschner eta
-    vec4 width;       // beta_R, beta_TT, beta_TRT; w: Sadeghi xi_TT
-    vec4 glint;       // Sadeghi: I_g, xi_g, min and max half-angle
-    vec4 absorption;  // Marschner: sigma_a rgb; w: caustic regularisation width
-};
 
 uint hairHash(uint x) {
     x ^= x >> 16;

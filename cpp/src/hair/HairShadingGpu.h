@@ -1,26 +1,20 @@
 #pragma once
-// The GPU layout of a HairMaterial: struct HairShading in glsl/common/hair_shading.glsl.
-#include <cstdint>
-
+// The GPU layout of a HairMaterial: struct HairShading of glsl/common/hair_gpu_types.h, the one
+// definition the hair shaders read too.
 #include <glm/glm.hpp>
 
 #include <weft/HairMaterial.h>
 
+#include "hair_gpu_types.h"
+
 namespace weft::hair {
 
-struct HairShadingGpu {
-    int32_t model[4];
-    glm::vec4 diffuse;
-    glm::vec4 specular;
-    glm::vec4 colorR;
-    glm::vec4 colorTT;
-    glm::vec4 colorTRT;
-    glm::vec4 shift;
-    glm::vec4 width;
-    glm::vec4 glint;
-    glm::vec4 absorption;
-};
-static_assert(sizeof(HairShadingGpu) == 160, "must match glsl struct HairShading");
+using HairShadingGpu = render::gpu::HairShading;
+static_assert(sizeof(HairShadingGpu) == 160, "HairShading must keep its std140/std430 size");
+static_assert(render::gpu::HAIR_MODEL_KAJIYA_KAY == int(HairModel::KajiyaKay) &&
+                  render::gpu::HAIR_MODEL_MARSCHNER == int(HairModel::Marschner) &&
+                  render::gpu::HAIR_MODEL_SADEGHI == int(HairModel::Sadeghi),
+              "the shaders' model numbers are weft::HairModel's");
 
 /// Validates `m` and packs it.
 HairShadingGpu packHairShading(const HairMaterial& m);
