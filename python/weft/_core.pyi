@@ -16,7 +16,9 @@ class Mesh:
     """
     @staticmethod
     def box(size: typing.Any = (1.0, 1.0, 1.0)) -> Mesh:
-        ...
+        """
+        An axis-aligned box centred at the origin with flat faces (24 vertices), each face's UVs spanning [0, 1].
+        """
     @staticmethod
     def plane(size_x: typing.SupportsFloat | typing.SupportsIndex = 1.0, size_z: typing.SupportsFloat | typing.SupportsIndex = 1.0, segments_x: typing.SupportsInt | typing.SupportsIndex = 1, segments_z: typing.SupportsInt | typing.SupportsIndex = 1) -> Mesh:
         """
@@ -24,7 +26,9 @@ class Mesh:
         """
     @staticmethod
     def uv_sphere(radius: typing.SupportsFloat | typing.SupportsIndex = 0.5, segments: typing.SupportsInt | typing.SupportsIndex = 32, rings: typing.SupportsInt | typing.SupportsIndex = 16) -> Mesh:
-        ...
+        """
+        A sphere centred at the origin: `segments` around Y, `rings` from pole to pole, v = 0 at the +Y pole.
+        """
     def __init__(self, positions: typing.Any, normals: typing.Any, uvs: typing.Any, indices: typing.Any) -> None:
         """
         positions (N,3), normals (N,3), uvs (N,2) float arrays; indices (M,3) integers.
@@ -32,7 +36,9 @@ class Mesh:
     def __repr__(self) -> str:
         ...
     def bounds(self) -> tuple[tuple, tuple]:
-        ...
+        """
+        Axis-aligned bounds ((min x, y, z), (max x, y, z)) of the positions.
+        """
     @property
     def indices(self) -> numpy.typing.NDArray[numpy.uint32]:
         ...
@@ -63,9 +69,13 @@ class Texture:
     """
     @staticmethod
     def load(path: str, srgb: bool = True, mipmaps: bool = True) -> Texture:
-        ...
+        """
+        Loads an image file as a Texture (srgb, mipmaps as for the constructor). Raises IoError naming the file.
+        """
     def __init__(self, image: typing.Any, srgb: bool = True, mipmaps: bool = True) -> None:
-        ...
+        """
+        A texture from a uint8 (H, W, 4) or (H, W, 3) image; srgb: the colours are sRGB- encoded (base colour), False for data (normal, specular maps).
+        """
     def __repr__(self) -> str:
         ...
     @property
@@ -98,7 +108,9 @@ class Material:
     specular_vertex_normal: bool
     texture: Texture
     def __init__(self, ka: typing.Any = (1, 1, 1), kd: typing.Any = (1, 1, 1), ks: typing.Any = (0, 0, 0), shininess: typing.SupportsFloat | typing.SupportsIndex = 32.0, base_color: typing.Any = (1, 1, 1), texture: Texture | None = None, normal_map: Texture | None = None, specular_map: Texture | None = None, alpha_cutoff: typing.SupportsFloat | typing.SupportsIndex = 0.0, ambient_map: Texture | None = None, specular_vertex_normal: bool = False, two_sided: bool = False, reflectivity: typing.Any = (0, 0, 0), environment_diffuse: typing.SupportsFloat | typing.SupportsIndex = 0.0, dynamic_reflection: bool = False, gloss_in_alpha: bool = False, phantom: bool = False) -> None:
-        ...
+        """
+        A material with the coefficients, textures and flags the class description lists (colours as RGB triples in [0, 1] or more).
+        """
     def __repr__(self) -> str:
         ...
     @property
@@ -214,7 +226,9 @@ class DirectionalLight:
     """
     cast_shadows: bool
     def __init__(self, direction: typing.Any = (0, -1, 0), color: typing.Any = (1, 1, 1), intensity: typing.SupportsFloat | typing.SupportsIndex = 1.0, cast_shadows: bool = True) -> None:
-        ...
+        """
+        A directional light shining along `direction` with `color` x `intensity`.
+        """
     def __repr__(self) -> str:
         ...
     @property
@@ -243,7 +257,9 @@ class PointLight:
     """
     cast_shadows: bool
     def __init__(self, position: typing.Any = (0, 2, 0), color: typing.Any = (1, 1, 1), intensity: typing.SupportsFloat | typing.SupportsIndex = 1.0, attenuation: typing.Any = (1, 0, 0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0, cast_shadows: bool = True, shadow_near: typing.SupportsFloat | typing.SupportsIndex = 0.05000000074505806) -> None:
-        ...
+        """
+        A point light at `position` with `color` x `intensity`; attenuation (k_c, k_l, k_q) of 1 / (k_c + k_l d + k_q d²), or with radius > 0 the windowed falloff (SPEC §1.2); shadow_near: the near plane of its shadow views.
+        """
     def __repr__(self) -> str:
         ...
     def attenuation_at(self, distance: typing.SupportsFloat | typing.SupportsIndex) -> float:
@@ -295,7 +311,9 @@ class SpotLight:
     cast_shadows: bool
     cookie: Texture
     def __init__(self, position: typing.Any = (0, 2, 0), direction: typing.Any = (0, -1, 0), color: typing.Any = (1, 1, 1), intensity: typing.SupportsFloat | typing.SupportsIndex = 1.0, inner_angle: typing.SupportsFloat | typing.SupportsIndex = 0.3499999940395355, outer_angle: typing.SupportsFloat | typing.SupportsIndex = 0.5, attenuation: typing.Any = (1, 0, 0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0, cookie: Texture | None = None, cast_shadows: bool = True, shadow_near: typing.SupportsFloat | typing.SupportsIndex = 0.05000000074505806) -> None:
-        ...
+        """
+        A spot light at `position` shining along `direction`, full inside inner_angle and falling smoothly to zero at outer_angle (radians); attenuation and radius as PointLight; an optional cookie Texture projected through the cone.
+        """
     def __repr__(self) -> str:
         ...
     @property
@@ -357,7 +375,9 @@ class Camera:
     Perspective camera (fov_y in radians).
     """
     def __init__(self, position: typing.Any = (0, 1, 4), target: typing.Any = (0, 0, 0), up: typing.Any = (0, 1, 0), fov_y: typing.SupportsFloat | typing.SupportsIndex = 0.7853981852531433, near: typing.SupportsFloat | typing.SupportsIndex = 0.05000000074505806, far: typing.SupportsFloat | typing.SupportsIndex = 100.0) -> None:
-        ...
+        """
+        A perspective camera at `position` looking at `target`; fov_y in radians, near and far clip distances.
+        """
     def __repr__(self) -> str:
         ...
     def projection_matrix(self, aspect: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float32]:
@@ -409,7 +429,9 @@ class Scene:
     Meshes with materials, lights, ambient.
     """
     def __init__(self) -> None:
-        ...
+        """
+        An empty scene: add meshes, cloths, hair and lights.
+        """
     def __repr__(self) -> str:
         ...
     def add_cloth(self, cloth: Cloth, material: Material | None = None, cast_shadows: bool = True) -> int:
@@ -431,13 +453,17 @@ class Scene:
         Adds a mesh instance; returns its id.
         """
     def bounds(self) -> tuple[tuple, tuple]:
-        ...
+        """
+        World-space axis-aligned bounds ((min), (max)) of every instance.
+        """
     def casts_shadows(self, id: typing.SupportsInt | typing.SupportsIndex) -> bool:
         """
         Whether an instance casts shadows.
         """
     def clear_environment(self) -> None:
-        ...
+        """
+        Removes the environment (back to the constant ambient).
+        """
     def cloth(self, id: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
         """
         A cloth instance's weft.Cloth (its mesh() is world space), else None.
@@ -467,15 +493,25 @@ class Scene:
         > 0 the glossy chain at that roughness (0..1). A background_image wins over it.
         """
     def set_hair_material(self, id: typing.SupportsInt | typing.SupportsIndex, material: HairMaterial) -> None:
-        ...
+        """
+        Replaces the HairMaterial of the hair instance with this id.
+        """
     def set_hair_transform(self, id: typing.SupportsInt | typing.SupportsIndex, transform: typing.Any) -> None:
-        ...
+        """
+        Sets the 4x4 model matrix of the hair instance with this id.
+        """
     def set_light(self, id: typing.SupportsInt | typing.SupportsIndex, light: DirectionalLight | PointLight | SpotLight) -> None:
-        ...
+        """
+        Replaces the light with this id (as returned by add_light).
+        """
     def set_material(self, arg0: typing.SupportsInt | typing.SupportsIndex, arg1: Material) -> None:
-        ...
+        """
+        Replaces the material of the instance with this id.
+        """
     def set_transform(self, arg0: typing.SupportsInt | typing.SupportsIndex, arg1: typing.Any) -> None:
-        ...
+        """
+        Sets the 4x4 model matrix of the instance with this id.
+        """
     def transform(self, id: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float32]:
         """
         An instance's object -> world matrix (4x4).
@@ -524,7 +560,9 @@ class Renderer:
     """
     reuse_shadow_maps: bool
     def __init__(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex, shadow_map_size: typing.SupportsInt | typing.SupportsIndex = 2048, pcf_radius: typing.SupportsInt | typing.SupportsIndex = 1, bias_constant: typing.SupportsFloat | typing.SupportsIndex = 0.0005000000237487257, bias_slope: typing.SupportsFloat | typing.SupportsIndex = 0.001500000013038516, bias_max: typing.SupportsFloat | typing.SupportsIndex = 0.009999999776482582, normal_offset: typing.SupportsFloat | typing.SupportsIndex = 1.5, reuse_shadow_maps: bool = True, msaa: typing.SupportsInt | typing.SupportsIndex = 4, exposure: typing.SupportsFloat | typing.SupportsIndex = 0.0, tone_map: str = 'clamp', bounce: bool = True, ambient_occlusion: typing.SupportsInt | typing.SupportsIndex = 8, ambient_occlusion_blur: typing.SupportsFloat | typing.SupportsIndex = 4.0) -> None:
-        ...
+        """
+        An offscreen renderer of width x height pixels on the selected Vulkan device, with its shadow, anti-aliasing (msaa 1/2/4/8), exposure, tone-map ('clamp', 'aces', 'agx', 'neutral'), bounce and ambient-occlusion settings. Raises InvalidArgument for out-of-range settings, Error when no Vulkan device works.
+        """
     def __repr__(self) -> str:
         ...
     def hair_dom_map(self, light_index: typing.SupportsInt | typing.SupportsIndex = 0) -> dict:
@@ -558,7 +596,9 @@ class Renderer:
         Linear radiance RGBA float32 (H, W, 4).
         """
     def resize(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
+        """
+        Changes the output size (1..65535 pixels per side); the next render reallocates its targets.
+        """
     def shadow_info(self, light_index: typing.SupportsInt | typing.SupportsIndex = 0) -> dict:
         """
         What the shadow test of a light used in the last frame.
@@ -764,7 +804,9 @@ class Wind:
     def __eq__(self, arg0: object) -> bool:
         ...
     def __init__(self, direction: typing.Any = (1, 0, 0), strength: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
-        ...
+        """
+        Wind blowing along `direction` (normalised) with `strength` in m/s^2.
+        """
     def __repr__(self) -> str:
         ...
     @property
@@ -785,10 +827,14 @@ class Collider:
     """
     @staticmethod
     def box(center: typing.Any, half_extents: typing.Any, rotation: typing.Any = None, friction: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Collider:
-        ...
+        """
+        An oriented box collider: centre, half extents, optional 3x3 rotation (None = axis-aligned).
+        """
     @staticmethod
     def capsule(a: typing.Any, b: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, friction: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Collider:
-        ...
+        """
+        A capsule collider: the segment a-b swept by a sphere of `radius`.
+        """
     @staticmethod
     def height_field(heights: typing.Any, origin: typing.Any, size: typing.Any, friction: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Collider:
         """
@@ -796,10 +842,14 @@ class Collider:
         """
     @staticmethod
     def plane(point: typing.Any, normal: typing.Any, friction: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Collider:
-        ...
+        """
+        An infinite plane collider through `point` with outward `normal`.
+        """
     @staticmethod
     def sphere(center: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, friction: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Collider:
-        ...
+        """
+        A sphere collider (centre, radius > 0) with Coulomb friction coefficient `friction`.
+        """
     def __repr__(self) -> str:
         ...
     def distance(self, points: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float32], numpy.typing.NDArray[numpy.float32]]:
@@ -828,52 +878,80 @@ class Cloth:
         without colliders, unless WEFT_CLOTH_AOS=1); results are bit-identical.
         """
     def __init__(self, nx: typing.SupportsInt | typing.SupportsIndex = 32, ny: typing.SupportsInt | typing.SupportsIndex = 32, size: typing.Any = (1.0, 1.0), origin: typing.Any = (-0.5, 1.0, -0.5), axis_u: typing.Any = (1, 0, 0), axis_v: typing.Any = (0, 0, 1), mass: typing.SupportsFloat | typing.SupportsIndex = 1.0, bend_distance: typing.SupportsInt | typing.SupportsIndex = 2, extra_axial: bool = False, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9900000095367432, gravity: typing.Any = (0.0, -9.81, 0.0), iterations: typing.SupportsInt | typing.SupportsIndex = 1, substeps: typing.SupportsInt | typing.SupportsIndex = 1, compliance_stretch: typing.SupportsFloat | typing.SupportsIndex = 0.0, compliance_shear: typing.SupportsFloat | typing.SupportsIndex = 0.0, compliance_bend: typing.SupportsFloat | typing.SupportsIndex = 0.0, tethers: bool = False, thickness: typing.SupportsFloat | typing.SupportsIndex = 0.004999999888241291, self_collision: bool = False, self_thickness: typing.SupportsFloat | typing.SupportsIndex = 0.0, tear_strain: typing.SupportsFloat | typing.SupportsIndex = 0.0, sleep_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.0, sleep_steps: typing.SupportsInt | typing.SupportsIndex = 30, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
-        ...
+        """
+        A rectangular nx x ny particle grid spanning `size` along axis_u/axis_v from `origin`, simulated with XPBD (SPEC §3): stretch, shear and bend compliances, tethers, collisions, self-collision, tearing and sleeping as the keywords say. Raises InvalidArgument for out-of-range parameters.
+        """
     def __repr__(self) -> str:
         ...
     def add_collider(self, collider: Collider) -> int:
-        ...
+        """
+        Adds a Collider; returns its id (for set_collider).
+        """
     def advance(self, real_dt: typing.SupportsFloat | typing.SupportsIndex, rate: typing.SupportsFloat | typing.SupportsIndex = 60.0, max_steps: typing.SupportsInt | typing.SupportsIndex = 8) -> int:
         """
         Runs the fixed steps real time needs (capped); returns how many ran.
         """
     def clear_colliders(self) -> None:
-        ...
+        """
+        Removes every collider.
+        """
     def constraints(self) -> dict:
-        ...
+        """
+        Every constraint: {'a', 'b'} particle indices, 'rest' length, 'family' (stretch, shear, bend, tether) and 'active' (False once torn).
+        """
     def grab(self, indices: typing.Any, targets: typing.Any) -> None:
-        ...
+        """
+        Grabs particles: they get inverse mass 0 and follow `targets` (one per index) exactly until release().
+        """
     def kinetic_energy(self) -> float:
-        ...
+        """
+        Kinetic energy Σ m v²/2 of the particles (J).
+        """
     def mesh(self) -> dict:
         """
         positions, normals, uvs, tangents (xyz + handedness) and intact triangles.
         """
     def move_grab(self, targets: typing.Any) -> None:
-        ...
+        """
+        Moves the grabbed particles to new targets (one per grabbed particle).
+        """
     def pick(self, origin: typing.Any, direction: typing.Any, max_distance: typing.SupportsFloat | typing.SupportsIndex = 0.05000000074505806) -> int:
-        ...
+        """
+        Index of the particle nearest to the ray (origin, direction) within max_distance, or -1.
+        """
     def pin(self, indices: typing.Any) -> None:
-        ...
+        """
+        Pins the particles with these indices in place (inverse mass 0).
+        """
     def project_constraints(self) -> None:
         """
         One relaxation sweep + tethers + colliders, no integration (eq. 3.3/3.4).
         """
     def release(self) -> None:
-        ...
+        """
+        Lets go of the grabbed particles.
+        """
     def reset(self) -> None:
-        ...
+        """
+        Returns the cloth to its initial grid at rest (pins kept).
+        """
     def set_collider(self, id: typing.SupportsInt | typing.SupportsIndex, collider: Collider) -> None:
-        ...
+        """
+        Replaces the collider with this id (to move it between steps).
+        """
     def set_holes(self, mask: typing.Any) -> None:
         """
         Bool/number (ny, nx) array (nonzero = hole) or a uint8 image of any size
         (dark, or transparent with 4 channels, = hole).
         """
     def set_positions(self, positions: typing.Any, keep_velocity: bool = False) -> None:
-        ...
+        """
+        Moves the particles to positions (N, 3); keep_velocity keeps each particle's velocity, otherwise they start at rest.
+        """
     def set_velocities(self, velocities: typing.Any) -> None:
-        ...
+        """
+        Sets the particles' velocities (N, 3), consistently with the Verlet integration.
+        """
     def stats(self) -> dict:
         """
         Relative strain |len - rest| / rest over active constraints (mean, max).
@@ -883,11 +961,17 @@ class Cloth:
         One fixed step of dt seconds (substeps inside).
         """
     def unpin(self, indices: typing.Any) -> None:
-        ...
+        """
+        Frees pinned particles.
+        """
     def velocities(self) -> numpy.typing.NDArray[numpy.float32]:
-        ...
+        """
+        The particles' velocities (N, 3) in m/s.
+        """
     def wake(self) -> None:
-        ...
+        """
+        Wakes a sleeping cloth so that the next step simulates it.
+        """
     @property
     def collider_count(self) -> int:
         ...
@@ -1218,7 +1302,9 @@ class BtfSamples:
     BTF measurements: per sample (light, view) an RGB image; values float32 (S, 3, H, W), angles (S, 4) degrees θ_l, φ_l, θ_v, φ_v.
     """
     def __init__(self, values: typing.Any, angles: typing.Any) -> None:
-        ...
+        """
+        Samples from values (S, 3, H, W) and angles (S, 4): (θ_l, φ_l, θ_v, φ_v) in degrees per sample. Values must be finite (InvalidArgument otherwise).
+        """
     def __repr__(self) -> str:
         ...
     @property
@@ -1253,7 +1339,9 @@ class SkyModel:
     by 10^(0.4 h) (h: solar elevation in degrees) plus `night_radiance`. See weft/Sky.h.
     """
     def __init__(self, sun_direction: typing.Any, turbidity: typing.SupportsFloat | typing.SupportsIndex = 3.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.20000000298023224, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, night_radiance: typing.Any = None) -> None:
-        ...
+        """
+        The analytic sky (Preetham 1999) for a sun in sun_direction, with the class description's turbidity, ground_albedo, radiance scale and night_radiance (RGB, None = black).
+        """
     def radiance(self, directions: typing.Any) -> numpy.typing.NDArray[numpy.float32]:
         """
         RGB radiance (N, 3) in directions (N, 3), without the sun's disc. Radiance is linear Rec. 709 RGB whose luminance is Y in kcd/m^2 times `scale` (irradiance
@@ -1289,7 +1377,9 @@ class CubeMap:
     """
     @typing.overload
     def __init__(self, size: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
+        """
+        A cube map of size x size texels per face, all zero, one mip level.
+        """
     @typing.overload
     def __init__(self, faces: typing.Any) -> None:
         ...
@@ -1300,9 +1390,13 @@ class CubeMap:
         Solid-angle weighted 2x2 mips down to 1x1.
         """
     def clear_mips(self) -> None:
-        ...
+        """
+        Drops every mip level above 0 (call after editing level 0).
+        """
     def copy(self) -> CubeMap:
-        ...
+        """
+        An independent copy of this cube map.
+        """
     def level(self, level: typing.SupportsInt | typing.SupportsIndex) -> numpy.ndarray:
         """
         Writable (6, s, s, 3) view of mip level `level`.
@@ -1328,9 +1422,13 @@ class ShadowDome:
     """
     @staticmethod
     def layout_directions(count: typing.SupportsInt | typing.SupportsIndex, layout: str = 'fibonacci') -> numpy.typing.NDArray[numpy.float32]:
-        ...
+        """
+        The unit directions (count, 3) of a dome layout, without an environment.
+        """
     def __init__(self, radiance: typing.Any, count: typing.SupportsInt | typing.SupportsIndex, layout: str = 'fibonacci', source_size: typing.SupportsInt | typing.SupportsIndex = 128) -> None:
-        ...
+        """
+        A dome of `count` shadow lights over +Y laid out as 'fibonacci' (or the other layouts layout_directions names), each with the radiance of its cell of the environment (resampled to source_size).
+        """
     def __repr__(self) -> str:
         ...
     def diffuse_subtract(self, normal: typing.Any, irradiance: typing.Any, visible: typing.Any) -> tuple:
@@ -1367,21 +1465,31 @@ class Environment:
     An environment that re-filters only when its radiance changes (cached by version).
     """
     def __init__(self, radiance: typing.Any) -> None:
-        ...
+        """
+        An environment from a radiance CubeMap or (6, S, S, 3) array; filtered results are cached until set_radiance.
+        """
     def __repr__(self) -> str:
         ...
     def irradiance_map(self, size: typing.SupportsInt | typing.SupportsIndex = 32) -> CubeMap:
-        ...
+        """
+        Irradiance CubeMap of `size` evaluated from SH9 (cached).
+        """
     def irradiance_sh(self) -> numpy.typing.NDArray[numpy.float32]:
         """
         SH9 radiance coefficients (9, 3), cached.
         """
     def set_radiance(self, radiance: typing.Any) -> None:
-        ...
+        """
+        Replaces the radiance and invalidates every cached result (version + 1).
+        """
     def shadow_dome(self, count: typing.SupportsInt | typing.SupportsIndex, layout: str = 'fibonacci') -> ShadowDome:
-        ...
+        """
+        A ShadowDome of `count` lights with intensities from this environment (cached).
+        """
     def specular_chain(self, size: typing.SupportsInt | typing.SupportsIndex = 128, levels: typing.SupportsInt | typing.SupportsIndex = 5, samples: typing.SupportsInt | typing.SupportsIndex = 64) -> CubeMap:
-        ...
+        """
+        GGX prefiltered radiance chain of `levels` mip levels, roughness rising with the level (cached).
+        """
     @property
     def radiance(self) -> CubeMap:
         ...
@@ -1396,43 +1504,77 @@ def btf_drawn_maps(maps: dict) -> dict:
     BTF maps as the renderer draws them (BtfMaterial.as_drawn()).
     """
 def btf_fit_blinn_phong(samples: BtfSamples, seed: dict, solver: str = 'auto', max_iterations: typing.SupportsInt | typing.SupportsIndex = 30, min_exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, max_exponent: typing.SupportsFloat | typing.SupportsIndex = 0.0, threads: typing.SupportsInt | typing.SupportsIndex = 0, flat_specular_normal: bool = False, visibility: bool = True, luminance_normals: bool = False) -> dict:
-    ...
+    """
+    Nonlinear per-texel Blinn-Phong fit (normal, ρ, a, k, exponent) seeded from `seed` maps, with the built-in Levenberg-Marquardt or Ceres ('auto', 'builtin', 'ceres'); visibility leaves estimated cast shadows out. Returns {'maps', 'mean_iterations', 'solver', 'shadowed_fraction'}.
+    """
 def btf_fit_lafortune(samples: BtfSamples, seed: dict, lobes: typing.SupportsInt | typing.SupportsIndex = 1, max_iterations: typing.SupportsInt | typing.SupportsIndex = 30, threads: typing.SupportsInt | typing.SupportsIndex = 0, visibility: bool = False, fixed_normal: bool = False) -> dict:
-    ...
+    """
+    Per-texel Lafortune fit (`lobes` lobes, Levenberg-Marquardt) seeded from `seed` maps. Returns normal, diffuse, ambient, lobe_albedo (H, W, L, 3), lobe_shape (H, W, L, 4) and mean_iterations.
+    """
 def btf_fit_linear(samples: BtfSamples, robust: bool = False, robust_iterations: typing.SupportsInt | typing.SupportsIndex = 4, dark_threshold: typing.SupportsFloat | typing.SupportsIndex = 9.999999747378752e-05, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> dict:
-    ...
+    """
+    Per-texel linear fit of all samples (normal, albedo, ambient; SPEC §4), optionally robust (samples darker than the fit by dark_threshold dropped over robust_iterations rounds). Returns a dict of arrays. Raises InvalidArgument when the lights do not span 3D.
+    """
 def btf_fit_specular(samples: BtfSamples, linear: dict, flat_specular_normal: bool = True, max_exponent: typing.SupportsInt | typing.SupportsIndex = 4096, per_texel: bool = False, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> dict:
-    ...
+    """
+    Specular map from the residual of the θ_l = 0 sample and the exponent minimising the total squared error (SPEC eq. 4.29/4.30). Returns {'maps', 'curve' (error per candidate exponent), 'specular_sample'}.
+    """
 def btf_have_ceres() -> bool:
-    ...
+    """
+    True when weft was built with Ceres Solver (btf_fit_blinn_phong solver='ceres').
+    """
 def btf_lafortune_errors(samples: BtfSamples, fit: dict, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> numpy.typing.NDArray[numpy.float64]:
-    ...
+    """
+    Per-sample mean squared error (S,) of a btf_fit_lafortune result against the samples.
+    """
 def btf_load(path: str, views: typing.Any, gamma: str = 'raw', threads: typing.SupportsInt | typing.SupportsIndex = 0) -> BtfSamples:
-    ...
+    """
+    Loads a BTF in the Bonn layout (a folder or a zip) as BtfSamples: `views` (V, 2) (θ_v, φ_v) degrees picks views (None = all); gamma 'raw' keeps the stored values, 'srgb' linearises them. Raises IoError naming the file (or the missing angles).
+    """
 def btf_material_from_linear(samples: BtfSamples, linear: dict) -> dict:
-    ...
+    """
+    The seed's material maps (no specular) from a btf_fit_linear result.
+    """
 def btf_parse_file_name(name: str) -> typing.Any:
-    ...
+    """
+    (θ_l, φ_l, θ_v, φ_v) in degrees parsed from a Bonn file name's tl/pl/tv/pv keys, or None when one of them is missing.
+    """
 def btf_render(maps: dict, angles: typing.Any, height: typing.Any = None, wrap: bool = True, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> BtfSamples:
-    ...
+    """
+    Renders material maps (normal, diffuse, ... as from a fit) for each of `angles` (S, 4) into BtfSamples; with a height field (H, W) a texel whose ray to the light passes below it gets only the ambient term (wrap: the field tiles).
+    """
 def btf_render_material(maps: dict) -> Material:
     """
     The renderer's Material for BTF maps (BtfMaterial.core_maps()).
     """
 def btf_resolvable_exponent(samples: BtfSamples, fraction: typing.SupportsFloat | typing.SupportsIndex = 0.01) -> float:
-    ...
+    """
+    The largest Blinn-Phong exponent the sampling resolves: a lobe at one sample's half vector keeps `fraction` of its peak at the nearest neighbouring half vector.
+    """
 def btf_sample_errors(samples: BtfSamples, maps: dict, reconstruct: bool = False, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> typing.Any:
-    ...
+    """
+    Per-sample mean squared error (S,) of `maps` against the samples; with reconstruct=True also the model's samples (S, 3, H, W), as a tuple.
+    """
 def btf_solve_linear(samples: BtfSamples, texture: typing.Any, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> dict:
-    ...
+    """
+    The linear least squares for a given texture (H, W, 3) instead of the sample mean: per texel the normal and ambient that best explain the samples. Returns the same dict as btf_fit_linear.
+    """
 def btf_standard_directions() -> numpy.typing.NDArray[numpy.float32]:
-    ...
+    """
+    The 81 directions the Bonn database uses for lights and views, (81, 2) as (θ, φ) in degrees: rings θ = 0, 15, ..., 75, each by increasing φ.
+    """
 def btf_write(path: str, samples: BtfSamples, format: str = 'jpg', quality: typing.SupportsInt | typing.SupportsIndex = 95, zip: bool = False, gamma: str = 'raw', prefix: str = '') -> None:
-    ...
+    """
+    Writes samples (values in [0, 1], clipped, 8 bits) in the Bonn layout under path/UBO2003/MANYFILES/tvTTT_pvPPP/ as 'jpg' or 'png', optionally zipped; angles must be whole degrees.
+    """
 def clear_shader_errors() -> None:
-    ...
+    """
+    Forgets the shader compile errors collected so far.
+    """
 def clear_validation_messages() -> None:
-    ...
+    """
+    Forgets the validation messages collected so far.
+    """
 def cube_coords(directions: typing.Any) -> tuple[numpy.typing.NDArray[numpy.int32], numpy.typing.NDArray[numpy.float32]]:
     """
     Face index (N,) and face coordinates u, v (N, 2) of directions.
@@ -1446,9 +1588,13 @@ def cube_texel_solid_angles(size: typing.SupportsInt | typing.SupportsIndex) -> 
     Exact texel solid angles of one face, (S, S) float64 (same for all faces).
     """
 def cube_to_equirect(cube: typing.Any, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float32]:
-    ...
+    """
+    The cube map as an equirectangular float32 image (height, width, 3).
+    """
 def cube_to_sphere(cube: typing.Any, size: typing.SupportsInt | typing.SupportsIndex, world_to_sphere: typing.Any = None, wrap: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> numpy.typing.NDArray[numpy.float32]:
-    ...
+    """
+    The cube map as a sphere-map (mirror ball) float32 image (size, size, 3), seen along world_to_sphere (4x4, None = identity); wrap < 1 shows only that fraction of the ball's radius.
+    """
 def default_scene() -> tuple[Scene, Camera]:
     """
     The demo's scene and camera: textured ground, sphere, box, a shadow-casting sun.
@@ -1469,7 +1615,9 @@ def dfg_lut(size: typing.SupportsInt | typing.SupportsIndex = 32, samples: typin
     Split-sum DFG table (roughness rows, n.v columns, [scale, bias]).
     """
 def equirect_to_cube(image: typing.Any, size: typing.SupportsInt | typing.SupportsIndex, supersample: typing.SupportsInt | typing.SupportsIndex = 2) -> CubeMap:
-    ...
+    """
+    Resamples an equirectangular (2:1) RGB float image into a radiance CubeMap of `size` per face, supersample² samples per texel.
+    """
 def extract_lights(radiance: typing.Any, downsample: typing.SupportsInt | typing.SupportsIndex = 32, threshold: typing.SupportsFloat | typing.SupportsIndex = 0.0, relative_threshold: typing.SupportsFloat | typing.SupportsIndex = 8.0, max_lights: typing.SupportsInt | typing.SupportsIndex = 16, labels: bool = False) -> typing.Any:
     """
     Threshold + connected components; list of dicts (direction, colour, solid_angle, texels),
@@ -1510,17 +1658,25 @@ def hair_shade_eval(material: HairMaterial, t: typing.Any, l: typing.Any, v: typ
     normalised here) and strand ids (glint angle); returns f (N,3) float32.
     """
 def irradiance_box_blur(radiance: typing.Any, size: typing.SupportsInt | typing.SupportsIndex = 32, sphere_size: typing.SupportsInt | typing.SupportsIndex = 64, radius: typing.SupportsInt | typing.SupportsIndex = 12, passes: typing.SupportsInt | typing.SupportsIndex = 2) -> CubeMap:
-    ...
+    """
+    The seed's irradiance approximation: the radiance as a sphere map box-blurred (radius texels, `passes` times), back into a cube map of `size`.
+    """
 def irradiance_exact(radiance: typing.Any, size: typing.SupportsInt | typing.SupportsIndex = 32, source_size: typing.SupportsInt | typing.SupportsIndex = 64) -> CubeMap:
-    ...
+    """
+    Irradiance CubeMap by the exact cosine convolution of the radiance resampled to source_size (the reference; constant radiance L gives πL).
+    """
 def irradiance_exact_gpu(radiance: typing.Any, size: typing.SupportsInt | typing.SupportsIndex = 32, source_size: typing.SupportsInt | typing.SupportsIndex = 64) -> CubeMap:
     """
     irradiance_exact as a Vulkan compute shader on the selected device.
     """
 def irradiance_from_sh(sh: typing.Any, size: typing.SupportsInt | typing.SupportsIndex) -> CubeMap:
-    ...
+    """
+    Irradiance CubeMap of `size` per face from SH9 radiance coefficients (9, 3).
+    """
 def irradiance_rotational_blur(radiance: typing.Any, size: typing.SupportsInt | typing.SupportsIndex = 32, half_angle: typing.SupportsFloat | typing.SupportsIndex = 1.0, steps: typing.SupportsInt | typing.SupportsIndex = 16) -> CubeMap:
-    ...
+    """
+    The seed's irradiance approximation: blurs about three axes through half_angle radians in `steps` steps.
+    """
 def load_exr(path: str) -> numpy.typing.NDArray[numpy.float32]:
     """
     Reads an OpenEXR file into a float32 array (H, W, C): R, G, B [, A] or Y [, A].
@@ -1547,9 +1703,13 @@ def load_png(path: str) -> numpy.typing.NDArray[numpy.uint8]:
     Reads a PNG into a uint8 array (H, W, C).
     """
 def phong_exact(radiance: typing.Any, shininess: typing.SupportsFloat | typing.SupportsIndex, size: typing.SupportsInt | typing.SupportsIndex = 32, source_size: typing.SupportsInt | typing.SupportsIndex = 64) -> CubeMap:
-    ...
+    """
+    Phong-lobe prefiltered radiance (exponent `shininess`) by exact convolution of the radiance resampled to source_size.
+    """
 def phong_sampled(radiance: typing.Any, shininess: typing.SupportsFloat | typing.SupportsIndex, size: typing.SupportsInt | typing.SupportsIndex = 32, samples: typing.SupportsInt | typing.SupportsIndex = 64) -> CubeMap:
-    ...
+    """
+    Phong-lobe prefiltered radiance (exponent `shininess`) by filtered importance sampling with `samples` per texel.
+    """
 def poll_shader_changes() -> int:
     """
     Recompiles changed shaders now (renderers also do it every frame); returns how many.
@@ -1597,7 +1757,9 @@ def sh_irradiance(sh: typing.Any, normals: typing.Any) -> numpy.typing.NDArray[n
     Irradiance (N, 3) at unit normals (N, 3) from SH9.
     """
 def shader_directory() -> str:
-    ...
+    """
+    The directory watched for shader hot reload ('' when none; see set_shader_directory).
+    """
 def shader_errors() -> list[str]:
     """
     Compile errors of reloaded shaders since the last clear (name: file:line: message).

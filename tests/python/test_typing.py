@@ -4,6 +4,7 @@ and a type checker reading them accepts a correct user script and rejects wrong 
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 import textwrap
@@ -93,3 +94,39 @@ def test_mypy_rejects_wrong_calls(tmp_path):
     assert 'Argument "size_x" to "plane" of "Mesh" has incompatible type "str"' in out
     assert "user.py:5: error: Incompatible types in assignment" in out
     assert 'Unexpected keyword argument "bogus" for "render" of "Renderer"' in out
+
+
+def _description(doc: str, name: str) -> str:
+    """A pybind11 docstring less its signature lines: what a reader learns beyond the types."""
+    lines = [line for line in (doc or "").splitlines()
+             if not (line.strip().startswith(name + "(") or line.strip() == "Overloaded function."
+                     or re.match(r"^\d+\. " + re.escape(name) + r"\(", line.strip()))]
+    return "\n".join(lines).strip()
+
+
+def _public_callables():
+    import weft._core as core
+
+    for name in dir(core):
+        if name.startswith("_"):
+            continue
+        obj = getattr(core, name)
+        if isinstance(obj, type):
+            if issubclass(obj, BaseException):
+                continue
+            yield f"{name}", obj.__doc__, name
+            for attr, value in vars(obj).items():
+                if attr.startswith("_") and attr != "__init__":
+                    continue
+                func = value.__func__ if isinstance(value, staticmethod) else value
+                if callable(func) and not isinstance(value, property):
+                    yield f"{name}.{attr}", getattr(func, "__doc__", None), attr
+        elif callable(obj):
+            yield name, obj.__doc__, name
+
+
+def test_every_public_compiled_callable_has_a_docstring():
+    found = list(_public_callables())
+    assert len(found) > 150
+    missing = [label for label, doc, name in found if not _description(doc, name)]
+    assert not missing, f"compiled callables without a docstring: {missing}"
