@@ -37,8 +37,7 @@ std::shared_ptr<Mesh> makeMesh(py::handle positions, py::handle normals, py::han
                                py::handle indices) {
     auto mesh = std::make_shared<Mesh>();
     mesh->positions = rows<glm::vec3, 3>(positions, "positions");
-    mesh->normals = rows<glm::vec3, 3>(normals, "normals", mesh->positions.size());
-    mesh->uvs = rows<glm::vec2, 2>(uvs, "uvs", mesh->positions.size());
+    if (indices.is_none()) throw InvalidArgument("Mesh: indices (M, 3) are required");
     py::array idx = py::array::ensure(indices);
     if (!idx || (idx.dtype().kind() != 'i' && idx.dtype().kind() != 'u'))
         throw py::type_error("indices must be an integer array");
@@ -51,6 +50,11 @@ std::shared_ptr<Mesh> makeMesh(py::handle positions, py::handle normals, py::han
             throw InvalidArgument("indices must be non-negative 32-bit values");
         mesh->indices.push_back(uint32_t(data[i]));
     }
+    // Missing attributes are computed (documented on weft.Mesh), not left for validate().
+    if (normals.is_none()) mesh->normals = computeNormals(mesh->positions, mesh->indices);
+    else mesh->normals = rows<glm::vec3, 3>(normals, "normals", mesh->positions.size());
+    if (uvs.is_none()) mesh->uvs = computePlanarUvs(mesh->positions);
+    else mesh->uvs = rows<glm::vec2, 2>(uvs, "uvs", mesh->positions.size());
     mesh->validate();
     return mesh;
 }
@@ -86,9 +90,13 @@ std::string vecRepr(const glm::vec3& v) {
 void bindScene(py::module_& m) {
     py::class_<Mesh, std::shared_ptr<Mesh>>(m, "Mesh",
         "Indexed triangle mesh (counter-clockwise front faces). Immutable once made.")
-        .def(py::init(&makeMesh), py::arg("positions"), py::arg("normals"), py::arg("uvs"),
-             py::arg("indices"),
-             "positions (N,3), normals (N,3), uvs (N,2) float arrays; indices (M,3) integers.")
+        .def(py::init(&makeMesh), py::arg("positions"), py::arg("normals") = py::none(),
+             py::arg("uvs") = py::none(), py::arg("indices") = py::none(),
+             "positions (N,3), normals (N,3), uvs (N,2) float arrays; indices (M,3) integers\n"
+             "(required; e.g. Mesh(positions, indices=faces)). normals=None: angle-weighted\n"
+             "vertex normals (a vertex without a non-degenerate triangle gets +Y); uvs=None: a\n"
+             "planar projection along the bounds' thinnest axis, u along the longest one,\n"
+             "both divided by the longest extent (u in [0, 1]).")
         .def_property_readonly("positions", [](const Mesh& x) { return toRows<glm::vec3, 3>(x.positions); })
         .def_property_readonly("normals", [](const Mesh& x) { return toRows<glm::vec3, 3>(x.normals); })
         .def_property_readonly("uvs", [](const Mesh& x) { return toRows<glm::vec2, 2>(x.uvs); })

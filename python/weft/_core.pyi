@@ -29,9 +29,13 @@ class Mesh:
         """
         A sphere centred at the origin: `segments` around Y, `rings` from pole to pole, v = 0 at the +Y pole.
         """
-    def __init__(self, positions: typing.Any, normals: typing.Any, uvs: typing.Any, indices: typing.Any) -> None:
+    def __init__(self, positions: typing.Any, normals: typing.Any = None, uvs: typing.Any = None, indices: typing.Any = None) -> None:
         """
-        positions (N,3), normals (N,3), uvs (N,2) float arrays; indices (M,3) integers.
+        positions (N,3), normals (N,3), uvs (N,2) float arrays; indices (M,3) integers
+        (required; e.g. Mesh(positions, indices=faces)). normals=None: angle-weighted
+        vertex normals (a vertex without a non-degenerate triangle gets +Y); uvs=None: a
+        planar projection along the bounds' thinnest axis, u along the longest one,
+        both divided by the longest extent (u in [0, 1]).
         """
     def __repr__(self) -> str:
         ...

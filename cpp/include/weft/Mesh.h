@@ -53,6 +53,21 @@ struct Mesh {
 /// Vertices without a usable UV gradient get any unit tangent orthogonal to n.
 std::vector<glm::vec4> computeTangents(const Mesh& mesh);
 
+/// Angle-weighted vertex normals of an indexed triangle list (Thürmer & Wüthrich 1998): each
+/// triangle adds its unit normal times its interior angle at the vertex, and each sum is
+/// normalised, so the result does not depend on how a face is tessellated. Degenerate
+/// triangles add nothing; a vertex with no other triangle gets +Y (validate() needs a unit
+/// normal). Throws InvalidArgument for an index out of range or a count not a multiple of 3.
+std::vector<glm::vec3> computeNormals(const std::vector<glm::vec3>& positions,
+                                      const std::vector<uint32_t>& indices);
+
+/// The UV fallback of a mesh that has none: a planar projection along the axis in which the
+/// bounds are thinnest, u along the longest other axis, v along the remaining one, both divided
+/// by the longest extent (square texels, u in [0, 1], v in [0, extent ratio]; an object
+/// flat in XZ gets u = (x - min x) / size, v = (z - min z) / size, like Mesh::plane).
+/// Throws InvalidArgument without positions.
+std::vector<glm::vec2> computePlanarUvs(const std::vector<glm::vec3>& positions);
+
 /// Loads a Wavefront OBJ: v, vt, vn, f (triangles and convex polygons, fan-triangulated;
 /// v, v/t, v//n, v/t/n; negative indices). Missing normals are computed (area-weighted),
 /// missing UVs are zero. Groups, objects and materials are ignored. Throws IoError naming the
