@@ -19,6 +19,7 @@ void bindHair(py::module_& m);
 void bindBtf(py::module_& m);
 void bindHairRender(py::module_& m);
 void bindIbl(py::module_& m);
+void bindModelIo(py::module_& m);
 } // namespace weft::py_bind
 
 using namespace weft::py_bind;
@@ -228,6 +229,7 @@ PYBIND11_MODULE(_core, m) {
        "headless to `out` (see `weft-demo --help` for frames, scripts and output folders).");
 
     bindScene(m);
+    bindModelIo(m);
     bindRender(m);
     bindCloth(m);
     bindHair(m);

@@ -9,7 +9,7 @@ import typing
 class Error(RuntimeError): ...
 class InvalidArgument(Error, ValueError): ...
 class IoError(Error, OSError): ...
-__all__: list[str] = ['BtfSamples', 'Camera', 'Cloth', 'Collider', 'CubeMap', 'DirectionalLight', 'Environment', 'Error', 'HairMaterial', 'HairStrands', 'InvalidArgument', 'IoError', 'Material', 'Mesh', 'PointLight', 'Renderer', 'Scene', 'ShadowDome', 'SkyModel', 'SpotLight', 'Texture', 'Wind', 'btf_drawn_maps', 'btf_fit_blinn_phong', 'btf_fit_lafortune', 'btf_fit_linear', 'btf_fit_specular', 'btf_have_ceres', 'btf_lafortune_errors', 'btf_load', 'btf_material_from_linear', 'btf_parse_file_name', 'btf_render', 'btf_render_material', 'btf_resolvable_exponent', 'btf_sample_errors', 'btf_solve_linear', 'btf_standard_directions', 'btf_write', 'clear_shader_errors', 'clear_validation_messages', 'cube_coords', 'cube_texel_directions', 'cube_texel_solid_angles', 'cube_to_equirect', 'cube_to_sphere', 'default_scene', 'demo_scene', 'devices', 'dfg_lut', 'equirect_to_cube', 'extract_lights', 'fill_unseen', 'fisheye_to_cube', 'generate_fur', 'generate_hair', 'hair_from_bytes', 'hair_shade_eval', 'irradiance_box_blur', 'irradiance_exact', 'irradiance_exact_gpu', 'irradiance_from_sh', 'irradiance_rotational_blur', 'load_exr', 'load_hair', 'load_hdr', 'load_image_float', 'load_obj', 'load_png', 'phong_exact', 'phong_sampled', 'poll_shader_changes', 'prefilter_ggx', 'prefilter_ggx_gpu', 'project_sh9', 'run_demo', 'save_exr', 'save_hair', 'save_hdr', 'save_png', 'set_shader_directory', 'sh_irradiance', 'shader_directory', 'shader_errors', 'shader_hot_reload_available', 'sky', 'sphere_to_cube', 'sun_light', 'validation_enabled', 'validation_messages']
+__all__: list[str] = ['BtfSamples', 'Camera', 'Cloth', 'Collider', 'CubeMap', 'DirectionalLight', 'Environment', 'Error', 'HairMaterial', 'HairStrands', 'InvalidArgument', 'IoError', 'Material', 'Mesh', 'MeshPart', 'PointLight', 'Renderer', 'Scene', 'ShadowDome', 'SkyModel', 'SpotLight', 'Texture', 'Wind', 'btf_drawn_maps', 'btf_fit_blinn_phong', 'btf_fit_lafortune', 'btf_fit_linear', 'btf_fit_specular', 'btf_have_ceres', 'btf_lafortune_errors', 'btf_load', 'btf_material_from_linear', 'btf_parse_file_name', 'btf_render', 'btf_render_material', 'btf_resolvable_exponent', 'btf_sample_errors', 'btf_solve_linear', 'btf_standard_directions', 'btf_write', 'clear_shader_errors', 'clear_validation_messages', 'cube_coords', 'cube_texel_directions', 'cube_texel_solid_angles', 'cube_to_equirect', 'cube_to_sphere', 'default_scene', 'demo_scene', 'devices', 'dfg_lut', 'equirect_to_cube', 'extract_lights', 'fill_unseen', 'fisheye_to_cube', 'generate_fur', 'generate_hair', 'hair_from_bytes', 'hair_shade_eval', 'irradiance_box_blur', 'irradiance_exact', 'irradiance_exact_gpu', 'irradiance_from_sh', 'irradiance_rotational_blur', 'load_exr', 'load_gltf', 'load_hair', 'load_hdr', 'load_image_float', 'load_obj', 'load_obj_parts', 'load_png', 'phong_exact', 'phong_sampled', 'poll_shader_changes', 'prefilter_ggx', 'prefilter_ggx_gpu', 'project_sh9', 'run_demo', 'save_exr', 'save_hair', 'save_hdr', 'save_png', 'set_shader_directory', 'sh_irradiance', 'shader_directory', 'shader_errors', 'shader_hot_reload_available', 'sky', 'sphere_to_cube', 'sun_light', 'validation_enabled', 'validation_messages']
 class Mesh:
     """
     Indexed triangle mesh (counter-clockwise front faces). Immutable once made.
@@ -558,6 +558,27 @@ class Scene:
     @property
     def lights(self) -> list[DirectionalLight | PointLight | SpotLight]:
         ...
+class MeshPart:
+    """
+    One mesh of a model file with its material: scene.add_mesh(part.mesh, part.material).
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def material(self) -> Material:
+        """
+        The file's material as a weft Material.
+        """
+    @property
+    def mesh(self) -> Mesh:
+        """
+        The Mesh, in world space.
+        """
+    @property
+    def name(self) -> str:
+        """
+        The file's name for it (may be empty).
+        """
 class Renderer:
     """
     Vulkan renderer drawing a Scene from a Camera into an offscreen image of width x height.
@@ -1685,6 +1706,16 @@ def load_exr(path: str) -> numpy.typing.NDArray[numpy.float32]:
     """
     Reads an OpenEXR file into a float32 array (H, W, C): R, G, B [, A] or Y [, A].
     """
+def load_gltf(path: str) -> list[MeshPart]:
+    """
+    Loads a glTF 2.0 file (.gltf or .glb) as a list of MeshPart, one per triangle primitive
+    instanced by the default scene, node transforms applied. Missing normals: flat (as the
+    glTF spec requires); missing UVs: Mesh's planar fallback. Materials: base colour factor
+    and texture, kd = 1 - metallic, ks = mix(0.04, base colour, metallic), shininess
+    2 / roughness^4 - 2 (clamped to [1, 4096]), normal map and scale, MASK alpha cutoff,
+    double-sided, KHR_texture_transform of the base colour texture. Raises IoError naming
+    the file for anything malformed, unsupported or too large.
+    """
 def load_hair(path: str, z_up: bool = False) -> HairStrands:
     """
     Reads a .hair file (weft.IoError if missing, truncated or inconsistent). z_up: the file
@@ -1701,6 +1732,13 @@ def load_image_float(path: str) -> numpy.typing.NDArray[numpy.float32]:
 def load_obj(path: str) -> Mesh:
     """
     Loads a Wavefront OBJ file as a Mesh.
+    """
+def load_obj_parts(path: str) -> list[MeshPart]:
+    """
+    Loads a Wavefront OBJ with its .mtl materials as a list of MeshPart, one per material
+    used (Kd -> kd, Ks -> ks, Ns -> shininess, map_Kd -> texture, PNG). Raises IoError
+    naming the file for what load_obj refuses, a missing .mtl or texture, or an unknown
+    material.
     """
 def load_png(path: str) -> numpy.typing.NDArray[numpy.uint8]:
     """

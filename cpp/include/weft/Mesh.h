@@ -69,9 +69,11 @@ std::vector<glm::vec3> computeNormals(const std::vector<glm::vec3>& positions,
 std::vector<glm::vec2> computePlanarUvs(const std::vector<glm::vec3>& positions);
 
 /// Loads a Wavefront OBJ: v, vt, vn, f (triangles and convex polygons, fan-triangulated;
-/// v, v/t, v//n, v/t/n; negative indices). Missing normals are computed (area-weighted),
-/// missing UVs are zero. Groups, objects and materials are ignored. Throws IoError naming the
-/// file and line for missing files, malformed lines or out-of-range indices.
+/// v, v/t, v//n, v/t/n; negative indices count back from the elements defined so far, positive
+/// ones may refer to elements defined later in the file, as tinyobjloader and trimesh allow).
+/// Missing normals are computed (area-weighted), missing UVs are zero. Groups, objects and
+/// materials are ignored (loadObjParts in ModelIo.h reads materials). Throws IoError naming the
+/// file and line for missing files, malformed lines, index 0 or out-of-range indices.
 /// OBJ puts vt v = 0 at the bottom image row, so the loaded uv is (u, 1 - v). Each distinct
 /// (v, vt, vn) triple becomes one vertex; computed normals are smooth over each OBJ position.
 Mesh loadObj(const std::string& path);
