@@ -289,3 +289,31 @@ def test_oversized_image_is_refused_before_decoding(tmp_path: Path) -> None:
     path = write_gltf(tmp_path / "big.glb", positions, indices, normals, uvs, png=bytes(png))
     with pytest.raises(weft.IoError, match="40000x40000"):
         weft.load_gltf(str(path))
+
+
+def test_external_buffer_and_jpeg_image_files(tmp_path: Path) -> None:
+    # .gltf + .bin + a JPEG beside it, the layout exporters write by default; the files are
+    # read through weft's checked reader.
+    from PIL import Image
+
+    positions, normals, uvs, indices = quad_arrays()
+    path = write_gltf(tmp_path / "ext.gltf", positions, indices, normals, uvs)
+    gltf = pygltflib.GLTF2().load(str(path))
+    gltf.convert_buffers(pygltflib.BufferFormat.BINFILE)
+    image = np.zeros((16, 16, 3), np.uint8)
+    image[:8] = (250, 20, 20)
+    image[8:] = (20, 20, 250)
+    Image.fromarray(image).save(tmp_path / "photo.jpg", quality=95)
+    gltf.images = [pygltflib.Image(uri="photo.jpg")]
+    gltf.textures = [pygltflib.Texture(source=0)]
+    gltf.materials[0].pbrMetallicRoughness.baseColorTexture = pygltflib.TextureInfo(index=0)
+    gltf.save(str(path))
+    assert any(p.suffix == ".bin" for p in tmp_path.iterdir())
+    (part,) = weft.load_gltf(str(path))
+    np.testing.assert_array_equal(part.mesh.positions, positions)
+    got = part.material.texture.image[..., :3].astype(int)
+    theirs = np.asarray(Image.open(tmp_path / "photo.jpg").convert("RGB")).astype(int)
+    assert np.abs(got - theirs).max() <= 2  # two JPEG decoders may round differently
+    (tmp_path / "photo.jpg").write_bytes(b"not an image")
+    with pytest.raises(weft.IoError, match="not a PNG or JPEG"):
+        weft.load_gltf(str(path))
