@@ -27,8 +27,10 @@ namespace {
 // make the decoder allocate gigabytes); 16384 is the largest texture most GPUs accept.
 constexpr uint32_t kMaxImageSide = 16384;
 // Caps on what instancing can multiply: a node graph sharing one mesh a million times.
+// Vertices (32 bytes each, unwelded flat-shaded corners included) and indices over all parts.
 constexpr size_t kMaxParts = size_t(1) << 16;
 constexpr size_t kMaxTotalVertices = size_t(1) << 26;
+constexpr size_t kMaxTotalIndices = size_t(3) << 26;
 constexpr int kMaxNodeDepth = 1024;
 
 uint32_t bigEndian16(const unsigned char* p) { return (uint32_t(p[0]) << 8) | p[1]; }
@@ -139,6 +141,7 @@ private:
     const tinygltf::Model& mModel;
     std::vector<MeshPart> mParts;
     size_t mTotalVertices = 0;
+    size_t mTotalIndices = 0;
     std::vector<bool> mOnPath; // nodes on the current root-to-node path (cycle check)
     std::map<std::pair<int, bool>, TexturePtr> mTextures;
 };
@@ -373,10 +376,16 @@ void GltfConverter::addPrimitive(const tinygltf::Mesh& gmesh, const tinygltf::Pr
 
     mesh.indices = triangles(primitive, count);
     if (mesh.indices.empty()) return;
+    if (mesh.indices.size() > kMaxTotalIndices - mTotalIndices)
+        fail("more than " + std::to_string(kMaxTotalIndices / 3) + " triangles in all");
+    mTotalIndices += mesh.indices.size();
     if (glm::determinant(glm::dmat3(world)) < 0.0) // a mirror turns the front face inside
         for (size_t i = 0; i < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
     if (mesh.normals.empty()) {
         // glTF spec 3.7.2.1: without normals, flat shading. One vertex per corner.
+        if (mesh.indices.size() > kMaxTotalVertices - mTotalVertices)
+            fail("more than " + std::to_string(kMaxTotalVertices) + " vertices in all");
+        mTotalVertices += mesh.indices.size();
         Mesh flat;
         flat.positions.reserve(mesh.indices.size());
         flat.uvs.reserve(mesh.indices.size());
@@ -437,8 +446,11 @@ Material GltfConverter::material(int index) {
     const tinygltf::Material& gm = mModel.materials[index];
     const tinygltf::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
     glm::vec3 base(1.0f);
-    for (int c = 0; c < 3 && size_t(c) < pbr.baseColorFactor.size(); ++c)
+    for (int c = 0; c < 3 && size_t(c) < pbr.baseColorFactor.size(); ++c) {
+        if (!std::isfinite(pbr.baseColorFactor[c]))
+            fail("material " + std::to_string(index) + " has a non-finite base colour");
         base[c] = float(std::clamp(pbr.baseColorFactor[c], 0.0, 1.0));
+    }
     const float metallic = float(std::clamp(pbr.metallicFactor, 0.0, 1.0));
     const float roughness = float(std::clamp(pbr.roughnessFactor, 0.0, 1.0));
     if (!std::isfinite(pbr.metallicFactor) || !std::isfinite(pbr.roughnessFactor))
@@ -454,7 +466,11 @@ Material GltfConverter::material(int index) {
     m.texture = texture(pbr.baseColorTexture.index, true);
     m.normalMap = texture(gm.normalTexture.index, false);
     if (m.normalMap) m.normalScale = float(gm.normalTexture.scale);
-    if (gm.alphaMode == "MASK") m.alphaCutoff = float(gm.alphaCutoff);
+    if (gm.alphaMode == "MASK") {
+        if (!std::isfinite(gm.alphaCutoff))
+            fail("material " + std::to_string(index) + " has a non-finite alpha cutoff");
+        m.alphaCutoff = float(std::clamp(gm.alphaCutoff, 0.0, 1.0));
+    }
     m.twoSided = gm.doubleSided;
     return m;
 }
