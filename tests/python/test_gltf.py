@@ -317,3 +317,39 @@ def test_external_buffer_and_jpeg_image_files(tmp_path: Path) -> None:
     (tmp_path / "photo.jpg").write_bytes(b"not an image")
     with pytest.raises(weft.IoError, match="not a PNG or JPEG"):
         weft.load_gltf(str(path))
+
+
+def test_strips_and_fans_cover_the_polygon_facing_front(tmp_path: Path) -> None:
+    # A convex hexagon in the XZ plane facing +Y, as a triangle fan around vertex 0 and as a
+    # strip zig-zagging across it: both must cover its area (shoelace formula) with every
+    # triangle counter-clockwise seen from +Y.
+    angles = np.arange(6) * np.pi / 3
+    ring = np.stack([np.cos(angles), np.zeros(6), -np.sin(angles)], axis=1).astype(np.float32)
+    area = 0.5 * abs(np.dot(ring[:, 0], np.roll(ring[:, 2], -1)) -
+                     np.dot(ring[:, 2], np.roll(ring[:, 0], -1)))
+    up = np.tile(np.array([0, 1, 0], np.float32), (6, 1))
+    fan = np.arange(6, dtype=np.uint16)
+    strip = np.array([0, 1, 5, 2, 4, 3], np.uint16)  # v0 v1 v5 v2 v4 v3 zig-zags across
+    for name, order, mode in (("fan", fan, 6), ("strip", strip, 5)):
+        (part,) = weft.load_gltf(str(write_gltf(tmp_path / f"{name}.gltf", ring, order, up,
+                                                mode=mode)))
+        p, tri = part.mesh.positions, part.mesh.indices.reshape(-1, 3)
+        assert len(tri) == 4, name
+        n = np.cross(p[tri[:, 1]] - p[tri[:, 0]], p[tri[:, 2]] - p[tri[:, 0]])
+        assert np.all(n[:, 1] > 0), name
+        assert 0.5 * n[:, 1].sum() == pytest.approx(area, rel=1e-6), name
+
+
+def test_node_instancing_bomb_is_refused(tmp_path: Path) -> None:
+    # Each node lists the next one twice: 2^40 visits if followed.
+    positions, normals, uvs, indices = quad_arrays()
+    doc = json.loads(write_gltf(tmp_path / "q.gltf", positions, indices, normals, uvs).read_text())
+    doc["nodes"] = [{"children": [i + 1, i + 1]} for i in range(40)] + [{"mesh": 0}]
+    path = tmp_path / "bomb.gltf"
+    path.write_text(json.dumps(doc))
+    with pytest.raises(weft.IoError, match="more than"):
+        weft.load_gltf(str(path))
+    doc["nodes"] = [{"children": [i + 1, i + 1]} for i in range(40)] + [{}]  # no mesh at all
+    path.write_text(json.dumps(doc))
+    with pytest.raises(weft.IoError, match="instanced more than"):
+        weft.load_gltf(str(path))

@@ -187,3 +187,25 @@ def test_obj_with_materials_renders_them(make_renderer, two_materials: Path) -> 
     assert left.sum() > 20 and right.sum() > 20
     assert np.abs(albedo[left] - [1, 0, 0]).max() < 1e-3
     assert np.abs(albedo[right] - [0, 1, 0]).max() < 1e-3
+
+
+def test_many_interleaved_materials(tmp_path: Path) -> None:
+    # 300 materials used in turn by 900 triangles: each part gets exactly its own faces.
+    count = 300
+    lines = ["mtllib many.mtl"]
+    mtl = []
+    for k in range(count):
+        mtl += [f"newmtl m{k}", f"Kd {k / count:.6f} 0.5 0.5"]
+    for t in range(3 * count):
+        x = float(t)
+        lines += [f"v {x} 0 0", f"v {x + 1} 0 0", f"v {x} 1 0", f"usemtl m{t % count}", "f -3 -2 -1"]
+    (tmp_path / "many.mtl").write_text("\n".join(mtl) + "\n")
+    path = tmp_path / "many.obj"
+    path.write_text("\n".join(lines) + "\n")
+    parts = weft.load_obj_parts(str(path))
+    assert [p.name for p in parts] == [f"m{k}" for k in range(count)]
+    for k, part in enumerate(parts):
+        assert part.mesh.triangle_count == 3
+        assert part.material.kd[0] == pytest.approx(k / count, abs=1e-6)
+        xs = sorted(part.mesh.positions[part.mesh.indices.reshape(-1, 3)[:, 0], 0])
+        assert xs == [k, k + count, k + 2 * count]

@@ -32,6 +32,9 @@ constexpr size_t kMaxParts = size_t(1) << 16;
 constexpr size_t kMaxTotalVertices = size_t(1) << 26;
 constexpr size_t kMaxTotalIndices = size_t(3) << 26;
 constexpr int kMaxNodeDepth = 1024;
+// Node visits: a chain of nodes that each list the next one twice is visited 2^depth times
+// even without a mesh.
+constexpr size_t kMaxNodeVisits = size_t(1) << 20;
 
 uint32_t bigEndian16(const unsigned char* p) { return (uint32_t(p[0]) << 8) | p[1]; }
 uint32_t bigEndian32(const unsigned char* p) { return (bigEndian16(p) << 16) | bigEndian16(p + 2); }
@@ -142,6 +145,7 @@ private:
     std::vector<MeshPart> mParts;
     size_t mTotalVertices = 0;
     size_t mTotalIndices = 0;
+    size_t mNodeVisits = 0;
     std::vector<bool> mOnPath; // nodes on the current root-to-node path (cycle check)
     std::map<std::pair<int, bool>, TexturePtr> mTextures;
 };
@@ -247,6 +251,8 @@ void GltfConverter::visit(int index, const glm::dmat4& parent, int depth) {
         fail("node " + std::to_string(index) + " does not exist");
     if (mOnPath[index]) fail("node " + std::to_string(index) + " is its own ancestor");
     if (depth > kMaxNodeDepth) fail("node hierarchy deeper than " + std::to_string(kMaxNodeDepth));
+    if (++mNodeVisits > kMaxNodeVisits)
+        fail("nodes instanced more than " + std::to_string(kMaxNodeVisits) + " times in all");
     const tinygltf::Node& node = mModel.nodes[index];
     const glm::dmat4 world = parent * localTransform(node);
     mOnPath[index] = true;

@@ -67,6 +67,9 @@ public:
     void read();
     /// The faces whose material is `material` (all faces when kAll) as one mesh.
     Mesh build(uint32_t material);
+    /// The faces of each material (index = material), made once so that a file with many
+    /// materials is not walked once per material.
+    std::vector<std::vector<uint32_t>> facesByMaterial() const;
 
     static constexpr uint32_t kAll = kNone;
     std::vector<std::string> mMaterialNames{""}; // in order of first usemtl
@@ -96,6 +99,7 @@ private:
     std::vector<Face> mFaces;
     uint32_t mMaterial = 0;
     std::unordered_map<std::string, uint32_t> mMaterialOf;
+    std::vector<std::vector<uint32_t>> mFacesByMaterial;
     // State of one build():
     std::vector<Corner> mCorners; // corners of the unique output vertices
     std::unordered_map<Corner, uint32_t, CornerHash> mVertexOf;
@@ -198,12 +202,27 @@ void ObjParser::face(const std::vector<std::string_view>& tokens) {
     ++mFacesPerMaterial[mMaterial];
 }
 
+std::vector<std::vector<uint32_t>> ObjParser::facesByMaterial() const {
+    std::vector<std::vector<uint32_t>> out(mMaterialNames.size());
+    for (size_t i = 0; i < mFaces.size(); ++i) out[mFaces[i].material].push_back(uint32_t(i));
+    return out;
+}
+
 Mesh ObjParser::build(uint32_t material) {
     mCorners.clear();
     mVertexOf.clear();
     mMesh = Mesh();
-    for (const Face& f : mFaces) {
-        if (material != kAll && f.material != material) continue;
+    std::vector<uint32_t> all;
+    const std::vector<uint32_t>* faces = &all;
+    if (material == kAll) {
+        all.resize(mFaces.size());
+        for (size_t i = 0; i < all.size(); ++i) all[i] = uint32_t(i);
+    } else {
+        if (mFacesByMaterial.empty()) mFacesByMaterial = facesByMaterial();
+        faces = &mFacesByMaterial[material];
+    }
+    for (uint32_t faceIndex : *faces) {
+        const Face& f = mFaces[faceIndex];
         mLine = f.line; // errors name the face's line
         const Corner* polygon = mFaceCorners.data() + f.first;
         for (size_t i = 0; i < f.count; ++i) {
