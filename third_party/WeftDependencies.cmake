@@ -5,12 +5,17 @@
 #   OpenEXR : libopenexr-dev (float images)
 #   GTest   : libgtest-dev (tests only)               Ceres: libceres-dev (optional)
 #   JPEG    : libjpeg62-turbo-dev                     libzip: libzip-dev (BTF datasets)
+#   TinyGLTF: libtinygltf-dev (glTF 2.0 meshes)       CLI11 : libcli11-dev (the demo's options)
+#   nlohmann_json: nlohmann-json3-dev (the demo's JSON stats)
 find_package(Vulkan REQUIRED)
 find_package(glfw3 3.3 REQUIRED)
 find_package(glm REQUIRED)
 find_package(PNG REQUIRED)
 find_package(OpenEXR CONFIG REQUIRED)
 find_package(JPEG REQUIRED)
+find_package(TinyGLTF CONFIG REQUIRED)
+find_package(CLI11 CONFIG REQUIRED)
+find_package(nlohmann_json 3 CONFIG REQUIRED)
 # libzip and shaderc (optional: runtime shader compilation for hot reload, libshaderc-dev) as
 # imported targets: cpp/cmake/weftSystemLibs.cmake, also installed for consumers.
 include(${PROJECT_SOURCE_DIR}/cpp/cmake/weftSystemLibs.cmake)

@@ -170,7 +170,9 @@ void bindBtf(py::module_& m) {
             for (size_t i = 0; i < s.values().size(); ++i) s.values()[i] = float(d[i]);
             s.requireFinite();
             return s;
-        }), py::arg("values"), py::arg("angles"))
+        }), py::arg("values"), py::arg("angles"),
+            "Samples from values (S, 3, H, W) and angles (S, 4): (θ_l, φ_l, θ_v, φ_v) in "
+            "degrees per sample. Values must be finite (InvalidArgument otherwise).")
         .def_property_readonly("width", &BtfSamples::width)
         .def_property_readonly("height", &BtfSamples::height)
         .def_property_readonly("count", &BtfSamples::count)
@@ -241,12 +243,16 @@ void bindBtf(py::module_& m) {
             out.mutable_data()[i * 2 + 1] = d[i].y;
         }
         return out;
-    });
+    },
+        "The 81 directions the Bonn database uses for lights and views, (81, 2) as (θ, φ) in "
+        "degrees: rings θ = 0, 15, ..., 75, each by increasing φ.");
     m.def("btf_parse_file_name", [](const std::string& name) -> py::object {
         BtfAngles a;
         if (!parseBtfFileName(name, a)) return py::none();
         return py::make_tuple(a.thetaLight, a.phiLight, a.thetaView, a.phiView);
-    }, py::arg("name"));
+    }, py::arg("name"),
+        "(θ_l, φ_l, θ_v, φ_v) in degrees parsed from a Bonn file name's tl/pl/tv/pv keys, or "
+        "None when one of them is missing.");
     m.def("btf_load", [](const std::string& path, py::object views, const std::string& gamma,
                          int threads, bool jpegCells) {
         BtfLoadOptions o;
@@ -266,7 +272,11 @@ void bindBtf(py::module_& m) {
         py::gil_scoped_release release;
         return loadBtf(path, o);
     }, py::arg("path"), py::arg("views"), py::arg("gamma") = "raw", py::arg("threads") = 0,
-       py::arg("jpeg_cells") = false);
+       py::arg("jpeg_cells") = false,
+        "Loads a BTF in the Bonn layout (a folder or a zip) as BtfSamples: `views` (V, 2) "
+        "(θ_v, φ_v) degrees picks views (None = all); gamma 'raw' keeps the stored values, "
+        "'srgb' linearises them; jpeg_cells also keeps JPEG files' quantised DCT cells. Raises "
+        "IoError naming the file (or the missing angles).");
     m.def("btf_write", [](const std::string& path, const BtfSamples& samples,
                           const std::string& format, int quality, bool zip,
                           const std::string& gamma, const std::string& prefix) {
@@ -281,7 +291,10 @@ void bindBtf(py::module_& m) {
         py::gil_scoped_release release;
         writeBtf(path, samples, o);
     }, py::arg("path"), py::arg("samples"), py::arg("format") = "jpg", py::arg("quality") = 95,
-       py::arg("zip") = false, py::arg("gamma") = "raw", py::arg("prefix") = "");
+       py::arg("zip") = false, py::arg("gamma") = "raw", py::arg("prefix") = "",
+        "Writes samples (values in [0, 1], clipped, 8 bits) in the Bonn layout under "
+        "path/UBO2003/MANYFILES/tvTTT_pvPPP/ as 'jpg' or 'png', optionally zipped; angles "
+        "must be whole degrees.");
     m.def("btf_render", [](py::dict maps, py::handle angles, py::object height, bool wrap,
                            int threads) {
         auto ang = anglesFrom(angles);
@@ -296,7 +309,10 @@ void bindBtf(py::module_& m) {
         py::gil_scoped_release release;
         return renderBtf(mm, ang, sh, threads);
     }, py::arg("maps"), py::arg("angles"), py::arg("height") = py::none(),
-       py::arg("wrap") = true, py::arg("threads") = 0);
+       py::arg("wrap") = true, py::arg("threads") = 0,
+        "Renders material maps (normal, diffuse, ... as from a fit) for each of `angles` (S, "
+        "4) into BtfSamples; with a height field (H, W) a texel whose ray to the light passes "
+        "below it gets only the ambient term (wrap: the field tiles).");
     m.def("btf_fit_linear", [](const BtfSamples& s, bool robust, int iterations, float dark,
                                int threads) {
         BtfLinearFit f;
@@ -306,7 +322,11 @@ void bindBtf(py::module_& m) {
         }
         return linearTo(f);
     }, py::arg("samples"), py::arg("robust") = false, py::arg("robust_iterations") = 4,
-       py::arg("dark_threshold") = 1e-4f, py::arg("threads") = 0);
+       py::arg("dark_threshold") = 1e-4f, py::arg("threads") = 0,
+        "Per-texel linear fit of all samples (normal, albedo, ambient; SPEC §4), optionally "
+        "robust (samples darker than the fit by dark_threshold dropped over robust_iterations "
+        "rounds). Returns a dict of arrays. Raises InvalidArgument when the lights do not "
+        "span 3D.");
     m.def("btf_solve_linear", [](const BtfSamples& s, py::handle texture, int threads) {
         auto t = floatArray(texture, "texture", {s.height(), s.width(), 3});
         BtfLinearFit f;
@@ -315,10 +335,14 @@ void bindBtf(py::module_& m) {
             f = solveBtfLinear(s, t, linearOptions(false, 4, 0.0f, threads));
         }
         return linearTo(f);
-    }, py::arg("samples"), py::arg("texture"), py::arg("threads") = 0);
+    }, py::arg("samples"), py::arg("texture"), py::arg("threads") = 0,
+        "The linear least squares for a given texture (H, W, 3) instead of the sample mean: "
+        "per texel the normal and ambient that best explain the samples. Returns the same "
+        "dict as btf_fit_linear.");
     m.def("btf_material_from_linear", [](const BtfSamples& s, py::dict linear) {
         return mapsTo(btfMaterialFromLinear(linearFrom(s, linear)));
-    }, py::arg("samples"), py::arg("linear"));
+    }, py::arg("samples"), py::arg("linear"),
+        "The seed's material maps (no specular) from a btf_fit_linear result.");
     m.def("btf_fit_specular", [](const BtfSamples& s, py::dict linear, bool flat, int maxExponent,
                                  bool perTexel, int threads) {
         const BtfLinearFit f = linearFrom(s, linear);
@@ -340,7 +364,10 @@ void bindBtf(py::module_& m) {
         d["specular_sample"] = r.specularSample;
         return d;
     }, py::arg("samples"), py::arg("linear"), py::arg("flat_specular_normal") = true,
-       py::arg("max_exponent") = 4096, py::arg("per_texel") = false, py::arg("threads") = 0);
+       py::arg("max_exponent") = 4096, py::arg("per_texel") = false, py::arg("threads") = 0,
+        "Specular map from the residual of the θ_l = 0 sample and the exponent minimising the "
+        "total squared error (SPEC eq. 4.29/4.30). Returns {'maps', 'curve' (error per "
+        "candidate exponent), 'specular_sample'}.");
     m.def("btf_sample_errors", [](const BtfSamples& s, py::dict maps, bool reconstruct,
                                   int threads) -> py::object {
         const BtfMaterialMaps mm = mapsFrom(s, maps);
@@ -355,7 +382,9 @@ void bindBtf(py::module_& m) {
         if (!reconstruct) return e;
         return py::make_tuple(e, toArray(recon, {s.count(), 3, s.height(), s.width()}));
     }, py::arg("samples"), py::arg("maps"), py::arg("reconstruct") = false,
-       py::arg("threads") = 0);
+       py::arg("threads") = 0,
+        "Per-sample mean squared error (S,) of `maps` against the samples; with "
+        "reconstruct=True also the model's samples (S, 3, H, W), as a tuple.");
     m.def("btf_fit_lafortune", [](const BtfSamples& s, py::dict seed, int lobes,
                                   int maxIterations, int threads, bool visibility,
                                   bool fixedNormal) {
@@ -376,7 +405,10 @@ void bindBtf(py::module_& m) {
         return d;
     }, py::arg("samples"), py::arg("seed"), py::arg("lobes") = 1,
        py::arg("max_iterations") = 30, py::arg("threads") = 0, py::arg("visibility") = false,
-       py::arg("fixed_normal") = false);
+       py::arg("fixed_normal") = false,
+        "Per-texel Lafortune fit (`lobes` lobes, Levenberg-Marquardt) seeded from `seed` "
+        "maps. Returns normal, diffuse, ambient, lobe_albedo (H, W, L, 3), lobe_shape (H, W, "
+        "L, 4) and mean_iterations.");
     m.def("btf_lafortune_errors", [](const BtfSamples& s, py::dict fit, int threads) {
         const py::ssize_t h = s.height(), w = s.width();
         BtfLafortuneFit f;
@@ -398,10 +430,15 @@ void bindBtf(py::module_& m) {
         py::array_t<double> e(py::ssize_t(errors.size()));
         std::memcpy(e.mutable_data(), errors.data(), errors.size() * sizeof(double));
         return e;
-    }, py::arg("samples"), py::arg("fit"), py::arg("threads") = 0);
-    m.def("btf_have_ceres", &btfHaveCeres);
+    }, py::arg("samples"), py::arg("fit"), py::arg("threads") = 0,
+        "Per-sample mean squared error (S,) of a btf_fit_lafortune result against the "
+        "samples.");
+    m.def("btf_have_ceres", &btfHaveCeres,
+        "True when weft was built with Ceres Solver (btf_fit_blinn_phong solver='ceres').");
     m.def("btf_resolvable_exponent", &btfResolvableExponent, py::arg("samples"),
-          py::arg("fraction") = 0.01);
+          py::arg("fraction") = 0.01,
+        "The largest Blinn-Phong exponent the sampling resolves: a lobe at one sample's half "
+        "vector keeps `fraction` of its peak at the nearest neighbouring half vector.");
     m.def("btf_fit_blinn_phong", [](const BtfSamples& s, py::dict seed, const std::string& solver,
                                     int maxIterations, float minExponent, float maxExponent,
                                     int threads, bool flatSpecularNormal, bool visibility,
@@ -431,7 +468,11 @@ void bindBtf(py::module_& m) {
        py::arg("max_iterations") = 30, py::arg("min_exponent") = 1.0f,
        py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
        py::arg("flat_specular_normal") = false, py::arg("visibility") = true,
-       py::arg("luminance_normals") = false);
+       py::arg("luminance_normals") = false,
+        "Nonlinear per-texel Blinn-Phong fit (normal, ρ, a, k, exponent) seeded from `seed` "
+        "maps, with the built-in Levenberg-Marquardt or Ceres ('auto', 'builtin', 'ceres'); "
+        "visibility leaves estimated cast shadows out. Returns {'maps', 'mean_iterations', "
+        "'solver', 'shadowed_fraction'}.");
 }
 
 } // namespace weft::py_bind

@@ -155,7 +155,8 @@ void bindCloth(py::module_& m) {
             w.strength = strength;
             w.validate();
             return w;
-        }), py::arg("direction") = py::make_tuple(1, 0, 0), py::arg("strength") = 0.0f)
+        }), py::arg("direction") = py::make_tuple(1, 0, 0), py::arg("strength") = 0.0f,
+            "Wind blowing along `direction` (normalised) with `strength` in m/s^2.")
         .def_property("direction", [](const Wind& w) { return fromVec3(w.direction); },
                       [](Wind& w, py::handle v) {
                           Wind next = w;
@@ -184,14 +185,17 @@ void bindCloth(py::module_& m) {
             c.radius = radius;
             c.validate();
             return c;
-        }, py::arg("center"), py::arg("radius"), py::arg("friction") = 0.0f)
+        }, py::arg("center"), py::arg("radius"), py::arg("friction") = 0.0f,
+            "A sphere collider (centre, radius > 0) with Coulomb friction coefficient "
+            "`friction`.")
         .def_static("plane", [](py::handle point, py::handle normal, float friction) {
             Collider c = makeCollider(Collider::Kind::Plane, friction);
             c.center = toVec3(point, "point");
             c.normal = toVec3(normal, "normal");
             c.validate();
             return c;
-        }, py::arg("point"), py::arg("normal"), py::arg("friction") = 0.0f)
+        }, py::arg("point"), py::arg("normal"), py::arg("friction") = 0.0f,
+            "An infinite plane collider through `point` with outward `normal`.")
         .def_static("box", [](py::handle center, py::handle halfExtents, py::object rotation, float friction) {
             Collider c = makeCollider(Collider::Kind::Box, friction);
             c.center = toVec3(center, "center");
@@ -207,7 +211,9 @@ void bindCloth(py::module_& m) {
             c.validate();
             return c;
         }, py::arg("center"), py::arg("half_extents"), py::arg("rotation") = py::none(),
-           py::arg("friction") = 0.0f)
+           py::arg("friction") = 0.0f,
+            "An oriented box collider: centre, half extents, optional 3x3 rotation (None = "
+            "axis-aligned).")
         .def_static("capsule", [](py::handle a, py::handle b, float radius, float friction) {
             Collider c = makeCollider(Collider::Kind::Capsule, friction);
             c.center = toVec3(a, "a");
@@ -215,7 +221,8 @@ void bindCloth(py::module_& m) {
             c.radius = radius;
             c.validate();
             return c;
-        }, py::arg("a"), py::arg("b"), py::arg("radius"), py::arg("friction") = 0.0f)
+        }, py::arg("a"), py::arg("b"), py::arg("radius"), py::arg("friction") = 0.0f,
+            "A capsule collider: the segment a-b swept by a sphere of `radius`.")
         .def_static("height_field", [](py::handle heights, py::handle origin, py::handle size, float friction) {
             Collider c = makeCollider(Collider::Kind::HeightField, friction);
             auto h = numericArray(heights, "heights");
@@ -299,7 +306,11 @@ void bindCloth(py::module_& m) {
            py::arg("tethers") = false, py::arg("thickness") = 0.005f,
            py::arg("self_collision") = false, py::arg("self_thickness") = 0.0f,
            py::arg("tear_strain") = 0.0f, py::arg("sleep_threshold") = 0.0f,
-           py::arg("sleep_steps") = 30, py::arg("threads") = 0)
+           py::arg("sleep_steps") = 30, py::arg("threads") = 0,
+            "A rectangular nx x ny particle grid spanning `size` along axis_u/axis_v from "
+            "`origin`, simulated with XPBD (SPEC §3): stretch, shear and bend compliances, "
+            "tethers, collisions, self-collision, tearing and sleeping as the keywords say. "
+            "Raises InvalidArgument for out-of-range parameters.")
         .def_property_readonly("nx", [](const Cloth& c) { return c.params().nx; })
         .def_property_readonly("ny", [](const Cloth& c) { return c.params().ny; })
         .def_property_readonly("particle_count", &Cloth::particleCount)
@@ -352,22 +363,35 @@ void bindCloth(py::module_& m) {
             c.projectConstraints();
         }, "One relaxation sweep + tethers + colliders, no integration (eq. 3.3/3.4).")
         .def("set_positions", [](Cloth& c, py::handle p, bool keep) { c.setPositions(points(p, "positions"), keep); },
-             py::arg("positions"), py::arg("keep_velocity") = false)
+             py::arg("positions"), py::arg("keep_velocity") = false,
+            "Moves the particles to positions (N, 3); keep_velocity keeps each particle's "
+            "velocity, otherwise they start at rest.")
         .def("set_velocities", [](Cloth& c, py::handle v) { c.setVelocities(points(v, "velocities")); },
-             py::arg("velocities"))
-        .def("velocities", [](const Cloth& c) { return pyPoints(c.velocities()); })
-        .def("reset", &Cloth::reset)
-        .def("pin", [](Cloth& c, py::handle idx) { c.pin(indices(idx, "pin")); }, py::arg("indices"))
-        .def("unpin", [](Cloth& c, py::handle idx) { c.unpin(indices(idx, "unpin")); }, py::arg("indices"))
+             py::arg("velocities"),
+            "Sets the particles' velocities (N, 3), consistently with the Verlet integration.")
+        .def("velocities", [](const Cloth& c) { return pyPoints(c.velocities()); },
+            "The particles' velocities (N, 3) in m/s.")
+        .def("reset", &Cloth::reset,
+            "Returns the cloth to its initial grid at rest (pins kept).")
+        .def("pin", [](Cloth& c, py::handle idx) { c.pin(indices(idx, "pin")); }, py::arg("indices"),
+            "Pins the particles with these indices in place (inverse mass 0).")
+        .def("unpin", [](Cloth& c, py::handle idx) { c.unpin(indices(idx, "unpin")); }, py::arg("indices"),
+            "Frees pinned particles.")
         .def("grab", [](Cloth& c, py::handle idx, py::handle targets) {
             c.grab(indices(idx, "grab"), points(targets, "targets"));
-        }, py::arg("indices"), py::arg("targets"))
+        }, py::arg("indices"), py::arg("targets"),
+            "Grabs particles: they get inverse mass 0 and follow `targets` (one per index) "
+            "exactly until release().")
         .def("move_grab", [](Cloth& c, py::handle targets) { c.moveGrab(points(targets, "targets")); },
-             py::arg("targets"))
-        .def("release", &Cloth::release)
+             py::arg("targets"),
+            "Moves the grabbed particles to new targets (one per grabbed particle).")
+        .def("release", &Cloth::release,
+            "Lets go of the grabbed particles.")
         .def("pick", [](const Cloth& c, py::handle origin, py::handle direction, float maxDistance) {
             return c.pick(toVec3(origin, "origin"), toVec3(direction, "direction"), maxDistance);
-        }, py::arg("origin"), py::arg("direction"), py::arg("max_distance") = 0.05f)
+        }, py::arg("origin"), py::arg("direction"), py::arg("max_distance") = 0.05f,
+            "Index of the particle nearest to the ray (origin, direction) within "
+            "max_distance, or -1.")
         .def("set_holes", [](Cloth& c, py::handle mask) { c.setHoles(holeMask(c, mask)); }, py::arg("mask"),
              "Bool/number (ny, nx) array (nonzero = hole) or a uint8 image of any size\n"
              "(dark, or transparent with 4 channels, = hole).")
@@ -379,9 +403,12 @@ void bindCloth(py::module_& m) {
         })
         .def_property("wind", [](const Cloth& c) { return c.wind(); }, &Cloth::setWind,
                       "A copy of the wind (changing it changes nothing until assigned back).")
-        .def("add_collider", &Cloth::addCollider, py::arg("collider"))
-        .def("set_collider", &Cloth::setCollider, py::arg("id"), py::arg("collider"))
-        .def("clear_colliders", &Cloth::clearColliders)
+        .def("add_collider", &Cloth::addCollider, py::arg("collider"),
+            "Adds a Collider; returns its id (for set_collider).")
+        .def("set_collider", &Cloth::setCollider, py::arg("id"), py::arg("collider"),
+            "Replaces the collider with this id (to move it between steps).")
+        .def("clear_colliders", &Cloth::clearColliders,
+            "Removes every collider.")
         .def_property_readonly("collider_count", &Cloth::colliderCount)
         .def("stats", [](const Cloth& c) {
             const ClothStats s = c.stats();
@@ -405,9 +432,13 @@ void bindCloth(py::module_& m) {
             for (size_t i = 0; i < active.size(); ++i) on.mutable_data()[i] = active[i] != 0;
             d["active"] = on;
             return d;
-        })
-        .def("kinetic_energy", &Cloth::kineticEnergy)
-        .def("wake", &Cloth::wake)
+        },
+            "Every constraint: {'a', 'b'} particle indices, 'rest' length, 'family' (stretch, "
+            "shear, bend, tether) and 'active' (False once torn).")
+        .def("kinetic_energy", &Cloth::kineticEnergy,
+            "Kinetic energy Σ m v²/2 of the particles (J).")
+        .def("wake", &Cloth::wake,
+            "Wakes a sleeping cloth so that the next step simulates it.")
         .def("mesh", [](const Cloth& c) {
             const ClothMesh mesh = c.mesh();
             py::dict d;

@@ -54,8 +54,10 @@ void bindHairRender(py::module_& m) {
            "The strands must not change afterwards: the renderer uploads them once.")
         .def("set_hair_transform", [](Scene& s, uint32_t id, py::handle t) {
             s.setHairTransform(id, toMat4(t, "transform"));
-        }, py::arg("id"), py::arg("transform"))
-        .def("set_hair_material", &Scene::setHairMaterial, py::arg("id"), py::arg("material"))
+        }, py::arg("id"), py::arg("transform"),
+            "Sets the 4x4 model matrix of the hair instance with this id.")
+        .def("set_hair_material", &Scene::setHairMaterial, py::arg("id"), py::arg("material"),
+            "Replaces the HairMaterial of the hair instance with this id.")
         .def_property_readonly("hair_count", [](const Scene& s) { return s.hairs().size(); });
 
     py::class_<Renderer> renderer(m.attr("Renderer"));

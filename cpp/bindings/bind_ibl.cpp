@@ -180,7 +180,8 @@ void bindIbl(py::module_& m) {
     py::class_<CubeMap>(m, "CubeMap",
         "RGB float cube map: faces +X, -X, +Y, -Y, +Z, -Z (Vulkan/OpenGL convention), each S x S,\n"
         "NumPy view (6, S, S, 3); optional mip chain. See weft/CubeMap.h for the orientation.")
-        .def(py::init<int>(), py::arg("size"))
+        .def(py::init<int>(), py::arg("size"),
+            "A cube map of size x size texels per face, all zero, one mip level.")
         .def(py::init([](py::handle faces) { return cubeFromArray(faces, "faces"); }),
              py::arg("faces"))
         .def_property_readonly("size", &CubeMap::size)
@@ -192,7 +193,8 @@ void bindIbl(py::module_& m) {
             return levelView(self.cast<CubeMap&>(), level, self);
         }, py::arg("level"), "Writable (6, s, s, 3) view of mip level `level`.")
         .def("build_mips", &CubeMap::buildMips, "Solid-angle weighted 2x2 mips down to 1x1.")
-        .def("clear_mips", &CubeMap::clearMips)
+        .def("clear_mips", &CubeMap::clearMips,
+            "Drops every mip level above 0 (call after editing level 0).")
         .def("sample", [](const CubeMap& c, py::handle dirs, float lod) {
             auto d = directions(dirs, "directions");
             if (!std::isfinite(lod)) throw InvalidArgument("lod must be finite");
@@ -204,7 +206,8 @@ void bindIbl(py::module_& m) {
             return vec3Array(out);
         }, py::arg("directions"), py::arg("lod") = 0.0f,
            "Seamless (trilinear) samples at (N, 3) directions -> (N, 3).")
-        .def("copy", [](const CubeMap& c) { return CubeMap(c); })
+        .def("copy", [](const CubeMap& c) { return CubeMap(c); },
+            "An independent copy of this cube map.")
         .def("__repr__", [](const CubeMap& c) {
             return "<weft.CubeMap size=" + std::to_string(c.size()) + " levels=" +
                    std::to_string(c.levels()) + ">";
@@ -274,7 +277,9 @@ void bindIbl(py::module_& m) {
         RgbImage img = rgbImage(image, "equirectangular image");
         py::gil_scoped_release release;
         return equirectToCube(img.view(), size, ss);
-    }, py::arg("image"), py::arg("size"), py::arg("supersample") = 2);
+    }, py::arg("image"), py::arg("size"), py::arg("supersample") = 2,
+        "Resamples an equirectangular (2:1) RGB float image into a radiance CubeMap of `size` "
+        "per face, supersample² samples per texel.");
     m.def("cube_to_equirect", [](py::handle cube, int width, int height) {
         const CubeArg c = toCube(cube, "cube");
         std::vector<float> px;
@@ -283,7 +288,8 @@ void bindIbl(py::module_& m) {
             px = cubeToEquirect(c, width, height);
         }
         return imageArray(px, height, width);
-    }, py::arg("cube"), py::arg("width"), py::arg("height"));
+    }, py::arg("cube"), py::arg("width"), py::arg("height"),
+        "The cube map as an equirectangular float32 image (height, width, 3).");
     m.def("cube_to_sphere", [](py::handle cube, int size, py::handle worldToSphere, float wrap) {
         const CubeArg c = toCube(cube, "cube");
         const glm::mat4 mat = optionalMat4(worldToSphere, "world_to_sphere");
@@ -294,7 +300,10 @@ void bindIbl(py::module_& m) {
         }
         return imageArray(px, size, size);
     }, py::arg("cube"), py::arg("size"), py::arg("world_to_sphere") = py::none(),
-       py::arg("wrap") = 1.0f);
+       py::arg("wrap") = 1.0f,
+        "The cube map as a sphere-map (mirror ball) float32 image (size, size, 3), seen along "
+        "world_to_sphere (4x4, None = identity); wrap < 1 shows only that fraction of the "
+        "ball's radius.");
     m.def("fill_unseen", [](py::handle cube, py::handle valid) {
         CubeMap c = toCube(cube, "cube").get();
         const auto mask = maskVector(valid, "valid", py::ssize_t(6) * c.size() * c.size());
@@ -323,12 +332,15 @@ void bindIbl(py::module_& m) {
         const Sh9 s = shFromArray(sh);
         py::gil_scoped_release release;
         return irradianceFromSh(s, size);
-    }, py::arg("sh"), py::arg("size"));
+    }, py::arg("sh"), py::arg("size"),
+        "Irradiance CubeMap of `size` per face from SH9 radiance coefficients (9, 3).");
     m.def("irradiance_exact", [](py::handle cube, int size, int sourceSize) {
         const CubeArg c = toCube(cube, "radiance");
         py::gil_scoped_release release;
         return irradianceExact(c, size, sourceSize);
-    }, py::arg("radiance"), py::arg("size") = 32, py::arg("source_size") = 64);
+    }, py::arg("radiance"), py::arg("size") = 32, py::arg("source_size") = 64,
+        "Irradiance CubeMap by the exact cosine convolution of the radiance resampled to "
+        "source_size (the reference; constant radiance L gives πL).");
     m.def("irradiance_exact_gpu", [](py::handle cube, int size, int sourceSize) {
         const CubeArg c = toCube(cube, "radiance");
         py::gil_scoped_release release;
@@ -341,24 +353,32 @@ void bindIbl(py::module_& m) {
         py::gil_scoped_release release;
         return irradianceBoxBlur(c, size, sphereSize, radius, passes);
     }, py::arg("radiance"), py::arg("size") = 32, py::arg("sphere_size") = 64,
-       py::arg("radius") = 12, py::arg("passes") = 2);
+       py::arg("radius") = 12, py::arg("passes") = 2,
+        "The seed's irradiance approximation: the radiance as a sphere map box-blurred "
+        "(radius texels, `passes` times), back into a cube map of `size`.");
     m.def("irradiance_rotational_blur", [](py::handle cube, int size, float halfAngle, int steps) {
         const CubeArg c = toCube(cube, "radiance");
         py::gil_scoped_release release;
         return irradianceRotationalBlur(c, size, halfAngle, steps);
     }, py::arg("radiance"), py::arg("size") = 32, py::arg("half_angle") = 1.0f,
-       py::arg("steps") = 16);
+       py::arg("steps") = 16,
+        "The seed's irradiance approximation: blurs about three axes through half_angle "
+        "radians in `steps` steps.");
     m.def("phong_exact", [](py::handle cube, float shininess, int size, int sourceSize) {
         const CubeArg c = toCube(cube, "radiance");
         py::gil_scoped_release release;
         return phongExact(c, shininess, size, sourceSize);
     }, py::arg("radiance"), py::arg("shininess"), py::arg("size") = 32,
-       py::arg("source_size") = 64);
+       py::arg("source_size") = 64,
+        "Phong-lobe prefiltered radiance (exponent `shininess`) by exact convolution of the "
+        "radiance resampled to source_size.");
     m.def("phong_sampled", [](py::handle cube, float shininess, int size, int samples) {
         const CubeArg c = toCube(cube, "radiance");
         py::gil_scoped_release release;
         return phongSampled(c, shininess, size, samples);
-    }, py::arg("radiance"), py::arg("shininess"), py::arg("size") = 32, py::arg("samples") = 64);
+    }, py::arg("radiance"), py::arg("shininess"), py::arg("size") = 32, py::arg("samples") = 64,
+        "Phong-lobe prefiltered radiance (exponent `shininess`) by filtered importance "
+        "sampling with `samples` per texel.");
     m.def("prefilter_ggx", [](py::handle cube, int size, int levels, int samples) {
         const CubeArg c = toCube(cube, "radiance");
         py::gil_scoped_release release;
@@ -428,10 +448,14 @@ void bindIbl(py::module_& m) {
             py::gil_scoped_release release;
             return ShadowDome(c, count, l, sourceSize);
         }), py::arg("radiance"), py::arg("count"), py::arg("layout") = "fibonacci",
-            py::arg("source_size") = 128)
+            py::arg("source_size") = 128,
+            "A dome of `count` shadow lights over +Y laid out as 'fibonacci' (or the other "
+            "layouts layout_directions names), each with the radiance of its cell of the "
+            "environment (resampled to source_size).")
         .def_static("layout_directions", [](int count, const std::string& layout) {
             return vec3Array(ShadowDome::directions(count, domeLayout(layout)));
-        }, py::arg("count"), py::arg("layout") = "fibonacci")
+        }, py::arg("count"), py::arg("layout") = "fibonacci",
+            "The unit directions (count, 3) of a dome layout, without an environment.")
         .def_property_readonly("count", &ShadowDome::size)
         .def_property_readonly("directions", [](const ShadowDome& d) {
             std::vector<glm::vec3> v;
@@ -477,11 +501,14 @@ void bindIbl(py::module_& m) {
         .def(py::init([](py::handle cube) {
             return new Environment(toCube(cube, "radiance").get());
         }),
-             py::arg("radiance"))
+             py::arg("radiance"),
+            "An environment from a radiance CubeMap or (6, S, S, 3) array; filtered results "
+            "are cached until set_radiance.")
         .def("set_radiance", [](Environment& e, py::handle cube) {
             e.setRadiance(toCube(cube, "radiance").get());
         },
-             py::arg("radiance"))
+             py::arg("radiance"),
+            "Replaces the radiance and invalidates every cached result (version + 1).")
         .def_property_readonly("radiance", [](const Environment& e) { return e.radiance(); })
         .def_property_readonly("version", &Environment::version)
         .def("irradiance_sh", [](Environment& e) {
@@ -493,15 +520,19 @@ void bindIbl(py::module_& m) {
             return shArray(sh);
         }, "SH9 radiance coefficients (9, 3), cached.")
         .def("irradiance_map", &Environment::irradianceMap, py::arg("size") = 32,
-             py::call_guard<py::gil_scoped_release>())
+             py::call_guard<py::gil_scoped_release>(),
+            "Irradiance CubeMap of `size` evaluated from SH9 (cached).")
         .def("specular_chain", &Environment::specularChain, py::arg("size") = 128,
              py::arg("levels") = 5, py::arg("samples") = 64,
-             py::call_guard<py::gil_scoped_release>())
+             py::call_guard<py::gil_scoped_release>(),
+            "GGX prefiltered radiance chain of `levels` mip levels, roughness rising with the "
+            "level (cached).")
         .def("shadow_dome", [](Environment& e, int count, const std::string& layout) {
             const DomeLayout l = domeLayout(layout);
             py::gil_scoped_release release;
             return e.shadowDome(count, l);
-        }, py::arg("count"), py::arg("layout") = "fibonacci")
+        }, py::arg("count"), py::arg("layout") = "fibonacci",
+            "A ShadowDome of `count` lights with intensities from this environment (cached).")
         .def_property_readonly("stats", [](const Environment& e) {
             const EnvironmentStats s = e.stats();
             py::dict d;

@@ -119,7 +119,11 @@ void bindRender(py::module_& m) {
            py::arg("normal_offset") = 1.5f, py::arg("reuse_shadow_maps") = true,
            py::arg("msaa") = 4, py::arg("exposure") = 0.0f, py::arg("tone_map") = "clamp",
            py::arg("bounce") = true, py::arg("ambient_occlusion") = 8,
-           py::arg("ambient_occlusion_blur") = 4.0f)
+           py::arg("ambient_occlusion_blur") = 4.0f,
+            "An offscreen renderer of width x height pixels on the selected Vulkan device, "
+            "with its shadow, anti-aliasing (msaa 1/2/4/8), exposure, tone-map ('clamp', "
+            "'aces', 'agx', 'neutral'), bounce and ambient-occlusion settings. Raises "
+            "InvalidArgument for out-of-range settings, Error when no Vulkan device works.")
         .def_property_readonly("width", &Renderer::width)
         .def_property_readonly("height", &Renderer::height)
         .def_property_readonly("device_name", &Renderer::deviceName)
@@ -128,7 +132,9 @@ void bindRender(py::module_& m) {
                 throw InvalidArgument("render target size must be 1..65535 pixels per side (got " +
                                       std::to_string(w) + "x" + std::to_string(h) + ")");
             r.resize(uint32_t(w), uint32_t(h));
-        }, py::arg("width"), py::arg("height"))
+        }, py::arg("width"), py::arg("height"),
+            "Changes the output size (1..65535 pixels per side); the next render reallocates "
+            "its targets.")
         .WEFT_SETTING("shadow_map_size", shadowMapSize, uint32_t)
         .WEFT_SETTING("pcf_radius", pcfRadius, int)
         .WEFT_SETTING("probe_size", probeSize, uint32_t)

@@ -37,8 +37,7 @@ std::shared_ptr<Mesh> makeMesh(py::handle positions, py::handle normals, py::han
                                py::handle indices) {
     auto mesh = std::make_shared<Mesh>();
     mesh->positions = rows<glm::vec3, 3>(positions, "positions");
-    mesh->normals = rows<glm::vec3, 3>(normals, "normals", mesh->positions.size());
-    mesh->uvs = rows<glm::vec2, 2>(uvs, "uvs", mesh->positions.size());
+    if (indices.is_none()) throw InvalidArgument("Mesh: indices (M, 3) are required");
     py::array idx = py::array::ensure(indices);
     if (!idx || (idx.dtype().kind() != 'i' && idx.dtype().kind() != 'u'))
         throw py::type_error("indices must be an integer array");
@@ -51,6 +50,11 @@ std::shared_ptr<Mesh> makeMesh(py::handle positions, py::handle normals, py::han
             throw InvalidArgument("indices must be non-negative 32-bit values");
         mesh->indices.push_back(uint32_t(data[i]));
     }
+    // Missing attributes are computed (documented on weft.Mesh), not left for validate().
+    if (normals.is_none()) mesh->normals = computeNormals(mesh->positions, mesh->indices);
+    else mesh->normals = rows<glm::vec3, 3>(normals, "normals", mesh->positions.size());
+    if (uvs.is_none()) mesh->uvs = computePlanarUvs(mesh->positions);
+    else mesh->uvs = rows<glm::vec2, 2>(uvs, "uvs", mesh->positions.size());
     mesh->validate();
     return mesh;
 }
@@ -86,9 +90,13 @@ std::string vecRepr(const glm::vec3& v) {
 void bindScene(py::module_& m) {
     py::class_<Mesh, std::shared_ptr<Mesh>>(m, "Mesh",
         "Indexed triangle mesh (counter-clockwise front faces). Immutable once made.")
-        .def(py::init(&makeMesh), py::arg("positions"), py::arg("normals"), py::arg("uvs"),
-             py::arg("indices"),
-             "positions (N,3), normals (N,3), uvs (N,2) float arrays; indices (M,3) integers.")
+        .def(py::init(&makeMesh), py::arg("positions"), py::arg("normals") = py::none(),
+             py::arg("uvs") = py::none(), py::arg("indices") = py::none(),
+             "positions (N,3), normals (N,3), uvs (N,2) float arrays; indices (M,3) integers\n"
+             "(required; e.g. Mesh(positions, indices=faces)). normals=None: angle-weighted\n"
+             "vertex normals (a vertex without a non-degenerate triangle gets +Y); uvs=None: a\n"
+             "planar projection along the bounds' thinnest axis, u along the longest one,\n"
+             "both divided by the longest extent (u in [0, 1]).")
         .def_property_readonly("positions", [](const Mesh& x) { return toRows<glm::vec3, 3>(x.positions); })
         .def_property_readonly("normals", [](const Mesh& x) { return toRows<glm::vec3, 3>(x.normals); })
         .def_property_readonly("uvs", [](const Mesh& x) { return toRows<glm::vec2, 2>(x.uvs); })
@@ -108,17 +116,22 @@ void bindScene(py::module_& m) {
             glm::vec3 lo, hi;
             x.bounds(lo, hi);
             return py::make_tuple(fromVec3(lo), fromVec3(hi));
-        })
+        },
+            "Axis-aligned bounds ((min x, y, z), (max x, y, z)) of the positions.")
         .def_static("plane", [](float sx, float sz, int nx, int nz) {
             return std::make_shared<Mesh>(Mesh::plane(sx, sz, nx, nz));
         }, py::arg("size_x") = 1.0f, py::arg("size_z") = 1.0f, py::arg("segments_x") = 1,
            py::arg("segments_z") = 1, "Rectangle in the XZ plane, normal +Y.")
         .def_static("uv_sphere", [](float r, int segments, int rings) {
             return std::make_shared<Mesh>(Mesh::uvSphere(r, segments, rings));
-        }, py::arg("radius") = 0.5f, py::arg("segments") = 32, py::arg("rings") = 16)
+        }, py::arg("radius") = 0.5f, py::arg("segments") = 32, py::arg("rings") = 16,
+            "A sphere centred at the origin: `segments` around Y, `rings` from pole to pole, "
+            "v = 0 at the +Y pole.")
         .def_static("box", [](py::handle size) {
             return std::make_shared<Mesh>(Mesh::box(toVec3(size, "size")));
-        }, py::arg("size") = py::make_tuple(1.0, 1.0, 1.0))
+        }, py::arg("size") = py::make_tuple(1.0, 1.0, 1.0),
+            "An axis-aligned box centred at the origin with flat faces (24 vertices), each "
+            "face's UVs spanning [0, 1].")
         .def("__repr__", [](const Mesh& x) {
             return "<weft.Mesh " + std::to_string(x.vertexCount()) + " vertices, " +
                    std::to_string(x.triangleCount()) + " triangles>";
@@ -130,10 +143,14 @@ void bindScene(py::module_& m) {
         "An RGBA8 texture (sRGB colour by default), uploaded to the GPU on first use.")
         .def(py::init([](py::handle image, bool srgb, bool mipmaps) {
             return std::make_shared<Texture>(fromNumpy(image), srgb, mipmaps);
-        }), py::arg("image"), py::arg("srgb") = true, py::arg("mipmaps") = true)
+        }), py::arg("image"), py::arg("srgb") = true, py::arg("mipmaps") = true,
+            "A texture from a uint8 (H, W, 4) or (H, W, 3) image; srgb: the colours are sRGB- "
+            "encoded (base colour), False for data (normal, specular maps).")
         .def_static("load", [](const std::string& path, bool srgb, bool mipmaps) {
             return std::make_shared<Texture>(loadPng(path), srgb, mipmaps);
-        }, py::arg("path"), py::arg("srgb") = true, py::arg("mipmaps") = true)
+        }, py::arg("path"), py::arg("srgb") = true, py::arg("mipmaps") = true,
+            "Loads an image file as a Texture (srgb, mipmaps as for the constructor). Raises "
+            "IoError naming the file.")
         .def_property_readonly("width", [](const Texture& t) { return t.image().width; })
         .def_property_readonly("height", [](const Texture& t) { return t.image().height; })
         .def_property_readonly("srgb", &Texture::srgb)
@@ -186,7 +203,9 @@ void bindScene(py::module_& m) {
            py::arg("specular_vertex_normal") = false, py::arg("two_sided") = false,
            py::arg("reflectivity") = py::make_tuple(0, 0, 0),
            py::arg("environment_diffuse") = 0.0f, py::arg("dynamic_reflection") = false,
-           py::arg("gloss_in_alpha") = false, py::arg("phantom") = false)
+           py::arg("gloss_in_alpha") = false, py::arg("phantom") = false,
+            "A material with the coefficients, textures and flags the class description lists "
+            "(colours as RGB triples in [0, 1] or more).")
         .WEFT_VEC3_PROPERTY(Material, "ka", ka)
         .WEFT_VEC3_PROPERTY(Material, "kd", kd)
         .WEFT_VEC3_PROPERTY(Material, "ks", ks)
@@ -262,7 +281,9 @@ void bindScene(py::module_& m) {
             return l;
         }), py::arg("direction") = py::make_tuple(0, -1, 0), py::arg("color") = py::make_tuple(1, 1, 1),
            py::arg("intensity") = 1.0f, py::arg("cast_shadows") = true,
-           py::arg("angular_radius") = 0.0f)
+           py::arg("angular_radius") = 0.0f,
+            "A directional light shining along `direction` with `color` x `intensity`; "
+            "`angular_radius` (radians) of its disc softens its shadow.")
         .WEFT_VEC3_PROPERTY(DirectionalLight, "direction", direction)
         .WEFT_VEC3_PROPERTY(DirectionalLight, "color", color)
         .def_property("intensity", [](const DirectionalLight& l) { return l.intensity; },
@@ -311,7 +332,10 @@ void bindScene(py::module_& m) {
             return l;
         }), py::arg("position") = py::make_tuple(0, 2, 0), py::arg("color") = py::make_tuple(1, 1, 1),
            py::arg("intensity") = 1.0f, py::arg("attenuation") = py::make_tuple(1, 0, 0),
-           py::arg("radius") = 0.0f, py::arg("cast_shadows") = true, py::arg("shadow_near") = 0.05f)
+           py::arg("radius") = 0.0f, py::arg("cast_shadows") = true, py::arg("shadow_near") = 0.05f,
+            "A point light at `position` with `color` x `intensity`; attenuation (k_c, k_l, "
+            "k_q) of 1 / (k_c + k_l d + k_q d²), or with radius > 0 the windowed falloff "
+            "(SPEC §1.2); shadow_near: the near plane of its shadow views.")
         .WEFT_VEC3_PROPERTY(PointLight, "position", position)
         .WEFT_VEC3_PROPERTY(PointLight, "color", color)
         .def_property("intensity", [](const PointLight& l) { return l.intensity; },
@@ -358,7 +382,10 @@ void bindScene(py::module_& m) {
            py::arg("color") = py::make_tuple(1, 1, 1), py::arg("intensity") = 1.0f,
            py::arg("inner_angle") = 0.35f, py::arg("outer_angle") = 0.5f,
            py::arg("attenuation") = py::make_tuple(1, 0, 0), py::arg("radius") = 0.0f,
-           py::arg("cookie") = nullptr, py::arg("cast_shadows") = true, py::arg("shadow_near") = 0.05f)
+           py::arg("cookie") = nullptr, py::arg("cast_shadows") = true, py::arg("shadow_near") = 0.05f,
+            "A spot light at `position` shining along `direction`, full inside inner_angle "
+            "and falling smoothly to zero at outer_angle (radians); attenuation and radius as "
+            "PointLight; an optional cookie Texture projected through the cone.")
         .WEFT_VEC3_PROPERTY(SpotLight, "position", position)
         .WEFT_VEC3_PROPERTY(SpotLight, "direction", direction)
         .WEFT_VEC3_PROPERTY(SpotLight, "color", color)
@@ -402,7 +429,9 @@ void bindScene(py::module_& m) {
             return c;
         }), py::arg("position") = py::make_tuple(0, 1, 4), py::arg("target") = py::make_tuple(0, 0, 0),
            py::arg("up") = py::make_tuple(0, 1, 0), py::arg("fov_y") = 0.7853982f,
-           py::arg("near") = 0.05f, py::arg("far") = 100.0f)
+           py::arg("near") = 0.05f, py::arg("far") = 100.0f,
+            "A perspective camera at `position` looking at `target`; fov_y in radians, near "
+            "and far clip distances.")
         .WEFT_VEC3_PROPERTY(Camera, "position", position)
         .WEFT_VEC3_PROPERTY(Camera, "target", target)
         .WEFT_VEC3_PROPERTY(Camera, "up", up)
@@ -422,7 +451,8 @@ void bindScene(py::module_& m) {
         });
 
     py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "Meshes with materials, lights, ambient.")
-        .def(py::init<>())
+        .def(py::init<>(),
+            "An empty scene: add meshes, cloths, hair and lights.")
         .def("add_mesh", [](Scene& s, std::shared_ptr<Mesh> mesh, std::optional<Material> material,
                             py::object transform, bool castShadows) {
             const glm::mat4 t = transform.is_none() ? glm::mat4(1.0f) : toMat4(transform, "transform");
@@ -437,8 +467,10 @@ void bindScene(py::module_& m) {
            "uploaded only when it changed). Do not step it while a render runs. Returns its id.")
         .def("set_transform", [](Scene& s, uint32_t id, py::handle t) {
             s.setTransform(id, toMat4(t, "transform"));
-        })
-        .def("set_material", &Scene::setMaterial)
+        },
+            "Sets the 4x4 model matrix of the instance with this id.")
+        .def("set_material", &Scene::setMaterial,
+            "Replaces the material of the instance with this id.")
         .def("material", [](const Scene& s, uint32_t id) {
             if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
             return s.instances()[id].material;
@@ -467,7 +499,8 @@ void bindScene(py::module_& m) {
         }, py::arg("id"), "Whether an instance casts shadows.")
         .def("add_light", &Scene::addLight, py::arg("light"),
              "Adds a DirectionalLight, PointLight or SpotLight; returns its id.")
-        .def("set_light", &Scene::setLight, py::arg("id"), py::arg("light"))
+        .def("set_light", &Scene::setLight, py::arg("id"), py::arg("light"),
+            "Replaces the light with this id (as returned by add_light).")
         .def_property("ambient", [](const Scene& s) { return fromVec3(s.ambient()); },
                       [](Scene& s, py::handle v) { s.setAmbient(toVec3(v, "ambient")); })
         .def_property("background", [](const Scene& s) { return fromVec3(s.background()); },
@@ -524,7 +557,8 @@ void bindScene(py::module_& m) {
            "of sphere_map_size at normalize(d_eye + (0, 0, 1)). background=True draws the\n"
            "environment behind the scene (and in the dynamic probe): sharp, or at background_blur\n"
            "> 0 the glossy chain at that roughness (0..1). A background_image wins over it.")
-        .def("clear_environment", &Scene::clearEnvironment)
+        .def("clear_environment", &Scene::clearEnvironment,
+            "Removes the environment (back to the constant ambient).")
         .def_property("background_image",
                       [](const Scene& s) { return std::const_pointer_cast<Texture>(s.backgroundImage()); },
                       [](Scene& s, std::shared_ptr<Texture> t) { s.setBackgroundImage(t); },
@@ -542,7 +576,8 @@ void bindScene(py::module_& m) {
             glm::vec3 lo, hi;
             s.bounds(lo, hi);
             return py::make_tuple(fromVec3(lo), fromVec3(hi));
-        })
+        },
+            "World-space axis-aligned bounds ((min), (max)) of every instance.")
         .def("__repr__", [](const Scene& s) {
             return "<weft.Scene " + std::to_string(s.instances().size()) + " meshes, " +
                    std::to_string(s.lights().size()) + " lights>";

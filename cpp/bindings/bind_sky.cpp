@@ -54,7 +54,10 @@ void bindSky(py::module_& m) {
                          py::handle night) {
             return SkyModel(skyParams(sunDirection, turbidity, groundAlbedo, scale, night));
         }), py::arg("sun_direction"), py::arg("turbidity") = 3.0f, py::arg("ground_albedo") = 0.2f,
-            py::arg("scale") = 1.0f, py::arg("night_radiance") = py::none())
+            py::arg("scale") = 1.0f, py::arg("night_radiance") = py::none(),
+            "The analytic sky (Preetham 1999) for a sun in sun_direction, with the class "
+            "description's turbidity, ground_albedo, radiance scale and night_radiance (RGB, "
+            "None = black).")
         .def("radiance", [](const SkyModel& s, py::handle dirs) {
             return perDirection(dirs, [&](const glm::vec3& d) { return s.radiance(d); });
         }, py::arg("directions"),

@@ -19,6 +19,7 @@ void bindHair(py::module_& m);
 void bindBtf(py::module_& m);
 void bindHairRender(py::module_& m);
 void bindIbl(py::module_& m);
+void bindModelIo(py::module_& m);
 } // namespace weft::py_bind
 
 using namespace weft::py_bind;
@@ -141,7 +142,8 @@ PYBIND11_MODULE(_core, m) {
           "True when WEFT_VALIDATION=1 enables the Vulkan validation layers.");
     m.def("validation_messages", &weft::validationMessages,
           "Validation warnings/errors collected since the last clear.");
-    m.def("clear_validation_messages", &weft::clearValidationMessages);
+    m.def("clear_validation_messages", &weft::clearValidationMessages,
+        "Forgets the validation messages collected so far.");
 
     m.def("load_png", [](const std::string& path) { return imageToArray(weft::loadPng(path)); },
           py::arg("path"), "Reads a PNG into a uint8 array (H, W, C).");
@@ -173,14 +175,17 @@ PYBIND11_MODULE(_core, m) {
           py::arg("directory"),
           "Development: watch a directory laid out like glsl/; shaders changed there are\n"
           "recompiled (libshaderc) and replace the built-in ones at the next frame. '' stops.");
-    m.def("shader_directory", &weft::shaderDirectory);
+    m.def("shader_directory", &weft::shaderDirectory,
+        "The directory watched for shader hot reload ('' when none; see "
+        "set_shader_directory).");
     m.def("poll_shader_changes", [] {
         py::gil_scoped_release release;
         return weft::pollShaderChanges();
     }, "Recompiles changed shaders now (renderers also do it every frame); returns how many.");
     m.def("shader_errors", &weft::shaderErrors,
           "Compile errors of reloaded shaders since the last clear (name: file:line: message).");
-    m.def("clear_shader_errors", &weft::clearShaderErrors);
+    m.def("clear_shader_errors", &weft::clearShaderErrors,
+        "Forgets the shader compile errors collected so far.");
 
     m.def("demo_scene", [](py::object hour) {
         weft::app::DemoScene demo;
@@ -224,6 +229,7 @@ PYBIND11_MODULE(_core, m) {
        "headless to `out` (see `weft-demo --help` for frames, scripts and output folders).");
 
     bindScene(m);
+    bindModelIo(m);
     bindRender(m);
     bindCloth(m);
     bindHair(m);

@@ -36,9 +36,9 @@ def fitted(tmp_path_factory: pytest.TempPathFactory):
     assert (data / "truth" / "material.json").is_file()
     out = tmp / "fit"
     proc = run("-m", "weft", "btf", "fit", str(data), "--out", str(out), "--robust",
-               "--lafortune", "1", "2")
+               "--lafortune", "1", "2", "--progress")
     assert proc.returncode == 0, proc.stderr
-    assert "Blinn-Phong" in proc.stderr  # progress on stderr
+    assert "Blinn-Phong" in proc.stderr  # progress on stderr, asked for (stderr is a pipe)
     return data, out, json.loads((out / "metrics.json").read_text())
 
 

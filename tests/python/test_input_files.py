@@ -16,6 +16,8 @@ import weft.ibl
 LOADERS = {
     "hair": (weft.load_hair, ".hair"),
     "obj": (weft.load_obj, ".obj"),
+    "obj_parts": (weft.load_obj_parts, ".obj"),
+    "gltf": (weft.load_gltf, ".glb"),
     "png": (weft.load_png, ".png"),
     "exr": (weft.load_exr, ".exr"),
     "hdr": (weft.load_hdr, ".hdr"),

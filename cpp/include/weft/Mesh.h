@@ -53,10 +53,27 @@ struct Mesh {
 /// Vertices without a usable UV gradient get any unit tangent orthogonal to n.
 std::vector<glm::vec4> computeTangents(const Mesh& mesh);
 
+/// Angle-weighted vertex normals of an indexed triangle list (Thürmer & Wüthrich 1998): each
+/// triangle adds its unit normal times its interior angle at the vertex, and each sum is
+/// normalised, so the result does not depend on how a face is tessellated. Degenerate
+/// triangles add nothing; a vertex with no other triangle gets +Y (validate() needs a unit
+/// normal). Throws InvalidArgument for an index out of range or a count not a multiple of 3.
+std::vector<glm::vec3> computeNormals(const std::vector<glm::vec3>& positions,
+                                      const std::vector<uint32_t>& indices);
+
+/// The UV fallback of a mesh that has none: a planar projection along the axis in which the
+/// bounds are thinnest, u along the longest other axis, v along the remaining one, both divided
+/// by the longest extent (square texels, u in [0, 1], v in [0, extent ratio]; an object
+/// flat in XZ gets u = (x - min x) / size, v = (z - min z) / size, like Mesh::plane).
+/// Throws InvalidArgument without positions.
+std::vector<glm::vec2> computePlanarUvs(const std::vector<glm::vec3>& positions);
+
 /// Loads a Wavefront OBJ: v, vt, vn, f (triangles and convex polygons, fan-triangulated;
-/// v, v/t, v//n, v/t/n; negative indices). Missing normals are computed (area-weighted),
-/// missing UVs are zero. Groups, objects and materials are ignored. Throws IoError naming the
-/// file and line for missing files, malformed lines or out-of-range indices.
+/// v, v/t, v//n, v/t/n; negative indices count back from the elements defined so far, positive
+/// ones may refer to elements defined later in the file, as tinyobjloader and trimesh allow).
+/// Missing normals are computed (area-weighted), missing UVs are zero. Groups, objects and
+/// materials are ignored (loadObjParts in ModelIo.h reads materials). Throws IoError naming the
+/// file and line for missing files, malformed lines, index 0 or out-of-range indices.
 /// OBJ puts vt v = 0 at the bottom image row, so the loaded uv is (u, 1 - v). Each distinct
 /// (v, vt, vn) triple becomes one vertex; computed normals are smooth over each OBJ position.
 Mesh loadObj(const std::string& path);

@@ -161,8 +161,7 @@ int runHeadless(const DemoOptions& o, app::DemoScene& demo) {
     if (o.frames == 0)
         for (int i = 0; i < 90; ++i) demo.update(1.0f / 60.0f);
     const int frames = std::max(o.frames, 1);
-    std::ostringstream all;
-    all << "[";
+    std::vector<FrameStats> history;
     std::string last;
     for (int f = 0; f < frames; ++f) {
         applyScript(demo, script, next, f, o.width, o.height);
@@ -176,13 +175,12 @@ int runHeadless(const DemoOptions& o, app::DemoScene& demo) {
             last = sequence ? (std::filesystem::path(o.out) / name).string() : o.out;
             writeImage(last, frame.color);
         }
-        all << (f ? ",\n" : "\n") << statsToJson(renderer.stats(), renderer.deviceName());
+        history.push_back(renderer.stats());
     }
-    all << "\n]\n";
     if (sequence) {
         std::ofstream stats(std::filesystem::path(o.out) / "stats.json");
         if (!stats) throw IoError("cannot write " + (std::filesystem::path(o.out) / "stats.json").string());
-        stats << all.str();
+        stats << statsToJson(history, renderer.deviceName());
     }
     writeStats(o.statsJson, renderer.stats(), renderer.deviceName());
     std::cout << "weft-demo: headless render (" << o.width << "x" << o.height << ", "
@@ -266,6 +264,9 @@ int runDemo(const DemoOptions& o) {
         setShaderDirectory(o.shaderDir);
         std::cout << "weft-demo: shader hot reload: watching " << o.shaderDir << std::endl;
     }
+    // Building the scene (terrain, cloth, fur, the fitted BTF material) and the renderer takes
+    // seconds; say so rather than sit silent.
+    std::cout << "weft-demo: building the scene..." << std::endl;
     app::DemoScene demo;
     if (o.hour >= 0.0f || std::isnan(o.hour)) demo.setHour(o.hour);
     if (!o.environment.empty()) demo.lightWith(o.environment);

@@ -13,6 +13,7 @@ import argparse
 import json
 import sys
 from typing import Any, Dict
+from weft.reporting import add_progress_arguments
 
 _EPILOG = ("Without --address a private local Ray cluster is started for the batch (all cores, "
            "or --workers) and stopped after it; --address joins a running cluster (ray start "
@@ -32,8 +33,7 @@ def _common(p: argparse.ArgumentParser) -> None:
                         "(renderers) to start (default one per CPU)")
     p.add_argument("--retries", type=int, default=3,
                    help="re-runs of a task whose worker process or node was lost (3)")
-    p.add_argument("--no-progress", dest="progress", action="store_false",
-                   help="no progress bar on stderr")
+    add_progress_arguments(p)
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
 
 

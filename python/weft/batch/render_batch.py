@@ -29,7 +29,7 @@ def frame_file(job: RenderJob, frame: int) -> str:
 
 
 def render_batch(jobs: Sequence[RenderJob], out: str, executor: Any, workers: Optional[int] = None,
-                 progress: bool = True, memory: int = WORKER_MEMORY, gpus: float = 0.0,
+                 progress: Optional[bool] = None, memory: int = WORKER_MEMORY, gpus: float = 0.0,
                  on_event: Optional[Callable[[Dict[str, Any]], None]] = None) -> Dict[str, Any]:
     """Renders every frame of ``jobs`` (:func:`~weft.batch.render_jobs.load_render_jobs`) into
     ``out`` on ``workers`` render workers (default: one per CPU the executor has), each

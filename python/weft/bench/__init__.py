@@ -17,7 +17,9 @@ import platform
 import sys
 import time
 from types import ModuleType
-from typing import Any, Dict, List, Optional, Sequence, TextIO
+from typing import Any, Dict, List, Optional, Sequence
+
+from weft import reporting as _reporting
 
 #: Benchmark subsystems: command name -> module implementing it.
 SUBSYSTEMS: Dict[str, str] = {
@@ -32,7 +34,7 @@ SUBSYSTEMS: Dict[str, str] = {
 }
 
 __all__ = ["SUBSYSTEMS", "main", "load_subsystem", "machine_info", "Progress", "write_report",
-           "markdown_table", "json_safe"]
+           "markdown_table", "json_safe", "save_figure"]
 
 
 class UnknownSubsystem(LookupError):
@@ -85,52 +87,10 @@ def _cpu_model() -> str:
     return ""
 
 
-class Progress:
-    """A one-line text progress indicator on stderr (redrawn in place on a terminal)."""
-
-    def __init__(self, total: int, stream: Optional[TextIO] = None, enabled: bool = True) -> None:
-        self.total = max(total, 1)
-        self.done = 0
-        self.stream = stream if stream is not None else sys.stderr
-        self.enabled = enabled
-        self.tty = bool(getattr(self.stream, "isatty", lambda: False)())
-        self.start = time.perf_counter()
-        self._width = 0
-
-    def update(self, label: str) -> None:
-        """Shows ``label`` for the step now running."""
-        if not self.enabled:
-            return
-        width = 24
-        filled = int(width * self.done / self.total)
-        bar = "#" * filled + "." * (width - filled)
-        elapsed = time.perf_counter() - self.start
-        text = f"[{bar}] {self.done}/{self.total} {elapsed:6.1f}s {label}"
-        if self.tty:
-            pad = max(self._width - len(text), 0)
-            self.stream.write("\r" + text + " " * pad)
-            self._width = len(text)
-        else:
-            self.stream.write(text + "\n")
-        self.stream.flush()
-
-    def step(self, label: str = "") -> None:
-        """Marks one step finished."""
-        self.done += 1
-        self.update(label)
-
-    def close(self) -> None:
-        if self.enabled and self.tty:
-            self.stream.write("\n")
-            self.stream.flush()
-
-
-def markdown_table(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
-    """A GitHub-flavoured Markdown table."""
-    lines = ["| " + " | ".join(str(h) for h in header) + " |",
-             "|" + "|".join("---" for _ in header) + "|"]
-    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
-    return "\n".join(lines)
+# The shared progress bar and Markdown table (weft.reporting), importable from here as before.
+Progress = _reporting.Progress
+markdown_table = _reporting.markdown_table
+save_figure = _reporting.save_figure
 
 
 def json_safe(value: Any) -> Any:

@@ -3,12 +3,12 @@ against time plot (:mod:`weft.bench.btf` measures)."""
 
 from __future__ import annotations
 
-import os
 from typing import Any, Dict, List, Optional
 
 import numpy as np
 
 from weft.bench import markdown_table
+from weft.reporting import pyplot, save_figure
 
 NONLINEAR = ("Blinn-Phong", "Lafortune")
 CHOSEN = "Blinn-Phong (chosen)"
@@ -222,13 +222,7 @@ def render_markdown(data: Dict[str, Any]) -> str:
 def plot_error_vs_time(rows: List[Dict[str, Any]], path: str) -> Optional[str]:
     """Normal error and deviation as drawn / noise floor against fit time per texel, one colour
     per model (small points: datasets, large: medians); returns a note when it cannot plot."""
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except Exception as exc:  # matplotlib is a dependency; say so rather than fail the run
-        return f"skipped: matplotlib is not available ({exc})"
+    plt = pyplot()
     models = [m for m in dict.fromkeys(r["model"] for r in rows) if m != CHOSEN]
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.2))
     cmap = plt.get_cmap("tab10")
@@ -255,7 +249,5 @@ def plot_error_vs_time(rows: List[Dict[str, Any]], path: str) -> Optional[str]:
     fig.suptitle("BTF fits against the generator's truth: error against time "
                  "(large markers: medians over datasets)")
     fig.tight_layout()
-    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+    save_figure(fig, path, dpi=100)
     return None

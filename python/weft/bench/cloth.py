@@ -53,6 +53,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from weft.bench import Progress, machine_info, write_report
+from weft.reporting import add_progress_arguments
 
 DESCRIPTION = ("cloth solver: steps/s against strain and equilibrium error over iterations x "
                "substeps x compliance x tethers, with NumPy (and Warp) peers")
@@ -170,8 +171,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="do not write pareto.png")
     parser.add_argument("--threads", type=int, default=0,
                         help="weft worker threads (0 = all cores)")
-    parser.add_argument("--no-progress", dest="progress", action="store_false",
-                        help="do not print the progress indicator on stderr")
+    add_progress_arguments(parser)
 
 
 # --------------------------------------------------------------------------------------------

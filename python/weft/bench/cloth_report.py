@@ -4,7 +4,6 @@
 from __future__ import annotations
 
 import math
-import os
 from typing import Any, Dict, Optional, Sequence
 
 from weft.bench import markdown_table
@@ -12,6 +11,7 @@ from weft.bench.cloth import (
     GS_RATIO_TARGET, NUMPY_RATIO_TARGET, PEER_RATIO_TARGET, REST_ENERGY, STRAIN_SLACK, STRAIN_STEPS, TARGET_MAX,
     TARGET_MEAN, TARGET_SIZE, TARGET_SPEED, XPBD, pareto_front,
 )
+from weft.reporting import pyplot, save_figure
 
 
 def _pct(v: Optional[float]) -> str:
@@ -167,15 +167,9 @@ def to_markdown(report: Dict[str, Any]) -> str:
 
 def plot_pareto(results: Sequence[Dict[str, Any]], sizes: Sequence[int], path: str
                 ) -> Optional[str]:
-    """Steps/s against mean strain (log-log) per size, weft's Pareto front drawn; returns a
-    note when it cannot plot (no matplotlib)."""
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except Exception as exc:
-        return f"skipped: matplotlib is not available ({exc})"
+    """Steps/s against mean strain (log-log) per size, weft's Pareto front drawn; returns None
+    (the note of a run that could not plot, kept for the callers)."""
+    plt = pyplot()
     fig, axes = plt.subplots(1, len(sizes), figsize=(6.5 * len(sizes), 5.2), squeeze=False)
     style = {"weft": ("o", "tab:blue"), "numpy": ("s", "tab:orange"), "warp": ("^", "tab:green"),
              "gs-natural": ("D", "tab:red")}
@@ -205,9 +199,7 @@ def plot_pareto(results: Sequence[Dict[str, Any]], sizes: Sequence[int], path: s
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
-    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
     return None
 
 

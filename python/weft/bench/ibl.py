@@ -43,6 +43,7 @@ from typing import Any, Callable, Dict, List, Sequence, Tuple
 import numpy as np
 
 from weft.bench import Progress, machine_info, markdown_table, write_report
+from weft.reporting import add_progress_arguments
 
 DESCRIPTION = ("IBL: conversion, irradiance (exact / SH9 / seed blurs), glossy prefilter, light "
                "extraction and shadow dome: time against error")
@@ -59,8 +60,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--quick", action="store_true", help="tiny sizes for CI (a few seconds)")
     parser.add_argument("--out", default="out/bench/ibl",
                         help="output folder for bench.json and bench.md (out/bench/ibl)")
-    parser.add_argument("--no-progress", dest="progress", action="store_false",
-                        help="do not print the progress indicator on stderr")
+    add_progress_arguments(parser)
 
 
 def sky(d: np.ndarray) -> np.ndarray:

@@ -23,6 +23,7 @@ from typing import Any, Dict, List, Optional, Sequence
 import numpy as np
 
 from weft.bench import Progress, machine_info, markdown_table, write_report
+from weft.reporting import add_progress_arguments, pyplot, save_figure
 
 DESCRIPTION = ("the rendered picture against Mitsuba 3's path tracer: FLIP / relative error vs "
                "frame time per scene and setting, and the anti-aliasing edge error")
@@ -42,8 +43,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--frames", type=int, default=None,
                         help="timed weft frames per setting (default 5; 2 with --quick)")
     parser.add_argument("--scenes", nargs="+", default=None, help="reference scenes to run")
-    parser.add_argument("--no-progress", dest="progress", action="store_false",
-                        help="do not print the progress indicator on stderr")
+    add_progress_arguments(parser)
 
 
 def _settings(name: str, quick: bool, has_msaa: bool) -> List[Dict[str, Any]]:
@@ -147,13 +147,7 @@ def bench_aa(width: int, height: int) -> Dict[str, Any]:
 
 
 def plot_error_vs_time(results: Sequence[Dict[str, Any]], path: str) -> Optional[str]:
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except Exception as exc:  # matplotlib is a dependency; say so rather than fail the run
-        return f"skipped: matplotlib is not available ({exc})"
+    plt = pyplot()
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
     cmap = plt.get_cmap("tab10")
     for ax, region in zip(axes, ("covered", "objects")):
@@ -174,9 +168,7 @@ def plot_error_vs_time(results: Sequence[Dict[str, Any]], path: str) -> Optional
     fig.suptitle("weft against Mitsuba 3 (path traced): error vs frame time "
                  "(dashed: issue 18 target, dotted: reference noise floor)")
     fig.tight_layout()
-    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+    save_figure(fig, path, dpi=100)
     return None
 
 

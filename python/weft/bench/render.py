@@ -23,6 +23,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from weft.bench import Progress, machine_info, markdown_table, write_report
+from weft.reporting import add_progress_arguments
 
 DESCRIPTION = ("frame time (CPU, GPU per pass) vs resolution and shadow-map size, with the "
                "shading-oracle error on the same frames")
@@ -42,8 +43,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--frames", type=int, default=None,
                         help="timed frames per setting after one warm-up frame "
                              "(default 5, 1 with --quick)")
-    parser.add_argument("--no-progress", dest="progress", action="store_false",
-                        help="do not print the progress indicator on stderr")
+    add_progress_arguments(parser)
 
 
 # --------------------------------------------------------------------------------------------

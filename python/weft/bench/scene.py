@@ -21,6 +21,7 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 
 from weft.bench import Progress, machine_info, markdown_table, write_report
+from weft.reporting import add_progress_arguments
 
 DESCRIPTION = ("demo scene frame time per pass (1280x720) vs shadow-map size, PCF kernel and "
                "light count, with the simulation cost and the shadow test's error")
@@ -39,8 +40,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--frames", type=int, default=None,
                         help="timed frames per setting after one warm-up (default 3, quick 2)")
     parser.add_argument("--out", default="out/bench/scene", help="output folder (out/bench/scene)")
-    parser.add_argument("--no-progress", dest="progress", action="store_false",
-                        help="do not print the progress indicator on stderr")
+    add_progress_arguments(parser)
 
 
 def add_point_lights(scene: Any, count: int) -> None:

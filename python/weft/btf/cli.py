@@ -23,6 +23,7 @@ import numpy as np
 
 import weft
 from weft.btf import fit_report, synth
+from weft.reporting import add_progress_arguments
 
 
 def add_parsers(sub: Any) -> None:
@@ -64,7 +65,7 @@ def add_parsers(sub: Any) -> None:
     f.add_argument("path", help="BTF folder or zip (Bonn layout)")
     f.add_argument("--out", required=True, help="output folder")
     add_fit_options(f)
-    f.add_argument("--no-progress", dest="progress", action="store_false")
+    add_progress_arguments(f)
     f.set_defaults(handler=fit_report.cmd_fit)
 
 

@@ -48,7 +48,7 @@ def parse_views(text: str) -> Any:
 class Fitter:
     """Runs the fits in order, timing each one and showing progress."""
 
-    def __init__(self, samples: Any, steps: int, progress: bool) -> None:
+    def __init__(self, samples: Any, steps: int, progress: Optional[bool]) -> None:
         self.samples = samples
         self.progress = Progress(steps, enabled=progress)
         self.scored: List[Scored] = []

@@ -13,18 +13,10 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 import weft
+from weft.reporting import markdown_table, pyplot, save_figure
 
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 PREVIEW_PERCENTILE = 98.0
-
-
-def pyplot() -> Any:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def to_u8(img: np.ndarray) -> np.ndarray:
@@ -108,8 +100,7 @@ def plot_maps(path: str, title: str, maps: Dict[str, np.ndarray]) -> None:
         ax.tick_params(labelsize=7)
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=90)
-    plt.close(fig)
+    save_figure(fig, path, dpi=90)
 
 
 def plot_differences(path: str, title: str, measured: np.ndarray, recon: np.ndarray,
@@ -132,8 +123,7 @@ def plot_differences(path: str, title: str, measured: np.ndarray, recon: np.ndar
     fig.colorbar(im, ax=list(axes[0]), fraction=0.02, pad=0.02,
                  label="|measured − model| (luminance)")
     fig.suptitle(title, fontsize=10)
-    fig.savefig(path, dpi=90)
-    plt.close(fig)
+    save_figure(fig, path, dpi=90)
     return top
 
 
@@ -175,8 +165,7 @@ def plot_polar(path: str, texel: Tuple[int, int], angles: np.ndarray, measured: 
     fig.suptitle(f"texel (x={texel[0]}, y={texel[1]}): radius θ_l, angle φ_l; colours = value "
                  f"/ {scale:.3g}", fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, 1 - 0.35 / (3.0 * rows)))
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
+    save_figure(fig, path, dpi=80)
     return scale
 
 
@@ -209,8 +198,7 @@ def plot_histogram(path: str, errors: Dict[str, np.ndarray], best: str) -> List[
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=90)
-    plt.close(fig)
+    save_figure(fig, path, dpi=90)
     return rows
 
 
@@ -226,14 +214,10 @@ def seed_tables(results: Dict[str, Dict[str, Any]]) -> str:
     first = results[names[0]]
     groups = list(first["deviation"]["groups"])
     header = ["θ_l group"] + [results[n].get("label", n) for n in names]
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    for g in groups:
-        cells = [f"{results[n]['deviation']['groups'][g]:.4f}" for n in names]
-        lines.append(f"| {g}° | " + " | ".join(cells) + " |")
-    lines.append("| **total** | " + " | ".join(
-        f"**{results[n]['deviation']['total']:.4f}**" for n in names) + " |")
-    lines.append("| total as fitted | " + " | ".join(
-        f"{results[n]['fitted_deviation']['total']:.4f}" for n in names) + " |")
-    lines.append("| exponent n | " + " | ".join(
-        str(results[n].get("exponent", "–")) for n in names) + " |")
-    return "\n".join(lines)
+    rows = [[f"{g}°"] + [f"{results[n]['deviation']['groups'][g]:.4f}" for n in names]
+            for g in groups]
+    rows.append(["**total**"] + [f"**{results[n]['deviation']['total']:.4f}**" for n in names])
+    rows.append(["total as fitted"] + [f"{results[n]['fitted_deviation']['total']:.4f}"
+                                       for n in names])
+    rows.append(["exponent n"] + [str(results[n].get("exponent", "–")) for n in names])
+    return markdown_table(header, rows)
