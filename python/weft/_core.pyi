@@ -229,11 +229,19 @@ class DirectionalLight:
     Sun-like light. `direction` points from the light into the scene.
     """
     cast_shadows: bool
-    def __init__(self, direction: typing.Any = (0, -1, 0), color: typing.Any = (1, 1, 1), intensity: typing.SupportsFloat | typing.SupportsIndex = 1.0, cast_shadows: bool = True) -> None:
+    def __init__(self, direction: typing.Any = (0, -1, 0), color: typing.Any = (1, 1, 1), intensity: typing.SupportsFloat | typing.SupportsIndex = 1.0, cast_shadows: bool = True, angular_radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         """
-        A directional light shining along `direction` with `color` x `intensity`.
+        A directional light shining along `direction` with `color` x `intensity`; `angular_radius` (radians) of its disc softens its shadow.
         """
     def __repr__(self) -> str:
+        ...
+    @property
+    def angular_radius(self) -> float:
+        """
+        Radians of the disc the light comes from (the sun: 0.0047); > 0 softens its shadow by the penumbra that disc casts, 0 keeps the fixed PCF kernel.
+        """
+    @angular_radius.setter
+    def angular_radius(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def color(self) -> tuple:
@@ -1342,6 +1350,9 @@ class BtfSamples:
     def height(self) -> int:
         ...
     @property
+    def jpeg_cells(self) -> typing.Any:
+        ...
+    @property
     def light_dirs(self) -> numpy.typing.NDArray[numpy.float32]:
         ...
     @property
@@ -1552,9 +1563,9 @@ def btf_lafortune_errors(samples: BtfSamples, fit: dict, threads: typing.Support
     """
     Per-sample mean squared error (S,) of a btf_fit_lafortune result against the samples.
     """
-def btf_load(path: str, views: typing.Any, gamma: str = 'raw', threads: typing.SupportsInt | typing.SupportsIndex = 0) -> BtfSamples:
+def btf_load(path: str, views: typing.Any, gamma: str = 'raw', threads: typing.SupportsInt | typing.SupportsIndex = 0, jpeg_cells: bool = False) -> BtfSamples:
     """
-    Loads a BTF in the Bonn layout (a folder or a zip) as BtfSamples: `views` (V, 2) (θ_v, φ_v) degrees picks views (None = all); gamma 'raw' keeps the stored values, 'srgb' linearises them. Raises IoError naming the file (or the missing angles).
+    Loads a BTF in the Bonn layout (a folder or a zip) as BtfSamples: `views` (V, 2) (θ_v, φ_v) degrees picks views (None = all); gamma 'raw' keeps the stored values, 'srgb' linearises them; jpeg_cells also keeps JPEG files' quantised DCT cells. Raises IoError naming the file (or the missing angles).
     """
 def btf_material_from_linear(samples: BtfSamples, linear: dict) -> dict:
     """
