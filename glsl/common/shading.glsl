@@ -314,8 +314,16 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
         sh.ambient *= 1.0 - covered;
         sh.bounce = bounceIrradiance(bp, 0, n) * ins.kd.rgb * sf.T;
     }
-    // ... and the casters send theirs to everything else (caster_bounce.glsl)
-    sh.bounce += casterBounce(p, n, bp, frame.sky.w > 0.5) * ins.kd.rgb * sf.T;
+    // ... and the casters send theirs to everything else, less the sky they hide where no dome
+    // shadows it (caster_bounce.glsl)
+    float casterCovered;
+    vec3 hiddenSky;
+    sh.bounce += casterBounce(p, n, bp, frame.sky.w > 0.5, hiddenSky, casterCovered) *
+                 ins.kd.rgb * sf.T;
+    sh.ambient *= 1.0 - casterCovered;
+    vec3 hidden = ins.environment.w * ins.kd.rgb * sf.T * hiddenSky; // as environmentTerms adds
+    sh.environment.diffuse = max(sh.environment.diffuse - hidden, vec3(0.0));
+    sh.environment.diffuseLit = max(sh.environment.diffuseLit - hidden, vec3(0.0));
     return sh;
 }
 

@@ -169,3 +169,44 @@ def test_ambient_occlusion_is_skipped_where_nothing_needs_it(make_renderer):
     assert not any(p["name"].startswith("dome") for p in r.stats["passes"])
     with pytest.raises(weft.InvalidArgument, match="multiple of 8"):
         r.ambient_occlusion = 12
+
+
+def _ground_next_to_and_far_from(debug, radius: float):
+    ground = debug["mask"] & (debug["instance"] == 0)
+    p = debug["position"]
+    r = np.hypot(p[..., 0], p[..., 2])
+    lum = debug["linear"][..., :3] @ np.array([0.2126, 0.7152, 0.0722])
+    near, far = ground & (r > 1.05 * radius) & (r < 1.5 * radius), ground & (r > 4.0 * radius)
+    assert near.sum() > 50 and far.sum() > 50, (near.sum(), far.sum())
+    return float(lum[near].mean()), float(lum[far].mean())
+
+
+@pytest.mark.parametrize("lighting", ["environment", "ambient"])
+def test_a_caster_never_brightens_the_ground_by_light_it_hides(make_renderer, lighting):
+    """Without a dome nothing occludes the ground's sky, so the light a grey sphere resting on
+    it reflects (caster_bounce.glsl) comes with the sky it hides taken away: under a uniform
+    sky of radiance 1 the sphere (K_D 0.5) is darker than what it hides, so the ground beside
+    it must not be brighter than open ground; the caster's net effect there is a darkening
+    (before the net: +9% brighter next to it)."""
+    scene = weft.Scene()
+    matte = dict(ks=(0.0,) * 3, environment_diffuse=1.0)
+    scene.add_mesh(weft.Mesh.plane(40.0, 40.0, 2, 2),
+                   weft.Material(ka=(0.5,) * 3, kd=(0.5,) * 3, **matte), cast_shadows=False)
+    scene.add_mesh(weft.Mesh.uv_sphere(0.5, 48, 24),
+                   weft.Material(ka=(0.5,) * 3, kd=(0.5,) * 3, **matte),
+                   transform=_translate(0.0, 0.5, 0.0))
+    if lighting == "environment":
+        scene.set_environment(weft.ibl.CubeMap(np.ones((6, 16, 16, 3), np.float32)),
+                              dome_lights=0)
+        scene.ambient = (0.0,) * 3
+    else:
+        scene.ambient = (1.0,) * 3
+    camera = weft.Camera(position=(0.0, 3.5, 3.5), target=(0.0, 0.0, 0.0), fov_y=0.9)
+    on = make_renderer(128, 96, bounce=True).render_debug(scene, camera)
+    off = make_renderer(128, 96, bounce=False).render_debug(scene, camera)
+    near_on, far_on = _ground_next_to_and_far_from(on, 0.5)
+    near_off, far_off = _ground_next_to_and_far_from(off, 0.5)
+    assert far_on == pytest.approx(far_off, rel=0.01)  # far off, the caster does nothing
+    assert near_off == pytest.approx(far_off, rel=0.01)  # no dome, no bounce: uniform
+    assert near_on < near_off, (near_on, near_off)  # the sphere (0.5) hides a sky of 1
+    assert near_on > 0.5 * near_off, (near_on, near_off)  # ... and reflects some light back

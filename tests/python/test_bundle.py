@@ -113,7 +113,8 @@ def test_bundle_is_relocatable(bundle: Path) -> None:
     assert (bundle / "lib" / "fallback" / "libvulkan.so.1").exists()
     run = subprocess.run([str(bundle / "bin" / "weft-demo"), "--width", "nope"], capture_output=True,
                          text=True, env=_env())
-    assert run.returncode == 1 and "--width needs an integer" in run.stderr
+    # the relocated binary runs far enough to parse its options (CLI11: exit 2, the option named)
+    assert run.returncode == 2 and "--width" in run.stderr, (run.returncode, run.stderr)
 
 
 def _has_gpu() -> bool:

@@ -1,7 +1,9 @@
 """``python -m weft render`` with --scene cloth and --environment (issue 6): a script lights the
 cloth scene from a mirror-ball image with shadows from the dome. The CLI's PNG is compared with
 the same scene rendered through the API (weft.scenes), and the dome's shadows are measured on the
-ground: darker next to the sphere and cloth than on open ground with a dome, uniform without."""
+ground: darker next to the sphere and cloth than on open ground with a dome, uniform without.
+Bounce light is off here (--no-bounce): it is measured against the path tracer
+(test_picture_reference.py), and these checks are about the dome alone."""
 
 from __future__ import annotations
 
@@ -66,7 +68,7 @@ def api_render(sky: Path, dome: int) -> tuple:
     scene, camera, _ = weft.scenes.cloth_scene(steps=weft.scenes.DEFAULT_STEPS)
     cube = weft.ibl.load_environment_cube(str(sky), 256, source="sphere")
     weft.scenes.light_with_environment(scene, cube, dome_lights=dome)
-    renderer = weft.Renderer(W, H)
+    renderer = weft.Renderer(W, H, bounce=False)
     debug = renderer.render_debug(scene, camera)  # one surface per pixel (no MSAA)
     return debug, renderer.render(scene, camera)  # the CLI's defaults
 
@@ -74,7 +76,7 @@ def api_render(sky: Path, dome: int) -> tuple:
 def test_cloth_scene_lit_by_a_mirror_ball_with_dome_shadows(sky: Path, tmp_path: Path) -> None:
     out = tmp_path / "cloth.png"
     proc = run(["-m", "weft", "render", "--scene", "cloth", "--environment", str(sky),
-                "--source", "sphere", "--wrap", "1", "--dome", "16", "--width", str(W),
+                "--source", "sphere", "--wrap", "1", "--dome", "16", "--no-bounce", "--width", str(W),
                 "--height", str(H), "--out", str(out)])
     assert out.is_file() and out.name in proc.stdout and "environment" in proc.stdout
     assert "dome[15]" in proc.stdout and "dome[16]" not in proc.stdout  # 16 dome shadow maps
@@ -101,7 +103,7 @@ def test_cloth_scene_lit_by_a_mirror_ball_with_dome_shadows(sky: Path, tmp_path:
 
 def test_without_the_dome_the_ground_is_uniform(sky: Path, tmp_path: Path, capsys) -> None:
     out = tmp_path / "nodome.png"
-    assert main(["render", "--scene", "cloth", "--environment", str(sky), "--dome", "0",
+    assert main(["render", "--scene", "cloth", "--environment", str(sky), "--dome", "0", "--no-bounce",
                  "--width", str(W), "--height", str(H), "--out", str(out)]) == 0
     assert "dome[" not in capsys.readouterr().out
     image = weft.load_png(str(out))

@@ -60,9 +60,23 @@ def shadow_error(renderer: Any, scene: Any, camera: Any) -> Optional[float]:
     light differs from NumPy's by more than half a tap."""
     from weft import reference as ref
 
-    debug = renderer.render_debug(scene, camera)
     lights = scene.lights
     index = ref.first_shadow_light(lights)
+    radius = getattr(lights[index], "angular_radius", 0.0) if index is not None else 0.0
+    if radius > 0.0:  # the oracle is the fixed PCF kernel; a sun's disc (PCSS) has its own test
+        lights[index].angular_radius = 0.0
+        scene.set_light(index, lights[index])
+    try:
+        debug = renderer.render_debug(scene, camera)
+        return _pcf_mismatch(renderer, debug, scene.lights, index, ref)
+    finally:
+        if radius > 0.0:
+            lights[index].angular_radius = radius
+            scene.set_light(index, lights[index])
+
+
+def _pcf_mismatch(renderer: Any, debug: Any, lights: Any, index: Optional[int], ref: Any
+                  ) -> Optional[float]:
     mask = debug["mask"]
     if "hair" in debug:  # hair pixels: visibility from the deep opacity map, not the PCF test
         mask = mask & (debug["hair"] < 0)
