@@ -10,6 +10,7 @@
 
 #include "Convert.h"
 #include "app/DemoScene.h"
+#include "app/DemoScript.h"
 
 namespace weft::py_bind {
 void bindScene(py::module_& m);
@@ -191,6 +192,15 @@ PYBIND11_MODULE(_core, m) {
        "The demo's scene (terrain, sphere, furry ball, sun and moon under the analytic sky, and\n"
        "the cloth in it) at `hour` (0..24, default 8.4), its camera and the cloth (step it to\n"
        "animate the scene), as (scene, camera, cloth).");
+
+    m.def("load_demo_script", [](const std::string& path) {
+        py::list out;
+        for (const weft::app::ScriptEvent& e : weft::app::loadScript(path))
+            out.append(py::make_tuple(e.frame, e.action, e.key, e.x, e.y));
+        return out;
+    }, py::arg("path"),
+       "The events of a demo --script file as (frame, action, key code, x, y) tuples (what\n"
+       "run_demo(script=...) plays); IoError names file:line of a malformed line.");
 
     m.def("run_demo", [](int width, int height, int frames, bool headless, bool vsync,
                          const std::string& out, const std::string& screenshot,
