@@ -17,6 +17,8 @@ import shutil
 import tempfile
 import zipfile
 
+from outcome_feedback import outcome  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 CORPUS = os.path.join(HERE, "corpus")
 
@@ -86,18 +88,18 @@ def make_target(target: str):
     if target == "jpeg":
         def one(data: bytes) -> None:
             try:
-                weft._core.btf_decode_image(data, "fuzz")
-            except weft.Error:
-                pass
+                outcome(weft._core.btf_decode_image(data, "fuzz"))
+            except weft.Error as e:
+                outcome(error=e)
         return one
     if target == "btfzip":
         def one(data: bytes) -> None:
             with open(zpath, "wb") as f:
                 f.write(data)
             try:
-                weft.btf.load(zpath, threads=1)
-            except weft.Error:
-                pass
+                outcome(weft.btf.load(zpath, threads=1))
+            except weft.Error as e:
+                outcome(error=e)
         return one
     names, images = _standard_names(), _tiny_images()
     folder = os.path.join(work, "tree")
@@ -129,9 +131,9 @@ def make_target(target: str):
                     continue  # a name that is both a file and a folder: the file system says no
             path = folder
         try:
-            weft.btf.load(path, threads=1)
-        except weft.Error:
-            pass
+            outcome(weft.btf.load(path, threads=1))
+        except weft.Error as e:
+            outcome(error=e)
     return one
 
 

@@ -25,6 +25,7 @@ TEXT_TARGETS = ("scene", "renderer", "lights", "script", "env")
 TARGETS = tuple(SUFFIX) + BTF_TARGETS + TEXT_TARGETS
 
 sys.path.insert(0, HERE)
+from outcome_feedback import outcome  # noqa: E402
 
 
 def _loader(target: str):
@@ -46,9 +47,9 @@ def make_target(target: str):
     if target == "hair":
         def one(data: bytes) -> None:
             try:
-                weft.hair_from_bytes(data)
-            except weft.Error:
-                pass
+                outcome(weft.hair_from_bytes(data))
+            except weft.Error as e:
+                outcome(error=e)
         return one
     load = _loader(target)
     fd, path = tempfile.mkstemp(suffix=SUFFIX[target], prefix="weft-fuzz-")
@@ -58,9 +59,9 @@ def make_target(target: str):
         with open(path, "wb") as f:
             f.write(data)
         try:
-            load(path)
-        except weft.Error:
-            pass
+            outcome(load(path))
+        except weft.Error as e:
+            outcome(error=e)
     return one
 
 
@@ -97,8 +98,14 @@ def main(argv) -> None:
 
     target = argv[1]
     with atheris.instrument_imports():
-        import weft  # noqa: F401  (Python-level coverage of the wrappers)
+        # Python-level coverage of the wrappers and the Python parsers
+        import weft  # noqa: F401
+        import weft.btf  # noqa: F401
+        import weft.ibl  # noqa: F401
+        import weft.ibl.files  # noqa: F401
     one = make_target(target)
+    import outcome_feedback
+    outcome_feedback.instrument()
     atheris.Setup([argv[0]] + argv[2:], one)
     atheris.Fuzz()
 

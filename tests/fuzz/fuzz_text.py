@@ -13,6 +13,8 @@ from __future__ import annotations
 import os
 import tempfile
 
+from outcome_feedback import outcome  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 CORPUS = os.path.join(HERE, "corpus")
 
@@ -38,8 +40,10 @@ def make_target(target: str):
                 f.write(data[1:])
             try:
                 cube = weft.ibl.load_environment_cube(paths[ext], size=4, source=source)
-            except weft.Error:
+            except weft.Error as e:
+                outcome(error=e)
                 return
+            outcome(cube.faces)
             import numpy as np
             faces = np.asarray(cube.faces)
             if not np.all(np.isfinite(faces)) or np.any(faces < 0):
@@ -52,9 +56,9 @@ def make_target(target: str):
         with open(path, "wb") as f:
             f.write(data)
         try:
-            load(path)
-        except weft.Error:
-            pass
+            outcome(load(path))
+        except weft.Error as e:
+            outcome(error=e)
     return one
 
 
