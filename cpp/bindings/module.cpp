@@ -143,6 +143,15 @@ PYBIND11_MODULE(_core, m) {
     m.def("validation_messages", &weft::validationMessages,
           "Validation warnings/errors collected since the last clear.");
     m.def("clear_validation_messages", &weft::clearValidationMessages);
+    m.def("device_memory", [] {
+        const weft::DeviceMemoryStats s = weft::deviceMemoryStats();
+        py::dict d;
+        d["blocks"] = s.blocks;
+        d["reserved_bytes"] = s.reservedBytes;
+        d["used_bytes"] = s.usedBytes;
+        return d;
+    }, "Device memory weft's allocator holds (shared by all Renderers): blocks, reserved_bytes\n"
+       "(obtained from Vulkan), used_bytes (handed out); zeros when no Renderer exists.");
 
     m.def("load_png", [](const std::string& path) { return imageToArray(weft::loadPng(path)); },
           py::arg("path"), "Reads a PNG into a uint8 array (H, W, C).");
