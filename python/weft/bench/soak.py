@@ -33,6 +33,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--scene", choices=("demo", "default"), default="demo",
                         help="demo (cloth, fur, sky, environment + dome) or default (the "
                              "seed's static scene: a control for the measurement)")
+    parser.add_argument("--no-hair-transparency", action="store_true",
+                        help="render the fur opaque (Renderer.hair_transparency = False)")
     parser.add_argument("--out", default="out/bench/soak")
 
 
@@ -60,7 +62,7 @@ def _slope(frames: List[int], values: List[float]) -> float:
 
 
 def soak(frames: int, size=(64, 48), samples: int = 50, warmup: float = 0.2,
-         scene_name: str = "demo") -> Dict[str, Any]:
+         scene_name: str = "demo", hair_transparency: bool = True) -> Dict[str, Any]:
     import weft
 
     if scene_name == "default":
@@ -72,6 +74,7 @@ def soak(frames: int, size=(64, 48), samples: int = 50, warmup: float = 0.2,
     scene.set_environment(_environment(), intensity=0.5, specular_size=16, specular_levels=4,
                           specular_samples=16, dome_lights=8, dome_map_size=64)
     renderer = weft.Renderer(int(size[0]), int(size[1]), shadow_map_size=256, msaa=1)
+    renderer.hair_transparency = bool(hair_transparency)
     every = max(1, frames // max(1, samples))
     rows: List[Dict[str, Any]] = []
     last, last_frame = time.perf_counter(), 0
@@ -94,7 +97,8 @@ def soak(frames: int, size=(64, 48), samples: int = 50, warmup: float = 0.2,
     span = measured[-1]["frame"] - measured[0]["frame"] if measured else 0
     fx = [r["frame"] for r in measured]
     result = {
-        "frames": frames, "scene": scene_name, "size": list(size), "sample_every": every, "rows": rows,
+        "frames": frames, "scene": scene_name, "size": list(size),
+        "hair_transparency": bool(hair_transparency), "sample_every": every, "rows": rows,
         "warmup_frames": measured[0]["frame"] if measured else 0,
         "rss_slope_kib_per_1000_frames": 1000 * _slope(fx, [r["rss_mib"] for r in measured]) * 1024,
         "device_slope_kib_per_1000_frames":
@@ -136,7 +140,8 @@ def to_markdown(result: Dict[str, Any], problems: List[str]) -> str:
             for r in result["rows"][:: max(1, len(result["rows"]) // 10)]]
     return "\n".join([
         f"# soak: {result['frames']} frames of the {result['scene']} scene at "
-        f"{result['size'][0]}x{result['size'][1]}", "",
+        f"{result['size'][0]}x{result['size'][1]}"
+        + ("" if result["hair_transparency"] else ", fur opaque"), "",
         f"- RSS slope after {result['warmup_frames']} warm-up frames: "
         f"{result['rss_slope_kib_per_1000_frames']:.1f} KiB / 1000 frames "
         f"({result['rss_growth_mib']:.2f} MiB over {result['measured_frames']} frames)",
@@ -155,7 +160,8 @@ def run(args: argparse.Namespace) -> int:
     from weft.bench import machine_info, write_report
 
     frames = 300 if args.quick else int(args.frames)
-    result = soak(frames, tuple(args.size), args.samples, args.warmup, args.scene)
+    result = soak(frames, tuple(args.size), args.samples, args.warmup, args.scene,
+                  not args.no_hair_transparency)
     problems = verdict(result, args.rss_tolerance_mib)
     result["machine"] = machine_info()
     result["problems"] = problems
