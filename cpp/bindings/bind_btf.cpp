@@ -13,6 +13,7 @@
 #include <weft/BtfRenderMaterial.h>
 
 #include "Convert.h"
+#include "btf/BtfImageCodec.h"
 
 namespace weft::py_bind {
 
@@ -246,6 +247,21 @@ void bindBtf(py::module_& m) {
     },
         "The 81 directions the Bonn database uses for lights and views, (81, 2) as (θ, φ) in "
         "degrees: rings θ = 0, 15, ..., 75, each by increasing φ.");
+    m.def("btf_decode_image", [](py::bytes data, const std::string& name) -> py::object {
+        const std::string raw = data;
+        const std::vector<uint8_t> bytes(raw.begin(), raw.end());
+        DecodedImage img;
+        {
+            py::gil_scoped_release release;
+            img = decodeBtfImage(bytes, name);
+        }
+        const std::vector<py::ssize_t> shape = {img.height, img.width, img.channels};
+        if (!img.pixels16.empty())
+            return py::array_t<uint16_t>(shape, img.pixels16.data());
+        return py::array_t<uint8_t>(shape, img.pixels.data());
+    }, py::arg("data"), py::arg("name") = "<bytes>",
+       "Decodes JPEG or PNG bytes as the BTF reader does (values as stored, (H, W, C) uint8, or\n"
+       "uint16 for 16-bit PNG); IoError for anything else or anything corrupt.");
     m.def("btf_parse_file_name", [](const std::string& name) -> py::object {
         BtfAngles a;
         if (!parseBtfFileName(name, a)) return py::none();

@@ -1,4 +1,5 @@
 // Bindings of the scene description: Mesh, Texture, Material, lights, Camera, Scene.
+#include <cmath>
 #include <cstring>
 #include <sstream>
 
@@ -350,7 +351,12 @@ void bindScene(py::module_& m) {
         .def_readwrite("cast_shadows", &PointLight::castShadows)
         .def_property("shadow_near", [](const PointLight& l) { return l.shadowNear; },
                       [](PointLight& l, float v) { setChecked(l, [&](PointLight& x) { x.shadowNear = v; }); })
-        .def("attenuation_at", [](const PointLight& l, float d) { return l.attenuation(d); },
+        .def("attenuation_at", [](const PointLight& l, float d) {
+            if (!(d >= 0.0f && std::isfinite(d)))
+                throw InvalidArgument("PointLight.attenuation_at: distance must be finite and >= 0, "
+                                      "got " + std::to_string(d));
+            return l.attenuation(d);
+        },
              py::arg("distance"), "a(d) at a distance from the light.")
         .def("__repr__", [](const PointLight& l) {
             return "<weft.PointLight position=" + vecRepr(l.position) + " color=" + vecRepr(l.color) +

@@ -10,6 +10,7 @@
 
 #include "Convert.h"
 #include "app/DemoScene.h"
+#include "app/DemoScript.h"
 
 namespace weft::py_bind {
 void bindScene(py::module_& m);
@@ -144,6 +145,15 @@ PYBIND11_MODULE(_core, m) {
           "Validation warnings/errors collected since the last clear.");
     m.def("clear_validation_messages", &weft::clearValidationMessages,
         "Forgets the validation messages collected so far.");
+    m.def("device_memory", [] {
+        const weft::DeviceMemoryStats s = weft::deviceMemoryStats();
+        py::dict d;
+        d["blocks"] = s.blocks;
+        d["reserved_bytes"] = s.reservedBytes;
+        d["used_bytes"] = s.usedBytes;
+        return d;
+    }, "Device memory weft's allocator holds (shared by all Renderers): blocks, reserved_bytes\n"
+       "(obtained from Vulkan), used_bytes (handed out); zeros when no Renderer exists.");
 
     m.def("load_png", [](const std::string& path) { return imageToArray(weft::loadPng(path)); },
           py::arg("path"), "Reads a PNG into a uint8 array (H, W, C).");
@@ -196,6 +206,15 @@ PYBIND11_MODULE(_core, m) {
        "The demo's scene (terrain, sphere, furry ball, sun and moon under the analytic sky, and\n"
        "the cloth in it) at `hour` (0..24, default 8.4), its camera and the cloth (step it to\n"
        "animate the scene), as (scene, camera, cloth).");
+
+    m.def("load_demo_script", [](const std::string& path) {
+        py::list out;
+        for (const weft::app::ScriptEvent& e : weft::app::loadScript(path))
+            out.append(py::make_tuple(e.frame, e.action, e.key, e.x, e.y));
+        return out;
+    }, py::arg("path"),
+       "The events of a demo --script file as (frame, action, key code, x, y) tuples (what\n"
+       "run_demo(script=...) plays); IoError names file:line of a malformed line.");
 
     m.def("run_demo", [](int width, int height, int frames, bool headless, bool vsync,
                          const std::string& out, const std::string& screenshot,

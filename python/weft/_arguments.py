@@ -225,6 +225,31 @@ def _wrap(func: Callable, qualname: str, error_type: type, skip_self: bool) -> C
     return call
 
 
+def _wrap_setter(fset: Callable, qualname: str, error_type: type) -> Callable:
+    """A property setter whose conversion failures (a wrong type, an int out of range, an
+    unsigned given a negative) raise ``error_type`` naming the property and the value."""
+    @functools.wraps(fset)
+    def set_value(obj: Any, value: Any) -> None:
+        try:
+            fset(obj, value)
+        except TypeError as e:
+            if not any(marker in str(e) for marker in _INCOMPATIBLE):
+                # the setter's own type check ("ka must be numeric, got str"): same class
+                raise error_type(f"{qualname}: {e}") from None
+            expects = re.findall(r"arg1: ([^)]*)\)", str(e))
+            hint = f" (expects {_clean_annotation(expects[0])})" if expects else ""
+            negative = isinstance(value, int) and not isinstance(value, bool) and value < 0
+            raise error_type(f"{qualname} cannot be set to {_describe((value,), {})}{hint}"
+                             + ("; a count or size cannot be negative" if negative else "")
+                             ) from None
+        except RuntimeError as e:
+            if not str(e).startswith("Unable to cast"):
+                raise
+            raise error_type(f"{qualname} cannot be set to {_describe((value,), {})} "
+                             "(wrong type)") from None
+    return set_value
+
+
 def install(core: Any, error_type: type) -> None:
     """Wraps every compiled function, constructor and method of ``core`` in place."""
     for name in dir(core):
@@ -241,7 +266,12 @@ def install(core: Any, error_type: type) -> None:
                     continue
                 kind = type(value).__name__
                 label = f"weft.{name}()" if attr == "__init__" else f"weft.{name}.{attr}()"
-                if kind == "instancemethod":
+                if type(value) is property and value.fset is not None:
+                    setattr(obj, attr, property(value.fget,
+                                                _wrap_setter(value.fset, f"weft.{name}.{attr}",
+                                                             error_type),
+                                                value.fdel, value.__doc__))
+                elif kind == "instancemethod":
                     setattr(obj, attr, _wrap(value.__func__, label, error_type, True))
                 elif isinstance(value, staticmethod):
                     setattr(obj, attr, staticmethod(_wrap(value.__func__, label, error_type,

@@ -5,10 +5,10 @@ exception, a crash, a hang or a sanitizer report is a finding.
     python tests/fuzz/fuzz_loaders.py TARGET [libFuzzer flags] [CORPUS_DIR ...]
     python tests/fuzz/fuzz_loaders.py hair -runs=1000000 tests/fuzz/corpus/hair
 
-Targets: hair (.hair bytes), obj (OBJ text), png, hdr (Radiance), exr, script (the demo's
---script files are parsed by weft-demo itself and are not reachable from Python; not a target).
+Targets: hair (.hair bytes), obj (OBJ text), png, hdr (Radiance), exr (here); btfzip, btftree,
+jpeg (fuzz_btf.py); scene, renderer, lights, script, env (fuzz_text.py).
 Seeds: ``python tests/fuzz/fuzz_loaders.py --write-seeds`` writes small valid files of every kind
-into tests/fuzz/corpus/ (checked in).
+into tests/fuzz/corpus/TARGET/ (checked in).
 """
 
 from __future__ import annotations
@@ -20,6 +20,12 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 CORPUS = os.path.join(HERE, "corpus")
 SUFFIX = {"hair": ".hair", "obj": ".obj", "png": ".png", "hdr": ".hdr", "exr": ".exr"}
+BTF_TARGETS = ("btfzip", "btftree", "jpeg")
+TEXT_TARGETS = ("scene", "renderer", "lights", "script", "env")
+TARGETS = tuple(SUFFIX) + BTF_TARGETS + TEXT_TARGETS
+
+sys.path.insert(0, HERE)
+from outcome_feedback import outcome  # noqa: E402
 
 
 def _loader(target: str):
@@ -32,12 +38,18 @@ def _loader(target: str):
 def make_target(target: str):
     import weft
 
+    if target in BTF_TARGETS:
+        import fuzz_btf
+        return fuzz_btf.make_target(target)
+    if target in TEXT_TARGETS:
+        import fuzz_text
+        return fuzz_text.make_target(target)
     if target == "hair":
         def one(data: bytes) -> None:
             try:
-                weft.hair_from_bytes(data)
-            except weft.Error:
-                pass
+                outcome(weft.hair_from_bytes(data))
+            except weft.Error as e:
+                outcome(error=e)
         return one
     load = _loader(target)
     fd, path = tempfile.mkstemp(suffix=SUFFIX[target], prefix="weft-fuzz-")
@@ -47,9 +59,9 @@ def make_target(target: str):
         with open(path, "wb") as f:
             f.write(data)
         try:
-            load(path)
-        except weft.Error:
-            pass
+            outcome(load(path))
+        except weft.Error as e:
+            outcome(error=e)
     return one
 
 
@@ -70,20 +82,30 @@ def write_seeds() -> None:
     img = np.linspace(0.0, 4.0, 3 * 4 * 3, dtype=np.float32).reshape(3, 4, 3)
     weft.save_hdr(os.path.join(CORPUS, "hdr", "ramp.hdr"), img)
     weft.save_exr(os.path.join(CORPUS, "exr", "ramp.exr"), img)
+    import fuzz_btf
+    import fuzz_text
+    fuzz_btf.write_seeds()
+    fuzz_text.write_seeds()
 
 
 def main(argv) -> None:
     if len(argv) > 1 and argv[1] == "--write-seeds":
         write_seeds()
         return
-    if len(argv) < 2 or argv[1] not in SUFFIX:
+    if len(argv) < 2 or argv[1] not in TARGETS:
         sys.exit(__doc__)
     import atheris
 
     target = argv[1]
     with atheris.instrument_imports():
-        import weft  # noqa: F401  (Python-level coverage of the wrappers)
+        # Python-level coverage of the wrappers and the Python parsers
+        import weft  # noqa: F401
+        import weft.btf  # noqa: F401
+        import weft.ibl  # noqa: F401
+        import weft.ibl.files  # noqa: F401
     one = make_target(target)
+    import outcome_feedback
+    outcome_feedback.instrument()
     atheris.Setup([argv[0]] + argv[2:], one)
     atheris.Fuzz()
 

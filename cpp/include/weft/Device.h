@@ -24,6 +24,16 @@ std::vector<DeviceInfo> listDevices();
 /// Validation messages (warnings and errors) seen since the last clear. Validation layers are
 /// enabled when WEFT_VALIDATION=1 is set before the first Vulkan use.
 std::vector<std::string> validationMessages();
+
+/// Device memory weft holds through its allocator (all Renderers share one device): blocks
+/// obtained from Vulkan, their bytes, and the bytes handed out of them. Zero when no Renderer
+/// (or other Vulkan user) exists. For soak tests: flat after warm-up means no GPU leak.
+struct DeviceMemoryStats {
+    size_t blocks = 0;
+    uint64_t reservedBytes = 0;
+    uint64_t usedBytes = 0;
+};
+DeviceMemoryStats deviceMemoryStats();
 void clearValidationMessages();
 bool validationEnabled();
 

@@ -26,8 +26,13 @@ struct ImageU8 {
     ImageU8 toRgba() const;
 };
 
+/// Largest decoded PNG loadPng accepts: width x height x channels (8-bit) bytes, 1 GiB (a
+/// 16384^2 RGBA image). Checked from the header, before anything is allocated.
+constexpr uint64_t kMaxPngDecodedBytes = uint64_t(1) << 30;
+
 /// Reads a PNG (8 or 16 bit, any colour type; 16-bit is reduced to 8). Throws IoError naming
-/// the file when it is missing, truncated or not a PNG.
+/// the file when it is missing, truncated or not a PNG, or when its header claims more than
+/// kMaxPngDecodedBytes, or more pixels than its compressed bytes could hold.
 /// Channels after expansion: grey 1, grey+alpha 2, rgb 3, rgba 4; palettes become rgb, and a
 /// tRNS chunk adds an alpha channel.
 ImageU8 loadPng(const std::string& path);
@@ -56,9 +61,16 @@ struct ImageF {
     void requireFinite(const std::string& what) const;
 };
 
+/// Largest decoded EXR loadExr accepts: data-window width x height x channels read x 4 bytes,
+/// 4 GiB (a 16384^2 RGBA float image, or a 32768 x 16384 RGB one would need 6 GiB: refused).
+/// Checked from the header, before anything is allocated.
+constexpr uint64_t kMaxExrDecodedBytes = uint64_t(4) << 30;
+
 /// Reads an OpenEXR file (scanline or tiled, any compression, half/float/uint channels).
 /// Channels: R, G, B, A when present (grey files: Y [+ A]); others are ignored. Throws IoError
-/// naming the file when it is missing, truncated or corrupt.
+/// naming the file when it is missing, truncated or corrupt, when its data window would decode
+/// to more than kMaxExrDecodedBytes, or (compressions with a known best ratio: none, RLE, ZIP,
+/// PXR24, B44) to more than its bytes could hold.
 ImageF loadExr(const std::string& path);
 /// Writes 32-bit float channels (1: Y, 2: Y A, 3: R G B, 4: R G B A), ZIP compression.
 void saveExr(const std::string& path, const ImageF& image);

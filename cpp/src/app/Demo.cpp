@@ -19,11 +19,15 @@
 #include <weft/Window.h>
 
 #include "app/DemoScene.h"
+#include "app/DemoScript.h"
 #include "app/StatsJson.h"
 #include "core/FileRead.h"
 
 namespace weft {
 namespace {
+
+using app::ScriptEvent;
+using app::loadScript;
 
 void writeImage(const std::string& path, const ImageU8& image) {
     const std::filesystem::path p(path);
@@ -49,61 +53,6 @@ void orbit(Camera& camera, float dAzimuth, float dElevation) {
     el = glm::clamp(el, -1.4f, 1.4f);
     camera.position = camera.target + r * glm::vec3(std::cos(el) * std::sin(az), std::sin(el),
                                                     std::cos(el) * std::cos(az));
-}
-
-// A scripted input event: at frame `frame`, press a key or grab / drag / release at a pixel.
-struct ScriptEvent {
-    int frame = 0;
-    std::string action; // key, grab, drag, release
-    int key = 0;
-    double x = 0, y = 0;
-};
-
-int keyCode(const std::string& name, const std::string& where) {
-    static const std::map<std::string, int> named = {
-        {"SPACE", GLFW_KEY_SPACE}, {"LEFT", GLFW_KEY_LEFT}, {"RIGHT", GLFW_KEY_RIGHT},
-        {"UP", GLFW_KEY_UP},       {"DOWN", GLFW_KEY_DOWN}, {"ESCAPE", GLFW_KEY_ESCAPE}};
-    std::string upper = name;
-    for (char& c : upper) c = char(std::toupper((unsigned char)c));
-    if (auto it = named.find(upper); it != named.end()) return it->second;
-    if (upper.size() == 1 && ((upper[0] >= 'A' && upper[0] <= 'Z') || (upper[0] >= '0' && upper[0] <= '9')))
-        return upper[0]; // GLFW codes of letters and digits are their ASCII codes
-    throw InvalidArgument(where + ": unknown key '" + name + "'");
-}
-
-// Lines "<frame> key <K>", "<frame> grab <x> <y>", "<frame> drag <x> <y>", "<frame> release";
-// '#' starts a comment. Frames must not decrease.
-std::vector<ScriptEvent> loadScript(const std::string& path) {
-    std::vector<ScriptEvent> events;
-    if (path.empty()) return events;
-    checkInputFile(path, "script", 64u << 20);
-    std::ifstream in(path);
-    if (!in) throw IoError("cannot open script '" + path + "'");
-    std::string line;
-    for (int n = 1; std::getline(in, line); ++n) {
-        line = line.substr(0, line.find('#'));
-        std::istringstream words(line);
-        ScriptEvent e;
-        if (!(words >> e.frame)) {
-            if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-            throw IoError(path + ":" + std::to_string(n) + ": expected '<frame> <action> ...'");
-        }
-        const std::string where = path + ":" + std::to_string(n);
-        if (!(words >> e.action)) throw IoError(where + ": missing action");
-        if (e.action == "key") {
-            std::string k;
-            if (!(words >> k)) throw IoError(where + ": key needs a name");
-            e.key = keyCode(k, where);
-        } else if (e.action == "grab" || e.action == "drag") {
-            if (!(words >> e.x >> e.y)) throw IoError(where + ": " + e.action + " needs x y");
-        } else if (e.action != "release") {
-            throw IoError(where + ": unknown action '" + e.action + "' (key, grab, drag, release)");
-        }
-        if (e.frame < 0 || (!events.empty() && e.frame < events.back().frame))
-            throw IoError(where + ": frames must be >= 0 and not decrease");
-        events.push_back(e);
-    }
-    return events;
 }
 
 // Applies a key to the scene and the camera; returns what changed (or "").

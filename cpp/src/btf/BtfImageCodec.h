@@ -11,6 +11,10 @@ namespace weft {
 /// BTF reader accepts: 16x a 4096^2 RGB 8-bit image, far beyond any measured BTF, small enough
 /// that a forged header cannot make the reader allocate gigabytes.
 constexpr uint64_t kMaxBtfImageBytes = uint64_t(256) << 20;
+/// Largest total the chosen entries of a BTF zip may declare uncompressed (each is inflated,
+/// decoded and freed in turn, so this bounds time, not memory): 64 GiB, 100x a full 6561-image
+/// Bonn BTF of 800x800 JPEGs.
+constexpr uint64_t kMaxBtfZipTotalBytes = uint64_t(64) << 30;
 
 /// What a JPEG stores, before the decoder's inverse DCT and colour conversion: per colour
 /// component the quantised 8x8 block-DCT coefficients (natural order, libjpeg's

@@ -391,6 +391,16 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
                       "')");
     }
 
+    if (zip) {
+        // Every chosen entry's declared size is checked (and summed) before any is inflated.
+        uint64_t total = 0;
+        for (const Entry* e : chosen) total += zip->checkedSize(e->source, kMaxBtfImageBytes);
+        if (total > kMaxBtfZipTotalBytes)
+            throw IoError("the BTF images in zip '" + path + "' declare " + std::to_string(total) +
+                          " bytes uncompressed, more than the " +
+                          std::to_string(kMaxBtfZipTotalBytes) + " a BTF zip may have");
+    }
+
     // Angles are known from the names; the image size from the first image.
     std::vector<BtfAngles> angles;
     for (size_t i = 0; i < chosen.size(); ++i) {

@@ -32,6 +32,12 @@ ZipReader::ZipReader(const std::string& path) : mPath(path) {
     mArchive = zip_open(path.c_str(), ZIP_RDONLY | ZIP_CHECKCONS, &code);
     if (!mArchive) throw IoError("cannot open zip '" + path + "': " + zipErrorText(code));
     const zip_int64_t count = zip_get_num_entries(mArchive, 0);
+    if (count < 0 || uint64_t(count) > kMaxZipEntries) {
+        zip_discard(mArchive);
+        mArchive = nullptr;
+        throw IoError("zip '" + path + "' lists " + std::to_string(count) + " entries, more than the " +
+                      std::to_string(kMaxZipEntries) + " a BTF zip may have");
+    }
     for (zip_int64_t i = 0; i < count; ++i) {
         const char* name = zip_get_name(mArchive, zip_uint64_t(i), 0);
         if (!name) continue;
@@ -91,9 +97,16 @@ std::vector<uint8_t> ZipReader::read(size_t index, uint64_t limit) const {
                       " bytes) in zip '" + mPath + "'");
     }
     const zip_int64_t got = data.empty() ? 0 : zip_fread(file, data.data(), size);
-    std::string error = got < 0 ? zip_file_strerror(file) : "";
+    // One byte more than declared means the entry lies about its size: refuse it rather than
+    // trusting either number.
+    uint8_t extra = 0;
+    const zip_int64_t more = got < 0 || uint64_t(got) != size ? 0 : zip_fread(file, &extra, 1);
+    std::string error = got < 0 || more < 0 ? zip_file_strerror(file) : "";
     zip_fclose(file);
-    if (got < 0 || uint64_t(got) != size)
+    if (more > 0)
+        throw IoError("'" + name + "' in zip '" + mPath + "' inflates to more than the " +
+                      std::to_string(size) + " bytes it declares (corrupt or a zip bomb)");
+    if (got < 0 || more < 0 || uint64_t(got) != size)
         throw IoError("cannot read '" + name + "' in zip '" + mPath + "' (truncated or corrupt)" +
                       (error.empty() ? "" : ": " + error));
     return data;

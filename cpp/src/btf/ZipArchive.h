@@ -8,6 +8,10 @@ struct zip;
 
 namespace weft {
 
+/// Most entries a zip may list (a full Bonn BTF has 6561 images): more is refused on opening,
+/// before any name is read.
+constexpr uint64_t kMaxZipEntries = 100000;
+
 class ZipReader {
 public:
     /// Throws IoError when the file is missing or not a zip archive.
@@ -23,8 +27,9 @@ public:
     /// archive (compressed data larger than the file, more than deflate's ~1032:1 ratio, a stored
     /// entry whose two sizes differ).
     uint64_t checkedSize(size_t index, uint64_t limit) const;
-    /// Whole entry (at most `limit` bytes, see checkedSize); throws IoError when it cannot be
-    /// inflated (corrupt, truncated).
+    /// Whole entry (at most `limit` bytes, see checkedSize), inflated into a buffer of the
+    /// declared size; throws IoError when it cannot be inflated (corrupt, truncated) or when it
+    /// inflates to more bytes than it declares (the extra bytes are never stored).
     std::vector<uint8_t> read(size_t index, uint64_t limit) const;
 
 private:

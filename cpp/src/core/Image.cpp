@@ -141,6 +141,8 @@ void readPngBody(png_structp png, png_infop info, ReadContext& ctx) {
 
     const int channels = png_get_channels(png, info);
     const size_t rowBytes = png_get_rowbytes(png, info);
+    if (uint64_t(rowBytes) * height > kMaxPngDecodedBytes)
+        png_error(png, "decoded image would exceed the 1 GiB a PNG may have (kMaxPngDecodedBytes)");
     if (channels < 1 || channels > 4 || png_get_bit_depth(png, info) != 8 ||
         rowBytes != size_t(width) * size_t(channels)) {
         png_error(png, "unsupported pixel layout after conversion");

@@ -4,6 +4,7 @@
 #include <weft/Image.h>
 
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfCompression.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
@@ -81,10 +82,48 @@ void exrSingleThreaded() {
 
 } // namespace
 
+namespace {
+
+// Best compression ratio of an EXR codec over the samples it stores (0: no useful bound).
+// Deflate (ZIP, ZIPS, PXR24) cannot beat about 1032:1; EXR's RLE stores a run of up to 128
+// bytes in 2; B44A stores a flat 4x4 block of halves (32 bytes) in 3. PIZ (Huffman with run
+// codes) and DWA (lossy, then deflate) have no small bound: only the absolute cap applies.
+uint64_t exrBestRatio(Imf::Compression c) {
+    switch (c) {
+    case Imf::NO_COMPRESSION: return 1;
+    case Imf::RLE_COMPRESSION: return 64;
+    case Imf::ZIPS_COMPRESSION:
+    case Imf::ZIP_COMPRESSION:
+    case Imf::PXR24_COMPRESSION: return 1100;
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION: return 11;
+    default: return 0;
+    }
+}
+
+// `values` floats would be decoded: refuse more than the documented cap, and more than the
+// file's bytes could hold (half samples, 2 bytes each, are the smallest stored).
+void checkExrDecodedSize(const std::string& path, uint64_t values, Imf::Compression c,
+                         uint64_t fileSize) {
+    const uint64_t bytes = values * sizeof(float);
+    if (bytes > kMaxExrDecodedBytes)
+        throw IoError("EXR " + quoted(path) + " would decode to " + std::to_string(bytes) +
+                      " bytes, more than the " + std::to_string(kMaxExrDecodedBytes) +
+                      " an EXR may have (kMaxExrDecodedBytes)");
+    const uint64_t ratio = exrBestRatio(c);
+    if (ratio > 0 && values * 2 > ratio * fileSize + (uint64_t(1) << 20))
+        throw IoError("EXR " + quoted(path) + " claims " + std::to_string(values) +
+                      " samples, impossible for its " + std::to_string(fileSize) +
+                      " bytes (corrupt)");
+}
+
+} // namespace
+
 ImageF loadExr(const std::string& path) {
     exrSingleThreaded();
+    uint64_t fileSize = 0;
     {
-        checkInputFile(path, "EXR");
+        fileSize = checkInputFile(path, "EXR");
     }
     try {
         Imf::InputFile file(path.c_str());
@@ -103,6 +142,8 @@ ImageF loadExr(const std::string& path) {
         if (rgb) names = {"R", "G", "B"};
         else names = {"Y"};
         if (alpha) names.push_back("A");
+        checkExrDecodedSize(path, uint64_t(w64) * uint64_t(h64) * names.size(),
+                            file.header().compression(), fileSize);
         ImageF img(int(w64), int(h64), int(names.size()));
         const size_t xs = sizeof(float) * size_t(img.channels);
         const size_t ys = xs * size_t(img.width);

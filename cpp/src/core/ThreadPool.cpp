@@ -1,6 +1,10 @@
 #include "core/ThreadPool.h"
 
+#include <weft/Error.h>
+
 #include <algorithm>
+#include <string>
+#include <system_error>
 #include <chrono>
 
 #if defined(__x86_64__) || defined(_M_X64)
@@ -19,19 +23,34 @@ constexpr int kSpinsBeforeYield = 64;
 
 ThreadPool::ThreadPool(int threads) {
     const int hw = int(std::max(1u, std::thread::hardware_concurrency()));
-    mSize = std::max(1, threads > 0 ? threads : hw);
+    if (threads > kMaxPoolThreads)
+        throw InvalidArgument("threads must be 0 (all cores) or 1.." +
+                              std::to_string(kMaxPoolThreads) + ", got " + std::to_string(threads));
+    mSize = std::max(1, threads > 0 ? threads : std::min(hw, kMaxPoolThreads));
     mClaimed = std::make_unique<std::atomic<unsigned>[]>(size_t(mSize));
     for (int c = 0; c < mSize; ++c) mClaimed[size_t(c)].store(0, std::memory_order_relaxed);
-    for (int i = 1; i < mSize; ++i) mWorkers.emplace_back([this, i] { workerLoop(i); });
+    try {
+        for (int i = 1; i < mSize; ++i) mWorkers.emplace_back([this, i] { workerLoop(i); });
+    } catch (const std::system_error& e) {
+        // The destructor will not run: stop and join the workers started so far here, or
+        // their std::thread objects would abort the process when the vector is destroyed.
+        const size_t started = mWorkers.size();
+        stopWorkers();
+        throw Error("cannot start " + std::to_string(mSize - 1) + " worker threads (started " +
+                    std::to_string(started) + "): " + e.what());
+    }
 }
 
-ThreadPool::~ThreadPool() {
+ThreadPool::~ThreadPool() { stopWorkers(); }
+
+void ThreadPool::stopWorkers() {
     {
         std::lock_guard<std::mutex> lock(mMutex);
         mStop = true;
     }
     mWake.notify_all();
     for (auto& t : mWorkers) t.join();
+    mWorkers.clear();
 }
 
 void ThreadPool::runChunks(int first, unsigned generation) {

@@ -16,9 +16,14 @@
 
 namespace weft {
 
+/// Most threads a pool may have (the cloth and BTF limits are the same).
+constexpr int kMaxPoolThreads = 256;
+
 class ThreadPool {
 public:
-    /// threads <= 0: hardware concurrency. The calling thread runs chunk 0 itself.
+    /// threads <= 0: hardware concurrency. The calling thread runs chunk 0 itself. Throws
+    /// InvalidArgument above kMaxPoolThreads, and weft::Error when the system cannot start the
+    /// threads (the ones already started are joined first: no hang, no abort).
     explicit ThreadPool(int threads = 0);
     ~ThreadPool();
     ThreadPool(const ThreadPool&) = delete;
@@ -33,6 +38,8 @@ public:
 
 private:
     void workerLoop(int index);
+    /// Stops and joins every worker (destructor, and a constructor that could not start all).
+    void stopWorkers();
     /// Runs chunk `first` and then any other chunk of job `generation` still unclaimed.
     void runChunks(int first, unsigned generation);
 

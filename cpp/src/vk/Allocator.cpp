@@ -1,8 +1,27 @@
 #include "vk/Allocator.h"
 
+#include <atomic>
+#include <cstdlib>
 #include <string>
 
 namespace weft::vk {
+
+namespace {
+
+// Test hook: WEFT_VK_FAIL_ALLOCATION=N makes the N-th device-memory allocation of the process
+// fail as if the device were out of memory (once), so tests can check that every caller turns
+// it into weft::Error and that the renderer works again afterwards. Read once, at the first
+// allocation; unset, it costs one relaxed atomic increment per block.
+bool injectedFailure() {
+    static const long failAt = [] {
+        const char* v = std::getenv("WEFT_VK_FAIL_ALLOCATION");
+        return v ? std::atol(v) : 0L;
+    }();
+    static std::atomic<long> count{0};
+    return failAt > 0 && count.fetch_add(1, std::memory_order_relaxed) + 1 == failAt;
+}
+
+} // namespace
 
 Allocator::Allocator(VkPhysicalDevice physical, VkDevice device, VkDeviceSize blockSize)
     : mDevice(device), mBlockSize(blockSize) {
@@ -77,7 +96,8 @@ Allocation Allocator::allocate(const VkMemoryRequirements& req, MemoryUsage usag
     VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     info.allocationSize = size;
     info.memoryTypeIndex = type;
-    VkResult r = vkAllocateMemory(mDevice, &info, nullptr, &block.memory);
+    VkResult r = injectedFailure() ? VK_ERROR_OUT_OF_DEVICE_MEMORY
+                                   : vkAllocateMemory(mDevice, &info, nullptr, &block.memory);
     if (r != VK_SUCCESS)
         throw Error("out of GPU memory allocating " + std::to_string(size >> 20) + " MiB (" +
                     resultName(r) + ")");

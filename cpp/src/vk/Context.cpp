@@ -508,4 +508,19 @@ std::vector<DeviceInfo> listDevices() {
     return out;
 }
 
+DeviceMemoryStats deviceMemoryStats() {
+    std::shared_ptr<vk::Context> ctx;
+    {
+        std::lock_guard<std::mutex> lock(vk::gSharedMutex);
+        ctx = vk::gShared.lock();
+    }
+    DeviceMemoryStats out;
+    if (!ctx) return out;
+    const vk::Allocator::Stats s = ctx->allocator().stats();
+    out.blocks = s.blocks;
+    out.reservedBytes = uint64_t(s.reserved);
+    out.usedBytes = uint64_t(s.used);
+    return out;
+}
+
 } // namespace weft

@@ -31,6 +31,7 @@ SUBSYSTEMS: Dict[str, str] = {
     "ibl": "weft.bench.ibl",
     "picture": "weft.bench.picture",
     "batch": "weft.bench.batch",
+    "soak": "weft.bench.soak",
 }
 
 __all__ = ["SUBSYSTEMS", "main", "load_subsystem", "machine_info", "Progress", "write_report",

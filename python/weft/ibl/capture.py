@@ -44,6 +44,27 @@ def srgb_to_linear(image: np.ndarray) -> np.ndarray:
     return lin.astype(np.float32)
 
 
+#: Largest radiance an environment file may hold: far above any capture (the sun's disc is
+#: about 1e9 W/(sr m^2)), low enough that resampling sums stay finite in float32 (an RGBE or
+#: float file can hold up to ~3e38, whose averages overflow to inf).
+MAX_RADIANCE = 1e30
+
+
+def _checked_radiance(a: np.ndarray, name: str) -> np.ndarray:
+    """``a`` as contiguous float32, refused unless finite, >= 0 and <= MAX_RADIANCE (after the
+    cast: float64 values beyond float32's range would become inf)."""
+    if not (np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)):
+        raise InvalidArgument(f"{name} must be float (linear), got {a.dtype}")
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = np.ascontiguousarray(a, dtype=np.float32)
+    if not np.all(np.isfinite(out)):
+        raise InvalidArgument(f"{name} must be finite (found NaN/inf, or values beyond float32)")
+    if out.size and (out.min() < 0.0 or out.max() > MAX_RADIANCE):
+        raise InvalidArgument(f"{name}: radiance must be in [0, {MAX_RADIANCE:g}], got "
+                              f"[{out.min():g}, {out.max():g}]")
+    return out
+
+
 def _float_image(image: np.ndarray, name: str) -> np.ndarray:
     a = np.asarray(image)
     if a.dtype == np.uint8:
@@ -58,13 +79,51 @@ def _float_image(image: np.ndarray, name: str) -> np.ndarray:
         a = np.repeat(a, 3, axis=2)
     if not np.all(np.isfinite(a)):
         raise InvalidArgument(f"{name} must be finite (found NaN/inf)")
-    return np.ascontiguousarray(a[..., :3], dtype=np.float32)
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = np.ascontiguousarray(a[..., :3], dtype=np.float32)
+    if not np.all(np.isfinite(out)):
+        raise InvalidArgument(f"{name} has values beyond float32's range")
+    return out
+
+
+#: Largest .npy array load_environment reads (bytes of data): a 16384 x 8192 RGB float32
+#: equirect is 1.5 GiB.
+MAX_NPY_BYTES = 4 << 30
+
+
+def _load_npy(path: str) -> np.ndarray:
+    """A .npy file's array, its header checked before the data is read: the shape must fit the
+    file and MAX_NPY_BYTES (a forged header must not make numpy allocate the claim), no pickled
+    objects. Any failure to parse is weft.IoError."""
+    fmt = np.lib.format
+    try:
+        size = os.path.getsize(path)
+        with open(path, "rb") as f:
+            version = fmt.read_magic(f)
+            if version == (1, 0):
+                shape, _, dtype = fmt.read_array_header_1_0(f)
+            elif version == (2, 0):
+                shape, _, dtype = fmt.read_array_header_2_0(f)
+            else:
+                raise ValueError(f"unsupported .npy version {version}")
+            data_bytes = size - f.tell()
+        need = int(np.prod(shape, dtype=np.float64)) * dtype.itemsize
+        if dtype.hasobject:
+            raise ValueError("it holds Python objects")
+        if need > MAX_NPY_BYTES:
+            raise ValueError(f"its header claims {need} bytes, more than {MAX_NPY_BYTES}")
+        if need > data_bytes:
+            raise ValueError(f"its header claims {need} bytes, the file holds {data_bytes}")
+        return np.load(path, allow_pickle=False)
+    except Exception as exc:  # numpy's parser raises ValueError, EOFError, TokenError, ...
+        raise IoError(f"{path}: not a readable .npy file ({type(exc).__name__}: {exc})") from None
 
 
 def load_environment(path: str) -> np.ndarray:
     """Reads an environment image as linear float32 (H, W, 3): ``.hdr`` / ``.exr``, ``.npy``
     (float, or cube faces (6, S, S, 3)) or ``.png`` (sRGB decoded). Missing, truncated or corrupt
-    files raise weft.IoError."""
+    files raise weft.IoError; radiance that is not finite, negative or above MAX_RADIANCE raises
+    weft.InvalidArgument."""
     import weft
 
     ext = os.path.splitext(path)[1].lower()
@@ -73,15 +132,17 @@ def load_environment(path: str) -> np.ndarray:
     if ext == ".png":
         return srgb_to_linear(weft.load_png(path))
     if ext == ".npy":
-        try:
-            a = np.load(path, allow_pickle=False)
-        except (ValueError, OSError) as exc:
-            raise IoError(f"{path}: not a readable .npy file ({exc})") from None
-        return a if a.ndim == 4 else _float_image(a, path)
+        a = _load_npy(path)
+        if a.ndim == 4:
+            if a.shape[0] != 6 or a.shape[1] != a.shape[2] or a.shape[3] != 3:
+                raise InvalidArgument(f"{path}: cube faces must have shape (6, S, S, 3), got "
+                                      f"{a.shape}")
+            return _checked_radiance(a, path)
+        return _checked_radiance(_float_image(a, path), path)
     if ext == ".hdr":
-        return _float_image(weft.load_hdr(path), path)
+        return _checked_radiance(_float_image(weft.load_hdr(path), path), path)
     if ext == ".exr":
-        return _float_image(weft.load_exr(path), path)
+        return _checked_radiance(_float_image(weft.load_exr(path), path), path)
     raise InvalidArgument(f"{path}: unsupported environment format {ext!r} "
                           "(use .hdr, .exr, .npy or .png)")
 
