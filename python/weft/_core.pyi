@@ -9,7 +9,7 @@ import typing
 class Error(RuntimeError): ...
 class InvalidArgument(Error, ValueError): ...
 class IoError(Error, OSError): ...
-__all__: list[str] = ['BtfSamples', 'Camera', 'Cloth', 'Collider', 'CubeMap', 'DirectionalLight', 'Environment', 'Error', 'HairMaterial', 'HairStrands', 'InvalidArgument', 'IoError', 'Material', 'Mesh', 'MeshPart', 'PointLight', 'Renderer', 'Scene', 'ShadowDome', 'SkyModel', 'SpotLight', 'Texture', 'Wind', 'btf_drawn_maps', 'btf_fit_blinn_phong', 'btf_fit_lafortune', 'btf_fit_linear', 'btf_fit_specular', 'btf_have_ceres', 'btf_lafortune_errors', 'btf_load', 'btf_material_from_linear', 'btf_parse_file_name', 'btf_render', 'btf_render_material', 'btf_resolvable_exponent', 'btf_sample_errors', 'btf_solve_linear', 'btf_standard_directions', 'btf_write', 'clear_shader_errors', 'clear_validation_messages', 'cube_coords', 'cube_texel_directions', 'cube_texel_solid_angles', 'cube_to_equirect', 'cube_to_sphere', 'default_scene', 'demo_scene', 'devices', 'dfg_lut', 'equirect_to_cube', 'extract_lights', 'fill_unseen', 'fisheye_to_cube', 'generate_fur', 'generate_hair', 'hair_from_bytes', 'hair_shade_eval', 'irradiance_box_blur', 'irradiance_exact', 'irradiance_exact_gpu', 'irradiance_from_sh', 'irradiance_rotational_blur', 'load_exr', 'load_gltf', 'load_hair', 'load_hdr', 'load_image_float', 'load_obj', 'load_obj_parts', 'load_png', 'phong_exact', 'phong_sampled', 'poll_shader_changes', 'prefilter_ggx', 'prefilter_ggx_gpu', 'project_sh9', 'run_demo', 'save_exr', 'save_hair', 'save_hdr', 'save_png', 'set_shader_directory', 'sh_irradiance', 'shader_directory', 'shader_errors', 'shader_hot_reload_available', 'sky', 'sphere_to_cube', 'sun_light', 'validation_enabled', 'validation_messages']
+__all__: list[str] = ['BtfSamples', 'Camera', 'Cloth', 'Collider', 'CubeMap', 'DirectionalLight', 'Environment', 'Error', 'HairMaterial', 'HairStrands', 'InvalidArgument', 'IoError', 'Material', 'Mesh', 'MeshPart', 'PointLight', 'Renderer', 'Scene', 'ShadowDome', 'SkyModel', 'SpotLight', 'Texture', 'Wind', 'btf_decode_image', 'btf_drawn_maps', 'btf_fit_blinn_phong', 'btf_fit_lafortune', 'btf_fit_linear', 'btf_fit_specular', 'btf_have_ceres', 'btf_lafortune_errors', 'btf_load', 'btf_material_from_linear', 'btf_parse_file_name', 'btf_render', 'btf_render_material', 'btf_resolvable_exponent', 'btf_sample_errors', 'btf_solve_linear', 'btf_standard_directions', 'btf_write', 'clear_shader_errors', 'clear_validation_messages', 'cube_coords', 'cube_texel_directions', 'cube_texel_solid_angles', 'cube_to_equirect', 'cube_to_sphere', 'default_scene', 'demo_scene', 'device_memory', 'devices', 'dfg_lut', 'equirect_to_cube', 'extract_lights', 'fill_unseen', 'fisheye_to_cube', 'generate_fur', 'generate_hair', 'hair_from_bytes', 'hair_shade_eval', 'irradiance_box_blur', 'irradiance_exact', 'irradiance_exact_gpu', 'irradiance_from_sh', 'irradiance_rotational_blur', 'load_demo_script', 'load_exr', 'load_gltf', 'load_hair', 'load_hdr', 'load_image_float', 'load_obj', 'load_obj_parts', 'load_png', 'phong_exact', 'phong_sampled', 'poll_shader_changes', 'prefilter_ggx', 'prefilter_ggx_gpu', 'project_sh9', 'run_demo', 'save_exr', 'save_hair', 'save_hdr', 'save_png', 'set_shader_directory', 'sh_irradiance', 'shader_directory', 'shader_errors', 'shader_hot_reload_available', 'sky', 'sphere_to_cube', 'sun_light', 'validation_enabled', 'validation_messages']
 class Mesh:
     """
     Indexed triangle mesh (counter-clockwise front faces). Immutable once made.
@@ -1535,6 +1535,11 @@ class Environment:
     @property
     def version(self) -> int:
         ...
+def btf_decode_image(data: bytes, name: str = '<bytes>') -> typing.Any:
+    """
+    Decodes JPEG or PNG bytes as the BTF reader does (values as stored, (H, W, C) uint8, or
+    uint16 for 16-bit PNG); IoError for anything else or anything corrupt.
+    """
 def btf_drawn_maps(maps: dict) -> dict:
     """
     BTF maps as the renderer draws them (BtfMaterial.as_drawn()).
@@ -1641,6 +1646,11 @@ def demo_scene(hour: typing.Any = None) -> tuple[Scene, Camera, Cloth]:
     the cloth in it) at `hour` (0..24, default 8.4), its camera and the cloth (step it to
     animate the scene), as (scene, camera, cloth).
     """
+def device_memory() -> dict:
+    """
+    Device memory weft's allocator holds (shared by all Renderers): blocks, reserved_bytes
+    (obtained from Vulkan), used_bytes (handed out); zeros when no Renderer exists.
+    """
 def devices() -> list:
     """
     Vulkan devices as dicts (index, name, type, api_version, driver, selected).
@@ -1712,6 +1722,11 @@ def irradiance_from_sh(sh: typing.Any, size: typing.SupportsInt | typing.Support
 def irradiance_rotational_blur(radiance: typing.Any, size: typing.SupportsInt | typing.SupportsIndex = 32, half_angle: typing.SupportsFloat | typing.SupportsIndex = 1.0, steps: typing.SupportsInt | typing.SupportsIndex = 16) -> CubeMap:
     """
     The seed's irradiance approximation: blurs about three axes through half_angle radians in `steps` steps.
+    """
+def load_demo_script(path: str) -> list:
+    """
+    The events of a demo --script file as (frame, action, key code, x, y) tuples (what
+    run_demo(script=...) plays); IoError names file:line of a malformed line.
     """
 def load_exr(path: str) -> numpy.typing.NDArray[numpy.float32]:
     """
