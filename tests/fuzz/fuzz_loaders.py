@@ -25,7 +25,7 @@ TEXT_TARGETS = ("scene", "renderer", "lights", "script", "env")
 TARGETS = tuple(SUFFIX) + BTF_TARGETS + TEXT_TARGETS
 
 sys.path.insert(0, HERE)
-from outcome_feedback import outcome  # noqa: E402
+from outcome_feedback import file_target, outcome  # noqa: E402
 
 
 def _loader(target: str):
@@ -54,15 +54,7 @@ def make_target(target: str):
     load = _loader(target)
     fd, path = tempfile.mkstemp(suffix=SUFFIX[target], prefix="weft-fuzz-")
     os.close(fd)
-
-    def one(data: bytes) -> None:
-        with open(path, "wb") as f:
-            f.write(data)
-        try:
-            outcome(load(path))
-        except weft.Error as e:
-            outcome(error=e)
-    return one
+    return file_target(load, path)
 
 
 def write_seeds() -> None:

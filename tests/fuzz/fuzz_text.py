@@ -13,7 +13,7 @@ from __future__ import annotations
 import os
 import tempfile
 
-from outcome_feedback import outcome  # noqa: E402
+from outcome_feedback import file_target, outcome  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CORPUS = os.path.join(HERE, "corpus")
@@ -51,15 +51,7 @@ def make_target(target: str):
         return one
     load = {"scene": files.load_scene, "renderer": files.load_renderer,
             "lights": files.load_lights, "script": weft.load_demo_script}[target]
-
-    def one(data: bytes) -> None:
-        with open(path, "wb") as f:
-            f.write(data)
-        try:
-            outcome(load(path))
-        except weft.Error as e:
-            outcome(error=e)
-    return one
+    return file_target(load, path)
 
 
 SEEDS = {

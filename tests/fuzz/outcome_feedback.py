@@ -52,3 +52,18 @@ def outcome(result=None, error: BaseException | None = None) -> None:
     else:
         text = repr((getattr(result, "shape", None), getattr(result, "dtype", type(result))))
     walk(zlib.crc32(text.encode("utf-8", "backslashreplace")))
+
+
+def file_target(load, path: str):
+    """A fuzz target that writes each input to `path` and feeds `load(path)`'s answer (result or
+    weft error) to :func:`outcome`; any other exception is a finding."""
+    import weft
+
+    def one(data: bytes) -> None:
+        with open(path, "wb") as f:
+            f.write(data)
+        try:
+            outcome(load(path))
+        except weft.Error as e:
+            outcome(error=e)
+    return one

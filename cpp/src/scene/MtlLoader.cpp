@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/FileRead.h"
+#include "scene/LineTokens.h"
 
 namespace weft {
 
@@ -23,8 +24,6 @@ namespace {
 const std::map<std::string_view, int> kMapOptions = {
     {"-blendu", 1}, {"-blendv", 1}, {"-cc", 1}, {"-clamp", 1}, {"-bm", 1}, {"-boost", 1},
     {"-mm", 2}, {"-o", 3}, {"-s", 3}, {"-t", 3}, {"-texres", 1}, {"-imfchan", 1}, {"-type", 1}};
-
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
 bool parseFloat(std::string_view text, float& value) {
     if (!text.empty() && text.front() == '+') text.remove_prefix(1);
@@ -104,16 +103,7 @@ std::unordered_map<std::string, Material> MtlReader::read() {
     std::vector<std::string_view> tokens;
     while (std::getline(file, line)) {
         ++mLine;
-        std::string_view text(line);
-        const size_t hash = text.find('#');
-        if (hash != std::string_view::npos) text = text.substr(0, hash);
-        tokens.clear();
-        for (size_t i = 0; i < text.size();) {
-            while (i < text.size() && isSpace(text[i])) ++i;
-            const size_t start = i;
-            while (i < text.size() && !isSpace(text[i])) ++i;
-            if (i > start) tokens.push_back(text.substr(start, i - start));
-        }
+        const std::string_view text = tokenizeLine(line, tokens);
         if (tokens.empty()) continue;
         const std::string_view keyword = tokens[0];
         if (keyword == "newmtl") {

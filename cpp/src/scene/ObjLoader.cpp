@@ -14,6 +14,7 @@
 #include <vector>
 #include <filesystem>
 #include "core/FileRead.h"
+#include "scene/LineTokens.h"
 #include "scene/MtlLoader.h"
 
 namespace weft {
@@ -36,20 +37,6 @@ struct CornerHash {
         return size_t(h ^ (h >> 32));
     }
 };
-
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
-// Splits a line into whitespace-separated tokens.
-void tokenize(std::string_view line, std::vector<std::string_view>& tokens) {
-    tokens.clear();
-    size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && isSpace(line[i])) ++i;
-        const size_t start = i;
-        while (i < line.size() && !isSpace(line[i])) ++i;
-        if (i > start) tokens.push_back(line.substr(start, i - start));
-    }
-}
 
 // A face as read: its corners (mFaceCorners[first, first + count)), line and material.
 struct Face {
@@ -281,10 +268,7 @@ void ObjParser::read() {
     std::vector<std::string_view> tokens;
     while (std::getline(file, line)) {
         ++mLine;
-        std::string_view text(line);
-        const size_t hash = text.find('#');
-        if (hash != std::string_view::npos) text = text.substr(0, hash);
-        tokenize(text, tokens);
+        const std::string_view text = tokenizeLine(line, tokens);
         if (tokens.empty()) continue;
 
         const std::string_view keyword = tokens[0];
