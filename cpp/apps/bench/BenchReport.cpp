@@ -1,6 +1,7 @@
 #include "BenchReport.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
@@ -9,17 +10,10 @@
 
 #include <weft/Error.h>
 
+#include <nlohmann/json.hpp>
+
 namespace weft::bench {
 namespace {
-
-std::string quoted(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\';
-        if (static_cast<unsigned char>(c) >= 0x20) out += c;
-    }
-    return out + "\"";
-}
 
 std::string num(double v, int digits = 3) {
     if (!(v >= 0)) return "null"; // unmeasured (negative) or NaN
@@ -118,46 +112,44 @@ MachineReport machineReport() {
     return m;
 }
 
+// A measured value rounded to `digits`, or null where unmeasured (negative) or NaN.
+nlohmann::ordered_json measured(double v, int digits = 3) {
+    if (!(v >= 0)) return nullptr;
+    const double scale = std::pow(10.0, digits);
+    return std::round(v * scale) / scale;
+}
+
 std::string reportJson(const BenchOptions& o, const DeviceReport& d, const MachineReport& m,
                        const MachineReport& after, const std::vector<BenchRow>& rows,
                        const std::vector<std::string>& validation) {
-    std::ostringstream j;
-    j << "{\n  \"tool\": \"weft-bench\", \"weft_version\": " << quoted(WEFT_VERSION)
-      << ", \"date\": " << quoted(m.date) << ", \"quick\": " << (o.quick ? "true" : "false")
-      << ", \"timed_frames\": " << o.frames << ",\n";
-    j << "  \"device\": {\"name\": " << quoted(d.name) << ", \"type\": " << quoted(d.type)
-      << ", \"driver\": " << quoted(d.driver) << ", \"api_version\": " << quoted(d.apiVersion)
-      << ", \"others\": [";
-    for (size_t i = 0; i < d.others.size(); ++i) j << (i ? ", " : "") << quoted(d.others[i]);
-    j << "]},\n  \"validation\": {\"enabled\": " << (d.validation ? "true" : "false")
-      << ", \"layer_available\": " << (d.validationAvailable ? "true" : "false")
-      << ", \"messages\": [";
-    for (size_t i = 0; i < validation.size(); ++i) j << (i ? ", " : "") << quoted(validation[i]);
-    j << "]},\n  \"machine\": {\"cpu\": " << quoted(m.cpu) << ", \"cores\": " << m.cores
-      << ", \"loadavg_before\": " << quoted(m.loadAverage)
-      << ", \"loadavg_after\": " << quoted(after.loadAverage) << "},\n  \"rows\": [";
-    for (size_t i = 0; i < rows.size(); ++i) {
-        const BenchRow& r = rows[i];
-        j << (i ? ",\n" : "\n") << "    {\"set\": " << quoted(r.set) << ", \"workload\": "
-          << quoted(r.workload) << ", \"config\": " << quoted(r.config) << ", \"width\": "
-          << r.width << ", \"height\": " << r.height << ", \"vertices\": " << r.vertices
-          << ", \"frames\": " << r.frames << ", \"wall_ms\": " << num(r.wallMs)
-          << ", \"fps\": " << num(fps(r.wallMs)) << ", \"gpu_ms\": " << num(r.gpuMs)
-          << ", \"gpu_fps\": " << num(fps(r.gpuMs)) << ", \"seed_fps\": "
-          << (r.seedFps > 0 ? num(r.seedFps, 0) : "null") << ", \"ratio_wall\": "
-          << (r.seedFps > 0 ? num(fps(r.wallMs) / r.seedFps, 5) : "null")
-          << ", \"ratio_gpu\": "
-          << (r.seedFps > 0 && r.gpuMs > 0 ? num(fps(r.gpuMs) / r.seedFps, 5) : "null")
-          << ", \"seed_source\": " << quoted(r.seedSource) << ", \"passes_gpu_ms\": {";
-        bool first = true;
-        for (const auto& [name, ms] : r.passGpuMs) {
-            j << (first ? "" : ", ") << quoted(name) << ": " << num(ms);
-            first = false;
-        }
-        j << "}}";
+    using Json = nlohmann::ordered_json; // fields in the order written; strings escaped
+    Json j = {{"tool", "weft-bench"}, {"weft_version", WEFT_VERSION}, {"date", m.date},
+              {"quick", o.quick}, {"timed_frames", o.frames}};
+    j["device"] = {{"name", d.name}, {"type", d.type}, {"driver", d.driver},
+                   {"api_version", d.apiVersion}, {"others", d.others}};
+    j["validation"] = {{"enabled", d.validation}, {"layer_available", d.validationAvailable},
+                       {"messages", validation}};
+    j["machine"] = {{"cpu", m.cpu}, {"cores", m.cores}, {"loadavg_before", m.loadAverage},
+                    {"loadavg_after", after.loadAverage}};
+    Json out = Json::array();
+    for (const BenchRow& r : rows) {
+        const bool seed = r.seedFps > 0;
+        Json passes = Json::object();
+        for (const auto& [name, ms] : r.passGpuMs) passes[name] = measured(ms);
+        out.push_back({{"set", r.set}, {"workload", r.workload}, {"config", r.config},
+                       {"width", r.width}, {"height", r.height}, {"vertices", r.vertices},
+                       {"frames", r.frames}, {"wall_ms", measured(r.wallMs)},
+                       {"fps", measured(fps(r.wallMs))}, {"gpu_ms", measured(r.gpuMs)},
+                       {"gpu_fps", measured(fps(r.gpuMs))},
+                       {"seed_fps", seed ? measured(r.seedFps, 0) : Json(nullptr)},
+                       {"ratio_wall", seed ? measured(fps(r.wallMs) / r.seedFps, 5) : Json(nullptr)},
+                       {"ratio_gpu", seed && r.gpuMs > 0 ? measured(fps(r.gpuMs) / r.seedFps, 5)
+                                                         : Json(nullptr)},
+                       {"seed_source", r.seedSource}, {"passes_gpu_ms", passes}});
     }
-    j << "\n  ]\n}\n";
-    return j.str();
+    j["rows"] = out;
+    // invalid UTF-8 in a device or CPU name is replaced, not thrown
+    return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 std::string reportMarkdown(const BenchOptions& o, const DeviceReport& d, const MachineReport& m,
