@@ -16,11 +16,12 @@
 // E / pi = L (r / D)^2 cos(theta) while it is wholly above p's horizon (exact for a sphere), and
 // with the C1 blend s^2 (h + s)^2 / (4 s) (s = r / D, h = cos theta) while the horizon cuts it.
 // Inside a proxy (a concave caster's hollow) its outside is not what p sees: faded out there.
-// What the caster hides of the sky is reported for the caller to take away unless a dome
-// already shadows it: `hiddenSky`, E / pi of the environment's radiance towards the casters (its
-// roughest GGX level) without dome lights, and `covered`, the cosine-weighted fraction of p's
-// sky the proxies fill, for an ambient no dome occludes (frame.sky.w); so a caster never
-// brightens its surroundings by light it also blocks.
+// What the casters hide of the sky is reported to the caller: `hiddenSky`, E / pi of the
+// environment's radiance towards them (its roughest GGX level), and `covered`, the
+// cosine-weighted fraction of p's sky they fill. Without a dome the caller takes them away;
+// with one they are a floor under its occlusion (environmentTerms); so a caster never brightens
+// its surroundings by light it also blocks. A proxy wholly inside another's (a sphere under a
+// cloth) is hidden by it and sends nothing (BounceProbes marks it with a negative radius).
 // Not counted: what the casters show each other in the captures (one bounce), the caster's
 // texture (its K_D stands for its colour). Included by shading.glsl after the shadow lookups.
 
@@ -58,14 +59,14 @@ vec3 casterRadiance(int c, vec3 a, float s, bool ambientDome) {
 }
 
 // E / pi at p (normal n) from every caster's proxy but `self` (the surface's own capture);
-// `hiddenSky` and `covered` as above (0 where a dome occludes).
+// `hiddenSky` and `covered` as above.
 vec3 casterBounce(vec3 p, vec3 n, int self, bool ambientDome, out vec3 hiddenSky,
                   out float covered) {
     vec3 e = vec3(0.0);
     hiddenSky = vec3(0.0);
     covered = 0.0;
     if (frame.sky.z < 0.5) return e; // no bounce light in this frame, or a capture
-    bool hideSky = frame.environment.x > 0.0 && frame.environment.z <= 0.0;
+    bool hideSky = frame.environment.x > 0.0;
     for (int c = 0; c < MAX_BOUNCE_CASTERS; ++c) {
         float r = frame.bounceSpheres[c].w;
         if (r <= 0.0 || c == self) continue;
@@ -84,6 +85,6 @@ vec3 casterBounce(vec3 p, vec3 n, int self, bool ambientDome, out vec3 hiddenSky
                          frame.environment.x;
         covered += f;
     }
-    covered = ambientDome ? 0.0 : min(covered, 1.0);
+    covered = min(covered, 1.0);
     return e;
 }

@@ -240,6 +240,7 @@ Surface surfaceAt(vec3 p, vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins
 struct Shading {
     vec3 ambient;           // I_A K_A T (less what receivers hide from a caster: bounce.glsl)
     float ambientVisibility; // the part of the ambient's sky no caster occludes (ambient dome)
+    float ambientFloor;     // ... the part the casters' proxies alone leave (unblurred)
     vec3 bounce;            // light bounced off receivers and casters (caster_bounce.glsl)
     vec3 diffuse;           // direct diffuse, shadows applied
     vec3 diffuseUnshadowed; // direct diffuse without shadows (phantoms' reference)
@@ -261,13 +262,22 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     // here traces: Jimenez et al. 2016 ("Practical real-time strategies for accurate indirect
     // occlusion", eq. 10) fit that multi-bounce visibility as a cubic in the visibility v whose
     // coefficients depend on the albedo rho around p (taken as the surface's own).
-    sh.ambientVisibility = 1.0;
+    sh.ambientVisibility = sh.ambientFloor = 1.0;
     float ndv = clamp(dot(n, v), 0.0, 1.0);
+    // The casters' light (caster_bounce.glsl) and what their proxies cover of p's sky
+    int bp = bounceProbe(ins);
+    float casterCovered;
+    vec3 hiddenSky;
+    sh.bounce = casterBounce(p, n, bp, frame.sky.w > 0.5, hiddenSky, casterCovered) *
+                ins.kd.rgb * sf.T;
     if (frame.sky.w > 0.5) {
-        float v = clamp(1.0 - dot(domeOccluded(p, n), vec3(0.2126, 0.7152, 0.0722)), 0.0, 1.0);
+        // the proxies' cover is a floor under the dome's occlusion (see environmentTerms)
+        float f = 1.0 - casterCovered;
+        float v = clamp(1.0 - dot(domeOccluded(p, n), vec3(0.2126, 0.7152, 0.0722)), 0.0, f);
         float rho = clamp(dot(ins.kd.rgb * sf.T, vec3(0.2126, 0.7152, 0.0722)), 0.0, 1.0);
         float a = 2.0404 * rho - 0.3324, b = -4.7951 * rho + 0.6417, c = 2.7552 * rho + 0.6903;
         sh.ambientVisibility = clamp(max(v, ((a * v + b) * v + c) * v), 0.0, 1.0);
+        sh.ambientFloor = clamp(max(f, ((a * f + b) * f + c) * f), 0.0, 1.0);
         // A sky reflects as well as lights: the sky's specular reflection I_A DFG(n.v), with
         // the split-sum DFG of Karis 2014 ("Physically based shading on mobile", its analytic
         // fit), occluded as its diffuse light. F0: the reflectivity, else what the highlight
@@ -305,25 +315,16 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
             sh.specular += vis * s * L * sf.ks;
         }
     }
-    sh.environment = environmentTerms(p, n, v, sf.T, sf.alpha, ins);
+    sh.environment = environmentTerms(p, n, v, sf.T, sf.alpha, ins, hiddenSky);
     // One bounce (bounce.glsl): the receivers keep the ambient out of the solid angle they
     // cover and send their own radiance instead, as diffuse light not darkened by the dome.
-    int bp = bounceProbe(ins);
     if (bp >= 0) {
         float covered = min(bounceIrradiance(bp, 2, n).x, 1.0);
         sh.ambient *= 1.0 - covered;
-        sh.bounce = bounceIrradiance(bp, 0, n) * ins.kd.rgb * sf.T;
+        sh.bounce += bounceIrradiance(bp, 0, n) * ins.kd.rgb * sf.T;
     }
-    // ... and the casters send theirs to everything else, less the sky they hide where no dome
-    // shadows it (caster_bounce.glsl)
-    float casterCovered;
-    vec3 hiddenSky;
-    sh.bounce += casterBounce(p, n, bp, frame.sky.w > 0.5, hiddenSky, casterCovered) *
-                 ins.kd.rgb * sf.T;
-    sh.ambient *= 1.0 - casterCovered;
-    vec3 hidden = ins.environment.w * ins.kd.rgb * sf.T * hiddenSky; // as environmentTerms adds
-    sh.environment.diffuse = max(sh.environment.diffuse - hidden, vec3(0.0));
-    sh.environment.diffuseLit = max(sh.environment.diffuseLit - hidden, vec3(0.0));
+    // an ambient no dome occludes loses what the casters' proxies cover
+    if (frame.sky.w <= 0.5) sh.ambient *= 1.0 - casterCovered;
     return sh;
 }
 
@@ -350,6 +351,11 @@ vec3 shadedColor(Shading sh, Instance ins, out vec4 dome) {
         dome = vec4(bg * domed / unlit, visibility);
         return bg * (deferDome ? direct : direct + domedLit) / unlit;
     }
-    dome = vec4(domed, visibility);
+    // the blur pass gets the dome's rest over the proxies' floor, which is exact and noise-free
+    // where it applies (a contact shadow kept sharp): unblurred, the product is `visibility`
+    float floorVisibility = ambientDome ? sh.ambientFloor : e.floorVisibility;
+    dome = floorVisibility > 0.0
+               ? vec4(domed * floorVisibility, min(visibility / floorVisibility, 1.0))
+               : vec4(0.0);
     return direct + sh.specular + sh.skySpecular + e.specular + (deferDome ? vec3(0.0) : domedLit);
 }
