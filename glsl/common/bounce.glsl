@@ -2,6 +2,9 @@
 // the receivers' radiance (0), the environment they hide (1) and the solid angle they cover
 // (2), each evaluated as E(n) / pi. Included by shading.glsl after frame.glsl.
 layout(set = 0, binding = 14) uniform sampler2D bounceSh; // row: probe, column: 9 set + k
+layout(set = 0, binding = 15) uniform sampler2DArray bounceFaces; // layer 6 probe + face
+
+#include "cube_faces.glsl"
 
 // The instance's bounce capture, or -1 (none, or a frame without bounce light).
 int bounceProbe(Instance ins) { return frame.sky.z > 0.5 ? int(ins.flags.y) - 1 : -1; }
@@ -25,4 +28,11 @@ vec3 bounceSet(int probe, int set, vec3 n, vec3 w) {
 
 vec3 bounceIrradiance(int probe, int set, vec3 n) {
     return max(bounceSet(probe, set, n, vec3(1.0)), vec3(0.0));
+}
+
+// Capture `probe`'s texel in direction d: rgb the receivers' radiance, a their coverage.
+vec4 bounceFace(int probe, vec3 d) {
+    vec2 uv;
+    int face = cubeFace(d, uv);
+    return textureLod(bounceFaces, vec3(uv, float(6 * probe + face)), 0.0);
 }

@@ -196,6 +196,17 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
         else
             radiance = textureLod(environmentMap, r, roughness * frame.environment.y).rgb *
                        frame.environment.x;
+        // A caster's reflection shows the receivers (the ground) where its bounce capture has
+        // them, not the sky they hide: the capture's texel along r over a sharp lobe (seen from
+        // the caster's centre, without parallax), its SH9 over a rough one (a cosine lobe),
+        // in between by the roughness. (The glossy sphere's underside against Mitsuba: ...)
+        int bp = bounceProbe(ins);
+        if (bp >= 0 && !probe && !sphere) {
+            vec4 c = bounceFace(bp, r);
+            vec3 sharp = c.rgb - c.a * radiance;
+            vec3 rough = bounceSet(bp, 0, r, vec3(1.0)) - bounceSet(bp, 1, r, vec3(1.0));
+            radiance = max(radiance + mix(sharp, rough, roughness), vec3(0.0));
+        }
         specular = fresnel * radiance;
     }
     // The seed's decal material keeps its gloss in the base texture's alpha:

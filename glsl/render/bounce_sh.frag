@@ -12,11 +12,7 @@ layout(set = 0, binding = 1) uniform samplerCube environmentMap; // the GGX chai
 layout(push_constant) uniform Push { vec4 params; } push; // environment intensity, face size, probes
 layout(location = 0) out vec4 outSh;
 
-// (major axis, u axis, v axis) of each face, as render/ReflectionProbe.cpp renders them.
-const vec3 kAxes[18] = vec3[18](
-    vec3(1, 0, 0), vec3(0, 0, -1), vec3(0, -1, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, -1, 0),
-    vec3(0, 1, 0), vec3(1, 0, 0), vec3(0, 0, 1), vec3(0, -1, 0), vec3(1, 0, 0), vec3(0, 0, -1),
-    vec3(0, 0, 1), vec3(1, 0, 0), vec3(0, -1, 0), vec3(0, 0, -1), vec3(-1, 0, 0), vec3(0, -1, 0));
+#include "cube_faces.glsl"
 
 float basis(int k, vec3 n) {
     switch (k) {
@@ -40,7 +36,7 @@ void main() {
     float texel = 2.0 / float(size);
     vec3 sum = vec3(0.0);
     for (int face = 0; face < 6; ++face) {
-        vec3 ma = kAxes[3 * face], su = kAxes[3 * face + 1], sv = kAxes[3 * face + 2];
+        vec3 ma = kCubeAxes[3 * face], su = kCubeAxes[3 * face + 1], sv = kCubeAxes[3 * face + 2];
         for (int j = 0; j < size; ++j) {
             float v = (float(j) + 0.5) * texel - 1.0;
             for (int i = 0; i < size; ++i) {

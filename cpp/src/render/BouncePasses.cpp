@@ -12,11 +12,12 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
     BounceProbes& b = f.bounce;
     if (b.count() == 0) return;
     f.rBounceSh = g.addResource("bounce_sh", &b.sh());
+    // the captures themselves: what the casters' glossy reflections see of the receivers
+    const int rFaces = f.rBounceFaces = g.addResource("bounce_faces", &b.faces());
     if (!f.captureBounce) {
         f.reused.push_back("bounce");
         return;
     }
-    const int rFaces = g.addResource("bounce_faces", &b.faces());
     const int rDepth = g.addResource("bounce_depth", &b.depth());
     const int rFirst = g.addResource("bounce_sh_first", &b.shFirst());
     // x: environment intensity (0: none), y: texels per face, z: probes

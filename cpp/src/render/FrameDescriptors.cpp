@@ -142,9 +142,10 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
     // Without bounce light the shaders' SH binding holds a white texel they never read.
     const VkImageView noBounce = cache->textureView(TexturePtr());
     // A frame set: the frame's data with uniforms `ubo`, the reflection capture `probeView` and
-    // the bounce captures' SH9 `bounceView`.
+    // the bounce captures' SH9 `bounceView` and faces (`bounceFaces`; the captures themselves
+    // see a dummy array there, as they are being drawn).
     auto writeFrameSet = [&](VkDescriptorSet set, VkDescriptorBufferInfo uboInfo, VkImageView probeView,
-                             VkImageView bounceView) {
+                             VkImageView bounceView, bool withFaces) {
         VkDescriptorBufferInfo instInfo{slot.instances.get(), 0, VK_WHOLE_SIZE};
         VkDescriptorBufferInfo lightInfo{slot.lights.get(), 0, VK_WHOLE_SIZE};
         VkDescriptorImageInfo shadowInfo{pipes.nearestSampler, shadowImage.view(),
@@ -176,6 +177,11 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
                                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         VkDescriptorImageInfo bounceInfo{pipes.nearestSampler, bounceView,
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        const VkDescriptorImageInfo facesInfo =
+            withFaces ? VkDescriptorImageInfo{pipes.environmentSampler, bounce.faces().view(),
+                                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}
+                      : VkDescriptorImageInfo{pipes.nearestSampler, dummyShadow.view(),
+                                              render::useState(Use::Sampled, true).layout};
         // Binding i of frame.glsl / environment.glsl: a buffer or images (count > 1: an array).
         struct Entry {
             VkDescriptorType type;
@@ -194,7 +200,7 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
             {image, nullptr, &domeMapInfo, 1},    {image, nullptr, &probeInfo, 1},
             {image, nullptr, &backgroundInfo, 1}, {image, nullptr, &sphereInfos[0], 1},
             {image, nullptr, &sphereInfos[1], 1}, {image, nullptr, &radianceInfo, 1},
-            {image, nullptr, &bounceInfo, 1}};
+            {image, nullptr, &bounceInfo, 1},     {image, nullptr, &facesInfo, 1}};
         constexpr uint32_t kBindings = sizeof(entries) / sizeof(entries[0]);
         VkWriteDescriptorSet writes[kBindings];
         for (uint32_t i = 0; i < kBindings; ++i) {
@@ -210,16 +216,17 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
     };
     writeFrameSet(result.frame, {slot.ubo.get(), 0, sizeof(frame)},
                   probe.instance() >= 0 ? probe.cube().view() : environment.black(),
-                  bounce.count() > 0 ? bounce.sh().view() : noBounce);
+                  bounce.count() > 0 ? bounce.sh().view() : noBounce, bounce.count() > 0);
     if (captureProbe) // the faces see the capture as black: it is being drawn
         for (uint32_t f = 0; f < 6; ++f)
             writeFrameSet(sets[1 + f], {slot.probeUbo.get(), f * faceStride, sizeof(frame)},
-                          environment.black(), noBounce);
+                          environment.black(), noBounce, false);
     for (uint32_t f = 0; f < bounceFaces; ++f) // diffuse light: no reflection capture
         writeFrameSet(result.bounceFaces[f], {slot.bounceUbo.get(), f * faceStride, sizeof(frame)},
                       environment.black(),
                       f < bounceFaces / render::BounceProbes::kRounds ? noBounce
-                                                                      : bounce.shFirst().view());
+                                                                      : bounce.shFirst().view(),
+                      false);
     if (captureBounce) { // the projection reads the captures and the environment's chain
         VkDescriptorImageInfo infos[2] = {
             {pipes.nearestSampler, bounce.faces().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
