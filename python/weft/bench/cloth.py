@@ -125,6 +125,14 @@ SETTINGS: Tuple[Setting, ...] = (
     # finer steps of the front at high accuracy (issue 17: the natural-order Gauss-Seidel
     # peer reaches 3.5% at it4-sub4 and 0.13% at tethers-sub4, just below weft's same settings)
     Setting("it4-sub8", 4, 8),
+    # many substeps of one iteration: weft's most accurate use of a sweep without tethers
+    # (issue 17 item 8: at equal sweeps more accurate than any iteration count, with or
+    # without Chebyshev acceleration, and than every order of its batches that was tried);
+    # the natural-order peer diverges at one iteration per substep from 64² on
+    Setting("sub8", 1, 8),
+    Setting("sub16", 1, 16),
+    Setting("sub24", 1, 24),
+    Setting("sub32", 1, 32),
     Setting("tethers", 1, 1, tethers=True),
     Setting("tethers-sub2", 1, 2, tethers=True),
     Setting("tethers-it2-sub2", 2, 2, tethers=True),
@@ -134,7 +142,8 @@ SETTINGS: Tuple[Setting, ...] = (
     Setting("xpbd-tethers-it2-sub2", 2, 2, XPBD, tethers=True),
 )
 QUICK_SETTINGS: Tuple[Setting, ...] = tuple(
-    s for s in SETTINGS if s.name in ("seed", "sub2", "tethers-it2-sub2", "xpbd-tethers-it2-sub2"))
+    s for s in SETTINGS
+    if s.name in ("seed", "sub2", "sub8", "tethers-it2-sub2", "xpbd-tethers-it2-sub2"))
 
 #: The converged reference of the equilibrium error, and a cheaper one that bounds its error.
 REFERENCE = Setting("reference", 8, 8, tethers=True)
