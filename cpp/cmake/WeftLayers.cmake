@@ -66,7 +66,6 @@ function(weft_subsystem name)
     list(APPEND WEFT_SUBSYSTEMS ${name})
     set(WEFT_SUBSYSTEMS ${WEFT_SUBSYSTEMS} PARENT_SCOPE)
     set(WEFT_LAYER_HEADERS ${headers} PARENT_SCOPE)
-    set(WEFT_LAYER_GRAPH ${WEFT_LAYER_GRAPH} "${name}:${arg_DEPENDS}" PARENT_SCOPE)
 endfunction()
 
 # Every public header belongs to exactly one subsystem (a new one must be given to one).
