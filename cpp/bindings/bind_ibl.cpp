@@ -9,6 +9,7 @@
 #include <weft/Environment.h>
 #include <weft/IblConvert.h>
 #include <weft/IblFilter.h>
+#include <weft/IblGpu.h>
 #include <weft/IblLights.h>
 #include <weft/ShadowDome.h>
 

@@ -5,6 +5,7 @@
 
 #include <pybind11/stl.h>
 
+#include <weft/Cloth.h>
 #include <weft/Scene.h>
 
 #include "Convert.h"
@@ -495,7 +496,7 @@ void bindScene(py::module_& m) {
         }, py::arg("id"), "An instance's weft.Mesh (object space), or None for a cloth instance.")
         .def("cloth", [](const Scene& s, uint32_t id) -> py::object {
             if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
-            const auto& cloth = s.instances()[id].cloth;
+            const auto cloth = std::dynamic_pointer_cast<const Cloth>(s.instances()[id].deformable);
             if (!cloth) return py::none();
             return py::cast(std::const_pointer_cast<Cloth>(cloth));
         }, py::arg("id"), "A cloth instance's weft.Cloth (its mesh() is world space), else None.")

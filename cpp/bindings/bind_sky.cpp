@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <weft/Sky.h>
+#include <weft/SunLight.h>
 
 #include "Convert.h"
 

@@ -9,8 +9,8 @@
 #include <weft/ShaderReload.h>
 
 #include "Convert.h"
-#include "app/DemoScene.h"
-#include "app/DemoScript.h"
+#include <weft/DemoScene.h>
+#include <weft/DemoScript.h>
 
 namespace weft::py_bind {
 void bindScene(py::module_& m);

@@ -2,7 +2,7 @@
 // gpu_types.h defines the scene passes' (valid C++17 inside namespace weft::render::gpu, and
 // GLSL 450): every member is a vec4, ivec4 or mat4, except HairVertex's colour, a vec3 followed
 // by a uint, which std430 and C++ both pack into 16 bytes. cpp/src/render/HairGpuTypes.h and
-// cpp/src/hair/HairShadingGpu.h name them for the C++ side and assert their sizes.
+// cpp/src/render/HairShadingGpu.h name them for the C++ side and assert their sizes.
 #ifndef WEFT_HAIR_GPU_TYPES_H
 #define WEFT_HAIR_GPU_TYPES_H
 

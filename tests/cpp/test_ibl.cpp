@@ -7,6 +7,7 @@
 #include <weft/Error.h>
 #include <weft/IblConvert.h>
 #include <weft/IblFilter.h>
+#include <weft/IblGpu.h>
 #include <weft/IblLights.h>
 #include <weft/ShadowDome.h>
 

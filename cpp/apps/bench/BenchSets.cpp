@@ -16,7 +16,7 @@
 #include <weft/Renderer.h>
 #include <weft/Sky.h>
 
-#include "app/DemoScene.h"
+#include <weft/DemoScene.h>
 
 namespace weft::bench {
 namespace {

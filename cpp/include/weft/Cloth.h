@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include <weft/DeformableMesh.h>
 #include <weft/Error.h>
 
 namespace weft {
@@ -114,7 +115,7 @@ struct ClothStats {
     int activeConstraints = 0;
 };
 
-class Cloth {
+class Cloth : public DeformableMesh {
 public:
     /// Whether this CPU runs the structure-of-arrays relaxation (AVX-512; cloths without
     /// colliders, unless WEFT_CLOTH_AOS=1). Results are bit-identical either way.
@@ -188,9 +189,13 @@ public:
     uint64_t stepCount() const;
     /// Changes whenever the renderable surface may have changed (a step that ran, new
     /// positions, holes, tears, reset); a renderer re-uploads the mesh only then.
-    uint64_t meshVersion() const;
+    uint64_t meshVersion() const override;
 
     ClothMesh mesh() const;
+    /// mesh() without the tangents, as the renderer draws it.
+    Mesh surface() const override;
+    /// Bounds of the particles that are not holes.
+    void surfaceBounds(glm::vec3& lo, glm::vec3& hi) const override;
 
 private:
     struct Impl;

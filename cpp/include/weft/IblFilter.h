@@ -32,14 +32,6 @@ CubeMap irradianceFromSh(const Sh9& sh, int size);
 /// Exact cosine convolution (the reference): every output texel sums all source texels of the
 /// first mip level whose size is <= sourceSize. Cost ~ 6 size^2 x 6 sourceSize^2.
 CubeMap irradianceExact(const CubeMap& radiance, int size, int sourceSize = 64);
-/// irradianceExact as a Vulkan compute shader on the shared device (a GPU, or lavapipe): the same
-/// arguments, checks and sum (the same source table, accumulated in float per 64-texel tile, one
-/// dispatch per 32768 source texels), equal to the CPU result up to float rounding. `dispatchMs`
-/// (optional) receives the wall time of the submission (building the source table, the upload
-/// and pipeline creation excluded). Throws InvalidArgument for bad arguments (as the CPU
-/// version), weft::Error when no Vulkan device is usable.
-CubeMap irradianceExactGpu(const CubeMap& radiance, int size, int sourceSize = 64,
-                           double* dispatchMs = nullptr);
 /// The seed's 2D filter: cube -> sphere map (wrap 1, sphereSize^2), `passes` separable box blurs
 /// of radius `radius` texels, -> cube of `size`, times pi.
 CubeMap irradianceBoxBlur(const CubeMap& radiance, int size, int sphereSize = 64,
@@ -63,16 +55,6 @@ CubeMap phongSampled(const CubeMap& radiance, float shininess, int size, int sam
 /// clamped to 8x its mean luminance and sum what the clamp removed exactly. `samples` sets both
 /// the samples per texel and the cluster budget (24 per sample, at most 16384).
 CubeMap prefilterGgx(const CubeMap& radiance, int size, int levels = 5, int samples = 64);
-/// prefilterGgx as a Vulkan compute shader on the shared device (a GPU, or lavapipe): the same
-/// plan (samples, points, level 0 computed on the CPU), equal to the CPU result up to float
-/// rounding. `dispatchMs` (optional) receives the wall time
-/// of the recorded dispatches and copy (upload of the source chain and pipeline creation
-/// excluded). Throws weft::Error when no Vulkan device is usable, InvalidArgument when the
-/// source levels the samples read exceed the device's texel buffer size or `samples` exceeds
-/// kMaxGpuGgxSamples (lavapipe silently ends a shader's loops after 65535 iterations).
-constexpr int kMaxGpuGgxSamples = 16384;
-CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels = 5, int samples = 64,
-                        double* dispatchMs = nullptr);
 /// Split-sum DFG table, `size` x `size` x 2 floats (scale, bias to F0): row j has perceptual
 /// roughness (j + 0.5) / size, column i has n.v = (i + 0.5) / size; Smith-Schlick G, k = a / 2.
 std::vector<float> dfgLut(int size = 32, int samples = 256);

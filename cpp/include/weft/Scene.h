@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include <weft/Cloth.h>
+#include <weft/DeformableMesh.h>
 #include <weft/Environment.h>
 #include <weft/HairMaterial.h>
 #include <weft/HairStrands.h>
@@ -21,8 +21,8 @@ namespace weft {
 using MeshPtr = std::shared_ptr<const Mesh>;
 
 struct MeshInstance {
-    MeshPtr mesh;                       // null for a cloth instance
-    std::shared_ptr<const Cloth> cloth; // drawn from its current state (positions are world)
+    MeshPtr mesh;                                   // null for a deformable instance
+    std::shared_ptr<const DeformableMesh> deformable; // e.g. a Cloth: drawn as it is now (world)
     Material material;
     glm::mat4 transform{1.0f}; // object -> world (identity for cloth)
     bool castShadows = true;
@@ -83,9 +83,9 @@ public:
     /// Adds an instance and returns its id. The mesh and material are validated here.
     uint32_t addMesh(MeshPtr mesh, const Material& material = {},
                      const glm::mat4& transform = glm::mat4(1.0f), bool castShadows = true);
-    /// Adds a simulated cloth, drawn two-sided from its state at render time (the renderer
-    /// uploads its mesh only when Cloth::meshVersion() changed). Returns its instance id.
-    uint32_t addCloth(std::shared_ptr<const Cloth> cloth, const Material& material = {},
+    /// Adds a deformable mesh (a simulated Cloth), drawn two-sided from its state at render time
+    /// (the renderer uploads its surface only when meshVersion() changed). Returns its instance id.
+    uint32_t addCloth(std::shared_ptr<const DeformableMesh> cloth, const Material& material = {},
                       bool castShadows = true);
     void setTransform(uint32_t id, const glm::mat4& transform);
     void setMaterial(uint32_t id, const Material& material);

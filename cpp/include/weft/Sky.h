@@ -9,7 +9,8 @@
 // Rec. 709 (sRGB primaries, D65), negative channels (out of gamut) clamped to 0.
 //
 // Units: radiance is luminance-calibrated, Rec. 709 luminance of the RGB = Y in kcd/m^2, times
-// `scale`; irradiance (the sun's) is then in klx. The sun: see sunIrradiance().
+// `scale`; irradiance (the sun's) is then in klx. The sun: see sunIrradiance() (as a scene
+// light: sunLight in weft/SunLight.h).
 // Below the horizon: a Lambertian ground of `groundAlbedo` lit by the sky and the sun,
 // L = albedo E_horizontal / pi. Night: the model holds for the sun above the horizon only; below
 // it the sky is the model's sky for the sun on the horizon (same azimuth) dimmed by
@@ -19,7 +20,6 @@
 #include <glm/glm.hpp>
 
 #include <weft/CubeMap.h>
-#include <weft/Light.h>
 
 namespace weft {
 
@@ -106,11 +106,5 @@ CubeMap skyCube(const SkyParams& params, int size);
 /// mixed gases are left out (small in the visible). Evaluated per point of the disc, so a sun
 /// setting loses its lower limb first; 0 once the disc is below the horizon.
 glm::vec3 sunIrradiance(const SkyParams& params);
-
-/// The sun as weft's directional light: direction from the sun, colour x intensity = E / pi (E:
-/// sunIrradiance), the convention under which a directional light matches an environment (a
-/// material's diffuse n.l L K_D T against K_D T E_env / pi); colour max-normalised, intensity the
-/// largest channel (0 below the horizon).
-DirectionalLight sunLight(const SkyParams& params);
 
 } // namespace weft

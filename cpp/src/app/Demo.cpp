@@ -18,8 +18,8 @@
 #include <weft/ShaderReload.h>
 #include <weft/Window.h>
 
-#include "app/DemoScene.h"
-#include "app/DemoScript.h"
+#include <weft/DemoScene.h>
+#include <weft/DemoScript.h>
 #include "app/StatsJson.h"
 #include "core/FileRead.h"
 

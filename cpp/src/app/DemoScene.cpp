@@ -1,4 +1,4 @@
-#include "app/DemoScene.h"
+#include <weft/DemoScene.h>
 #include "app/DemoSkyDome.h"
 
 #include <algorithm>
@@ -14,6 +14,7 @@
 #include <weft/HairGenerator.h>
 #include <weft/IblConvert.h>
 #include <weft/Sky.h>
+#include <weft/SunLight.h>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 

@@ -1,4 +1,4 @@
-#include "app/DemoScript.h"
+#include <weft/DemoScript.h>
 
 #include <cctype>
 #include <cmath>

@@ -1,6 +1,7 @@
 #pragma once
 // How each level of the GGX chain is integrated, computed once and shared by the CPU filter
-// (GlossyFilter.cpp) and the compute dispatcher (GpuPrefilter.cpp), so both run one algorithm.
+// (GlossyFilter.cpp) and the compute dispatcher (render/GpuPrefilter.cpp), so both run one
+// algorithm.
 //
 // Filtered importance sampling alone is 20-30% off (100% at worst) next to a small bright sun:
 // the mip a tail sample reads spreads the sun with a box, not the GGX lobe. So the integral

@@ -1,7 +1,7 @@
 #pragma once
 // The GGX chain's per-level parameters and importance samples, shared by the CPU filter
-// (GlossyFilter.cpp) and the compute shader's dispatcher (GpuPrefilter.cpp) so both read the
-// same directions from the same mip levels.
+// (GlossyFilter.cpp) and the compute shader's dispatcher (render/GpuPrefilter.cpp) so both read
+// the same directions from the same mip levels.
 #include <vector>
 
 #include <glm/glm.hpp>

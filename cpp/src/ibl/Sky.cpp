@@ -212,16 +212,4 @@ glm::vec3 sunIrradiance(const SkyParams& params) {
     return normal * params.scale;
 }
 
-DirectionalLight sunLight(const SkyParams& params) {
-    const glm::vec3 colour = sunIrradiance(params) / float(kPi);
-    const float peak = std::max(colour.x, std::max(colour.y, colour.z));
-    DirectionalLight light;
-    light.direction = -glm::normalize(params.sunDirection);
-    light.color = peak > 0.0f ? colour / peak : glm::vec3(1.0f);
-    light.intensity = peak;
-    light.castShadows = peak > 0.0f;
-    light.angularRadius = float(kSunAngularRadius); // its shadow's penumbra
-    return light;
-}
-
 } // namespace weft

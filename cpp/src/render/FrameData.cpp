@@ -130,9 +130,9 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
         g.maps = glm::vec4(m.shininessMax > 0.0f ? std::log2(m.shininessMax / m.shininess) : 0.0f,
                            m.normalScale, 0.0f, 0.0f);
         const MeshGpu* mesh = nullptr;
-        if (inst.cloth) {
+        if (inst.deformable) {
             const uint64_t before = f.uploadBytes;
-            mesh = &cache.cloth(inst.cloth, f.uploadBytes);
+            mesh = &cache.deformable(inst.deformable, f.uploadBytes);
             f.meshUploads += f.uploadBytes != before ? 1 : 0;
         } else {
             mesh = &cache.mesh(inst.mesh);

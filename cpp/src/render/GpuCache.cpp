@@ -55,15 +55,11 @@ std::vector<float> packVertices(const Mesh& mesh) {
 
 } // namespace
 
-const MeshGpu& GpuCache::cloth(const std::shared_ptr<const Cloth>& cloth, uint64_t& uploadedBytes) {
-    ClothGpu& slot = mCloths[cloth.get()];
-    if (slot.source.lock() == cloth && slot.version == cloth->meshVersion()) return slot.mesh;
-    ClothMesh cm = cloth->mesh();
-    Mesh mesh;
-    mesh.positions = std::move(cm.positions);
-    mesh.normals = std::move(cm.normals);
-    mesh.uvs = std::move(cm.uvs);
-    mesh.indices = std::move(cm.indices);
+const MeshGpu& GpuCache::deformable(const std::shared_ptr<const DeformableMesh>& source,
+                                    uint64_t& uploadedBytes) {
+    DeformableGpu& slot = mDeformables[source.get()];
+    if (slot.source.lock() == source && slot.version == source->meshVersion()) return slot.mesh;
+    const Mesh mesh = source->surface();
     const std::vector<float> vertices = packVertices(mesh);
     const VkDeviceSize vbytes = vertices.size() * sizeof(float);
     const VkDeviceSize ibytes = std::max<size_t>(mesh.indices.size(), 1) * sizeof(uint32_t);
@@ -75,8 +71,8 @@ const MeshGpu& GpuCache::cloth(const std::shared_ptr<const Cloth>& cloth, uint64
     gpu.indexCount = uint32_t(mesh.indices.size());
     gpu.contentId = nextContentId();
     uploadedBytes += vbytes + mesh.indices.size() * 4;
-    slot.source = cloth;
-    slot.version = cloth->meshVersion();
+    slot.source = source;
+    slot.version = source->meshVersion();
     slot.mesh = std::move(gpu);
     return slot.mesh;
 }
@@ -267,8 +263,8 @@ VkDescriptorSet GpuCache::materialSet(const Material& material) {
 void GpuCache::evictExpired() {
     for (auto it = mMeshes.begin(); it != mMeshes.end();)
         it = it->second.source.expired() ? mMeshes.erase(it) : std::next(it);
-    for (auto it = mCloths.begin(); it != mCloths.end();)
-        it = it->second.source.expired() ? mCloths.erase(it) : std::next(it);
+    for (auto it = mDeformables.begin(); it != mDeformables.end();)
+        it = it->second.source.expired() ? mDeformables.erase(it) : std::next(it);
     for (auto it = mMaterialSets.begin(); it != mMaterialSets.end();) {
         const MaterialSetGpu& m = it->second;
         bool expired = false;

@@ -29,9 +29,9 @@ struct TextureGpu {
     vk::Image image;
 };
 
-/// A cloth's surface as last uploaded.
-struct ClothGpu {
-    std::weak_ptr<const Cloth> source;
+/// A deformable mesh's (a cloth's) surface as last uploaded.
+struct DeformableGpu {
+    std::weak_ptr<const DeformableMesh> source;
     uint64_t version = 0;
     MeshGpu mesh;
 };
@@ -51,11 +51,12 @@ public:
     ~GpuCache();
 
     const MeshGpu& mesh(const MeshPtr& mesh);
-    /// A cloth's current surface (positions, normals, UVs, tangents, the triangles left by holes
-    /// and tears). Rebuilt into new host-visible buffers (the old ones are retired after the
-    /// frames that use them) only when Cloth::meshVersion() changed; `uploadedBytes` grows by
-    /// what was written.
-    const MeshGpu& cloth(const std::shared_ptr<const Cloth>& cloth, uint64_t& uploadedBytes);
+    /// A deformable mesh's (a cloth's) current surface (positions, normals, UVs, tangents, the
+    /// triangles left by holes and tears). Rebuilt into new host-visible buffers (the old ones
+    /// are retired after the frames that use them) only when its meshVersion() changed;
+    /// `uploadedBytes` grows by what was written.
+    const MeshGpu& deformable(const std::shared_ptr<const DeformableMesh>& source,
+                              uint64_t& uploadedBytes);
     /// Material descriptor set (set 1): base colour (none: white), normal map (none: flat),
     /// specular map (none: white), ambient map (none: white, unused).
     VkDescriptorSet materialSet(const Material& material);
@@ -79,7 +80,7 @@ private:
     VkSampler mSampler;
     std::vector<vk::DescriptorPool> mPools;
     std::unordered_map<const Mesh*, MeshGpu> mMeshes;
-    std::unordered_map<const Cloth*, ClothGpu> mCloths;
+    std::unordered_map<const DeformableMesh*, DeformableGpu> mDeformables;
     std::unordered_map<uint64_t, TextureGpu> mTextures;
     std::map<std::array<uint64_t, MaterialSetGpu::kTextures>, MaterialSetGpu> mMaterialSets; // by texture ids
     TextureGpu mWhite, mFlatNormal;

@@ -1,7 +1,7 @@
 #pragma once
 // The hair passes' GPU structs, defined once for C++ and GLSL in glsl/common/hair_gpu_types.h,
 // under the renderer's names.
-#include "hair/HairShadingGpu.h"
+#include "render/HairShadingGpu.h"
 #include "hair_gpu_types.h"
 
 namespace weft::render {

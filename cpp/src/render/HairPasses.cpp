@@ -5,7 +5,7 @@
 #include <cstring>
 #include <string>
 
-#include "hair/HairShadingGpu.h"
+#include "render/HairShadingGpu.h"
 #include "render/PassSetup.h"
 #include "render/RenderTargets.h"
 #include "render/ScenePipelines.h"

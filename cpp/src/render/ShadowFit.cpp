@@ -8,12 +8,6 @@
 
 namespace weft::render {
 
-glm::mat4 vulkanClipFlip() {
-    glm::mat4 flip(1.0f);
-    flip[1][1] = -1.0f;
-    return flip;
-}
-
 ShadowFrustum fitDirectionalShadow(const glm::vec3& toLight, const glm::vec3& lo,
                                    const glm::vec3& hi, unsigned size) {
     const glm::vec3 center = 0.5f * (lo + hi);

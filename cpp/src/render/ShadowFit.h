@@ -2,6 +2,8 @@
 // Light-space projections for shadow maps.
 #include <glm/glm.hpp>
 
+#include "core/ClipSpace.h"
+
 namespace weft::render {
 
 struct ShadowFrustum {
@@ -27,7 +29,6 @@ ShadowFrustum fitPerspectiveShadow(const glm::vec3& position, const glm::vec3& a
 void pointShadowFaces(const glm::vec3& position, float zNear, const glm::vec3& lo,
                       const glm::vec3& hi, unsigned size, ShadowFrustum faces[6]);
 
-/// Clip-space Y flip that turns OpenGL-style projections into Vulkan's convention.
-glm::mat4 vulkanClipFlip();
+using weft::vulkanClipFlip; // core/ClipSpace.h
 
 } // namespace weft::render

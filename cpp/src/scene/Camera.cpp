@@ -5,8 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/ClipSpace.h"
 #include "core/Validate.h"
-#include "render/ShadowFit.h"
 
 namespace weft {
 
@@ -34,7 +34,7 @@ glm::mat4 Camera::view() const { return glm::lookAtRH(position, target, up); }
 
 glm::mat4 Camera::projection(float aspect) const {
     requirePositive(aspect, "aspect ratio");
-    return render::vulkanClipFlip() * glm::perspectiveRH_ZO(fovY, aspect, zNear, zFar);
+    return vulkanClipFlip() * glm::perspectiveRH_ZO(fovY, aspect, zNear, zFar);
 }
 
 } // namespace weft

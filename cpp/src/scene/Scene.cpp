@@ -138,7 +138,7 @@ uint32_t Scene::addMesh(MeshPtr mesh, const Material& material, const glm::mat4&
     return uint32_t(mInstances.size() - 1);
 }
 
-uint32_t Scene::addCloth(std::shared_ptr<const Cloth> cloth, const Material& material,
+uint32_t Scene::addCloth(std::shared_ptr<const DeformableMesh> cloth, const Material& material,
                          bool castShadows) {
     if (!cloth) throw InvalidArgument("Scene.add_cloth: cloth is null");
     material.validate();
@@ -151,7 +151,7 @@ uint32_t Scene::addCloth(std::shared_ptr<const Cloth> cloth, const Material& mat
 
 void Scene::setTransform(uint32_t id, const glm::mat4& transform) {
     checkId(id, mInstances.size(), "mesh");
-    if (mInstances[id].cloth) throw InvalidArgument("a cloth's particles are in world space; it has no transform");
+    if (mInstances[id].deformable) throw InvalidArgument("a cloth's particles are in world space; it has no transform");
     requireInvertible(transform, "mesh transform");
     mInstances[id].transform = transform;
     ++mVersion;
@@ -161,7 +161,7 @@ void Scene::setMaterial(uint32_t id, const Material& material) {
     checkId(id, mInstances.size(), "mesh");
     material.validate();
     mInstances[id].material = material;
-    if (mInstances[id].cloth) mInstances[id].material.twoSided = true;
+    if (mInstances[id].deformable) mInstances[id].material.twoSided = true;
     ++mVersion;
 }
 
@@ -264,14 +264,8 @@ void Scene::instanceBounds(size_t index, glm::vec3& lo, glm::vec3& hi) const {
     const MeshInstance& inst = mInstances[index];
     lo = glm::vec3(1e30f);
     hi = glm::vec3(-1e30f);
-    if (inst.cloth) { // particles are in world space
-        const float* p = inst.cloth->particleData(); // x, y, z, w records
-        for (int k = 0; k < inst.cloth->particleCount(); ++k) {
-            if (inst.cloth->isHole(k)) continue;
-            const glm::vec3 x(p[4 * k], p[4 * k + 1], p[4 * k + 2]);
-            lo = glm::min(lo, x);
-            hi = glm::max(hi, x);
-        }
+    if (inst.deformable) { // its vertices are in world space
+        inst.deformable->surfaceBounds(lo, hi);
         return;
     }
     glm::vec3 mlo, mhi;

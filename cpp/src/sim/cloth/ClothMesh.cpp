@@ -6,6 +6,28 @@
 
 namespace weft {
 
+Mesh Cloth::surface() const {
+    ClothMesh cm = mesh();
+    Mesh out;
+    out.positions = std::move(cm.positions);
+    out.normals = std::move(cm.normals);
+    out.uvs = std::move(cm.uvs);
+    out.indices = std::move(cm.indices);
+    return out;
+}
+
+void Cloth::surfaceBounds(glm::vec3& lo, glm::vec3& hi) const {
+    lo = glm::vec3(1e30f);
+    hi = glm::vec3(-1e30f);
+    const float* p = particleData(); // x, y, z, w records
+    for (int k = 0; k < particleCount(); ++k) {
+        if (isHole(k)) continue;
+        const glm::vec3 x(p[4 * k], p[4 * k + 1], p[4 * k + 2]);
+        lo = glm::min(lo, x);
+        hi = glm::max(hi, x);
+    }
+}
+
 ClothMesh Cloth::mesh() const {
     const Impl& m = *mImpl;
     std::lock_guard<std::recursive_mutex> lock(m.lock);

@@ -1,7 +1,7 @@
 // Exact irradiance on the GPU: the source texels (direction, solid angle, radiance x solid angle)
 // in one storage buffer, compute dispatches over the output texels (one per 32768 source
 // texels, glsl/ibl/irradiance_exact.comp), read back into a CubeMap.
-#include <weft/IblFilter.h>
+#include <weft/IblGpu.h>
 
 #include <algorithm>
 #include <cstring>
@@ -10,8 +10,8 @@
 
 #include <weft/Error.h>
 
-#include "CubeTexels.h"
-#include "IblValidate.h"
+#include "ibl/CubeTexels.h"
+#include "ibl/IblValidate.h"
 #include "vk/StorageCompute.h"
 
 namespace weft {

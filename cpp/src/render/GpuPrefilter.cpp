@@ -3,7 +3,7 @@
 // samples in a storage buffer, one compute dispatch per output level
 // (glsl/ibl/prefilter_ggx.comp), read back into a CubeMap. Level 0 (the plan's mirror level,
 // computed on the CPU) is a buffer copy.
-#include <weft/IblFilter.h>
+#include <weft/IblGpu.h>
 
 #include <algorithm>
 #include <chrono>
@@ -15,10 +15,10 @@
 
 #include <weft/Error.h>
 
-#include "CubeTexels.h"
-#include "GgxPlan.h"
-#include "GgxSamples.h"
-#include "IblValidate.h"
+#include "ibl/CubeTexels.h"
+#include "ibl/GgxPlan.h"
+#include "ibl/GgxSamples.h"
+#include "ibl/IblValidate.h"
 #include "vk/ComputePipeline.h"
 
 namespace weft {

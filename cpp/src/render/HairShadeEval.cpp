@@ -6,7 +6,7 @@
 
 #include <weft/Error.h>
 
-#include "hair/HairShadingGpu.h"
+#include "render/HairShadingGpu.h"
 #include "vk/StorageCompute.h"
 
 namespace weft {
