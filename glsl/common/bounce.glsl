@@ -3,6 +3,8 @@
 // (2), each evaluated as E(n) / pi. Included by shading.glsl after frame.glsl.
 layout(set = 0, binding = 14) uniform sampler2D bounceSh; // row: probe, column: 9 set + k
 layout(set = 0, binding = 15) uniform sampler2DArray bounceFaces; // layer 6 probe + face
+// the casters' radiance as proxy spheres (bounce_radiance.frag): row probe, column k
+layout(set = 0, binding = 16) uniform sampler2D bounceRadiance;
 
 #include "cube_faces.glsl"
 

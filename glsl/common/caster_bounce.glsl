@@ -11,8 +11,11 @@
 // the angle between a and the light. From close by the cap shrinks to the pole facing p (its
 // half-angle b has cos b = r / D = s), whose normal is a itself: the band weights go from the
 // far values to 1 as the uniform cap means of the bands do, (2 + s) / 3 and
-// 1/4 + (3/4) s (1 + s) / 2, and the phase law to max(cos t, 0) in proportion to s. Each light
-// is shadowed as at the caster's lit pole. The sphere lights p (normal n) with
+// 1/4 + (3/4) s (1 + s) / 2 (and the phase law to the pole's max(cos t, 0)). So L(a) is one
+// SH9 per caster, its bands weighted by s: bounce_radiance.frag sums it once per frame (each
+// light shadowed as at the caster's lit pole, its clamped cosine in SH9), and a fragment reads
+// nine coefficients per caster instead of the sets and a shadow lookup per light. The sphere
+// lights p (normal n) with
 // E / pi = L (r / D)^2 cos(theta) while it is wholly above p's horizon (exact for a sphere), and
 // with the C1 blend s^2 (h + s)^2 / (4 s) (s = r / D, h = cos theta) while the horizon cuts it.
 // Inside a proxy (a concave caster's hollow) its outside is not what p sees: faded out there.
@@ -25,42 +28,17 @@
 // Not counted: what the casters show each other in the captures (one bounce), the caster's
 // texture (its K_D stands for its colour). Included by shading.glsl after the shadow lookups.
 
-vec3 casterRadiance(int c, vec3 a, float s, bool ambientDome) {
-    Instance ci = instances[frame.bounceInstances[c / 4][c % 4]];
-    vec3 centre = frame.bounceSpheres[c].xyz;
-    float r = frame.bounceSpheres[c].w;
-    vec3 once = vec3(1.0, (2.0 + s) / 3.0, 0.25 + 0.375 * s * (1.0 + s));
-    vec3 e = bounceSet(c, 0, a, once); // the receivers' light
-    if (frame.environment.x > 0.0) {   // the sky, less what the receivers hide
-        float b[9];
-        shBasis9(a, once, b);
-        vec3 sky = vec3(0.0);
-        for (int k = 0; k < 9; ++k) sky += b[k] * frame.environmentSh[k].rgb;
-        e += ci.environment.w * (sky * frame.environment.x - bounceSet(c, 1, a, once));
-    }
-    vec3 radiance = ci.kd.rgb * max(e, vec3(0.0));
-    // the ambient's reflection: the multi-bounce fit of the ambient occlusion already has it
-    if (!ambientDome) {
-        float covered = clamp(bounceSet(c, 2, a, once).x, 0.0, 1.0);
-        radiance += frame.ambient.rgb * ci.ka.rgb * (1.0 - covered);
-    }
-    for (int i = 0; i < frame.counts.x; ++i) {
-        vec3 l;
-        vec3 L = incidentRadiance(lights[i], centre, l);
-        float t = acos(clamp(dot(a, l), -1.0, 1.0));
-        float phase = mix(0.212207 * (sin(t) + (3.14159265 - t) * cos(t)), // 2 / (3 pi) (...)
-                          max(cos(t), 0.0), s);
-        if (phase <= 0.0) continue;
-        float vis = 1.0, depth;
-        if (lights[i].radiance.w >= 0.0) vis = shadowVisibility(lights[i], centre + l * r, l, l, depth);
-        radiance += vis * phase * L * ci.kd.rgb;
-    }
-    return radiance;
+vec3 casterRadiance(int c, vec3 a, float s) {
+    float b[9];
+    shBasis9(a, vec3(1.0, (2.0 + s) / 3.0, 0.25 + 0.375 * s * (1.0 + s)), b);
+    vec3 radiance = vec3(0.0);
+    for (int k = 0; k < 9; ++k) radiance += b[k] * texelFetch(bounceRadiance, ivec2(k, c), 0).rgb;
+    return max(radiance, vec3(0.0));
 }
 
 // E / pi at p (normal n) from every caster's proxy but `self` (the surface's own capture);
 // `hiddenSky` and `covered` as above.
-vec3 casterBounce(vec3 p, vec3 n, int self, bool ambientDome, out vec3 hiddenSky,
+vec3 casterBounce(vec3 p, vec3 n, int self, out vec3 hiddenSky,
                   out float covered) {
     vec3 e = vec3(0.0);
     hiddenSky = vec3(0.0);
@@ -79,7 +57,7 @@ vec3 casterBounce(vec3 p, vec3 n, int self, bool ambientDome, out vec3 hiddenSky
         float f = h >= s ? h * s * s : s * s * (h + s) * (h + s) / (4.0 * s);
         f *= smoothstep(0.5 * r, r, D);
         if (f <= 1e-4) continue;
-        e += f * casterRadiance(c, -w, s, ambientDome);
+        e += f * casterRadiance(c, -w, s);
         // the sky behind the proxy, blurred over about its cap (half-angle asin s): the
         // roughest level only at contact, so a caster in front of the bright part of a sky
         // hides that part (the ground beside a sphere, away from a bright sky: 5-10% too

@@ -268,7 +268,7 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     int bp = bounceProbe(ins);
     float casterCovered;
     vec3 hiddenSky;
-    sh.bounce = casterBounce(p, n, bp, frame.sky.w > 0.5, hiddenSky, casterCovered) *
+    sh.bounce = casterBounce(p, n, bp, hiddenSky, casterCovered) *
                 ins.kd.rgb * sf.T;
     if (frame.sky.w > 0.5) {
         // the proxies' cover is a floor under the dome's occlusion (see environmentTerms)

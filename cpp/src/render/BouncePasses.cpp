@@ -8,18 +8,36 @@
 
 namespace weft::render {
 
+// The casters' radiance as proxy spheres (bounce_radiance.frag) from the SH9 `rSh` into `out`
+// (resource `rOut`), drawn with frame set `set` (whose own binding of `out` it does not read).
+static void addRadiancePass(FrameGraph& g, FramePassContext& f, const char* name, int rSh,
+                            int rOut, vk::Image& out, VkDescriptorSet set) {
+    g.addPass({name, {{rSh, Use::Sampled}, {f.rShadow, Use::Sampled}}, {{rOut, Use::ColorWrite}},
+               [&f, &out, set](VkCommandBuffer cmd) {
+                   drawFullscreen(f, cmd, out.view(), BounceProbes::kRadianceColumns,
+                                  f.bounce.count(), VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+                                  f.pipes.bounceRadiance.get(), f.pipes.sceneLayout, set,
+                                  nullptr, 0);
+               }});
+}
+
 void addBouncePasses(FrameGraph& g, FramePassContext& f) {
     BounceProbes& b = f.bounce;
     if (b.count() == 0) return;
     f.rBounceSh = g.addResource("bounce_sh", &b.sh());
     // the captures themselves: what the casters' glossy reflections see of the receivers
     const int rFaces = f.rBounceFaces = g.addResource("bounce_faces", &b.faces());
+    // the casters' radiance, every frame with probes: the lights may move while captures stand
+    f.rBounceRadiance = g.addResource("bounce_radiance", &b.radiance());
     if (!f.captureBounce) {
         f.reused.push_back("bounce");
+        addRadiancePass(g, f, "bounce_radiance", f.rBounceSh, f.rBounceRadiance, b.radiance(),
+                        f.sets.frame);
         return;
     }
     const int rDepth = g.addResource("bounce_depth", &b.depth());
     const int rFirst = g.addResource("bounce_sh_first", &b.shFirst());
+    const int rRadianceFirst = g.addResource("bounce_radiance_first", &b.radianceFirst());
     // x: environment intensity (0: none), y: texels per face, z: probes
     const glm::vec4 push(f.data.frame.environment.x, float(BounceProbes::kFaceSize),
                          float(b.count()), 0.0f);
@@ -28,7 +46,10 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
         const bool last = round + 1 == BounceProbes::kRounds;
         std::vector<ResourceUse> reads = {{f.rShadow, Use::Sampled}};
         if (f.rDomeMaps >= 0) reads.push_back({f.rDomeMaps, Use::Sampled});
-        if (round > 0) reads.push_back({rFirst, Use::Sampled}); // the casters' light (first SH)
+        if (round > 0) { // the casters' light (first SH)
+            reads.push_back({rFirst, Use::Sampled});
+            reads.push_back({rRadianceFirst, Use::Sampled});
+        }
         for (uint32_t i = 0; i < perRound; ++i) {
             const uint32_t set = round * perRound + i;
             g.addPass({"bounce" + std::to_string(round) + "[" + std::to_string(i / 6) + "][" +
@@ -51,7 +72,12 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
                                       f.pipes.bounceSh.get(), f.pipes.bounceShLayout,
                                       f.sets.bounceSh, &push, sizeof(push));
                    }});
+        if (!last) // with a second round's set: its SH9 binding holds the first round's
+            addRadiancePass(g, f, "bounce_radiance_first", rFirst, rRadianceFirst,
+                            b.radianceFirst(), f.sets.bounceFaces[perRound]);
     }
+    addRadiancePass(g, f, "bounce_radiance", f.rBounceSh, f.rBounceRadiance, b.radiance(),
+                    f.sets.frame);
 }
 
 } // namespace weft::render

@@ -68,6 +68,9 @@ bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSett
         s.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
         mSh = vk::Image(&mCtx, s);
         mShFirst = vk::Image(&mCtx, s);
+        s.width = kRadianceColumns;
+        mRadiance = vk::Image(&mCtx, s);
+        mRadianceFirst = vk::Image(&mCtx, s);
         mKey.clear();
     }
     std::vector<uint64_t> key = captureKey(scene, data);

@@ -30,6 +30,7 @@ public:
     static constexpr uint32_t kMaxProbes = gpu::MAX_BOUNCE_CASTERS; // casters beyond get none
     static constexpr uint32_t kFaceSize = 16;  // texels per face: SH9 needs no more
     static constexpr uint32_t kShColumns = 27; // three sets of nine coefficients
+    static constexpr uint32_t kRadianceColumns = 9; // a caster's radiance, SH9 (see radiance())
     static constexpr uint32_t kRounds = 2;     // captures per probe and face (see above)
     static constexpr VkFormat kShFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
@@ -47,10 +48,14 @@ public:
     vk::Image& depth() { return mDepth; }
     vk::Image& sh() { return mSh; }       // row: probe, column: 9 set + coefficient
     vk::Image& shFirst() { return mShFirst; } // the first round's (what the second one reads)
+    /// Row: probe, column: coefficient k of the radiance the caster sends out as the proxy
+    /// sphere of caster_bounce.glsl (bounce_radiance.frag, every frame with probes).
+    vk::Image& radiance() { return mRadiance; }
+    vk::Image& radianceFirst() { return mRadianceFirst; } // from shFirst, for the second round
 
 private:
     vk::Context& mCtx;
-    vk::Image mFaces, mDepth, mSh, mShFirst;
+    vk::Image mFaces, mDepth, mSh, mShFirst, mRadiance, mRadianceFirst;
     std::vector<glm::vec3> mPositions;
     std::vector<uint64_t> mKey;
 };

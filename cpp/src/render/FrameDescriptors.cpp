@@ -142,10 +142,11 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
     // Without bounce light the shaders' SH binding holds a white texel they never read.
     const VkImageView noBounce = cache->textureView(TexturePtr());
     // A frame set: the frame's data with uniforms `ubo`, the reflection capture `probeView` and
-    // the bounce captures' SH9 `bounceView` and faces (`bounceFaces`; the captures themselves
-    // see a dummy array there, as they are being drawn).
+    // the bounce captures' SH9 `bounceView` and the casters' radiance `radianceView`, and with
+    // `withFaces` (the frame's own set) the captures' faces (the captures see a dummy there:
+    // they are being drawn).
     auto writeFrameSet = [&](VkDescriptorSet set, VkDescriptorBufferInfo uboInfo, VkImageView probeView,
-                             VkImageView bounceView, bool withFaces) {
+                             VkImageView bounceView, bool withFaces, VkImageView radianceView) {
         VkDescriptorBufferInfo instInfo{slot.instances.get(), 0, VK_WHOLE_SIZE};
         VkDescriptorBufferInfo lightInfo{slot.lights.get(), 0, VK_WHOLE_SIZE};
         VkDescriptorImageInfo shadowInfo{pipes.nearestSampler, shadowImage.view(),
@@ -182,6 +183,8 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
                                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}
                       : VkDescriptorImageInfo{pipes.nearestSampler, dummyShadow.view(),
                                               render::useState(Use::Sampled, true).layout};
+        VkDescriptorImageInfo radianceSh{pipes.nearestSampler, radianceView,
+                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         // Binding i of frame.glsl / environment.glsl: a buffer or images (count > 1: an array).
         struct Entry {
             VkDescriptorType type;
@@ -200,7 +203,8 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
             {image, nullptr, &domeMapInfo, 1},    {image, nullptr, &probeInfo, 1},
             {image, nullptr, &backgroundInfo, 1}, {image, nullptr, &sphereInfos[0], 1},
             {image, nullptr, &sphereInfos[1], 1}, {image, nullptr, &radianceInfo, 1},
-            {image, nullptr, &bounceInfo, 1},     {image, nullptr, &facesInfo, 1}};
+            {image, nullptr, &bounceInfo, 1},     {image, nullptr, &facesInfo, 1},
+            {image, nullptr, &radianceSh, 1}};
         constexpr uint32_t kBindings = sizeof(entries) / sizeof(entries[0]);
         VkWriteDescriptorSet writes[kBindings];
         for (uint32_t i = 0; i < kBindings; ++i) {
@@ -216,17 +220,20 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
     };
     writeFrameSet(result.frame, {slot.ubo.get(), 0, sizeof(frame)},
                   probe.instance() >= 0 ? probe.cube().view() : environment.black(),
-                  bounce.count() > 0 ? bounce.sh().view() : noBounce, bounce.count() > 0);
+                  bounce.count() > 0 ? bounce.sh().view() : noBounce, bounce.count() > 0,
+                  bounce.count() > 0 ? bounce.radiance().view() : noBounce);
     if (captureProbe) // the faces see the capture as black: it is being drawn
         for (uint32_t f = 0; f < 6; ++f)
             writeFrameSet(sets[1 + f], {slot.probeUbo.get(), f * faceStride, sizeof(frame)},
-                          environment.black(), noBounce, false);
-    for (uint32_t f = 0; f < bounceFaces; ++f) // diffuse light: no reflection capture
+                          environment.black(), noBounce, false, noBounce);
+    // diffuse light: no reflection capture; the second round's receivers get the casters' light
+    // of the first (whose radiance pass uses the second round's first set)
+    for (uint32_t f = 0; f < bounceFaces; ++f) {
+        const bool second = f >= bounceFaces / render::BounceProbes::kRounds;
         writeFrameSet(result.bounceFaces[f], {slot.bounceUbo.get(), f * faceStride, sizeof(frame)},
-                      environment.black(),
-                      f < bounceFaces / render::BounceProbes::kRounds ? noBounce
-                                                                      : bounce.shFirst().view(),
-                      false);
+                      environment.black(), second ? bounce.shFirst().view() : noBounce, false,
+                      second ? bounce.radianceFirst().view() : noBounce);
+    }
     if (captureBounce) { // the projection reads the captures and the environment's chain
         VkDescriptorImageInfo infos[2] = {
             {pipes.nearestSampler, bounce.faces().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},

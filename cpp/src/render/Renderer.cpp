@@ -35,7 +35,7 @@ void Renderer::Impl::createSlots() {
             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
              // frame sets; the output set (1), the dome blur's two (2 each), the bounce
              // projection's (2)
-             (10 + uint32_t(render::kMaxCookies)) * kFrameSets + 7}};
+             (11 + uint32_t(render::kMaxCookies)) * kFrameSets + 7}};
         VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pool.maxSets = kFrameSets + 4;
         pool.poolSizeCount = 3;

@@ -91,7 +91,8 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
                                              {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                              {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                              {14, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                             {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                             {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
@@ -193,6 +194,9 @@ void ScenePipelines::createPipelines() {
     fd.fragmentShader = "render/bounce_sh.frag";
     fd.colorFormats = {BounceProbes::kShFormat};
     bounceSh = vk::createGraphicsPipeline(c, fd);
+    fd.layout = sceneLayout;
+    fd.fragmentShader = "render/bounce_radiance.frag";
+    bounceRadiance = vk::createGraphicsPipeline(c, fd);
 
     vk::GraphicsPipelineDesc sd;
     sd.vertexShader = "render/shadow.vert";

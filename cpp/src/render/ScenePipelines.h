@@ -29,6 +29,7 @@ struct ScenePipelines {
     vk::Pipeline domeBlurRows; // the dome blur's row pass
     vk::Pipeline domeBlur;     // its column pass, adding the dome-shadowed diffuse light
     vk::Pipeline bounceSh;     // the bounce captures projected onto SH9 (BounceProbes.h)
+    vk::Pipeline bounceRadiance; // the casters' radiance in SH9, from the frame set
 
     /// Forward shading for an output set (`debug` outputs, `dome` output for the blur pass) and
     /// a facing: back faces culled, the same for mirroring transforms (det < 0 reverses the
