@@ -33,15 +33,17 @@ void main() {
     vec3 p = (model * vec4(hv.position.xyz, 1.0)).xyz;
     vec3 t = normalize(mat3(model) * hv.tangent.xyz);
     float side = (index & 1u) == 1u ? 0.5 : -0.5;
+    // No branch may depend on uniforms alone here: Mesa 22.3's lavapipe then inlines the
+    // uniform's value into a fresh copy of this shader at every draw and keeps each copy until
+    // the pipeline is destroyed (0.3 MiB a frame; BENCHMARKS.md "reliability"). So the ribbon
+    // is always built and lines select zero width.
     bool ribbons = hairFrame.params.x == 1;
-    vec3 s = vec3(0.0); // the ribbon's half-width vector (world)
-    if (ribbons) {
-        vec3 e = frame.cameraPos.xyz - p;
-        s = cross(t, e);
-        if (dot(s, s) <= 1e-12 * dot(e, e))
-            s = cross(t, abs(t.y) > 0.99 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0));
-        s = normalize(s) * (0.5 * hairFrame.cameraForward.w * hv.position.w);
-    }
+    vec3 e = frame.cameraPos.xyz - p;
+    vec3 s = cross(t, e); // the ribbon's half-width vector (world)
+    if (dot(s, s) <= 1e-12 * dot(e, e))
+        s = cross(t, abs(t.y) > 0.99 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0));
+    vec3 ribbonS = normalize(s) * (0.5 * hairFrame.cameraForward.w * hv.position.w);
+    s = ribbons ? ribbonS : vec3(0.0);
 #ifdef HAIR_AA
     vec4 clip = frame.viewProj * vec4(p, 1.0);
     vec2 pixels = 0.5 / frame.viewport.xy; // pixels per NDC unit
@@ -50,11 +52,10 @@ void main() {
     vec2 dir = (clipT.xy * clip.w - clip.xy * clipT.w) * pixels;
     float len = length(dir);
     vec2 n = len > 1e-20 ? vec2(-dir.y, dir.x) / len : vec2(1.0, 0.0);
-    float width = 1.0;
-    if (ribbons) { // the ribbon's extent across the strand on screen
-        vec4 clipS = frame.viewProj * vec4(p + s, 1.0);
-        width = 2.0 * abs(dot((clipS.xy / clipS.w - clip.xy / clip.w) * pixels, n));
-    }
+    // the ribbon's extent across the strand on screen (selected, not branched: see above)
+    vec4 clipS = frame.viewProj * vec4(p + s, 1.0);
+    float ribbonWidth = 2.0 * abs(dot((clipS.xy / clipS.w - clip.xy / clip.w) * pixels, n));
+    float width = ribbons ? ribbonWidth : 1.0;
     // how far the pixel square reaches across the strand from its centre
     float reach = 0.5 * (abs(n.x) + abs(n.y));
 #ifdef HAIR_AA_CORE
