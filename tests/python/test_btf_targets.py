@@ -120,6 +120,36 @@ def test_cast_shadow_targets(tmp_path, seed: int) -> None:
     assert lt["p95_deg"] <= 6.0
 
 
+# Seeds used by no other test or benchmark, which missed the cast-shadow p95 before the
+# visibility pass started from a Lambert fit with σ bounded by the data's noise and restarted
+# dropped lobes (p95 11.7° / 9.8° / 18.9° / 18.3°; now 0.3-0.9°): a broad lobe had absorbed the
+# shadows' falloff or stood in for the diffuse term (106, 114), a σ measured on a fit pulled by
+# shadows hid them (41), k = 0 from a needle start left the lobe absorbed by a tilted normal
+# (103). Over 40 such seeds at 32² (BENCHMARKS.md, btf) none misses now.
+@pytest.mark.parametrize("seed", [41, 103, 106, 114])
+def test_cast_shadow_targets_on_unseen_seeds(tmp_path, seed: int) -> None:
+    samples, truth = read_back(tmp_path, seed, shadows=True)
+    _, (_, fit) = chosen_fit(samples, threads=2)
+    assert fit.material.flat_specular_normal == truth.flat_specular_normal
+    t = scoring.truth_errors(fit.material, truth)
+    assert t["mean_deg"] <= 2.0 and t["p95_deg"] <= 6.0
+    assert scoring.physical_violations(fit.material)["texels"] == 0
+
+
+def test_a_needle_start_does_not_drop_a_broad_lobe() -> None:
+    # seed 103's lobe is broad (e = 16.2); started at e = 4096 the NNLS gives k = 0, where the
+    # cost does not depend on e and the search used to stay, with the lobe absorbed by tilting
+    # the normal (12.5° p95); the fit now restarts such texels from a grid of exponents
+    samples, truth = synth.synthesize_random(103, SIZE, noise=NOISE)
+    seed = btf.fit_specular(samples, btf.fit_linear(samples), False).material
+    seed = BtfMaterial(normal=seed.normal, albedo=seed.albedo, ambient=seed.ambient,
+                       specular=seed.specular, exponent=4096.0, clamp_diffuse=True)
+    m = btf.fit_blinn_phong(samples, seed, visibility=False, threads=2).material
+    t = scoring.truth_errors(m, truth.material)
+    assert t["p95_deg"] <= 1.0
+    assert t["exponent_median_rel_error"] <= 0.10
+
+
 def test_jpeg_normals_from_the_luma(tmp_path) -> None:
     samples, truth = read_back(tmp_path, 1, fmt="jpg")
     linear = btf.fit_linear(samples)
