@@ -150,6 +150,31 @@ def test_a_needle_start_does_not_drop_a_broad_lobe() -> None:
     assert t["exponent_median_rel_error"] <= 0.10
 
 
+def test_the_shadow_noise_level_is_the_datasets(tmp_path) -> None:
+    # the cast-shadow test's σ is bounded by the data's noise, estimated over the whole image;
+    # a band of rows fitted with the whole dataset's noise is exactly those rows of the whole fit
+    samples, _ = read_back(tmp_path, 41, shadows=True)
+    seed = btf.fit_specular(samples, btf.fit_linear(samples), False).material
+    whole = btf.fit_blinn_phong(samples, seed, threads=2)
+    sigma = btf.shadow_noise(samples, seed, threads=1)
+    assert whole.noise == sigma
+    # the generator's noise, 0.004 per channel, 8-bit quantised, summed over 3 channels: 0.0071
+    # (the median texel's residuals are a little smaller for the fitted parameters, a little
+    # larger for the model's error; 0.0081 here)
+    assert 0.8 * 0.0071 <= sigma <= 1.5 * 0.0071
+    rows = slice(8, 20)
+    band = weft.BtfSamples(np.ascontiguousarray(samples.values[:, :, rows]), samples.angles)
+    band_seed = BtfMaterial(normal=seed.normal[rows], albedo=seed.albedo[rows],
+                            ambient=seed.ambient[rows], specular=seed.specular[rows],
+                            exponent=seed.exponent, clamp_diffuse=True)
+    part = btf.fit_blinn_phong(band, band_seed, threads=2, noise=sigma)
+    np.testing.assert_array_equal(part.material.normal, whole.material.normal[rows])
+    assert btf.fit_blinn_phong(samples, seed, visibility=False).noise == 0.0
+    for bad in (-1.0, 0.0, float("nan"), float("inf"), True):
+        with pytest.raises(weft.InvalidArgument):
+            btf.fit_blinn_phong(samples, seed, noise=bad)
+
+
 def test_jpeg_normals_from_the_luma(tmp_path) -> None:
     samples, truth = read_back(tmp_path, 1, fmt="jpg")
     linear = btf.fit_linear(samples)

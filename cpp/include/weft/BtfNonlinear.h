@@ -28,6 +28,11 @@ struct BtfNonlinearOptions {
     /// fit n and e to the luma (BT.601) and only the colours to RGB: for JPEG data, whose
     /// chroma is stored at half resolution and coarser precision than the luma
     bool luminanceNormals = false;
+    /// The data's noise (standard deviation of a sample's channel sum) that bounds the
+    /// cast-shadow classification's σ: 0 estimates it from the samples (btfBlinnPhongNoise). A
+    /// dataset fitted in parts (bands of rows) passes the whole dataset's, so that each part
+    /// gives exactly its texels of the whole fit.
+    double noise = 0.0;
     int threads = 0;
 };
 
@@ -36,6 +41,7 @@ struct BtfNonlinearFit {
     double meanIterations = 0;
     std::string solver;   ///< "builtin" or "ceres"
     double shadowedFraction = 0; ///< samples left out as cast shadows / all samples
+    double noise = 0;            ///< the noise level the visibility pass used (0 without it)
 };
 
 /// True when weft was built with Ceres Solver.
@@ -47,6 +53,12 @@ bool btfHaveCeres();
 /// nearest neighbour. Narrower lobes are seen by one sample at most, where k and e trade off
 /// freely (needle lobes). Bonn frontal (81 lights, 15° rings): δ = 7.6°, e_max = 519 at 1%.
 float btfResolvableExponent(const BtfSamples& samples, double fraction = 0.01);
+
+/// The noise level fitBtfBlinnPhong estimates with options.noise = 0: the median over up to 1024
+/// texels spread evenly over the image of the robust σ of their first fit's residuals under
+/// steep light (θ_l <= 31°). Most texels fit there to the noise and the model's error.
+double btfBlinnPhongNoise(const BtfSamples& samples, const BtfMaterialMaps& seed,
+                          const BtfNonlinearOptions& options = {});
 
 /// Seeds from `seed` (normal, ρ, a, k, exponent of the linear + specular pipeline).
 BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMaps& seed,

@@ -29,6 +29,9 @@ constexpr double kNoiseSigmas = 2.0;
 // column lowers it by about 1/count per channel from noise alone.
 constexpr double kLobeGain = 0.05;
 constexpr double kLobeStarts[] = {4.0, 16.0, 64.0, 256.0};
+// ... at the normal's tilt (tan θ_n) times these: a diffuse term that absorbed a lobe around n
+// tilted the normal further, towards the lobe's reflection direction
+constexpr double kLobeTilts[] = {1.0, 0.75, 0.5, 0.25};
 
 } // namespace
 
@@ -62,22 +65,67 @@ float btfResolvableExponent(const BtfSamples& samples, double fraction) {
     return float(std::min(std::log(1.0 / fraction) / -std::log(c), 1e6));
 }
 
+namespace {
+
+// What the fit and the noise estimate share: the checked inputs, the exponent range as η and
+// the sample directions.
+struct FitSetup {
+    double etaMin = 0, etaMax = 0;
+    std::vector<glm::vec3> lights, halves;
+    BlinnPhongGeometry geometry;
+    FitSetup(const BtfSamples& samples, const BtfMaterialMaps& seed,
+             const BtfNonlinearOptions& options)
+        : geometry(check(samples, seed, options, lights, halves, etaMin, etaMax), halves) {
+        geometry.flatSpecular = options.flatSpecularNormal;
+    }
+    static const std::vector<glm::vec3>& check(const BtfSamples& samples,
+                                               const BtfMaterialMaps& seed,
+                                               const BtfNonlinearOptions& options,
+                                               std::vector<glm::vec3>& lights,
+                                               std::vector<glm::vec3>& halves, double& etaMin,
+                                               double& etaMax) {
+        seed.validate();
+        samples.requireFinite();
+        if (seed.width != samples.width() || seed.height != samples.height())
+            throw InvalidArgument("seed material and samples differ in size");
+        const float maxExponent = options.maxExponent == 0.0f
+                                      ? btfResolvableExponent(samples, kSeenFraction)
+                                      : options.maxExponent;
+        if (!(options.minExponent >= 0.01f) || !(maxExponent > options.minExponent) ||
+            !std::isfinite(maxExponent) || maxExponent > 1e6f)
+            throw InvalidArgument("exponent bounds must satisfy 0.01 <= min < max <= 1e6 (max "
+                                  "0: the resolvable exponent, here " +
+                                  std::to_string(maxExponent) + ")");
+        if (options.maxIterations < 1 || options.maxIterations > 1000)
+            throw InvalidArgument("maxIterations must be 1..1000");
+        if (!(options.noise >= 0.0) || !std::isfinite(options.noise))
+            throw InvalidArgument("noise must be finite and >= 0 (0: estimated)");
+        checkBtfThreads(options.threads);
+        etaMin = std::log(double(options.minExponent));
+        etaMax = std::log(double(maxExponent));
+        const int count = samples.count();
+        lights.resize(static_cast<size_t>(count));
+        halves.resize(lights.size());
+        for (int s = 0; s < count; ++s) {
+            lights[size_t(s)] = samples.light(s);
+            halves[size_t(s)] = btfHalfVector(samples.light(s), samples.view(s));
+        }
+        return lights;
+    }
+};
+
+} // namespace
+
+double btfBlinnPhongNoise(const BtfSamples& samples, const BtfMaterialMaps& seed,
+                          const BtfNonlinearOptions& options) {
+    const FitSetup f(samples, seed, options);
+    return blinnPhongDataNoise(samples, f.geometry, f.lights, f.halves, seed, options, f.etaMin,
+                               f.etaMax);
+}
+
 BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMaps& seed,
                                  const BtfNonlinearOptions& options) {
-    seed.validate();
-    samples.requireFinite();
-    if (seed.width != samples.width() || seed.height != samples.height())
-        throw InvalidArgument("seed material and samples differ in size");
-    const float maxExponent = options.maxExponent == 0.0f
-                                  ? btfResolvableExponent(samples, kSeenFraction)
-                                  : options.maxExponent;
-    if (!(options.minExponent >= 0.01f) || !(maxExponent > options.minExponent) ||
-        !std::isfinite(maxExponent) || maxExponent > 1e6f)
-        throw InvalidArgument("exponent bounds must satisfy 0.01 <= min < max <= 1e6 (max 0: "
-                              "the resolvable exponent, here " + std::to_string(maxExponent) +
-                              ")");
-    if (options.maxIterations < 1 || options.maxIterations > 1000)
-        throw InvalidArgument("maxIterations must be 1..1000");
+    const FitSetup setup(samples, seed, options);
     // Auto is the built-in solver: ~100x faster than Ceres per texel at equal or lower
     // deviation (BENCHMARKS.md, btf); Ceres only when asked for.
     const bool ceres = options.solver == BtfSolver::Ceres;
@@ -86,15 +134,10 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
 
     const int count = samples.count();
     const size_t texels = samples.texels();
-    std::vector<glm::vec3> lights(static_cast<size_t>(count)), halves(lights.size());
-    for (int s = 0; s < count; ++s) {
-        lights[size_t(s)] = samples.light(s);
-        halves[size_t(s)] = btfHalfVector(samples.light(s), samples.view(s));
-    }
-    BlinnPhongGeometry geometry(lights, halves);
-    geometry.flatSpecular = options.flatSpecularNormal;
-    const double etaMin = std::log(double(options.minExponent));
-    const double etaMax = std::log(double(maxExponent));
+    const std::vector<glm::vec3>& lights = setup.lights;
+    const std::vector<glm::vec3>& halves = setup.halves;
+    const BlinnPhongGeometry& geometry = setup.geometry;
+    const double etaMin = setup.etaMin, etaMax = setup.etaMax;
 
     BtfNonlinearFit out;
     out.solver = ceres ? "ceres" : "builtin";
@@ -110,11 +153,11 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
     maps.flatSpecularNormal = options.flatSpecularNormal;
     std::vector<double> iterations(texels, 0.0), shadowed(texels, 0.0);
 
-    const double sigmaCap = options.visibility
-                                ? kNoiseSigmas * blinnPhongDataNoise(samples, geometry, lights,
-                                                                     halves, seed, options,
-                                                                     etaMin, etaMax)
-                                : HUGE_VAL;
+    out.noise = !options.visibility ? 0.0
+                : options.noise > 0.0   ? options.noise
+                                        : blinnPhongDataNoise(samples, geometry, lights, halves,
+                                                              seed, options, etaMin, etaMax);
+    const double sigmaCap = options.visibility ? kNoiseSigmas * out.noise : HUGE_VAL;
     const int blocks = int((texels + 63) / 64);
     btfParallelForDynamic(blocks, options.threads, 1, [&](int b0, int b1) {
         BlinnPhongTexel tx;
@@ -238,51 +281,64 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                         for (int s = 0; s < count; ++s) left += weights[size_t(s)] > 0.0f ? 0 : 1;
                     }
                 }
-                // No highlight in any channel: the NNLS dropped the lobe (k = 0), where the
-                // cost no longer depends on η, so the search cannot bring it back: a broad lobe
-                // that the diffuse term absorbed by tilting the normal (a start at a needle
-                // exponent, or the highlight-free normal of the visibility pass) stays absorbed
-                // (random seed 103 at 32²: 9.8° p95 -> 0.9°). Restart from the exponent on a
-                // coarse grid whose lobe explains most at this normal, and keep that fit where
-                // it is cheaper on the same samples; only where the lobe explains clearly more
-                // than noise (kLobeGain): on a material without a highlight every texel ends
-                // here.
-                if (r.coef[0][2] <= 0.0 && r.coef[1][2] <= 0.0 && r.coef[2][2] <= 0.0) {
-                    BlinnPhongResult from;
-                    from.cost = r.cost * (1.0 - kLobeGain);
-                    bool found = false;
-                    for (double e : kLobeStarts) {
-                        const double at[3] = {r.theta[0], r.theta[1],
-                                              std::min(std::max(std::log(e), etaMin), etaMax)};
-                        const BlinnPhongResult p = blinnPhongProject(tx, at);
-                        if (p.cost < from.cost) {
-                            from = p;
-                            found = true;
-                        }
-                    }
-                    if (found) {
-                        tx.start[0] = r.theta[0];
-                        tx.start[1] = r.theta[1];
-                        const BlinnPhongResult lobe = solve(from.theta);
-                        iters += lobe.iterations;
-                        if (lobe.cost < r.cost) r = lobe;
-                    }
-                }
                 // A lobe that no used sample sees at >= kSeenFraction of its peak has no
                 // support in the data: k and e trade off freely (a needle lobe, k up to 10^3,
                 // that would sparkle from unsampled directions). Such a texel gets no highlight.
-                if (r.coef[0][2] > 0.0 || r.coef[1][2] > 0.0 || r.coef[2][2] > 0.0) {
-                    blinnPhongTerms(tx, r.theta, d, g);
+                auto lobeSeen = [&](const BlinnPhongResult& x) {
+                    if (x.coef[0][2] <= 0.0 && x.coef[1][2] <= 0.0 && x.coef[2][2] <= 0.0)
+                        return false;
+                    blinnPhongTerms(tx, x.theta, d, g);
                     double seen = 0.0;
                     for (int s = 0; s < count; ++s)
                         if (tx.weights[s] > 0.0f) seen = std::max(seen, g[size_t(s)]);
-                    if (seen < kSeenFraction) {
-                        tx.specular = false;
-                        tx.start[0] = r.theta[0];
-                        tx.start[1] = r.theta[1];
-                        r = solve(r.theta);
-                        iters += r.iterations;
+                    return seen >= kSeenFraction;
+                };
+                if ((r.coef[0][2] > 0.0 || r.coef[1][2] > 0.0 || r.coef[2][2] > 0.0) &&
+                    !lobeSeen(r)) {
+                    tx.specular = false;
+                    tx.start[0] = r.theta[0];
+                    tx.start[1] = r.theta[1];
+                    r = solve(r.theta);
+                    iters += r.iterations;
+                }
+                // No highlight in any channel (the NNLS dropped the lobe, k = 0, or it was a
+                // needle no sample sees): where k = 0 the cost no longer depends on η, so the
+                // search cannot bring a lobe back, and a broad lobe that the diffuse term
+                // absorbed by tilting the normal (from a start at a needle exponent, or the
+                // highlight-free normal of the visibility pass) stays absorbed (random seed 103
+                // at 32²: 9.8° p95 -> 0.9°). Restart from the start on a coarse grid (exponent x
+                // the normal's tilt) whose lobe explains most, and keep that fit where it is
+                // cheaper on the same samples and its lobe is seen; only where the lobe
+                // explains clearly more than noise (kLobeGain): on a material without a
+                // highlight every texel ends here.
+                if (r.coef[0][2] <= 0.0 && r.coef[1][2] <= 0.0 && r.coef[2][2] <= 0.0) {
+                    const bool specular = tx.specular;
+                    tx.specular = true;
+                    BlinnPhongResult from;
+                    from.cost = r.cost * (1.0 - kLobeGain);
+                    bool found = false;
+                    for (double f : kLobeTilts)
+                        for (double e : kLobeStarts) {
+                            const double at[3] = {f * r.theta[0], f * r.theta[1],
+                                                  std::min(std::max(std::log(e), etaMin), etaMax)};
+                            const BlinnPhongResult p = blinnPhongProject(tx, at);
+                            if (p.cost < from.cost) {
+                                from = p;
+                                found = true;
+                            }
+                        }
+                    bool kept = false;
+                    if (found) {
+                        tx.start[0] = from.theta[0];
+                        tx.start[1] = from.theta[1];
+                        const BlinnPhongResult lobe = solve(from.theta);
+                        iters += lobe.iterations;
+                        if (lobe.cost < r.cost && lobeSeen(lobe)) {
+                            r = lobe;
+                            kept = true;
+                        }
                     }
+                    if (!kept) tx.specular = specular;
                 }
                 if (options.luminanceNormals) { // the colours at the luma fit's (n, e)
                     tx.setPlanes(rgb, tx.weights);
