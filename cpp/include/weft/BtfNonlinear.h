@@ -8,8 +8,11 @@
 // (Kaufman's Jacobian), the default. Ceres (when built with it and asked for): the full
 // 12-parameter problem, autodiff, bounds on m, b, k and log e.
 // Cast shadows: with `visibility`, samples much darker than the fitted model (closer to the
-// constant term than to the lit prediction, by more than the texel's noise) are taken as
-// shadowed and left out, and the texel is fitted again (a few rounds, until the set is stable).
+// constant term than to the lit prediction, by more than the texel's noise, itself at most twice
+// the data's) are taken as shadowed and left out, and the texel is fitted again (a few rounds,
+// until the set is stable); a texel whose fit misses its samples finds its shadows first with
+// Lambert + ambient, which no highlight can bend to mimic them. A texel left without a highlight
+// (k = 0, where the cost does not depend on e) restarts from a grid of exponents.
 #include <string>
 
 #include <weft/BtfFit.h>

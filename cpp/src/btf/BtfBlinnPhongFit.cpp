@@ -23,7 +23,8 @@ constexpr double kSeenFraction = 0.01;
 // (blinnPhongDataNoise): a fit pulled far from the data, by shadowed samples it still uses or by
 // a highlight a model without one cannot follow, misses every sample by more than the noise,
 // and a σ measured on it hides the shadows that pulled it (grooves whose steep lights are
-// shadowed too; random seeds 40, 41 at 32²: 3.7° / 6.2° p95 -> 1.3° / 0.3°).
+// shadowed too; random seeds 40, 41 at 32²: 7.0° / 6.2° p95 with the Lambert start alone,
+// 1.3° / 0.3° with the cap).
 constexpr double kNoiseSigmas = 2.0;
 // A lobe restart (below) needs a start that lowers the cost by this share: adding the lobe's
 // column lowers it by about 1/count per channel from noise alone.
@@ -212,9 +213,10 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                 BlinnPhongResult r = solve(start);
                 int iters = r.iterations, left = 0;
                 if (options.visibility) {
-                    // A texel with samples off its fit by more than the noise is fitted again from its steep
-                    // lights (θ_l <= 46°) alone, then from every sample not classified as
-                    // shadowed against that fit, until the classification is stable.
+                    // A texel with samples off its fit by more than the noise gets its cast
+                    // shadows from a Lambert fit to its steep lights (θ_l <= 46°), then is fitted
+                    // again from every sample not classified as shadowed, until the
+                    // classification is stable.
                     std::copy(geometry.ones.begin(), geometry.ones.end(), weights.begin());
                     const BlinnPhongResult first = r;
                     int misfit = 0;
@@ -245,7 +247,7 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                         // light, or stand in for the diffuse term (m = 0) so that no sample
                         // lies below half the diffuse light; a model without a highlight can
                         // do neither (random seeds 106, 114 at 32²: 18.9° / 18.3° p95 -> 0.8° /
-                        // 0.9°). Its fit is linear, so the rounds cost little.
+                        // 1.9°, 0.9° with the σ cap). Its fit is linear: the rounds cost little.
                         for (int s = 0; s < count; ++s)
                             next[size_t(s)] = geometry.l[2][size_t(s)] >= 0.69f ? 1.0f : 0.0f;
                         double at[2] = {seedStart[0], seedStart[1]};
