@@ -206,3 +206,18 @@ def test_cast_shadow_fit_iterations(seed: int) -> None:
         if flat == truth.material.flat_specular_normal:
             t = scoring.truth_errors(fit.material, truth.material)
             assert t["mean_deg"] <= 2.0 and t["p95_deg"] <= 6.0
+
+
+def test_seed_sweep_reports_each_seed_and_all_texels(capsys) -> None:
+    from weft.btf import seed_sweep
+
+    assert seed_sweep.parse_seeds(["3", "5-7"]) == [3, 5, 6, 7]
+    for bad in ("x", "7-5", "-1", "2-"):
+        with pytest.raises(weft.InvalidArgument):
+            seed_sweep.parse_seeds([bad])
+    assert seed_sweep.main(["--seeds", "6", "8", "--size", "16"]) == 0
+    out = capsys.readouterr().out
+    assert "| 6 |" in out and "| 8 |" in out and "all texels: mean" in out
+    r = seed_sweep.fit_seed(6, 16)
+    assert r["errors"].shape == (16, 16)
+    assert r["mean_deg"] == pytest.approx(float(r["errors"].mean()))

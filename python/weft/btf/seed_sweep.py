@@ -27,9 +27,9 @@ def parse_seeds(items: Sequence[str]) -> List[int]:
     """'40-59' and '7' style items as a list of seeds."""
     seeds: List[int] = []
     for item in items:
-        lo, _, hi = str(item).partition("-")
+        lo, dash, hi = str(item).partition("-")
         try:
-            first, last = int(lo), int(hi or lo)
+            first, last = int(lo), int(hi if dash else lo)
         except ValueError:
             raise weft.InvalidArgument(f"a seed is N or N-M, got {item!r}") from None
         if first < 0 or last < first:
