@@ -455,12 +455,30 @@ void bindBtf(py::module_& m) {
           py::arg("fraction") = 0.01,
         "The largest Blinn-Phong exponent the sampling resolves: a lobe at one sample's half "
         "vector keeps `fraction` of its peak at the nearest neighbouring half vector.");
+    m.def("btf_blinn_phong_noise", [](const BtfSamples& s, py::dict seed, float minExponent,
+                                      float maxExponent, int threads, bool flatSpecularNormal,
+                                      bool luminanceNormals) {
+        const BtfMaterialMaps mm = mapsFrom(s, seed);
+        BtfNonlinearOptions o;
+        o.luminanceNormals = luminanceNormals;
+        o.flatSpecularNormal = flatSpecularNormal;
+        o.minExponent = minExponent;
+        o.maxExponent = maxExponent;
+        o.threads = threads;
+        py::gil_scoped_release release;
+        return btfBlinnPhongNoise(s, mm, o);
+    }, py::arg("samples"), py::arg("seed"), py::arg("min_exponent") = 1.0f,
+       py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
+       py::arg("flat_specular_normal") = false, py::arg("luminance_normals") = false,
+        "The data's noise level (σ of a sample's channel sum) that btf_fit_blinn_phong "
+        "estimates for its cast-shadow classification when given noise=0.");
     m.def("btf_fit_blinn_phong", [](const BtfSamples& s, py::dict seed, const std::string& solver,
                                     int maxIterations, float minExponent, float maxExponent,
                                     int threads, bool flatSpecularNormal, bool visibility,
-                                    bool luminanceNormals) {
+                                    bool luminanceNormals, double noise) {
         const BtfMaterialMaps mm = mapsFrom(s, seed);
         BtfNonlinearOptions o;
+        o.noise = noise;
         o.luminanceNormals = luminanceNormals;
         o.flatSpecularNormal = flatSpecularNormal;
         o.visibility = visibility;
@@ -479,16 +497,18 @@ void bindBtf(py::module_& m) {
         d["mean_iterations"] = r.meanIterations;
         d["solver"] = r.solver;
         d["shadowed_fraction"] = r.shadowedFraction;
+        d["noise"] = r.noise;
         return d;
     }, py::arg("samples"), py::arg("seed"), py::arg("solver") = "auto",
        py::arg("max_iterations") = 30, py::arg("min_exponent") = 1.0f,
        py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
        py::arg("flat_specular_normal") = false, py::arg("visibility") = true,
-       py::arg("luminance_normals") = false,
+       py::arg("luminance_normals") = false, py::arg("noise") = 0.0,
         "Nonlinear per-texel Blinn-Phong fit (normal, ρ, a, k, exponent) seeded from `seed` "
         "maps, with the built-in Levenberg-Marquardt or Ceres ('auto', 'builtin', 'ceres'); "
-        "visibility leaves estimated cast shadows out. Returns {'maps', 'mean_iterations', "
-        "'solver', 'shadowed_fraction'}.");
+        "visibility leaves estimated cast shadows out, their test bounded by the data's noise "
+        "(noise 0: estimated, btf_blinn_phong_noise). Returns {'maps', 'mean_iterations', "
+        "'solver', 'shadowed_fraction', 'noise'}.");
 }
 
 } // namespace weft::py_bind

@@ -120,6 +120,61 @@ def test_cast_shadow_targets(tmp_path, seed: int) -> None:
     assert lt["p95_deg"] <= 6.0
 
 
+# Seeds used by no other test or benchmark, which missed the cast-shadow p95 before the
+# visibility pass started from a Lambert fit with σ bounded by the data's noise and restarted
+# dropped lobes (p95 11.7° / 9.8° / 18.9° / 18.3°; now 0.3-0.9°): a broad lobe had absorbed the
+# shadows' falloff or stood in for the diffuse term (106, 114), a σ measured on a fit pulled by
+# shadows hid them (41), k = 0 from a needle start left the lobe absorbed by a tilted normal
+# (103). Over 40 such seeds at 32² (BENCHMARKS.md, btf) none misses now.
+@pytest.mark.parametrize("seed", [41, 103, 106, 114])
+def test_cast_shadow_targets_on_unseen_seeds(tmp_path, seed: int) -> None:
+    samples, truth = read_back(tmp_path, seed, shadows=True)
+    _, (_, fit) = chosen_fit(samples, threads=2)
+    assert fit.material.flat_specular_normal == truth.flat_specular_normal
+    t = scoring.truth_errors(fit.material, truth)
+    assert t["mean_deg"] <= 2.0 and t["p95_deg"] <= 6.0
+    assert scoring.physical_violations(fit.material)["texels"] == 0
+
+
+def test_a_needle_start_does_not_drop_a_broad_lobe() -> None:
+    # seed 103's lobe is broad (e = 16.2); started at e = 4096 the NNLS gives k = 0, where the
+    # cost does not depend on e and the search used to stay, with the lobe absorbed by tilting
+    # the normal (12.5° p95); the fit now restarts such texels from a grid of exponents
+    samples, truth = synth.synthesize_random(103, SIZE, noise=NOISE)
+    seed = btf.fit_specular(samples, btf.fit_linear(samples), False).material
+    seed = BtfMaterial(normal=seed.normal, albedo=seed.albedo, ambient=seed.ambient,
+                       specular=seed.specular, exponent=4096.0, clamp_diffuse=True)
+    m = btf.fit_blinn_phong(samples, seed, visibility=False, threads=2).material
+    t = scoring.truth_errors(m, truth.material)
+    assert t["p95_deg"] <= 1.0
+    assert t["exponent_median_rel_error"] <= 0.10
+
+
+def test_the_shadow_noise_level_is_the_datasets(tmp_path) -> None:
+    # the cast-shadow test's σ is bounded by the data's noise, estimated over the whole image;
+    # a band of rows fitted with the whole dataset's noise is exactly those rows of the whole fit
+    samples, _ = read_back(tmp_path, 41, shadows=True)
+    seed = btf.fit_specular(samples, btf.fit_linear(samples), False).material
+    whole = btf.fit_blinn_phong(samples, seed, threads=2)
+    sigma = btf.shadow_noise(samples, seed, threads=1)
+    assert whole.noise == sigma
+    # the generator's noise, 0.004 per channel, 8-bit quantised, summed over 3 channels: 0.0071
+    # (the median texel's residuals are a little smaller for the fitted parameters, a little
+    # larger for the model's error; 0.0081 here)
+    assert 0.8 * 0.0071 <= sigma <= 1.5 * 0.0071
+    rows = slice(8, 20)
+    band = weft.BtfSamples(np.ascontiguousarray(samples.values[:, :, rows]), samples.angles)
+    band_seed = BtfMaterial(normal=seed.normal[rows], albedo=seed.albedo[rows],
+                            ambient=seed.ambient[rows], specular=seed.specular[rows],
+                            exponent=seed.exponent, clamp_diffuse=True)
+    part = btf.fit_blinn_phong(band, band_seed, threads=2, noise=sigma)
+    np.testing.assert_array_equal(part.material.normal, whole.material.normal[rows])
+    assert btf.fit_blinn_phong(samples, seed, visibility=False).noise == 0.0
+    for bad in (-1.0, 0.0, float("nan"), float("inf"), True):
+        with pytest.raises(weft.InvalidArgument):
+            btf.fit_blinn_phong(samples, seed, noise=bad)
+
+
 def test_jpeg_normals_from_the_luma(tmp_path) -> None:
     samples, truth = read_back(tmp_path, 1, fmt="jpg")
     linear = btf.fit_linear(samples)
@@ -151,3 +206,18 @@ def test_cast_shadow_fit_iterations(seed: int) -> None:
         if flat == truth.material.flat_specular_normal:
             t = scoring.truth_errors(fit.material, truth.material)
             assert t["mean_deg"] <= 2.0 and t["p95_deg"] <= 6.0
+
+
+def test_seed_sweep_reports_each_seed_and_all_texels(capsys) -> None:
+    from weft.btf import seed_sweep
+
+    assert seed_sweep.parse_seeds(["3", "5-7"]) == [3, 5, 6, 7]
+    for bad in ("x", "7-5", "-1", "2-"):
+        with pytest.raises(weft.InvalidArgument):
+            seed_sweep.parse_seeds([bad])
+    assert seed_sweep.main(["--seeds", "6", "8", "--size", "16"]) == 0
+    out = capsys.readouterr().out
+    assert "| 6 |" in out and "| 8 |" in out and "all texels: mean" in out
+    r = seed_sweep.fit_seed(6, 16)
+    assert r["errors"].shape == (16, 16)
+    assert r["mean_deg"] == pytest.approx(float(r["errors"].mean()))

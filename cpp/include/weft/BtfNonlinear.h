@@ -8,8 +8,11 @@
 // (Kaufman's Jacobian), the default. Ceres (when built with it and asked for): the full
 // 12-parameter problem, autodiff, bounds on m, b, k and log e.
 // Cast shadows: with `visibility`, samples much darker than the fitted model (closer to the
-// constant term than to the lit prediction, by more than the texel's noise) are taken as
-// shadowed and left out, and the texel is fitted again (a few rounds, until the set is stable).
+// constant term than to the lit prediction, by more than the texel's noise, itself at most twice
+// the data's) are taken as shadowed and left out, and the texel is fitted again (a few rounds,
+// until the set is stable); a texel whose fit misses its samples finds its shadows first with
+// Lambert + ambient, which no highlight can bend to mimic them. A texel left without a highlight
+// (k = 0, where the cost does not depend on e) restarts from a grid of exponents.
 #include <string>
 
 #include <weft/BtfFit.h>
@@ -28,6 +31,11 @@ struct BtfNonlinearOptions {
     /// fit n and e to the luma (BT.601) and only the colours to RGB: for JPEG data, whose
     /// chroma is stored at half resolution and coarser precision than the luma
     bool luminanceNormals = false;
+    /// The data's noise (standard deviation of a sample's channel sum) that bounds the
+    /// cast-shadow classification's σ: 0 estimates it from the samples (btfBlinnPhongNoise). A
+    /// dataset fitted in parts (bands of rows) passes the whole dataset's, so that each part
+    /// gives exactly its texels of the whole fit.
+    double noise = 0.0;
     int threads = 0;
 };
 
@@ -36,6 +44,7 @@ struct BtfNonlinearFit {
     double meanIterations = 0;
     std::string solver;   ///< "builtin" or "ceres"
     double shadowedFraction = 0; ///< samples left out as cast shadows / all samples
+    double noise = 0;            ///< the noise level the visibility pass used (0 without it)
 };
 
 /// True when weft was built with Ceres Solver.
@@ -47,6 +56,12 @@ bool btfHaveCeres();
 /// nearest neighbour. Narrower lobes are seen by one sample at most, where k and e trade off
 /// freely (needle lobes). Bonn frontal (81 lights, 15° rings): δ = 7.6°, e_max = 519 at 1%.
 float btfResolvableExponent(const BtfSamples& samples, double fraction = 0.01);
+
+/// The noise level fitBtfBlinnPhong estimates with options.noise = 0: the median over up to 1024
+/// texels spread evenly over the image of the robust σ of their first fit's residuals under
+/// steep light (θ_l <= 31°). Most texels fit there to the noise and the model's error.
+double btfBlinnPhongNoise(const BtfSamples& samples, const BtfMaterialMaps& seed,
+                          const BtfNonlinearOptions& options = {});
 
 /// Seeds from `seed` (normal, ρ, a, k, exponent of the linear + specular pipeline).
 BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMaps& seed,

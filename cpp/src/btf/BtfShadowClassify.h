@@ -12,30 +12,37 @@
 
 namespace weft {
 
-/// Per sample s < count: lit[s] the fit's light-dependent part, diffuse[s] its diffuse part,
-/// seen[s] the observed value minus `base` (the constant term), lz[s] the light's z, used[s] > 0
-/// for a sample the fit used. Writes weights (1 used, 0 left out; all 1 when fewer than
-/// `minUsed` would remain) and returns the number left out; `misfit` counts the samples off the
-/// prediction by more than 3 σ either way (a fit pulled by shadows may hide them from the first
-/// test).
-inline int classifyCastShadows(size_t count, const double* lit, const double* diffuse,
-                               const double* seen, double base, const float* lz,
-                               const float* used, int minUsed, float* weights, int& misfit) {
+/// Robust standard deviation of the residuals seen - lit of the used samples (used[s] > 0)
+/// under steep light (l_z >= 0.85: θ_l <= 31°, which cast shadows rarely reach; all used
+/// samples when fewer than 5 are that steep): median absolute residual / 0.6745.
+inline double steepResidualSigma(size_t count, const double* lit, const double* seen,
+                                 const float* lz, const float* used) {
     static thread_local std::vector<double> res; // no allocation per texel
     res.clear();
-    // σ from the steep lights (θ_l <= 31°), which cast shadows rarely reach: a fit pulled by
-    // shadowed grazing samples misses all samples by more than the noise
     for (size_t s = 0; s < count; ++s)
         if (used[s] > 0.0f && lz[s] >= 0.85f) res.push_back(std::fabs(seen[s] - lit[s]));
     if (res.size() < 5)
         for (size_t s = 0; s < count; ++s)
             if (used[s] > 0.0f) res.push_back(std::fabs(seen[s] - lit[s]));
-    // robust σ of those residuals (median absolute residual / 0.6745)
-    double sigma = 0.0;
-    if (!res.empty()) {
-        std::nth_element(res.begin(), res.begin() + long(res.size() / 2), res.end());
-        sigma = res[res.size() / 2] / 0.6745;
-    }
+    if (res.empty()) return 0.0;
+    std::nth_element(res.begin(), res.begin() + long(res.size() / 2), res.end());
+    return res[res.size() / 2] / 0.6745;
+}
+
+/// Per sample s < count: lit[s] the fit's light-dependent part, diffuse[s] its diffuse part,
+/// seen[s] the observed value minus `base` (the constant term), lz[s] the light's z, used[s] > 0
+/// for a sample the fit used. Writes weights (1 used, 0 left out; all 1 when fewer than
+/// `minUsed` would remain) and returns the number left out; `misfit` counts the samples off the
+/// prediction by more than 3 σ either way (a fit pulled by shadows may hide them from the first
+/// test). σ is steepResidualSigma, at most `sigmaCap`: a fit pulled far from the data (by
+/// shadowed samples it still uses, or by a highlight that a model without one cannot follow)
+/// misses every sample by more than the noise, and a σ measured on it would hide the shadows
+/// that pulled it.
+inline int classifyCastShadows(size_t count, const double* lit, const double* diffuse,
+                               const double* seen, double base, const float* lz,
+                               const float* used, int minUsed, float* weights, int& misfit,
+                               double sigmaCap = HUGE_VAL) {
+    const double sigma = std::min(steepResidualSigma(count, lit, seen, lz, used), sigmaCap);
     int left = 0;
     misfit = 0;
     for (size_t s = 0; s < count; ++s) {

@@ -2,7 +2,9 @@
 
 1. :func:`prepare` (whole dataset): load, the linear and specular fits of
    :func:`weft.btf.fit_report.seed_fits` (one pass each; the specular exponent is chosen over all
-   texels, so it cannot be split), then the samples and seed maps cut into bands of rows;
+   texels, so it cannot be split) and the cast-shadow test's noise level
+   (:func:`weft.btf.fit_report.shadow_noise_levels`, likewise), then the samples and seed maps
+   cut into bands of rows;
 2. :func:`fit_tile` with ``"blinn_phong"`` (one band): the per-texel Blinn-Phong fits
    (:func:`weft.btf.fit_report.blinn_phong_fits`) — every texel is fitted on its own, so a
    band's maps are exactly those rows of a whole-dataset fit;
@@ -112,12 +114,14 @@ def load(job: BtfJob) -> Tuple[Any, float]:
 def prepare(job: BtfJob) -> Tuple[Any, ...]:
     """Returns (header, band 0, ..., band tiles-1): the header holds the whole-dataset fits,
     each band its rows of the samples and of the two specular seeds."""
-    from weft.btf.fit_report import seed_fits
+    from weft.btf.fit_report import seed_fits, shadow_noise_levels
 
     t0 = time.perf_counter()
     samples, load_s = load(job)
     _check_memory(job, 4 * samples.count * 3 * samples.width * samples.height, "the dataset")
     seeds = seed_fits(samples, job.args(), _timer(job.times))
+    # the cast-shadow test's noise level is the whole dataset's, as for the specular exponent
+    noise = shadow_noise_levels(samples, seeds.flat.material, seeds.fitted.material, job.args())
     values, angles = samples.values, samples.angles
     header = dict(models=seeds.models, linear=seeds.linear, load_s=load_s,
                   size=(samples.width, samples.height), count=samples.count, worker=where())
@@ -129,7 +133,7 @@ def prepare(job: BtfJob) -> Tuple[Any, ...]:
         out.append(dict(rows=(y0, y1), angles=angles,
                         values=np.ascontiguousarray(values[:, :, y0:y1, :]),
                         flat=_crop(seeds.flat.material, y0, y1),
-                        fitted=_crop(seeds.fitted.material, y0, y1)))
+                        fitted=_crop(seeds.fitted.material, y0, y1), noise=noise))
     header["seconds"] = time.perf_counter() - t0
     return tuple(out)
 
@@ -149,7 +153,7 @@ def fit_tile(job: BtfJob, band: Optional[Dict[str, Any]], kind: str,
     t0 = time.perf_counter()
     if kind == "blinn_phong":
         models = blinn_phong_fits(samples, band["flat"], band["fitted"], job.args(),
-                                  _timer(job.times))
+                                  _timer(job.times), band.get("noise"))
     else:
         material, fixed = seed if seed is not None else (band["flat"], False)
         models = lafortune_fits(samples, material, fixed, job.args(), _timer(job.times))

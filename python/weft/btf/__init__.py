@@ -23,6 +23,7 @@ from weft.btf.fit import (
     normal_stats,
     resolvable_exponent,
     sample_errors,
+    shadow_noise,
     solve_linear,
 )
 from weft.btf.material import BtfMaterial
@@ -31,5 +32,5 @@ from weft.btf.synth import PRESETS, SynthTruth, synthesize, write
 __all__ = ["BtfMaterial", "BtfSamples", "LafortuneFit", "LinearFit", "NonlinearFit", "PRESETS", "SpecularFit",
            "SynthTruth", "angular_error_deg", "deviation", "fit_blinn_phong", "fit_lafortune", "fit_linear",
            "fit_specular", "have_ceres", "load", "normal_stats", "resolvable_exponent", "sample_errors",
-           "solve_linear",
+           "shadow_noise", "solve_linear",
            "synthesize", "write"]

@@ -113,13 +113,15 @@ class NonlinearFit:
     solver: str
     mean_iterations: float
     shadowed_fraction: float = 0.0  # samples left out as cast shadows / all samples
+    noise: float = 0.0  # the data's noise the visibility pass used (0 without it)
 
 
 def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
                     max_iterations: int = 30, min_exponent: float = 1.0,
                     max_exponent: Optional[float] = None, threads: int = 0,
                     flat_specular_normal: bool = False, visibility: bool = True,
-                    luminance_normals: bool = False, jpeg_cells: bool = False) -> NonlinearFit:
+                    luminance_normals: bool = False, jpeg_cells: bool = False,
+                    noise: Optional[float] = None) -> NonlinearFit:
     """Per-texel Blinn-Phong in the renderer's model, seeded by ``seed`` (normal, exponent):
     ``P = albedo (ambient + max(n.l, 0)) + specular [n.l > 0] max(n_s.h, 0)^e``.
 
@@ -131,7 +133,11 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
     be unconstrained by the data (needle lobes).
     ``flat_specular_normal``: the highlight around n_s = (0, 0, 1) (seed eq. 4.30) instead of
     the fitted normal. ``visibility``: samples far darker than the fit (cast shadows) are left
-    out and the texel refitted; ``shadowed_fraction`` says how many. ``luminance_normals``: the
+    out and the texel refitted; ``shadowed_fraction`` says how many. The test's noise level
+    (at most twice ``noise``, the standard deviation of a sample's channel sum) is estimated from
+    the samples when ``noise`` is None (:func:`shadow_noise`; returned as ``noise``): a dataset
+    fitted in parts (bands of rows) passes the whole dataset's, so each part gives exactly its
+    texels of the whole fit. ``luminance_normals``: the
     normal and exponent are fitted to the luma (BT.601), the colours to RGB at that fit: for
     JPEG data, whose chroma is stored at half resolution and coarser precision. ``solver``: "auto"
     (= "builtin", the fastest and as accurate), "builtin" (Levenberg-Marquardt by variable
@@ -147,9 +153,9 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
                                   0.0 if max_exponent is None else float(max_exponent),
                                   int(threads),
                                   bool(flat_specular_normal), bool(visibility),
-                                  bool(luminance_normals))
+                                  bool(luminance_normals), _noise(noise))
     fit = NonlinearFit(BtfMaterial.from_core(r["maps"]), r["solver"], r["mean_iterations"],
-                       float(r["shadowed_fraction"]))
+                       float(r["shadowed_fraction"]), float(r["noise"]))
     if jpeg_cells and getattr(samples, "jpeg_cells", None) is not None:
         from weft.btf import jpeg_cells as cells
         e_max = resolvable_exponent(samples) if max_exponent is None else float(max_exponent)
@@ -157,6 +163,27 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
         fit.material, _ = cells.refine(samples, fit.material, max_exponent=e_max,
                                        shadowed=mask)
     return fit
+
+
+def _noise(noise: Optional[float]) -> float:
+    if noise is None:
+        return 0.0
+    if isinstance(noise, bool) or not np.isfinite(noise) or not noise > 0:
+        raise weft.InvalidArgument(f"noise must be a positive number or None, got {noise!r}")
+    return float(noise)
+
+
+def shadow_noise(samples: Any, seed: BtfMaterial, flat_specular_normal: bool = False,
+                 min_exponent: float = 1.0, max_exponent: Optional[float] = None,
+                 luminance_normals: bool = False, threads: int = 0) -> float:
+    """The noise level :func:`fit_blinn_phong` estimates for its cast-shadow test with the same
+    arguments and ``noise=None``: the median, over up to 1024 texels spread evenly over the
+    image, of the robust standard deviation of their first fit's residuals (channel sums) under
+    steep light (θ_l <= 31°, which cast shadows rarely reach)."""
+    return float(_core.btf_blinn_phong_noise(
+        samples, seed.core_maps(), float(min_exponent),
+        0.0 if max_exponent is None else float(max_exponent), int(threads),
+        bool(flat_specular_normal), bool(luminance_normals)))
 
 
 def resolvable_exponent(samples: Any, fraction: float = 0.01) -> float:

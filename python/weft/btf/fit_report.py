@@ -124,11 +124,14 @@ def seed_fits(samples: Any, args: argparse.Namespace, run: Any) -> SeedFits:
 
 
 def blinn_phong_fits(samples: Any, flat: BtfMaterial, fitted: BtfMaterial,
-                     args: argparse.Namespace, run: Any) -> List[Fitted]:
+                     args: argparse.Namespace, run: Any,
+                     noise: Optional[Dict[str, float]] = None) -> List[Fitted]:
     """Per-texel Blinn-Phong with both highlights, seeded by the specular fits ``fitted``
     (eq. 4.29) and ``flat`` (eq. 4.30). Every texel is fitted on its own (the exponent bound
-    comes from the light directions only), so a band of texels, samples and seeds cropped
-    alike, gives those rows of these maps."""
+    comes from the light directions only, the cast-shadow test's noise level from ``noise``,
+    model name -> :func:`weft.btf.fit.shadow_noise` of the whole dataset, or estimated here when
+    None), so a band of texels, samples and seeds cropped alike, given the whole dataset's
+    noise, gives those rows of these maps."""
     out: List[Fitted] = []
     if not args.nonlinear:
         return out
@@ -138,11 +141,26 @@ def blinn_phong_fits(samples: Any, flat: BtfMaterial, fitted: BtfMaterial,
         bp, t = run(label, btf_fit.fit_blinn_phong, samples, seed, args.solver,
                     max_exponent=args.max_exponent, flat_specular_normal=flat_ns,
                     visibility=args.visibility, threads=_threads(args),
-                    luminance_normals=getattr(args, "luminance_normals", False))
+                    luminance_normals=getattr(args, "luminance_normals", False),
+                    noise=(noise or {}).get(name))
         out.append(Fitted(name, bp.material, t, dict(
             solver=bp.solver, mean_iterations=bp.mean_iterations,
             shadowed_fraction=getattr(bp, "shadowed_fraction", None))))
     return out
+
+
+def shadow_noise_levels(samples: Any, flat: BtfMaterial, fitted: BtfMaterial,
+                        args: argparse.Namespace) -> Optional[Dict[str, float]]:
+    """The whole dataset's noise level per Blinn-Phong fit of :func:`blinn_phong_fits`
+    (None when those fits or their visibility pass are off): what a fit in bands passes."""
+    if not args.nonlinear or not args.visibility:
+        return None
+    return {name: btf_fit.shadow_noise(samples, seed, flat_ns, max_exponent=args.max_exponent,
+                                       luminance_normals=getattr(args, "luminance_normals",
+                                                                 False),
+                                       threads=_threads(args))
+            for name, seed, flat_ns in (("blinn_phong_n", fitted, False),
+                                        ("blinn_phong_flat", flat, True))}
 
 
 def blinn_phong_choice(samples: Any, scored: List[Scored]) -> Dict[str, Any]:
