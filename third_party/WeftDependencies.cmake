@@ -7,6 +7,7 @@
 #   JPEG    : libjpeg62-turbo-dev                     libzip: libzip-dev (BTF datasets)
 #   TinyGLTF: libtinygltf-dev (glTF 2.0 meshes)       CLI11 : libcli11-dev (the demo's options)
 #   nlohmann_json: nlohmann-json3-dev (the demo's JSON stats)
+#   imgui   : libimgui-dev (+ libstb-dev; the demo's panel, optional: cpp/CMakeLists.txt)
 find_package(Vulkan REQUIRED)
 find_package(glfw3 3.3 REQUIRED)
 find_package(glm REQUIRED)

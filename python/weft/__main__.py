@@ -21,7 +21,7 @@ import argparse
 import json
 import os
 import sys
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 
 def _checked(convert, ok, expected: str):
@@ -168,6 +168,11 @@ def build_parser() -> argparse.ArgumentParser:
                         help="how radiance above 1 is shown: clamp (the seed's look, clips), "
                              "aces (filmic), agx (Blender's) or neutral (Khronos PBR Neutral, "
                              "colours kept); default clamp")
+    from weft.reporting import add_progress_arguments
+
+    add_progress_arguments(render)
+    render.add_argument("--quiet", action="store_true",
+                        help="no progress bar (as --no-progress); the result lines still print")
     render.set_defaults(handler=_cmd_render)
 
     from weft.btf import cli as btf_cli
@@ -246,37 +251,15 @@ def _check_render_args(args: argparse.Namespace) -> None:
 
 def _cmd_render(args: argparse.Namespace) -> int:
     import weft
+    from weft.reporting import Progress
 
     _check_render_args(args)
-    cube = None
-    if args.environment:  # read (and reject) the environment before any simulation or GPU work
-        import weft.ibl
-
-        # 256 texels per face: it is also the background the camera sees
-        cube = weft.ibl.load_environment_cube(
-            args.environment, 256, source=args.source or "auto",
-            wrap=1.0 if args.wrap is None else args.wrap)
-    if args.scene == "cloth":
-        import weft.scenes
-
-        steps = _CLOTH_STEPS if args.steps is None else args.steps
-        scene, camera, _cloth = weft.scenes.cloth_scene(steps=steps)
-    else:
-        scene, camera = weft.default_scene()
-    if cube is not None:
-        import weft.scenes
-
-        weft.scenes.light_with_environment(scene, cube,
-                                           dome_lights=16 if args.dome is None else args.dome,
-                                           sun_lights=args.sun_lights or 0)
-    if args.background:
-        import weft.scenes
-
-        weft.scenes.composite_over(scene, weft.load_png(args.background))
-    renderer = weft.Renderer(args.width, args.height, msaa=args.msaa, exposure=args.exposure,
-                             tone_map=args.tone_map, ambient_occlusion=args.ao,
-                             bounce=not args.no_bounce)
-    image = renderer.render(scene, camera)
+    steps = (_CLOTH_STEPS if args.steps is None else args.steps) if args.scene == "cloth" else 0
+    # The seconds go to reading the environment, simulating the cloth and the first frame
+    # (pipelines, captures): one bar over them, each simulation step one unit.
+    units = 3 + steps + (2 if args.environment else 0) + (1 if args.background else 0)
+    with Progress(units, enabled=False if args.quiet else args.progress) as bar:
+        image, renderer, cube = _render(args, steps, bar)
     directory = os.path.dirname(args.out)
     if directory:
         os.makedirs(directory, exist_ok=True)
@@ -286,6 +269,60 @@ def _cmd_render(args: argparse.Namespace) -> int:
           f"{renderer.device_name})")
     print(format_stats(renderer.stats))
     return 0
+
+
+def _render(args: argparse.Namespace, steps: int, bar: Any) -> Tuple[Any, Any, Any]:
+    """The render command's work, reported to ``bar`` (weft.reporting.Progress) step by step:
+    returns (image, renderer, environment cube or None)."""
+    import weft
+
+    cube = None
+    if args.environment:  # read (and reject) the environment before any simulation or GPU work
+        import weft.ibl
+
+        bar.update(f"reading {os.path.basename(args.environment)}")
+        # 256 texels per face: it is also the background the camera sees
+        cube = weft.ibl.load_environment_cube(
+            args.environment, 256, source=args.source or "auto",
+            wrap=1.0 if args.wrap is None else args.wrap)
+        bar.step()
+    bar.update("building the scene")
+    if args.scene == "cloth":
+        import weft.scenes
+
+        # The scene draws the cloth as it is now, so stepping it here equals cloth_scene(steps).
+        scene, camera, cloth = weft.scenes.cloth_scene(steps=0)
+        bar.step()
+        bar.update(f"simulating the cloth ({steps} steps)")
+        for _ in range(steps):
+            cloth.step(1.0 / 60.0)
+            bar.step()
+    else:
+        scene, camera = weft.default_scene()
+        bar.step()
+    if cube is not None:
+        import weft.scenes
+
+        bar.update("lighting with the environment")
+        weft.scenes.light_with_environment(scene, cube,
+                                           dome_lights=16 if args.dome is None else args.dome,
+                                           sun_lights=args.sun_lights or 0)
+        bar.step()
+    if args.background:
+        import weft.scenes
+
+        bar.update("compositing over the background")
+        weft.scenes.composite_over(scene, weft.load_png(args.background))
+        bar.step()
+    bar.update("creating the renderer")
+    renderer = weft.Renderer(args.width, args.height, msaa=args.msaa, exposure=args.exposure,
+                             tone_map=args.tone_map, ambient_occlusion=args.ao,
+                             bounce=not args.no_bounce)
+    bar.step()
+    bar.update("rendering (pipelines, captures)")
+    image = renderer.render(scene, camera)
+    bar.step("rendered")
+    return image, renderer, cube
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

@@ -63,7 +63,8 @@ SEEDS = {
     "lights": {"seed.lights": "DIRLIGHT 1 0 1 0\nDIRLIGHT 2 1 1 1 0.5 0.4 0.3\n"
                               "PERSPLIGHT 3 0 0 0 4 4 4 60 1.0 0.1 100\n"},
     "script": {"seed.script": "# frame action args\n0 key SPACE\n3 grab 320 240\n4 drag 330.5 250\n"
-                              "6 release\n8 key a\n9 key LEFT\n"},
+                              "6 release\n8 key a\n9 key LEFT\n10 set exposure 1.5\n"
+                              "11 set fur marschner\n"},
 }
 
 

@@ -19,7 +19,8 @@ pytestmark = pytest.mark.skipif(not EXE or not Path(EXE).exists(),
 
 OPTIONS = ["--width", "--height", "--frames", "--headless", "--out", "--environment", "--msaa",
            "--ao", "--no-bounce", "--exposure", "--tone-map", "--time", "--script",
-           "--screenshot", "--stats", "--no-vsync", "--shader-dir", "--no-hot-reload", "--help"]
+           "--screenshot", "--stats", "--no-vsync", "--shader-dir", "--no-hot-reload", "--no-panel",
+           "--quiet", "--help"]
 
 
 def demo(*args: str, timeout: float = 120) -> subprocess.CompletedProcess:
@@ -57,12 +58,21 @@ def test_headless_run_prints_progress_and_writes_json(tmp_path: Path) -> None:
                 "--ao", "0", "--tone-map", "aces", "--time", "12", "--out", str(tmp_path / "f"),
                 "--stats", str(stats), "--no-hot-reload")
     assert proc.returncode == 0, proc.stderr
-    lines = proc.stdout.splitlines()
-    building = [i for i, line in enumerate(lines) if "building the scene" in line]
-    written = [i for i, line in enumerate(lines) if "written to" in line]
-    assert building and written and building[0] < written[0], proc.stdout
+    # progress on stderr, each line stamped with the seconds since the start; the result on stdout
+    progress = proc.stderr.splitlines()
+    assert any("building the scene" in line for line in progress), proc.stderr
+    assert any("rendering the first frame" in line for line in progress), proc.stderr
+    assert any(line.startswith("weft-demo: [") and "frame 2/2" in line for line in progress), proc.stderr
+    assert "written to" in proc.stdout and "building" not in proc.stdout, proc.stdout
     last = json.loads(stats.read_text())
     assert last["frame_index"] == 1 and last["passes"]
     frames = json.loads((tmp_path / "f" / "stats.json").read_text())
     assert [f["frame_index"] for f in frames] == [0, 1]
     assert all(isinstance(p["name"], str) for f in frames for p in f["passes"])
+
+
+def test_quiet_run_prints_no_progress(tmp_path: Path) -> None:
+    proc = demo("--headless", "--quiet", "--width", "32", "--height", "24", "--msaa", "1", "--ao", "0",
+                "--out", str(tmp_path / "q.png"), "--no-hot-reload")
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == "" and "written to" in proc.stdout, proc.stdout + proc.stderr

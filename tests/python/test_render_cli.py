@@ -310,3 +310,15 @@ def test_extracted_sun_lights_exactly_and_casts_a_sharp_shadow() -> None:
     assert in_shadow.sum() > 5 and open_ground.sum() > 100
     lum = debug["linear"][..., :3] @ LUMA
     assert lum[in_shadow].mean() < 0.5 * lum[open_ground].mean()
+
+
+def test_render_shows_progress_unless_quiet(tmp_path: Path) -> None:
+    """The seconds of simulation and the first frame show as a bar on stderr (tqdm) when asked,
+    or on a terminal; --quiet leaves only the result lines on stdout."""
+    args = ["-m", "weft", "render", "--scene", "cloth", "--steps", "5", "--width", "32",
+            "--height", "24", "--msaa", "1", "--ao", "0", "--out", str(tmp_path / "r.png")]
+    shown = run(args + ["--progress"])
+    assert "simulating the cloth" in shown.stderr and "rendered" in shown.stderr, shown.stderr
+    assert "8/8" in shown.stderr, shown.stderr  # scene, 5 steps, renderer, render
+    quiet = run(args + ["--quiet"])
+    assert quiet.stderr == "" and "wrote" in quiet.stdout, quiet.stderr

@@ -12,6 +12,10 @@
 #include <weft/Error.h>
 #include <weft/ShaderReload.h>
 
+#ifdef WEFT_DEMO_PANEL
+#include "Panel.h"
+#endif
+
 namespace {
 
 const char* kDescription = R"(Shows the seed's interactive cloth environment: a terrain from a height map, a sphere, a
@@ -26,6 +30,12 @@ capture with Fresnel), K the fur's shading model (Kajiya-Kay, Marschner, Sadeghi
 P PCF kernel size, H holes,
 C resets the cloth, Space pauses the
 simulation, Esc or Q quits. The title bar shows fps, simulation steps/s and pass times.
+The panel (F1 hides it) shows the time per pass and sets all of the above plus exposure,
+tone map, anti-aliasing, ambient occlusion, bounce light and the hair's transparency and
+self-shadowing; a --script line "<frame> set <name> <value>" sets the same, e.g.
+"30 set exposure 1.5" or "10 set bounce off" (names: exposure, tone-map, msaa, ao,
+bounce, hour, day-night, light-azimuth, shadows, pcf, hair-transparency, hair-shadows,
+fur, wind, wind-direction, paused, normal-map, btf, holes, reflective, panel).
 )";
 
 // CLI11's help, laid out as the demo's help always was: usage line first, then what the demo
@@ -112,8 +122,9 @@ int main(int argc, char** argv) {
         }, ""));
     app.add_option("--script", o.script,
                    "scripted input, one event per line: \"<frame> key <K>\",\n"
-                   "\"<frame> grab <x> <y>\", \"<frame> drag <x> <y>\", \"<frame> release\"\n"
-                   "(pixels from the top left; keys as below, or SPACE/LEFT/RIGHT/UP/DOWN)")
+                   "\"<frame> grab <x> <y>\", \"<frame> drag <x> <y>\", \"<frame> release\",\n"
+                   "\"<frame> set <name> <value>\" (pixels from the top left; keys as below,\n"
+                   "or SPACE/LEFT/RIGHT/UP/DOWN; settings as the panel's, below)")
         ->option_text("PATH");
     app.add_option("--screenshot", o.screenshot, "window: save the last presented frame to PATH")
         ->option_text("PATH");
@@ -126,6 +137,10 @@ int main(int argc, char** argv) {
                    "(default: $WEFT_SHADER_DIR, else the source tree's glsl/ when present)")
         ->option_text("PATH");
     app.add_flag("--no-hot-reload", noHotReload, "do not watch any shader directory");
+    bool noPanel = false;
+    app.add_flag("--no-panel", noPanel, "window: no panel over the picture (it shows what a\n"
+                                        "headless render shows)");
+    app.add_flag("--quiet", o.quiet, "no progress lines on stderr");
     app.set_help_flag("-h,--help", "show this help");
 
     try {
@@ -142,7 +157,13 @@ int main(int argc, char** argv) {
     if (noVsync) o.vsync = false;
     if (noHotReload || !hotReload) o.shaderDir.clear();
     try {
+#ifdef WEFT_DEMO_PANEL
+        weft::demo::Panel panel(o.environment);
+        return weft::runDemo(o, noPanel ? nullptr : &panel);
+#else
+        (void)noPanel; // built without Dear ImGui: there is no panel to leave out
         return weft::runDemo(o);
+#endif
     } catch (const std::exception& e) {
         std::cerr << "weft-demo: error: " << e.what() << std::endl;
         return 1;

@@ -29,11 +29,18 @@ struct DemoOptions {
     bool bounce = true;         // RenderSettings::bounce
     float exposure = 0.0f;      // RenderSettings::exposure (stops)
     ToneMap toneMap = ToneMap::Clamp;
+    bool quiet = false;         // no progress lines on stderr (results still go to stdout)
 };
+
+namespace app {
+class DemoPanel; // app/DemoPanel.h: weft-demo's ImGui panel
+}
 
 /// Runs the seed's cloth environment (terrain, sphere, cloth held at one edge in the wind,
 /// sun and moon): a window when a display exists (and !headless), otherwise offscreen to `out`. Returns a process exit code (3 when validation is enabled and the
 /// layers reported anything); prints what it wrote.
 int runDemo(const DemoOptions& options);
+/// The same with `panel` drawn over the window and fed its input (null: none; unused headless).
+int runDemo(const DemoOptions& options, app::DemoPanel* panel);
 
 } // namespace weft

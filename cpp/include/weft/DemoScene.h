@@ -46,6 +46,24 @@ public:
     void release();
     bool grabbing() const { return mGrabbed >= 0; }
 
+    // The controls' state, read and set by the settings (DemoSettings.h) and weft-demo's panel.
+    float windStrength() const { return mWindStrength; }
+    float windDirection() const; ///< degrees in [0, 360)
+    void setWind(float strength, float directionDegrees);
+    float lightAzimuth() const; ///< degrees in [0, 360): where the sun and moon circle
+    void setLightAzimuth(float degrees);
+    float hour() const { return 24.0f * mTimeOfDay; }
+    bool environmentLit() const { return mEnvironmentLit; }
+    bool dayNight() const { return mDayNight; }
+    bool paused() const { return mPaused; }
+    bool normalMap() const { return mNormalMap; }
+    bool holes() const { return mHoles; }
+    bool shadows() const { return mShadows; }
+    bool btf() const { return mBtf; }
+    bool reflections() const { return mReflections; }
+    int furModel() const { return mFurModel; } ///< 0 Kajiya-Kay, 1 Marschner, 2 Sadeghi
+    int pcf() const { return mPcf; }           ///< PCF radius 0..3 (kernel 2r+1)
+
     /// One line of the controls for the help text.
     static const char* controls();
     /// The state in one line (wind, time of day, toggles) for titles and logs.

@@ -6,12 +6,13 @@
 
 namespace weft::app {
 
-/// At frame `frame`, press a key or grab / drag / release at a pixel.
+/// At frame `frame`, press a key, grab / drag / release at a pixel, or change a setting.
 struct ScriptEvent {
     int frame = 0;
-    std::string action; ///< key, grab, drag, release
+    std::string action; ///< key, grab, drag, release, set
     int key = 0;        ///< GLFW key code (action "key")
     double x = 0, y = 0; ///< pixel (grab, drag), finite and within +-kMaxScriptPixel
+    std::string name, value; ///< set: one of DemoSettings.h's settings and its value (checked)
 };
 
 /// Largest |x| or |y| of a grab or drag (pixels): far off any window, small enough that the
@@ -24,9 +25,10 @@ constexpr unsigned long long kMaxScriptBytes = 64ull << 20;
 /// InvalidArgument naming `where` otherwise.
 int scriptKeyCode(const std::string& name, const std::string& where);
 
-/// Lines "<frame> key <K>", "<frame> grab <x> <y>", "<frame> drag <x> <y>", "<frame> release";
+/// Lines "<frame> key <K>", "<frame> grab <x> <y>", "<frame> drag <x> <y>", "<frame> release",
+/// "<frame> set <name> <value>" (what weft-demo's panel edits, app/DemoSettings.h);
 /// '#' starts a comment; frames must not decrease. An empty path gives no events. Throws IoError
-/// with "path:line:" for a malformed line, InvalidArgument for an unknown key.
+/// with "path:line:" for a malformed line, InvalidArgument for an unknown key or setting.
 std::vector<ScriptEvent> loadScript(const std::string& path);
 
 } // namespace weft::app

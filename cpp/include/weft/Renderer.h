@@ -18,6 +18,11 @@
 namespace weft {
 
 class Window;
+class Renderer;
+namespace render { // an internal hook: a pass drawn over present()'s output (render/FrameOverlay.h)
+class FrameOverlay;
+void setFrameOverlay(Renderer& renderer, FrameOverlay* overlay);
+} // namespace render
 
 /// How strands are drawn: 1-pixel lines or camera-facing ribbons (width = hairWidth * thickness).
 enum class HairPrimitive { Lines = 0, Ribbons = 1 };
@@ -165,6 +170,7 @@ public:
     std::string deviceName() const;
 
 private:
+    friend void render::setFrameOverlay(Renderer&, render::FrameOverlay*);
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };

@@ -508,6 +508,28 @@ void DemoScene::release() {
     mGrabbed = -1;
 }
 
+float DemoScene::windDirection() const {
+    return std::fmod(glm::degrees(mWindAngle) + 360.0f * 64.0f, 360.0f);
+}
+
+void DemoScene::setWind(float strength, float directionDegrees) {
+    if (!(strength >= 0.0f && strength <= 30.0f) || !std::isfinite(directionDegrees))
+        throw InvalidArgument("wind strength must be in [0, 30] and its direction finite");
+    mWindStrength = strength;
+    mWindAngle = glm::radians(std::fmod(directionDegrees, 360.0f));
+    mCloth->setWind(Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
+}
+
+float DemoScene::lightAzimuth() const {
+    return std::fmod(glm::degrees(mSunAzimuth) + 360.0f * 64.0f, 360.0f);
+}
+
+void DemoScene::setLightAzimuth(float degrees) {
+    if (!std::isfinite(degrees)) throw InvalidArgument("light azimuth must be finite");
+    mSunAzimuth = glm::radians(std::fmod(degrees, 360.0f));
+    updateSky();
+}
+
 const char* DemoScene::controls() {
     return "left-drag grabs the cloth; arrows orbit the camera; 1/2 wind weaker/stronger, R turns "
            "the wind, L orbits the light, T day-night cycle, N normal mapping, B BTF material, E "

@@ -10,6 +10,7 @@
 
 #include <weft/Error.h>
 
+#include "app/DemoSettings.h"
 #include "core/FileRead.h"
 
 namespace weft::app {
@@ -51,8 +52,18 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
             if (!(words >> e.x >> e.y)) throw IoError(where + ": " + e.action + " needs x y");
             if (!(std::fabs(e.x) <= kMaxScriptPixel && std::fabs(e.y) <= kMaxScriptPixel))
                 throw IoError(where + ": " + e.action + " pixel must be finite, within +-1e6");
+        } else if (e.action == "set") {
+            std::string extra;
+            if (!(words >> e.name >> e.value) || (words >> extra))
+                throw IoError(where + ": set needs a setting's name and one value");
+            try {
+                checkDemoSetting(e.name, e.value);
+            } catch (const InvalidArgument& bad) {
+                throw InvalidArgument(where + ": " + bad.what());
+            }
         } else if (e.action != "release") {
-            throw IoError(where + ": unknown action '" + e.action + "' (key, grab, drag, release)");
+            throw IoError(where + ": unknown action '" + e.action +
+                          "' (key, grab, drag, release, set)");
         }
         if (e.frame < 0 || (!events.empty() && e.frame < events.back().frame))
             throw IoError(where + ": frames must be >= 0 and not decrease");

@@ -19,6 +19,7 @@ struct RenderTargets;
 class DomeShadows;
 class ReflectionProbe;
 class BounceProbes;
+class FrameOverlay;
 class HairPasses;
 struct MeshGpu;
 
@@ -52,6 +53,7 @@ struct FramePassContext {
     bool reuseShadows;   // the scene lights' shadow maps hold this frame's views
     std::vector<int> domeDue; // dome layers rendered this frame (the rest are reused)
     uint32_t samples = 1;     // MSAA samples of the forward pass
+    FrameOverlay* overlay = nullptr; // drawn after tone mapping (present() frames only)
 
     // frame-graph resources
     int rShadow = -1, rDepth = -1, rHdr = -1, rLdr = -1;

@@ -104,6 +104,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                                domeBlur, background, captureProbe, captureBounce, reuseShadows,
                                std::move(domeDue), samples};
     if (scene.environment().environment && !environmentBaked) f.reused.push_back("environment");
+    if (present) f.overlay = overlay;
 
     FrameGraph g;
     f.rDepth = g.addResource("depth", &targets.depth);

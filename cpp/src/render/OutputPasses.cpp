@@ -3,6 +3,7 @@
 // hand-over to the presentation engine.
 #include <cmath>
 
+#include "render/FrameOverlay.h"
 #include "render/FramePasses.h"
 #include "render/GpuTypes.h"
 #include "render/PassSetup.h"
@@ -47,6 +48,7 @@ void addOutputPasses(FrameGraph& g, FramePassContext& f) {
                    drawFullscreen(f, cmd, f.ldr->view(), VK_ATTACHMENT_LOAD_OP_DONT_CARE, pipeline,
                                   f.pipes.outputLayout, f.sets.output, &push, sizeof(push));
                }});
+    if (f.overlay) f.overlay->addPasses(g, f); // over the tone-mapped image (FrameOverlay.h)
 
     // Readback copies: colour (ldr), linear (hdr), debug images.
     std::vector<std::pair<int, vk::Image*>> copies;

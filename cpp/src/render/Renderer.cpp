@@ -231,6 +231,10 @@ ImageU8 Renderer::present(Window& window, const Scene& scene, const Camera& came
     return shot;
 }
 
+void render::setFrameOverlay(Renderer& renderer, FrameOverlay* overlay) {
+    renderer.mImpl->overlay = overlay;
+}
+
 uint32_t Renderer::msaaSamples() const { return mImpl->supportedSamples(mImpl->settings.msaa); }
 
 ShadowInfo Renderer::shadowInfo(int lightIndex) const {

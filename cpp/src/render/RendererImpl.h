@@ -15,6 +15,7 @@
 #include "render/EnvironmentGpu.h"
 #include "render/FrameData.h"
 #include "render/FrameGraph.h"
+#include "render/FrameOverlay.h"
 #include "render/ReflectionProbe.h"
 #include "render/GpuCache.h"
 #include "render/GpuTypes.h"
@@ -89,6 +90,7 @@ struct Renderer::Impl {
     vk::Image dummyShadow;
     std::vector<ShadowInfo> shadowInfos;
     FrameStats stats;
+    render::FrameOverlay* overlay = nullptr; // drawn over present() frames (FrameOverlay.h)
 
     Impl(uint32_t w, uint32_t h, const RenderSettings& s) : settings(s), width(w), height(h) {
         cache = std::make_unique<render::GpuCache>(*ctx, pipes.materialSetLayout, pipes.textureSampler);
