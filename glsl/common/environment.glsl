@@ -199,7 +199,8 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
         // A caster's reflection shows the receivers (the ground) where its bounce capture has
         // them, not the sky they hide: the capture's texel along r over a sharp lobe (seen from
         // the caster's centre, without parallax), its SH9 over a rough one (a cosine lobe),
-        // in between by the roughness. (The glossy sphere's underside against Mitsuba: ...)
+        // in between by the roughness (the glossy sphere's underside against Mitsuba: -23% ->
+        // -10%).
         int bp = bounceProbe(ins);
         if (bp >= 0 && !probe && !sphere) {
             vec4 c = bounceFace(bp, r);

@@ -268,8 +268,7 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     int bp = bounceProbe(ins);
     float casterCovered;
     vec3 hiddenSky;
-    sh.bounce = casterBounce(p, n, bp, hiddenSky, casterCovered) *
-                ins.kd.rgb * sf.T;
+    sh.bounce = casterBounce(p, n, bp, hiddenSky, casterCovered) * ins.kd.rgb * sf.T;
     if (frame.sky.w > 0.5) {
         // the proxies' cover is a floor under the dome's occlusion (see environmentTerms)
         float f = 1.0 - casterCovered;
