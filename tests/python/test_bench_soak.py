@@ -87,3 +87,25 @@ def test_static_scene_soak_is_flat(tmp_path: Path):
 def test_demo_soak_with_opaque_fur_is_flat():
     result = soak.soak(240, (32, 24), samples=24, warmup=0.25, hair_transparency=False)
     assert soak.verdict(result, 8.0) == [] and result["rss_growth_mib"] < 8.0
+
+
+GLSL = Path(__file__).resolve().parents[2] / "glsl"
+
+
+@pytest.mark.skipif(not __import__("weft").shader_hot_reload_available(),
+                    reason="built without libshaderc: no shader hot reload")
+def test_soak_with_hot_reload_recompiles_every_edit(tmp_path: Path):
+    """--hot-reload edits a watched copy of glsl/ every few frames: each edit is recompiled,
+    none fails, the frames stay valid and the watched folder is released afterwards."""
+    import weft
+
+    result = soak.soak(12, (16, 12), samples=4, warmup=0.25, hot_reload=str(GLSL),
+                       reload_every=3)
+    assert result["shader_edits"] == 4
+    assert result["shader_recompiles"] >= 4 and result["shader_errors"] == 0
+    assert soak.verdict(result, 64.0) == []
+    assert weft.shader_directory() == ""
+    # the source folder itself is never edited
+    assert "soak edit" not in (GLSL / soak.RELOADED_SHADER).read_text()
+    with pytest.raises(weft.InvalidArgument, match="glsl"):
+        soak.soak(2, (16, 12), hot_reload=str(tmp_path))

@@ -5,14 +5,20 @@ memory must stay flat: the least-squares slope of RSS and of device memory over 
 extrapolated over the measured frames, must stay within noise (--rss-tolerance-mib, device
 memory exactly flat). The cloth must stay finite and Vulkan validation silent (when enabled).
 
-    python -m weft.bench soak --frames 10000            # the long run (BENCHMARKS.md)
+    python -m weft.bench soak --frames 10000 --hot-reload glsl   # the long run (BENCHMARKS.md)
     python -m weft.bench soak --quick                   # 300 frames (the test suite)
+
+``--hot-reload DIR`` soaks shader hot reload too: a copy of DIR (laid out like glsl/) is
+watched (weft.set_shader_directory), and every ``--reload-every`` frames the forward shader in
+it is edited (a comment line added), so the renderer recompiles it and swaps its pipelines.
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import shutil
+import tempfile
 import time
 from typing import Any, Dict, List
 
@@ -35,6 +41,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "seed's static scene: a control for the measurement)")
     parser.add_argument("--no-hair-transparency", action="store_true",
                         help="render the fur opaque (Renderer.hair_transparency = False)")
+    parser.add_argument("--hot-reload", metavar="DIR", default=None,
+                        help="watch a copy of this shader folder (glsl/) and edit its forward "
+                             "shader every --reload-every frames")
+    parser.add_argument("--reload-every", type=int, default=500,
+                        help="frames between shader edits with --hot-reload (500)")
     parser.add_argument("--out", default="out/bench/soak")
 
 
@@ -67,8 +78,37 @@ def _slope(frames: List[int], values: List[float]) -> float:
     return float(np.median((y[j] - y[i])[keep] / (x[j] - x[i])[keep]))
 
 
+#: The shader --hot-reload edits (relative to the watched folder): every mesh draws with it.
+RELOADED_SHADER = os.path.join("render", "forward.frag")
+
+
 def soak(frames: int, size=(64, 48), samples: int = 50, warmup: float = 0.2,
-         scene_name: str = "demo", hair_transparency: bool = True) -> Dict[str, Any]:
+         scene_name: str = "demo", hair_transparency: bool = True,
+         hot_reload: str = None, reload_every: int = 500) -> Dict[str, Any]:
+    import weft
+
+    if hot_reload is None:
+        return _soak(frames, size, samples, warmup, scene_name, hair_transparency, None, 0)
+    if not os.path.isfile(os.path.join(hot_reload, RELOADED_SHADER)):
+        raise weft.InvalidArgument(f"--hot-reload needs a folder laid out like glsl/ (no "
+                                   f"{RELOADED_SHADER} in {hot_reload!r})")
+    if not weft.shader_hot_reload_available():
+        raise weft.InvalidArgument("this build has no shader hot reload (libshaderc)")
+    if reload_every < 1:
+        raise weft.InvalidArgument(f"--reload-every must be >= 1, got {reload_every}")
+    with tempfile.TemporaryDirectory(prefix="weft-soak-glsl-") as tmp:
+        watched = os.path.join(tmp, "glsl")
+        shutil.copytree(hot_reload, watched)
+        weft.set_shader_directory(watched)
+        try:
+            return _soak(frames, size, samples, warmup, scene_name, hair_transparency,
+                         os.path.join(watched, RELOADED_SHADER), reload_every)
+        finally:
+            weft.set_shader_directory("")
+
+
+def _soak(frames: int, size, samples: int, warmup: float, scene_name: str,
+          hair_transparency: bool, edited: str, reload_every: int) -> Dict[str, Any]:
     import weft
 
     if scene_name == "default":
@@ -85,7 +125,14 @@ def soak(frames: int, size=(64, 48), samples: int = 50, warmup: float = 0.2,
     rows: List[Dict[str, Any]] = []
     last, last_frame = time.perf_counter(), 0
     finite = True
+    edits = recompiled = 0
     for f in range(1, frames + 1):
+        if edited and f % reload_every == 0:
+            # mtime has a coarse clock on some file systems: the size changes too
+            with open(edited, "a", encoding="utf-8") as shader:
+                shader.write(f"// soak edit {f}\n")
+            edits += 1
+            recompiled += int(weft.poll_shader_changes())  # the frame swaps the pipelines
         cloth.step(1.0 / 60.0)
         renderer.render(scene, camera)
         if f % every == 0 or f == frames:
@@ -116,6 +163,9 @@ def soak(frames: int, size=(64, 48), samples: int = 50, warmup: float = 0.2,
         "frame_ms_median": float(np.median([r["frame_ms"] for r in measured])) if measured else None,
         "measured_frames": span,
         "cloth_finite": finite,
+        "shader_edits": edits,
+        "shader_recompiles": recompiled,
+        "shader_errors": len(weft.shader_errors()) if edited else None,
         "validation_messages": len(weft.validation_messages()) if weft.validation_enabled() else None,
     }
     result["rss_growth_mib"] = result["rss_slope_kib_per_1000_frames"] * span / 1000 / 1024
@@ -135,6 +185,11 @@ def verdict(result: Dict[str, Any], rss_tolerance_mib: float) -> List[str]:
         problems.append("the cloth holds NaN/inf")
     if result["validation_messages"]:
         problems.append(f"{result['validation_messages']} validation messages")
+    if result.get("shader_errors"):
+        problems.append(f"{result['shader_errors']} shader reload errors")
+    if result.get("shader_recompiles", 0) < result.get("shader_edits", 0):
+        problems.append(f"{result['shader_edits']} shader edits but only "
+                        f"{result['shader_recompiles']} recompiles")
     return problems
 
 
@@ -157,6 +212,10 @@ def to_markdown(result: Dict[str, Any], problems: List[str]) -> str:
         f"last, {result['frame_ms_median']:.2f} ms median",
         f"- cloth finite: {result['cloth_finite']}; validation messages: "
         f"{result['validation_messages']}",
+        "- shader hot reload: " + (f"{result['shader_edits']} edits of the forward shader, "
+                                   f"{result['shader_recompiles']} shaders recompiled, "
+                                   f"{result['shader_errors']} errors"
+                                    if result.get("shader_errors") is not None else "off"),
         f"- verdict: {'flat' if not problems else '; '.join(problems)}", "",
         markdown_table(["frame", "RSS MiB", "device reserved MiB", "device used MiB",
                         "ms / frame"], rows), ""])
@@ -167,7 +226,7 @@ def run(args: argparse.Namespace) -> int:
 
     frames = 300 if args.quick else int(args.frames)
     result = soak(frames, tuple(args.size), args.samples, args.warmup, args.scene,
-                  not args.no_hair_transparency)
+                  not args.no_hair_transparency, args.hot_reload, args.reload_every)
     problems = verdict(result, args.rss_tolerance_mib)
     result["machine"] = machine_info()
     result["problems"] = problems
