@@ -36,6 +36,7 @@ layout(location = 5) in float inViewDepth;
 #ifdef HAIR_AA
 layout(location = 6) noperspective in vec2 inStrip;
 layout(location = 7) noperspective in vec2 inAcross;
+layout(location = 8) noperspective in vec2 inEnds;
 #endif
 
 layout(location = 0) out vec4 outAccum;
@@ -54,24 +55,37 @@ float oitWeight(float z, float a, float zNdc) {
 #ifdef HAIR_AA_MASK
 const uint HAIR_DEPTH_SAMPLES = 32u; // kHairAaDepthSamples (HairPipelines.h)
 
-// The sample points of the pixel inside the strip (bit i of word k: point 32 k + i): the first
-// 128 points of the 2D Sobol sequence (x the van der Corput radical inverse, y Sobol's second
-// dimension, whose direction numbers are the rows of Pascal's triangle mod 2), walked in Gray
-// code order, which visits the first 32 points first. Points 0-31 and 0-127 are (0, m, 2)-nets:
-// every 2^-a x 2^-b box of the pixel with a + b = 5 (or 7) holds one point.
-uvec4 hairSampleMask(vec2 strip, vec2 across) {
-    float h = 0.5 * strip.y;
+// The sample points of the pixel inside the strip, between its ends (bit j of word k: point
+// 32 k + j): the first 128 points of the 2D Sobol sequence, walked in Gray code order, which
+// visits the first 32 points first. Point (X, Y) (integers < 128) lies at ((X, Y) + 0.5) / 128
+// - 0.5 from the pixel's centre; X is the van der Corput radical inverse of the index, Y Sobol's
+// second dimension, whose direction numbers are the rows of Pascal's triangle mod 2. Points
+// 0-31 and 0-127 are (0, m, 2)-nets: every 2^-a x 2^-b box of the pixel with a + b = 5 (or 7)
+// holds one point. (Words filled in a loop of their own: 15-25% faster on lavapipe than one
+// loop indexing the vector.)
+const uint HAIR_SOBOL_Y[7] = uint[7](64u, 96u, 80u, 120u, 68u, 102u, 85u);
+uvec4 hairSampleMask(vec2 strip, vec2 ends, vec2 across) {
+    vec2 along = vec2(across.y, -across.x); // root to tip
+    vec2 stepAcross = across / 128.0, stepAlong = along / 128.0;
+    const float first = 0.5 / 128.0 - 0.5;
+    float x0 = strip.x + first * (across.x + across.y), h = 0.5 * strip.y;
+    float y0 = first * (along.x + along.y), yLo = -ends.x - y0, yHi = ends.y - y0;
     uvec4 mask = uvec4(0u);
     uint x = 0u, y = 0u;
-    for (uint i = 0u; i < 128u; ++i) {
-        if (i > 0u) {
-            uint c = uint(findLSB(i)), v = 1u << 31;
-            for (uint k = 0u; k < c; ++k) v ^= v >> 1;
-            x ^= (1u << 31) >> c;
-            y ^= v;
+    for (uint k = 0u; k < 4u; ++k) {
+        uint m = 0u;
+        for (uint j = 0u; j < 32u; ++j) {
+            uint i = 32u * k + j;
+            if (i > 0u) {
+                uint c = uint(findLSB(i));
+                x ^= 64u >> c;
+                y ^= HAIR_SOBOL_Y[c];
+            }
+            vec2 q = vec2(x, y);
+            float d = x0 + dot(q, stepAcross), l = dot(q, stepAlong);
+            if (abs(d) <= h && l >= yLo && l <= yHi) m |= 1u << j;
         }
-        vec2 o = (vec2(x >> 25, y >> 25) + 0.5) / 128.0 - 0.5;
-        if (abs(strip.x + dot(o, across)) <= h) mask[i >> 5] |= 1u << (i & 31u);
+        mask[k] = m;
     }
     return mask;
 }
@@ -85,13 +99,13 @@ float hairSampleCount(uvec4 mask) {
 void main() {
 #ifdef HAIR_AA
     vec2 across = normalize(inAcross);
-    float coverage = inAlpha * hairCoverage(inStrip, across); // opaque strands: alpha 1
+    float coverage = inAlpha * hairCoverage(inStrip, inEnds, across); // opaque: alpha 1
     if (coverage <= 0.0) discard; // the strip's outer corners
 #endif
 #if defined(HAIR_AA_MASK) && HAIR_AA_PASS == 0
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     uint depth = floatBitsToUint(gl_FragCoord.z); // ordered as the depths are (all >= 0)
-    uvec4 mask = hairSampleMask(inStrip, across);
+    uvec4 mask = hairSampleMask(inStrip, inEnds, across);
     for (uint i = 0u; i < HAIR_DEPTH_SAMPLES; ++i)
         if ((mask.x & (1u << i)) != 0u) imageAtomicMin(hairSamples, ivec3(pixel, i), depth);
     for (uint k = 0u; k < 4u; ++k)
@@ -104,7 +118,7 @@ void main() {
 #ifdef HAIR_AA_MASK
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     uint depth = floatBitsToUint(gl_FragCoord.z);
-    uvec4 mask = hairSampleMask(inStrip, across);
+    uvec4 mask = hairSampleMask(inStrip, inEnds, across);
     uint won = 0u;
     for (uint i = 0u; i < HAIR_DEPTH_SAMPLES; ++i)
         if ((mask.x & (1u << i)) != 0u && imageLoad(hairSamples, ivec3(pixel, i)).r == depth)
