@@ -1,24 +1,26 @@
 // Weighted blended OIT accumulation (SPEC §5.4). Both targets blend alike (no independent-blend
 // feature needed): colour channels ONE, ONE; alpha ZERO, ONE_MINUS_SRC_ALPHA. Target 0 gets
-// rgb += C a w and its alpha (the revealage) *= 1 - a; target 1 gets += a w (and, with
-// HAIR_AA_MASK, the sums that give the opaque strands' coverage in its green and blue).
+// rgb += C a w and its alpha (the revealage) *= 1 - a; target 1 gets r += a w (and, with
+// HAIR_AA_MASK, g += the pixel's coverage by opaque strands, b += 1, averaged by the composite).
 // Weights eq. 7-10 as in python/weft/reference/hair_oit.py. With HAIR_AA the opacity is
 // multiplied by the pixel's coverage (hair_coverage.glsl).
 //
 // With HAIR_AA_MASK it accumulates the partly covered pixels of opaque strands (anti-aliased
-// frames; the entirely covered ones were drawn opaque, with depth, before) with their visible
-// share of the pixel: a point-sampled frame shows, at each point, the nearest strand there, and
-// a pixel holds 2.7 visible strands on average in dense hair (weft.reference.picture's
-// hair_scene). hairSamples, per pixel: layers 0-31 the nearest depth at each of the first 32
-// of 128 sample points, layers 32-35 which of the 128 some strand covers. HAIR_AA_PASS 0 writes
-// every fragment's depth into the depth samples inside its strip (atomic min; a fragment's depth
-// is its strip's at the pixel's centre) and ORs in the points it covers; pass 1 (after a barrier) shades every fragment once with the share
-// a = coverage * (depth samples it won) / (depth samples it covers), its exact coverage where
-// nothing nearer overlaps it. Colours are averaged by a (times the OIT weight, as for transparent strands);
-// the pixel's hair coverage is estimated from the samples (below). Depth tests run early, so fragments hidden by meshes or opaque hair
-// leave no trace. Before (the nearest strand first, the others taking the samples still free in
-// drawing order) the pixels behind the nearest strand went to whichever strand came first:
-// hair_scene's AA error was 9.97/255 at 128 x 96 (see BENCHMARKS.md, picture).
+// frames; the entirely covered ones were drawn opaque, with depth, before), each strand with
+// the share of the pixel it shows: a point-sampled frame shows, at each point, the nearest
+// strand there, and in dense hair a pixel shows 2.7 strands on average (weft.reference.picture's
+// hair_scene, 16 x 16 points per pixel), 42% of its hair area behind the nearest one.
+// hairSamples, per pixel: layers 0-31 the nearest depth at each of the first 32 of 128 sample
+// points, 32-35 which of the 128 points some strand covers, 36-38 sums for the coverage (below).
+// HAIR_AA_PASS 0 writes every fragment's depth into the depth samples inside its strip (atomic
+// min; a fragment's depth is its strip's at the pixel's centre) and ORs in the points it covers.
+// Pass 1 (after a barrier) shades every fragment once with the share
+// a = coverage * (depth samples it won) / (depth samples it covers): its exact coverage where
+// nothing nearer overlaps it, and order-independent. Colours are averaged by a (times the OIT
+// weight, as for transparent strands). Depth tests run early, so fragments hidden by meshes or
+// opaque hair leave no trace. (Before, the nearest strand went first and the others took the
+// points still free in drawing order, hidden strands included: hair_scene's AA error was
+// 9.97/255 at 128 x 96, 6.08 with the depths; BENCHMARKS.md, picture.)
 #include "hair_lighting.glsl"
 #include "hair_coverage.glsl"
 
@@ -54,6 +56,8 @@ float oitWeight(float z, float a, float zNdc) {
 
 #ifdef HAIR_AA_MASK
 const uint HAIR_DEPTH_SAMPLES = 32u; // kHairAaDepthSamples (HairPipelines.h)
+const int HAIR_COVERED = 32;          // the first layer after the depths
+const float HAIR_FIXED_ONE = 65536.0; // fixed-point unit of the coverage sums
 
 // The sample points of the pixel inside the strip, between its ends (bit j of word k: point
 // 32 k + j): the first 128 points of the 2D Sobol sequence, walked in Gray code order, which
@@ -64,7 +68,7 @@ const uint HAIR_DEPTH_SAMPLES = 32u; // kHairAaDepthSamples (HairPipelines.h)
 // holds one point. (Words filled in a loop of their own: 15-25% faster on lavapipe than one
 // loop indexing the vector.)
 const uint HAIR_SOBOL_Y[7] = uint[7](64u, 96u, 80u, 120u, 68u, 102u, 85u);
-uvec4 hairSampleMask(vec2 strip, vec2 ends, vec2 across) {
+uvec4 hairSampleMask(vec2 strip, vec2 ends, vec2 across, uint words) {
     vec2 along = vec2(across.y, -across.x); // root to tip
     vec2 stepAcross = across / 128.0, stepAlong = along / 128.0;
     const float first = 0.5 / 128.0 - 0.5;
@@ -72,7 +76,7 @@ uvec4 hairSampleMask(vec2 strip, vec2 ends, vec2 across) {
     float y0 = first * (along.x + along.y), yLo = -ends.x - y0, yHi = ends.y - y0;
     uvec4 mask = uvec4(0u);
     uint x = 0u, y = 0u;
-    for (uint k = 0u; k < 4u; ++k) {
+    for (uint k = 0u; k < words; ++k) {
         uint m = 0u;
         for (uint j = 0u; j < 32u; ++j) {
             uint i = 32u * k + j;
@@ -105,11 +109,19 @@ void main() {
 #if defined(HAIR_AA_MASK) && HAIR_AA_PASS == 0
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     uint depth = floatBitsToUint(gl_FragCoord.z); // ordered as the depths are (all >= 0)
-    uvec4 mask = hairSampleMask(inStrip, inEnds, across);
+    uvec4 mask = hairSampleMask(inStrip, inEnds, across, 4u);
     for (uint i = 0u; i < HAIR_DEPTH_SAMPLES; ++i)
         if ((mask.x & (1u << i)) != 0u) imageAtomicMin(hairSamples, ivec3(pixel, i), depth);
     for (uint k = 0u; k < 4u; ++k)
-        imageAtomicOr(hairSamples, ivec3(pixel, HAIR_DEPTH_SAMPLES + k), mask[k]);
+        imageAtomicOr(hairSamples, ivec3(pixel, HAIR_COVERED + int(k)), mask[k]);
+    float own = hairSampleCount(mask);
+    uint c = uint(coverage * HAIR_FIXED_ONE + 0.5);
+    if (own > 0.0) { // sum c, sum own
+        imageAtomicAdd(hairSamples, ivec3(pixel, HAIR_COVERED + 4), c);
+        imageAtomicAdd(hairSamples, ivec3(pixel, HAIR_COVERED + 5), uint(own));
+    } else { // a sliver between the points: sum c
+        imageAtomicAdd(hairSamples, ivec3(pixel, HAIR_COVERED + 6), c);
+    }
     // nothing drawn (colour write mask 0): the inputs are read so that both passes use the
     // same vertex shader, hence the same depths
     outAccum = vec4(inWorldPos + inTangent + inColor, inViewDepth + float(inStrand));
@@ -118,26 +130,29 @@ void main() {
 #ifdef HAIR_AA_MASK
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     uint depth = floatBitsToUint(gl_FragCoord.z);
-    uvec4 mask = hairSampleMask(inStrip, inEnds, across);
+    uint mask = hairSampleMask(inStrip, inEnds, across, 1u).x;
     uint won = 0u;
     for (uint i = 0u; i < HAIR_DEPTH_SAMPLES; ++i)
-        if ((mask.x & (1u << i)) != 0u && imageLoad(hairSamples, ivec3(pixel, i)).r == depth)
+        if ((mask & (1u << i)) != 0u && imageLoad(hairSamples, ivec3(pixel, i)).r == depth)
             ++won;
     // a sliver between the depth samples counts as seen
-    uint own = bitCount(mask.x);
+    uint own = bitCount(mask);
     float a = own > 0u ? coverage * float(won) / float(own) : coverage;
+    if (a <= 0.0) discard;
     // The pixel's hair coverage: the fraction of the 128 sample points its strands cover, |U| / N,
     // times the exact coverage of its strands over their sampled one, sum c / sum (own / N)
-    // (exact for one strand or strands side by side), or 1 once all are covered (a dense head
-    // of hair must not show the backdrop through it). Summed over the fragments as sum c |U| / N
-    // and sum own / N (oit_composite.frag); a sliver between the points counts as c of its own.
-    uvec4 all = uvec4(0u);
+    // (exact for one strand or strands side by side), plus the slivers between the points; or 1
+    // once all points are covered (a dense head of hair must not show the backdrop through it).
+    // Every fragment of the pixel adds (coverage, 1) and the composite takes the mean.
+    uvec4 all;
     for (uint k = 0u; k < 4u; ++k)
-        all[k] = imageLoad(hairSamples, ivec3(pixel, HAIR_DEPTH_SAMPLES + k)).r;
-    float u = hairSampleCount(all) / 128.0, sampled = hairSampleCount(mask) / 128.0;
-    if (sampled == 0.0) sampled = coverage;
-    vec2 covered = vec2(u >= 1.0 ? sampled : coverage * max(u, sampled), sampled);
-    if (a <= 0.0 && covered.x <= 0.0) discard;
+        all[k] = imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + int(k))).r;
+    float u = hairSampleCount(all) / 128.0;
+    float sumC = float(imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 4)).r) / HAIR_FIXED_ONE;
+    float sumOwn = float(imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 5)).r) / 128.0;
+    float slivers = float(imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 6)).r) / HAIR_FIXED_ONE;
+    float pixelCoverage = u >= 1.0 ? 1.0 : (sumOwn > 0.0 ? sumC / sumOwn * u : 0.0) + slivers;
+    vec2 covered = vec2(min(pixelCoverage, 1.0), 1.0);
     float reveal = 0.0; // transparent strands' revealage untouched
     float w = oitWeight(inViewDepth, 1.0, gl_FragCoord.z);
 #else

@@ -1,8 +1,9 @@
 #version 450
 // WBOIT composite over the opaque image: (sum C w / sum a w, 1 - prod(1 - a)) blended with
 // SRC_ALPHA, ONE_MINUS_SRC_ALPHA gives avg (1 - prod) + C_0 prod (SPEC §5.4). In anti-aliased
-// frames the opaque strands' partly covered pixels add their coverage (hair_oit_main.glsl,
-// HAIR_AA_MASK), which hides that much more of what lies behind: prod (1 - coverage).
+// frames the partly covered pixels of opaque strands hide that much more of what lies behind:
+// prod (1 - their coverage), the mean of what their fragments wrote (hair_oit_main.glsl,
+// HAIR_AA_MASK).
 layout(set = 0, binding = 0) uniform sampler2D accumTex;  // rgb: sum C a w; a: prod(1 - a)
 layout(set = 0, binding = 1) uniform sampler2D weightTex; // r: sum a w; g / b: opaque coverage
 layout(location = 0) out vec4 outColor;

@@ -155,7 +155,7 @@ void HairPasses::ensureImages(const RenderSettings& settings, uint32_t width, ui
         vk::ImageDesc d;
         d.width = width;
         d.height = height;
-        d.layers = kHairAaDepthSamples + kHairAaCoverageWords;
+        d.layers = kHairAaSampleLayers;
         d.format = VK_FORMAT_R32_UINT;
         d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
         mSamples = vk::Image(&mCtx, d);
@@ -471,7 +471,7 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                            mCtx.fn().cmdEndRendering(cmd);
                            return;
                        }
-                       // no depth at any sample point (all ones), no point covered
+                       // no depth at any sample point (all ones), no point covered, sums 0
                        vk::transition(mCtx, cmd, mSamples, VK_IMAGE_LAYOUT_GENERAL,
                                       VK_PIPELINE_STAGE_2_CLEAR_BIT,
                                       VK_ACCESS_2_TRANSFER_WRITE_BIT);

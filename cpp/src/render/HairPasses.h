@@ -90,8 +90,8 @@ private:
     std::array<Slot, 2> mSlots;
     vk::Image mDomDepth, mDomOpacity, mDomMeshDepth, mDummyDom, mNoMeshes, mAccum, mWeight;
     // anti-aliased frames, per pixel (R32_UINT layers): the nearest depth of the partly covering
-    // strands at each of kHairAaDepthSamples sample points, then which of 128 points they cover
-    // (glsl/hair/hair_oit_main.glsl)
+    // strands at each of kHairAaDepthSamples sample points, which of 128 points they cover, and
+    // sums of their coverage (glsl/hair/hair_oit_main.glsl)
     vk::Image mSamples;
     std::vector<HairDraw> mDraws;
     std::vector<Dom> mDoms;
