@@ -76,8 +76,9 @@ void main() {
     bool tip = k == last || hairVertices[k + 1u].strand != hv.strand;
     bool afterRoot = !root && (k == 1u || hairVertices[k - 2u].strand != hv.strand);
     bool beforeTip = !tip && (k + 1u == last || hairVertices[k + 2u].strand != hv.strand);
-    vec4 clipPrev = frame.viewProj * model * vec4(hairVertices[root ? k : k - 1u].position.xyz, 1.0);
-    vec4 clipNext = frame.viewProj * model * vec4(hairVertices[tip ? k : k + 1u].position.xyz, 1.0);
+    mat4 mvp = frame.viewProj * model;
+    vec4 clipPrev = mvp * vec4(hairVertices[root ? k : k - 1u].position.xyz, 1.0);
+    vec4 clipNext = mvp * vec4(hairVertices[tip ? k : k + 1u].position.xyz, 1.0);
     vec2 here = clip.xy / clip.w * pixels;
     const float far = 1e4;
     float fromRoot = root ? -endReach

@@ -149,9 +149,8 @@ void HairPasses::ensureImages(const RenderSettings& settings, uint32_t width, ui
         mDomMeshDepth = makeImage(mCtx, mDomSize, mDomSize, kMaxHairDoms, kDepthFormat,
                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
     }
-    const bool samples = mAntialias && mPipes.sampleMasks;
-    if (samples && (!mSamples || mSamples.desc().width != width ||
-                    mSamples.desc().height != height)) {
+    if (mSampleDepths && (!mSamples || mSamples.desc().width != width ||
+                          mSamples.desc().height != height)) {
         vk::ImageDesc d;
         d.width = width;
         d.height = height;
@@ -244,7 +243,7 @@ void HairPasses::writeSets(Slot& slot) {
     write(mOpacitySet, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[4];
     const VkDescriptorImageInfo samples{
         VK_NULL_HANDLE, mSamples ? mSamples.view() : VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
-    if (mAntialias && mPipes.sampleMasks)
+    if (mSampleDepths)
         write(mOpacitySet, 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)->pImageInfo = &samples;
     if (mAccum) {
         write(mOitSet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[2];
@@ -272,6 +271,9 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
         instances.push_back({h.transform, hair::packHairShading(h.material)});
     }
     mOit = anyTransparent;
+    mSampleDepths = mAntialias && mPipes.sampleMasks &&
+                    std::any_of(mDraws.begin(), mDraws.end(),
+                                [](const HairDraw& d) { return !d.transparent; });
     fitDoms(scene, settings);
     mMeshesShadowHair = !mDoms.empty() &&
                         std::any_of(scene.instances().begin(), scene.instances().end(),
