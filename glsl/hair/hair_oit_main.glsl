@@ -148,9 +148,11 @@ void main() {
     for (uint k = 0u; k < 4u; ++k)
         all[k] = imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + int(k))).r;
     float u = hairSampleCount(all) / 128.0;
-    float sumC = float(imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 4)).r) / HAIR_FIXED_ONE;
-    float sumOwn = float(imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 5)).r) / 128.0;
-    float slivers = float(imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 6)).r) / HAIR_FIXED_ONE;
+    uvec3 sums = uvec3(imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 4)).r,
+                       imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 5)).r,
+                       imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 6)).r);
+    float sumC = float(sums.x) / HAIR_FIXED_ONE, sumOwn = float(sums.y) / 128.0;
+    float slivers = float(sums.z) / HAIR_FIXED_ONE;
     float pixelCoverage = u >= 1.0 ? 1.0 : (sumOwn > 0.0 ? sumC / sumOwn * u : 0.0) + slivers;
     vec2 covered = vec2(min(pixelCoverage, 1.0), 1.0);
     float reveal = 0.0; // transparent strands' revealage untouched

@@ -14,10 +14,10 @@ constexpr VkFormat kOitAccumFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 // r: sum of a w; g / b: the opaque strands' coverage of a partly covered pixel (anti-aliased
 // frames; alpha unused)
 constexpr VkFormat kOitWeightFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-// The partly covered pixels of opaque strands in anti-aliased frames (glsl/hair/hair_oit_main.glsl):
-// sample points whose nearest depth decides the strands' visible shares, the 32-bit words (32
-// points each) that record which points some strand covers, and three sums that turn those
-// into the pixel's coverage.
+// The partly covered pixels of opaque strands in anti-aliased frames (glsl/hair/
+// hair_oit_main.glsl): sample points whose nearest depth decides the strands' visible shares,
+// the 32-bit words (32 points each) that record which points some strand covers, and three sums
+// that turn those into the pixel's coverage.
 constexpr uint32_t kHairAaDepthSamples = 32;
 constexpr uint32_t kHairAaCoverageWords = 4;
 constexpr uint32_t kHairAaSampleLayers = kHairAaDepthSamples + kHairAaCoverageWords + 3;
