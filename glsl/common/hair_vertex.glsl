@@ -4,8 +4,9 @@
 // strand's centre line, widened by the pixel square's reach across the strand (half a pixel to
 // 0.71 of one) on each side so that every pixel the strand touches gets a fragment; the fragment
 // turns its distance from the centre line into the fraction of the pixel the strand covers
-// (hair_coverage.glsl). The strand's width in pixels is its projected ribbon width, or one pixel
-// for lines. With HAIR_AA_CORE as well the strip is
+// (hair_coverage.glsl); at the strand's ends the strip reaches as far beyond the end point and
+// the coverage is cut there. The strand's width in pixels is its projected ribbon width, or one
+// pixel for lines. With HAIR_AA_CORE as well the strip is
 // narrowed to the pixels the strand covers entirely (none for strands under 1 to 1.4 pixels
 // wide, by direction).
 #include "frame.glsl"
@@ -24,6 +25,8 @@ layout(location = 5) out float outViewDepth;
 // screen space, so interpolated without perspective
 layout(location = 6) noperspective out vec2 outStrip;
 layout(location = 7) noperspective out vec2 outAcross; // unit screen direction across the strand
+// distances (pixels) along the strand from its root and to its tip; large away from the ends
+layout(location = 8) noperspective out vec2 outEnds;
 #endif
 
 void main() {
@@ -60,13 +63,39 @@ void main() {
     float reach = 0.5 * (abs(n.x) + abs(n.y));
 #ifdef HAIR_AA_CORE
     float halfDrawn = max(0.5 * width - reach, 0.0); // pixels whose whole square is inside
+    float endReach = 0.0;
 #else
     float halfDrawn = 0.5 * width + reach; // every pixel the strand touches
+    float endReach = reach; // the pixel square reaches as far along the strand as across it
 #endif
+    // A strand's end vertices move out along it by endReach, so that every pixel an end touches
+    // gets a fragment, and the distances from the root and to the tip (0 at the end points,
+    // measured to the neighbouring vertex on screen) cut the coverage there.
+    uint k = index >> 1, last = uint(hairVertices.length()) - 1u;
+    bool root = k == 0u || hairVertices[k - 1u].strand != hv.strand;
+    bool tip = k == last || hairVertices[k + 1u].strand != hv.strand;
+    bool afterRoot = !root && (k == 1u || hairVertices[k - 2u].strand != hv.strand);
+    bool beforeTip = !tip && (k + 1u == last || hairVertices[k + 2u].strand != hv.strand);
+    mat4 mvp = frame.viewProj * model;
+    vec4 clipPrev = mvp * vec4(hairVertices[root ? k : k - 1u].position.xyz, 1.0);
+    vec4 clipNext = mvp * vec4(hairVertices[tip ? k : k + 1u].position.xyz, 1.0);
+    vec2 here = clip.xy / clip.w * pixels;
+    const float far = 1e4;
+    float fromRoot = root ? -endReach
+                          : (afterRoot ? distance(here, clipPrev.xy / clipPrev.w * pixels) +
+                                             (tip ? endReach : 0.0)
+                                       : far);
+    float toTip = tip ? -endReach
+                      : (beforeTip ? distance(here, clipNext.xy / clipNext.w * pixels) +
+                                         (root ? endReach : 0.0)
+                                   : far);
+    vec2 along = vec2(n.y, -n.x); // unit screen direction root to tip
+    float endShift = (tip ? endReach : 0.0) - (root ? endReach : 0.0);
     float signedHalf = side > 0.0 ? halfDrawn : -halfDrawn;
-    clip.xy += n * (signedHalf / pixels) * clip.w;
+    clip.xy += (n * signedHalf + along * endShift) / pixels * clip.w;
     outStrip = vec2(signedHalf, width);
     outAcross = n;
+    outEnds = vec2(fromRoot, toTip);
     outWorldPos = p + 2.0 * side * s; // shaded across the ribbon's true width
     gl_Position = clip;
 #else

@@ -11,11 +11,12 @@ layout(location = 2) in vec3 inColor;
 layout(location = 3) flat in uint inStrand;
 layout(location = 6) noperspective in vec2 inStrip;
 layout(location = 7) noperspective in vec2 inAcross;
+layout(location = 8) noperspective in vec2 inEnds;
 
 layout(location = 0) out vec4 outColor;
 
 void main() {
-    if (hairCoverage(inStrip, normalize(inAcross)) < 0.999) discard;
+    if (hairCoverage(inStrip, inEnds, normalize(inAcross)) < 0.999) discard;
     float vis;
     HairShading s = hairInstances[push.instance].shading;
     outColor = vec4(hairRadiance(inWorldPos, normalize(inTangent), inColor, s, inStrand, vis), 1.0);

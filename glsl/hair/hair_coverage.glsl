@@ -17,10 +17,15 @@ float hairTrapezoidCdf(float u, float a, float b) {
     return 1.0 - (hi - u) * (hi - u) / (2.0 * a * b);
 }
 
-// strip: (x, w) as above; across: unit direction across the strand (screen pixels).
-float hairCoverage(vec2 strip, vec2 across) {
+// strip: (x, w) as above; ends: the distances from the pixel's centre to the strand's root and
+// tip along it (pixels, > 0 inside); across: unit direction across the strand (screen pixels).
+// Along the strand the pixel square projects onto the same trapezoid, and an end cuts the
+// coverage by the share of it on the strand's side (a product: exact for strands along the
+// pixel grid).
+float hairCoverage(vec2 strip, vec2 ends, vec2 across) {
     float a = max(abs(across.x), abs(across.y)), b = min(abs(across.x), abs(across.y));
     float h = 0.5 * strip.y;
-    return clamp(hairTrapezoidCdf(strip.x + h, a, b) - hairTrapezoidCdf(strip.x - h, a, b),
-                 0.0, 1.0);
+    float inside = hairTrapezoidCdf(strip.x + h, a, b) - hairTrapezoidCdf(strip.x - h, a, b);
+    return clamp(inside * hairTrapezoidCdf(ends.x, a, b) * hairTrapezoidCdf(ends.y, a, b), 0.0,
+                 1.0);
 }

@@ -1,32 +1,32 @@
 // Weighted blended OIT accumulation (SPEC §5.4). Both targets blend alike (no independent-blend
 // feature needed): colour channels ONE, ONE; alpha ZERO, ONE_MINUS_SRC_ALPHA. Target 0 gets
-// rgb += C a w and its alpha (the revealage) *= 1 - a; target 1 (one channel) gets += a w.
+// rgb += C a w and its alpha (the revealage) *= 1 - a; target 1 gets r += a w (and, with
+// HAIR_AA_MASK, g += the pixel's coverage by opaque strands, b += 1, averaged by the composite).
 // Weights eq. 7-10 as in python/weft/reference/hair_oit.py. With HAIR_AA the opacity is
 // multiplied by the pixel's coverage (hair_coverage.glsl).
 //
 // With HAIR_AA_MASK it accumulates the partly covered pixels of opaque strands (anti-aliased
-// frames; the entirely covered ones were drawn opaque, with depth, before), so that a pixel's
-// coverage approaches the union of its strands' footprints rather than independent alphas (the
-// product of 1 - coverage), which leave a dense head of hair see-through where strands lie side
-// by side. hairMask, per pixel: layer 0 the nearest depth, layer 1 the sum of the shares taken
-// (fixed point), layers 2-5 the samples of a 128-point pattern taken so far. A fragment's share is
-// its exact coverage times the fraction of its own samples still free (all of them for the first
-// strand, or a strand beside the others); it adds C w share and multiplies the revealage by
-// 1 - share / (1 - shares before it), which telescopes to 1 - (sum of shares) in any order. The
-// composite thus gives sum C_i share_i + background (1 - sum share_i) for equal weights. The
-// fragment that takes the last free samples takes the rest of the pixel (shares that fill the
-// pattern but fall short of 1 in their sum would leave a dense head of hair see-through). Which
-// strand takes a sample shared by several depends on the order, so the nearest strand of each
-// pixel goes first: HAIR_AA_PASS 0 keeps the nearest depth (atomic min), pass 1 lets the
-// fragments at that depth take their samples and shares (neither pass shades or draws), pass 2
-// shades every fragment once and lets the others take what is left. Depth tests run early, so
-// fragments hidden by meshes or opaque hair leave no trace.
+// frames; the entirely covered ones were drawn opaque, with depth, before), each strand with
+// the share of the pixel it shows: a point-sampled frame shows, at each point, the nearest
+// strand there, and in dense hair a pixel shows 2.7 strands on average (weft.reference.picture's
+// hair_scene, 16 x 16 points per pixel), 42% of its hair area behind the nearest one.
+// hairSamples, per pixel: layers 0-31 the nearest depth at each of the first 32 of 128 sample
+// points, 32-35 which of the 128 points some strand covers, 36-38 sums for the coverage (below).
+// HAIR_AA_PASS 0 writes every fragment's depth into the depth samples inside its strip (atomic
+// min; a fragment's depth is its strip's at the pixel's centre) and ORs in the points it covers.
+// Pass 1 (after a barrier) shades every fragment once with the share
+// a = coverage * (depth samples it won) / (depth samples it covers): its exact coverage where
+// nothing nearer overlaps it, and order-independent. Colours are averaged by a (times the OIT
+// weight, as for transparent strands). Depth tests run early, so fragments hidden by meshes or
+// opaque hair leave no trace. (Before, the nearest strand went first and the others took the
+// points still free in drawing order, hidden strands included: hair_scene's AA error was
+// 9.97/255 at 128 x 96, 6.08 with the depths; BENCHMARKS.md, picture.)
 #include "hair_lighting.glsl"
 #include "hair_coverage.glsl"
 
 #ifdef HAIR_AA_MASK
 layout(early_fragment_tests) in;
-layout(set = 3, binding = 2, r32ui) uniform coherent uimage2DArray hairMask;
+layout(set = 3, binding = 2, r32ui) uniform coherent uimage2DArray hairSamples;
 #endif
 
 layout(location = 0) in vec3 inWorldPos;
@@ -38,6 +38,7 @@ layout(location = 5) in float inViewDepth;
 #ifdef HAIR_AA
 layout(location = 6) noperspective in vec2 inStrip;
 layout(location = 7) noperspective in vec2 inAcross;
+layout(location = 8) noperspective in vec2 inEnds;
 #endif
 
 layout(location = 0) out vec4 outAccum;
@@ -54,33 +55,43 @@ float oitWeight(float z, float a, float zNdc) {
 }
 
 #ifdef HAIR_AA_MASK
-const float HAIR_SHARE_ONE = 65536.0; // fixed-point unit of the shares' sum
+const uint HAIR_DEPTH_SAMPLES = 32u; // kHairAaDepthSamples (HairPipelines.h)
+const int HAIR_COVERED = 32;          // the first layer after the depths
+const float HAIR_FIXED_ONE = 65536.0; // fixed-point unit of the coverage sums
 
-// Samples of the pixel (offsets from its centre) inside the strip, HAIR_SAMPLE_WORDS x 32 of
-// them: a Hammersley set, x stratified by their count and y by the bit-reversed index, so that
-// its projection across a strand of any direction is spread evenly.
-const uint HAIR_SAMPLE_WORDS = 4u;
-const uint HAIR_SAMPLE_BITS = 7u; // log2(32 HAIR_SAMPLE_WORDS)
-const float HAIR_SAMPLES = float(32u * HAIR_SAMPLE_WORDS);
-const uvec4 HAIR_ALL_SAMPLES = uvec4(~0u, HAIR_SAMPLE_WORDS > 1u ? ~0u : 0u,
-                                     HAIR_SAMPLE_WORDS > 2u ? ~0u : 0u,
-                                     HAIR_SAMPLE_WORDS > 3u ? ~0u : 0u);
-uvec4 hairSampleMask(vec2 strip, vec2 across) {
-    float h = 0.5 * strip.y;
+// The sample points of the pixel inside the strip, between its ends (bit j of word k: point
+// 32 k + j): the first 128 points of the 2D Sobol sequence, walked in Gray code order, which
+// visits the first 32 points first. Point (X, Y) (integers < 128) lies at ((X, Y) + 0.5) / 128
+// - 0.5 from the pixel's centre; X is the van der Corput radical inverse of the index, Y Sobol's
+// second dimension, whose direction numbers are the rows of Pascal's triangle mod 2. Points
+// 0-31 and 0-127 are (0, m, 2)-nets: every 2^-a x 2^-b box of the pixel with a + b = 5 (or 7)
+// holds one point. (Words filled in a loop of their own: 15-25% faster on lavapipe than one
+// loop indexing the vector.)
+const uint HAIR_SOBOL_Y[7] = uint[7](64u, 96u, 80u, 120u, 68u, 102u, 85u);
+uvec4 hairSampleMask(vec2 strip, vec2 ends, vec2 across, uint words) {
+    vec2 along = vec2(across.y, -across.x); // root to tip
+    vec2 stepAcross = across / 128.0, stepAlong = along / 128.0;
+    const float first = 0.5 / 128.0 - 0.5;
+    float x0 = strip.x + first * (across.x + across.y), h = 0.5 * strip.y;
+    float y0 = first * (along.x + along.y), yLo = -ends.x - y0, yHi = ends.y - y0;
     uvec4 mask = uvec4(0u);
-    for (uint i = 0u; i < 32u * HAIR_SAMPLE_WORDS; ++i) {
-        vec2 o = (vec2(i, bitfieldReverse(i) >> (32u - HAIR_SAMPLE_BITS)) + 0.5) / HAIR_SAMPLES;
-        if (abs(strip.x + dot(o - 0.5, across)) <= h) mask[i >> 5] |= 1u << (i & 31u);
+    uint x = 0u, y = 0u;
+    for (uint k = 0u; k < words; ++k) {
+        uint m = 0u;
+        for (uint j = 0u; j < 32u; ++j) {
+            uint i = 32u * k + j;
+            if (i > 0u) {
+                uint c = uint(findLSB(i));
+                x ^= 64u >> c;
+                y ^= HAIR_SOBOL_Y[c];
+            }
+            vec2 q = vec2(x, y);
+            float d = x0 + dot(q, stepAcross), l = dot(q, stepAlong);
+            if (abs(d) <= h && l >= yLo && l <= yHi) m |= 1u << j;
+        }
+        mask[k] = m;
     }
     return mask;
-}
-
-// ORs the samples into the pixel's (layers 2...), returning those taken before.
-uvec4 hairTakeSamples(ivec2 pixel, uvec4 mask) {
-    uvec4 before = uvec4(0u);
-    for (uint k = 0u; k < HAIR_SAMPLE_WORDS; ++k)
-        before[k] = imageAtomicOr(hairMask, ivec3(pixel, 2 + int(k)), mask[k]);
-    return before;
 }
 
 float hairSampleCount(uvec4 mask) {
@@ -92,55 +103,67 @@ float hairSampleCount(uvec4 mask) {
 void main() {
 #ifdef HAIR_AA
     vec2 across = normalize(inAcross);
-    float coverage = inAlpha * hairCoverage(inStrip, across); // opaque strands: alpha 1
+    float coverage = inAlpha * hairCoverage(inStrip, inEnds, across); // opaque: alpha 1
     if (coverage <= 0.0) discard; // the strip's outer corners
 #endif
-#if defined(HAIR_AA_MASK) && HAIR_AA_PASS < 2
+#if defined(HAIR_AA_MASK) && HAIR_AA_PASS == 0
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    uint depth = floatBitsToUint(gl_FragCoord.z);
-#if HAIR_AA_PASS == 0
-    imageAtomicMin(hairMask, ivec3(pixel, 0), depth);
-#else
-    if (depth == imageLoad(hairMask, ivec3(pixel, 0)).r) { // the nearest takes its samples
-        hairTakeSamples(pixel, hairSampleMask(inStrip, across));
-        imageAtomicAdd(hairMask, ivec3(pixel, 1), uint(coverage * HAIR_SHARE_ONE + 0.5));
+    uint depth = floatBitsToUint(gl_FragCoord.z); // ordered as the depths are (all >= 0)
+    uvec4 mask = hairSampleMask(inStrip, inEnds, across, 4u);
+    for (uint i = 0u; i < HAIR_DEPTH_SAMPLES; ++i)
+        if ((mask.x & (1u << i)) != 0u) imageAtomicMin(hairSamples, ivec3(pixel, i), depth);
+    for (uint k = 0u; k < 4u; ++k)
+        imageAtomicOr(hairSamples, ivec3(pixel, HAIR_COVERED + int(k)), mask[k]);
+    float own = hairSampleCount(mask);
+    uint c = uint(coverage * HAIR_FIXED_ONE + 0.5);
+    if (own > 0.0) { // sum c, sum own
+        imageAtomicAdd(hairSamples, ivec3(pixel, HAIR_COVERED + 4), c);
+        imageAtomicAdd(hairSamples, ivec3(pixel, HAIR_COVERED + 5), uint(own));
+    } else { // a sliver between the points: sum c
+        imageAtomicAdd(hairSamples, ivec3(pixel, HAIR_COVERED + 6), c);
     }
-#endif
-    // nothing drawn (colour write mask 0): the inputs are read so that these passes use the
-    // same vertex shader as the last, hence the same depths
+    // nothing drawn (colour write mask 0): the inputs are read so that both passes use the
+    // same vertex shader, hence the same depths
     outAccum = vec4(inWorldPos + inTangent + inColor, inViewDepth + float(inStrand));
     outWeight = vec4(0.0);
 #else
-#if defined(HAIR_AA_MASK)
+#ifdef HAIR_AA_MASK
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    float a, reveal;
-    if (floatBitsToUint(gl_FragCoord.z) == imageLoad(hairMask, ivec3(pixel, 0)).r) {
-        a = coverage; // taken in pass 1, first
-        reveal = coverage >= 0.999 ? 1.0 : coverage;
-    } else {
-        uvec4 mask = hairSampleMask(inStrip, across);
-        uvec4 before = hairTakeSamples(pixel, mask);
-        float own = hairSampleCount(mask);
-        float share = coverage * (own > 0.0 ? hairSampleCount(mask & ~before) / own : 1.0);
-        uint fixedShare = uint(share * HAIR_SHARE_ONE + 0.5);
-        if (fixedShare == 0u) discard;
-        float free = 1.0 - float(imageAtomicAdd(hairMask, ivec3(pixel, 1), fixedShare)) /
-                               HAIR_SHARE_ONE;
-        a = clamp(min(float(fixedShare) / HAIR_SHARE_ONE, free), 0.0, 1.0);
-        reveal = free > 0.0 ? a / free : 1.0;
-        // the last free samples: the rest of the pixel is hair
-        if (all(equal(before | mask, HAIR_ALL_SAMPLES))) {
-            a = max(a, free);
-            reveal = 1.0;
-        }
-    }
-    float w = oitWeight(inViewDepth, 1.0, gl_FragCoord.z); // colours averaged by their shares
+    uint depth = floatBitsToUint(gl_FragCoord.z);
+    uint mask = hairSampleMask(inStrip, inEnds, across, 1u).x;
+    uint won = 0u;
+    for (uint i = 0u; i < HAIR_DEPTH_SAMPLES; ++i)
+        if ((mask & (1u << i)) != 0u && imageLoad(hairSamples, ivec3(pixel, i)).r == depth)
+            ++won;
+    // a sliver between the depth samples counts as seen
+    uint own = bitCount(mask);
+    float a = own > 0u ? coverage * float(won) / float(own) : coverage;
+    if (a <= 0.0) discard;
+    // The pixel's hair coverage: the fraction of the 128 sample points its strands cover, |U| / N,
+    // times the exact coverage of its strands over their sampled one, sum c / sum (own / N)
+    // (exact for one strand or strands side by side), plus the slivers between the points; or 1
+    // once all points are covered (a dense head of hair must not show the backdrop through it).
+    // Every fragment of the pixel adds (coverage, 1) and the composite takes the mean.
+    uvec4 all;
+    for (uint k = 0u; k < 4u; ++k)
+        all[k] = imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + int(k))).r;
+    float u = hairSampleCount(all) / 128.0;
+    uvec3 sums = uvec3(imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 4)).r,
+                       imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 5)).r,
+                       imageLoad(hairSamples, ivec3(pixel, HAIR_COVERED + 6)).r);
+    float sumC = float(sums.x) / HAIR_FIXED_ONE, sumOwn = float(sums.y) / 128.0;
+    float slivers = float(sums.z) / HAIR_FIXED_ONE;
+    float pixelCoverage = u >= 1.0 ? 1.0 : (sumOwn > 0.0 ? sumC / sumOwn * u : 0.0) + slivers;
+    vec2 covered = vec2(min(pixelCoverage, 1.0), 1.0);
+    float reveal = 0.0; // transparent strands' revealage untouched
+    float w = oitWeight(inViewDepth, 1.0, gl_FragCoord.z);
 #else
 #ifdef HAIR_AA
     float a = coverage;
 #else
     float a = inAlpha;
 #endif
+    vec2 covered = vec2(0.0);
     float reveal = a;
     float w = oitWeight(inViewDepth, a, gl_FragCoord.z);
 #endif
@@ -148,6 +171,6 @@ void main() {
     HairShading s = hairInstances[push.instance].shading;
     vec3 c = hairRadiance(inWorldPos, normalize(inTangent), inColor, s, inStrand, vis);
     outAccum = vec4(c * a * w, reveal);
-    outWeight = vec4(a * w, 0.0, 0.0, reveal);
+    outWeight = vec4(a * w, covered, reveal);
 #endif
 }

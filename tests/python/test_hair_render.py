@@ -143,6 +143,42 @@ def test_ribbons_cover_their_width():
     assert np.all(np.abs(ribbons[4:-4] - 0.16 / (2 * 2 * np.tan(0.25)) * 64) <= 1.0)
 
 
+@pytest.mark.parametrize("order", [(2, 1, 0), (0, 1, 2)])
+def test_aa_shares_of_a_pixel_go_to_the_nearest_strand_at_each_point(order):
+    """Three horizontal ribbons under one pixel row, each narrower than a pixel (so all of them
+    go through the anti-aliased fringe passes), at three depths: red nearest over rows
+    [0.1, 0.4] of the row, green behind it over [0.25, 0.75], blue farthest over [0.55, 0.95].
+    Area-exact, the row shows red 0.3, green 0.35 (its part below red), blue 0.2 (below both)
+    and 0.15 of the black background, whatever order they are drawn in. (Before, after the
+    nearest strand the others took what was still free in drawing order: drawn blue first,
+    blue got 0.4 and green 0.15.)"""
+    H = W = 32
+    dist, fov, row = 3.0, 0.3, 16
+    cam = weft.Camera((0.0, 0.0, dist), (0.0, 0.0, 0.0), (0, 1, 0), fov)
+    p11 = abs(cam.projection_matrix(1.0)[1, 1])
+    # (colour, depth z, rows covered within the pixel row)
+    strands = [((1.0, 0.0, 0.0), 0.02, (0.1, 0.4)), ((0.0, 1.0, 0.0), 0.0, (0.25, 0.75)),
+               ((0.0, 0.0, 1.0), -0.02, (0.55, 0.95))]
+    scene = weft.Scene()
+    scene.ambient = (1.0, 1.0, 1.0)  # no lights: a strand shows its diffuse colour
+    for i in order:
+        colour, z, (lo, hi) = strands[i]
+        metres_per_row = 2.0 * (dist - z) / (p11 * H)
+        y = -((row + 0.5 * (lo + hi)) / H * 2.0 - 1.0) * (dist - z) / p11  # rows grow downwards
+        points = np.array([[-1.5, y, z], [1.5, y, z]], np.float32)
+        width = (hi - lo) * metres_per_row
+        scene.add_hair(weft.HairStrands(points, default_segments=1, default_thickness=width),
+                       weft.HairMaterial("kajiya_kay", diffuse=colour, specular=(0.0, 0.0, 0.0)))
+    r = weft.Renderer(W, H, shadow_map_size=64)  # msaa 4: anti-aliased
+    r.hair_primitive = "ribbons"
+    r.hair_width = 1.0  # a strand's width is its thickness in metres
+    img = r.render_linear(scene, cam)[..., :3]
+    assert "hair_fringe" in pass_names(r)
+    got = img[row, 10:22]
+    np.testing.assert_allclose(got, np.tile([0.3, 0.35, 0.2], (12, 1)), atol=0.03)
+    assert np.abs(img[row - 1, 10:22]).max() < 0.01 and np.abs(img[row + 1, 10:22]).max() < 0.01
+
+
 @pytest.mark.parametrize("model", ["kajiya_kay", "sadeghi", "marschner"])
 def test_fragment_shading_matches_numpy_model(model):
     r = weft.Renderer(64, 64, shadow_map_size=64)

@@ -289,27 +289,29 @@ def test_aa_targets_at_default_settings():
     assert mesh["mesh_edges"] <= 4.0, mesh["mesh_edges"]
 
 
-def test_hair_aa_today():
-    """Hair anti-aliases itself with coverage (it is drawn after the MSAA resolve): 1-pixel
-    ribbons score 9.2/255 against the point-sampled 4x4 supersampled frame at 160 x 120 (27
-    when they were drawn aliased, one strand per pixel, as msaa=1 still draws them); the issue's
-    6/255 is not met on this dense plain hair yet. The measured value + 25% as a ceiling."""
+def test_hair_aa_target():
+    """Issue 18's hair target at the default 4x MSAA: dense plain 1-pixel ribbons within 6/255 on
+    hair edges against the point-sampled 4x4 supersampled frame. Hair anti-aliases itself with
+    coverage (it is drawn after the MSAA resolve): measured 5.17 at 160 x 120 (5.21 at 128 x 96;
+    9.2 when a partly covered pixel's points went to its strands in drawing order, 27 drawn
+    aliased, one strand per pixel, as msaa=1 still draws them). The 4x4 reference is itself
+    4.3/255 from a 16x16 one here (this frame 2.9), which bounds what any frame can score."""
     hscene, hcamera, width = aa.hair_scene(160, 120)
     r = weft.Renderer(160, 120)
     r.hair_primitive = "ribbons"
     r.hair_width = width
     hair = aa.aa_edge_error(hscene, hcamera, r)
     assert hair["hair_edges_pixels"] > 300
-    assert hair["hair_edges"] <= 11.5, hair["hair_edges"]
+    assert hair["hair_edges"] <= 6.0, hair["hair_edges"]
     r.msaa = 1
     aliased = aa.aa_edge_error(hscene, hcamera, r)
-    assert aliased["hair_edges"] > 2.5 * hair["hair_edges"], aliased["hair_edges"]
+    assert aliased["hair_edges"] > 4.0 * hair["hair_edges"], aliased["hair_edges"]
 
 
 def test_fur_aa_target():
     """The demo's fur ball (transparent: WBOIT with coverage) meets the issue's hair target at
     the default 4x MSAA: <= 6/255 on hair edges against the point-sampled 4x4 supersampled
-    frame (measured 5.44 at 320 x 240, 5.94 at 160 x 120; drawn aliased 9.2 and 8.2)."""
+    frame (measured 5.19 at 320 x 240, 5.38 at 160 x 120; drawn aliased 9.2 and 8.2)."""
     fscene, fcamera, width = aa.fur_scene(320, 240)
     r = weft.Renderer(320, 240)
     r.hair_primitive = "ribbons"

@@ -149,16 +149,15 @@ void HairPasses::ensureImages(const RenderSettings& settings, uint32_t width, ui
         mDomMeshDepth = makeImage(mCtx, mDomSize, mDomSize, kMaxHairDoms, kDepthFormat,
                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
     }
-    const bool masks = mAntialias && mPipes.sampleMasks;
-    if (masks && (!mSampleMask || mSampleMask.desc().width != width ||
-                  mSampleMask.desc().height != height)) {
+    if (mSampleDepths && (!mSamples || mSamples.desc().width != width ||
+                          mSamples.desc().height != height)) {
         vk::ImageDesc d;
         d.width = width;
         d.height = height;
-        d.layers = 6;
+        d.layers = kHairAaSampleLayers;
         d.format = VK_FORMAT_R32_UINT;
         d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-        mSampleMask = vk::Image(&mCtx, d);
+        mSamples = vk::Image(&mCtx, d);
     }
     if ((mOit || mAntialias) && (!mAccum || mWidth != width || mHeight != height)) {
         mWidth = width;
@@ -242,10 +241,10 @@ void HairPasses::writeSets(Slot& slot) {
     write(mZ0Set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[4];
     write(mOpacitySet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[1];
     write(mOpacitySet, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[4];
-    const VkDescriptorImageInfo mask{
-        VK_NULL_HANDLE, mSampleMask ? mSampleMask.view() : VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
-    if (mAntialias && mPipes.sampleMasks)
-        write(mOpacitySet, 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)->pImageInfo = &mask;
+    const VkDescriptorImageInfo samples{
+        VK_NULL_HANDLE, mSamples ? mSamples.view() : VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
+    if (mSampleDepths)
+        write(mOpacitySet, 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)->pImageInfo = &samples;
     if (mAccum) {
         write(mOitSet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[2];
         write(mOitSet, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[3];
@@ -272,6 +271,9 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
         instances.push_back({h.transform, hair::packHairShading(h.material)});
     }
     mOit = anyTransparent;
+    mSampleDepths = mAntialias && mPipes.sampleMasks &&
+                    std::any_of(mDraws.begin(), mDraws.end(),
+                                [](const HairDraw& d) { return !d.transparent; });
     fitDoms(scene, settings);
     mMeshesShadowHair = !mDoms.empty() &&
                         std::any_of(scene.instances().begin(), scene.instances().end(),
@@ -465,28 +467,34 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
     if (fringe)
         g.addPass({"hair_fringe", shadingReads, accumulates,
                    [this, t, beginAccumulation](VkCommandBuffer cmd) {
-                       const bool masks = mPipes.sampleMasks;
-                       if (masks) { // no sample taken, no depth, no share yet
-                           vk::transition(mCtx, cmd, mSampleMask, VK_IMAGE_LAYOUT_GENERAL,
-                                          VK_PIPELINE_STAGE_2_CLEAR_BIT,
-                                          VK_ACCESS_2_TRANSFER_WRITE_BIT);
-                           VkClearColorValue clear{};
-                           for (uint32_t layer = 0; layer < 6; ++layer) {
-                               clear.uint32[0] = layer == 0 ? ~0u : 0u;
-                               const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0,
-                                                                   1, layer, 1};
-                               vkCmdClearColorImage(cmd, mSampleMask.get(),
-                                                    VK_IMAGE_LAYOUT_GENERAL, &clear, 1, &range);
-                           }
-                           vk::transition(mCtx, cmd, mSampleMask, VK_IMAGE_LAYOUT_GENERAL,
+                       if (!mPipes.sampleMasks) { // coverage as independent alphas
+                           beginAccumulation(cmd, true);
+                           drawCamera(cmd, t, mPipes.aaFringe[0], mOpacitySet, false, true);
+                           mCtx.fn().cmdEndRendering(cmd);
+                           return;
+                       }
+                       // no depth at any sample point (all ones), no point covered, sums 0
+                       vk::transition(mCtx, cmd, mSamples, VK_IMAGE_LAYOUT_GENERAL,
+                                      VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                                      VK_ACCESS_2_TRANSFER_WRITE_BIT);
+                       VkClearColorValue clear{};
+                       for (uint32_t layer = 0; layer < mSamples.desc().layers; ++layer) {
+                           clear.uint32[0] = layer < kHairAaDepthSamples ? ~0u : 0u;
+                           const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1,
+                                                               layer, 1};
+                           vkCmdClearColorImage(cmd, mSamples.get(), VK_IMAGE_LAYOUT_GENERAL,
+                                                &clear, 1, &range);
+                       }
+                       // pass 0 writes the nearest depths, pass 1 reads them once all are in
+                       for (int i = 0; i < 2; ++i) {
+                           vk::transition(mCtx, cmd, mSamples, VK_IMAGE_LAYOUT_GENERAL,
                                           VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
                                               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-                       }
-                       beginAccumulation(cmd, true);
-                       for (int i = 0; i < (masks ? 3 : 1); ++i)
+                           beginAccumulation(cmd, i == 0);
                            drawCamera(cmd, t, mPipes.aaFringe[i], mOpacitySet, false, true);
-                       mCtx.fn().cmdEndRendering(cmd);
+                           mCtx.fn().cmdEndRendering(cmd);
+                       }
                    }});
     if (mOit)
         g.addPass({"hair_oit", shadingReads, accumulates,

@@ -89,9 +89,10 @@ private:
     HairGpuCache mCache;
     std::array<Slot, 2> mSlots;
     vk::Image mDomDepth, mDomOpacity, mDomMeshDepth, mDummyDom, mNoMeshes, mAccum, mWeight;
-    // anti-aliased frames, per pixel (R32_UINT layers): the nearest fringe depth, the sum of the
-    // fringe's shares, the samples it covers (glsl/hair/hair_oit_main.glsl)
-    vk::Image mSampleMask;
+    // anti-aliased frames, per pixel (R32_UINT layers): the nearest depth of the partly covering
+    // strands at each of kHairAaDepthSamples sample points, which of 128 points they cover, and
+    // sums of their coverage (glsl/hair/hair_oit_main.glsl)
+    vk::Image mSamples;
     std::vector<HairDraw> mDraws;
     std::vector<Dom> mDoms;
     std::vector<HairDomInfo> mLastDoms; // by scene light, size 0 where none
@@ -99,6 +100,7 @@ private:
     VkDescriptorSet mOitSet = VK_NULL_HANDLE;
     bool mRibbons = false, mOit = false;
     bool mAntialias = false; // strips with coverage (MSAA frames; debug frames never)
+    bool mSampleDepths = false; // ... and opaque strands with sample depths: mSamples is used
     bool mMeshesShadowHair = false; // DOMs and mesh casters this frame: the hair_dom_meshes pass
     uint32_t mWidth = 0, mHeight = 0, mDomSize = 0;
 };

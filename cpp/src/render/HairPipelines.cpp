@@ -87,14 +87,11 @@ HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) {
     a.blends = {accumulate, accumulate};
     aaOit = vk::createGraphicsPipeline(c, a);
     if (sampleMasks) {
-        const char* passes[3] = {"hair/hair_aa_fringe0.frag", "hair/hair_aa_fringe1.frag",
-                                 "hair/hair_aa_fringe2.frag"};
-        for (int i = 2; i >= 0; --i) {
-            a.fragmentShader = passes[i];
-            if (i == 1) // passes 0 and 1 only take the nearest depth, samples and shares
-                for (VkPipelineColorBlendAttachmentState& b : a.blends) b.colorWriteMask = 0;
-            aaFringe[i] = vk::createGraphicsPipeline(c, a);
-        }
+        a.fragmentShader = "hair/hair_aa_fringe1.frag";
+        aaFringe[1] = vk::createGraphicsPipeline(c, a);
+        a.fragmentShader = "hair/hair_aa_fringe0.frag"; // only writes the sample depths
+        for (VkPipelineColorBlendAttachmentState& b : a.blends) b.colorWriteMask = 0;
+        aaFringe[0] = vk::createGraphicsPipeline(c, a);
     } else {
         aaFringe[0] = vk::createGraphicsPipeline(c, a); // coverage as independent alphas
     }

@@ -11,25 +11,34 @@ struct ScenePipelines;
 
 constexpr VkFormat kDomOpacityFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kOitAccumFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-constexpr VkFormat kOitWeightFormat = VK_FORMAT_R32_SFLOAT;
+// r: sum of a w; g / b: the opaque strands' coverage of a partly covered pixel (anti-aliased
+// frames; alpha unused)
+constexpr VkFormat kOitWeightFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+// The partly covered pixels of opaque strands in anti-aliased frames (glsl/hair/
+// hair_oit_main.glsl): sample points whose nearest depth decides the strands' visible shares,
+// the 32-bit words (32 points each) that record which points some strand covers, and three sums
+// that turn those into the pixel's coverage.
+constexpr uint32_t kHairAaDepthSamples = 32;
+constexpr uint32_t kHairAaCoverageWords = 4;
+constexpr uint32_t kHairAaSampleLayers = kHairAaDepthSamples + kHairAaCoverageWords + 3;
 
 struct HairPipelines {
     HairPipelines(vk::Context& ctx, const ScenePipelines& scene);
 
     vk::DescriptorSetLayout hairSetLayout; // set 2: vertices, instances, hair frame
-    vk::DescriptorSetLayout domSetLayout;  // set 3: a DOM image array, mesh depth, sample masks
+    vk::DescriptorSetLayout domSetLayout;  // set 3: a DOM image array, mesh depth, samples
     vk::DescriptorSetLayout oitSetLayout;  // composite: accumulation (+ revealage), weight sum
     vk::PipelineLayout layout;             // sets 0-3 + push constants (instance / light view)
     vk::PipelineLayout compositeLayout;
     // [0]: lines, [1]: ribbons
     vk::Pipeline opaque[2], debug[2], oit[2];
     // Anti-aliased strips: the pixels a strand covers entirely (opaque, depth written), the
-    // partly covered ones accumulated like WBOIT (depth tested only; with sample masks in three
-    // passes: nearest depth, nearest strand, the rest; else one), transparent strands with
-    // coverage.
-    vk::Pipeline aaCore, aaFringe[3], aaOit;
-    /// The device can OR sample masks in fragment shaders: a pixel's partial coverage is the
-    /// union of its strands (hair_oit_main.glsl); without, independent alphas.
+    // partly covered ones accumulated like WBOIT (depth tested only; with sample depths in two
+    // passes: the nearest depth at each sample point, then the shares it leaves each strand;
+    // else one), transparent strands with coverage.
+    vk::Pipeline aaCore, aaFringe[2], aaOit;
+    /// The device has atomics in fragment shaders: a strand's share of a partly covered pixel is
+    /// what it shows of it at sample points (hair_oit_main.glsl); without, independent alphas.
     bool sampleMasks = false;
     vk::Pipeline lightDepth;  // lines into a depth target (shadow maps, DOM pass 1)
     vk::Pipeline domOpacity;  // DOM pass 2

@@ -1,6 +1,0 @@
-#version 450
-// The partly covered pixels of opaque strands, pass 2 (hair_oit_main.glsl).
-#define HAIR_AA
-#define HAIR_AA_MASK
-#define HAIR_AA_PASS 2
-#include "hair_oit_main.glsl"
