@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs what weft needs on a Debian machine, only when missing: system packages from Debian
 # (Vulkan loader + lavapipe + validation layers, glslc, GLFW, GLM, libpng, OpenEXR, GoogleTest, Xvfb,
-# tinygltf and tinyobjloader: glTF and OBJ + MTL meshes, Dear ImGui with its GLFW and Vulkan
-# backends and the stb it needs: weft-demo's panel)
+# tinygltf and tinyobjloader: glTF and OBJ + MTL meshes, stb: .hdr images and, with Dear ImGui and
+# its GLFW and Vulkan backends, weft-demo's panel)
 # and Python build/test packages from PyPI (av = PyAV, its wheels bundle FFmpeg: video files as
 # environment captures, weft.ibl.read_video_frames; matplotlib draws the BTF report's figures and
 # the benchmarks' plots, tqdm their progress; trimesh and pygltflib are the independent mesh
