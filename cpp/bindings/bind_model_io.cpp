@@ -60,10 +60,10 @@ void bindModelIo(py::module_& m) {
         }
         return toPython(std::move(parts));
     }, py::arg("path"),
-        "Loads a Wavefront OBJ with its .mtl materials as a list of MeshPart, one per material\n"
-        "used (Kd -> kd, Ks -> ks, Ns -> shininess, map_Kd -> texture, PNG). Raises IoError\n"
-        "naming the file for what load_obj refuses, a missing .mtl or texture, or an unknown\n"
-        "material.");
+        "Loads a Wavefront OBJ with its .mtl materials (both read by tinyobjloader) as a list of\n"
+        "MeshPart, one per material used (Kd -> kd, Ks -> ks, Ns -> shininess, map_Kd -> texture,\n"
+        "PNG). Raises IoError naming the file for what load_obj refuses, a missing .mtl or\n"
+        "texture, an unknown material or a negative or non-finite Kd, Ks or Ns.");
 }
 
 } // namespace weft::py_bind

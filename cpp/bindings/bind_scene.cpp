@@ -139,7 +139,7 @@ void bindScene(py::module_& m) {
                    std::to_string(x.triangleCount()) + " triangles>";
         });
     m.def("load_obj", [](const std::string& path) { return std::make_shared<Mesh>(loadObj(path)); },
-          py::arg("path"), "Loads a Wavefront OBJ file as a Mesh.");
+          py::arg("path"), "Loads a Wavefront OBJ file (read by tinyobjloader) as a Mesh.");
 
     py::class_<Texture, std::shared_ptr<Texture>>(m, "Texture",
         "An RGBA8 texture (sRGB colour by default), uploaded to the GPU on first use.")

@@ -1761,14 +1761,14 @@ def load_image_float(path: str) -> numpy.typing.NDArray[numpy.float32]:
     """
 def load_obj(path: str) -> Mesh:
     """
-    Loads a Wavefront OBJ file as a Mesh.
+    Loads a Wavefront OBJ file (read by tinyobjloader) as a Mesh.
     """
 def load_obj_parts(path: str) -> list[MeshPart]:
     """
-    Loads a Wavefront OBJ with its .mtl materials as a list of MeshPart, one per material
-    used (Kd -> kd, Ks -> ks, Ns -> shininess, map_Kd -> texture, PNG). Raises IoError
-    naming the file for what load_obj refuses, a missing .mtl or texture, or an unknown
-    material.
+    Loads a Wavefront OBJ with its .mtl materials (both read by tinyobjloader) as a list of
+    MeshPart, one per material used (Kd -> kd, Ks -> ks, Ns -> shininess, map_Kd -> texture,
+    PNG). Raises IoError naming the file for what load_obj refuses, a missing .mtl or
+    texture, an unknown material or a negative or non-finite Kd, Ks or Ns.
     """
 def load_png(path: str) -> numpy.typing.NDArray[numpy.uint8]:
     """

@@ -496,13 +496,23 @@ def test_load_obj_negative_indices_and_missing_normals(tmp_path) -> None:
 
 
 @pytest.mark.parametrize("text", ["v 0 0 0\nv 1 0 0\nv 1 0 -1\nf 1 2 9\n",
-                                  "v 0 0\nf 1 1 1\n",
-                                  "v 0 0 0\nv 1 0 0\nv 1 0 -1\nf 1/x 2 3\n"])
+                                  "v 0 0 1e999\nf 1 1 1\n",
+                                  "v 0 0 0\nv 1 0 0\nv 1 0 -1\nf 1/1 2\n",
+                                  "v 0 0 0\nv 1 0 0\nv 1 0 -1\nf x 2 3\n"])
 def test_load_obj_malformed(tmp_path, text: str) -> None:
     path = tmp_path / "bad.obj"
     path.write_text(text)
-    with pytest.raises(IoError):
+    with pytest.raises(IoError, match="bad.obj:"):
         weft.load_obj(str(path))
+
+
+def test_load_obj_reads_numbers_as_tinyobjloader_does(tmp_path) -> None:
+    """Words that are no number read as 0 (a missing z, a texture index 'x'): accepted now."""
+    path = tmp_path / "words.obj"
+    path.write_text("v 0 0\nv 1 0 0\nv 1 0 -1\nf 1/x 2 3\n")
+    mesh = weft.load_obj(str(path))
+    assert mesh.triangle_count == 1
+    assert {tuple(p) for p in mesh.positions} == {(0, 0, 0), (1, 0, 0), (1, 0, -1)}
 
 
 def test_missing_files(tmp_path) -> None:

@@ -61,7 +61,10 @@ def test_hdr_and_exr_environments(tmp_path: Path, capsys: pytest.CaptureFixture)
     weft.save_hdr(str(hdr), eq)
     source = ibl.load_environment(str(hdr))  # RGBE-quantised
     assert source.shape == (64, 128, 3) and source.dtype == np.float32
-    np.testing.assert_allclose(source, eq, rtol=0.01, atol=1e-3)
+    # RGBE keeps 8 bits per channel under the pixel's largest one's exponent: stb_image_write
+    # truncates, stb_image decodes without a half step, so each channel is within one step
+    step = np.ldexp(1.0, np.frexp(eq.max(axis=-1, keepdims=True))[1] - 8)
+    assert np.all(source <= eq) and np.all(eq - source < step)
     out = tmp_path / "cube.exr"
     assert main(["ibl", "convert", str(hdr), str(out), "--cube-size", "16"]) == 0
     cross = ibl.load_environment(str(out))

@@ -22,8 +22,10 @@ def rgbe_encode(rgb: np.ndarray) -> np.ndarray:
 
 
 def rgbe_decode(e: np.ndarray) -> np.ndarray:
+    """mantissa * 2^(exponent - 136): stb_image's decoding (and Bruce Walter's rgbe.c);
+    Radiance's own adds 0.5 to the mantissa."""
     scale = np.where(e[..., 3] > 0, np.ldexp(1.0, e[..., 3].astype(np.int32) - 136), 0.0)
-    return (e[..., :3].astype(np.float64) + 0.5) * scale[..., None]
+    return e[..., :3].astype(np.float64) * scale[..., None]
 
 
 def parse_hdr_bytes(data: bytes) -> np.ndarray:
@@ -81,7 +83,7 @@ def test_hdr_reader_decodes_flat_and_rle_files(tmp_path: Path) -> None:
     e = rgbe_encode(img.astype(np.float64))
     # flat file written by hand
     flat = tmp_path / "flat.hdr"
-    flat.write_bytes(b"#?RGBE\nEXPOSURE=1.0\n\n-Y 9 +X 40\n" + e.tobytes())
+    flat.write_bytes(b"#?RGBE\nEXPOSURE=1.0\nFORMAT=32-bit_rle_rgbe\n\n-Y 9 +X 40\n" + e.tobytes())
     np.testing.assert_allclose(weft.load_hdr(str(flat)), rgbe_decode(e), rtol=1e-6)
     # run-length file written by weft, read back: within RGBE precision of the input
     rle = tmp_path / "rle.hdr"
@@ -145,9 +147,34 @@ def test_hdr_header_lies_about_size(tmp_path: Path) -> None:
     bad.write_bytes(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 60000 +X 60000\n" + b"\0" * 64)
     with pytest.raises(weft.IoError, match="too short"):
         weft.load_hdr(str(bad))
-    bad.write_bytes(b"#?RADIANCE\n\n+Y 4 +X 4\n" + b"\0" * 64)
+    bad.write_bytes(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n+Y 4 +X 4\n" + b"\0" * 64)
     with pytest.raises(weft.IoError, match="resolution"):
         weft.load_hdr(str(bad))
+    bad.write_bytes(b"#?RADIANCE\n\n-Y 4 +X 4\n" + b"\0" * 64)  # stb_image needs FORMAT=
+    with pytest.raises(weft.IoError, match="FORMAT=32-bit_rle_rgbe"):
+        weft.load_hdr(str(bad))
+
+
+def test_hdr_run_length_zero_counts_and_cuts_end_quickly(tmp_path: Path) -> None:
+    """A zero count in a run-length scanline made this stb_image loop forever (it does not
+    advance); weft hands it padding past the end and refuses the file as cut short."""
+    import time
+
+    header = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 16\n"
+    for body in (bytes([2, 2, 0, 16]) + bytes(40),  # zero counts up to the end
+                 bytes([2, 2, 0, 16, 0x90, 7]),      # one run of 16, then the file ends
+                 bytes([2, 2, 0, 16]) + bytes([0x90, 7]) * 4 + bytes([2, 2])):
+        bad = tmp_path / "zero.hdr"
+        bad.write_bytes(header + body)
+        start = time.perf_counter()
+        with pytest.raises(weft.IoError, match="zero.hdr.*ends early"):
+            weft.load_hdr(str(bad))
+        assert time.perf_counter() - start < 1.0
+    # the same scanlines complete: read, every pixel 7 * 2^(7 - 136)
+    good = tmp_path / "runs.hdr"
+    good.write_bytes(header + (bytes([2, 2, 0, 16]) + bytes([0x90, 7]) * 4) * 2)
+    np.testing.assert_array_equal(weft.load_hdr(str(good)), np.full((2, 16, 3), 7 * 2.0 ** -129,
+                                                                    np.float32))
 
 
 def test_bad_float_images_are_rejected(tmp_path: Path) -> None:
@@ -160,5 +187,10 @@ def test_bad_float_images_are_rejected(tmp_path: Path) -> None:
         weft.save_exr(path, np.zeros((4, 4, 5), np.float32))
     with pytest.raises(weft.InvalidArgument, match=">= 0"):
         weft.save_hdr(str(tmp_path / "n.hdr"), -np.ones((4, 4, 3), np.float32))
+    # RGBE's exponent byte holds values below 2^127; 2^127 would wrap to black
+    with pytest.raises(weft.InvalidArgument, match="2\\^127"):
+        weft.save_hdr(str(tmp_path / "big.hdr"), np.full((4, 4, 3), 2.0 ** 127, np.float32))
+    weft.save_hdr(str(tmp_path / "big.hdr"), np.full((4, 4, 3), 1e38, np.float32))
+    np.testing.assert_allclose(weft.load_hdr(str(tmp_path / "big.hdr")), 1e38, rtol=1 / 128)
     with pytest.raises(TypeError):
         weft.save_exr(path, "not an image")

@@ -65,14 +65,20 @@ def test_a_truncated_hair_file_is_refused(tmp_path):
 
 
 def test_an_error_quoting_bytes_that_are_not_utf8_is_still_the_error(tmp_path):
-    """Found by the HDR fuzzer: a corrupt header whose bytes the message quotes raised a
-    UnicodeDecodeError instead of weft.IoError; they are escaped now."""
+    """Found by the HDR fuzzer: a corrupt header whose bytes the message quoted raised a
+    UnicodeDecodeError instead of weft.IoError; they are escaped now. stb_image reads .hdr files
+    now and quotes nothing (the file is still refused); an OBJ's material name is quoted."""
     import base64
 
     data = base64.b64decode("Iz9SQURJQU5DRQpGT1JNQVQ9MzItYml0X3JsZV9yZ2JlCgotWSAzICtYIMz1/4oVga"
                             "iKkoBSQURJQU5DRQpGT1JNQVQ9MzEtYml0X3JsZV9yZ2JlCgri6oJ4fIB/")
     path = tmp_path / "crash.hdr"
     path.write_bytes(data)
-    with pytest.raises(weft.IoError) as info:
+    with pytest.raises(weft.IoError, match="crash.hdr"):
         weft.load_hdr(str(path))
-    assert "\\x" in str(info.value)  # the undecodable byte, escaped
+    (tmp_path / "names.mtl").write_bytes(b"newmtl other\nKd 1 1 1\n")
+    obj = tmp_path / "names.obj"
+    obj.write_bytes(b"mtllib names.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl \xcc\xf5\xff\nf 1 2 3\n")
+    with pytest.raises(weft.IoError) as info:
+        weft.load_obj_parts(str(obj))
+    assert "is not defined" in str(info.value) and "\\x" in str(info.value)  # escaped bytes

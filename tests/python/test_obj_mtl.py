@@ -1,6 +1,7 @@
-"""OBJ + MTL loading against trimesh as the independent reader of the same files: faces that
-use normals defined after them, negative indices, index 0 refused, .mtl Kd/Ks/Ns/map_Kd as
-weft Materials (weft.load_obj_parts), files trimesh writes, and the materials as rendered."""
+"""OBJ + MTL loading (tinyobjloader reads the text) against trimesh as the independent reader of
+the same files: faces that use elements defined after them, negative indices, index 0 refused,
+.mtl Kd/Ks/Ns/map_Kd as weft Materials (weft.load_obj_parts), files the hand-written reader
+refused, files trimesh writes, and the materials as rendered."""
 
 from __future__ import annotations
 
@@ -133,8 +134,13 @@ def test_material_errors(tmp_path: Path, two_materials: Path) -> None:
     (tmp_path / "tex.png").unlink()
     with pytest.raises(weft.IoError, match="tex.png"):
         weft.load_obj_parts(str(two_materials))
-    (tmp_path / "two.mtl").write_text("newmtl red\nKd 0.8 x 0.2\n")
-    with pytest.raises(weft.IoError, match="two.mtl:2:"):
+    # tinyobjloader reads the numbers (a word that is none reads as 0); weft refuses what its
+    # Material cannot hold, naming the .mtl and the material
+    (tmp_path / "two.mtl").write_text("newmtl red\nKd 0.8 -1 0.2\n")
+    with pytest.raises(weft.IoError, match="two.mtl': material 'red': Kd needs finite non-neg"):
+        weft.load_obj_parts(str(two_materials))
+    (tmp_path / "two.mtl").write_text("newmtl red\nKs 1 1 1e999\n")
+    with pytest.raises(weft.IoError, match="material 'red': Ks"):
         weft.load_obj_parts(str(two_materials))
     (tmp_path / "two.mtl").write_text("newmtl red\nKd 1 1 1\n")
     with pytest.raises(weft.IoError, match="'textured' is not defined"):
@@ -209,3 +215,92 @@ def test_many_interleaved_materials(tmp_path: Path) -> None:
         assert part.material.kd[0] == pytest.approx(k / count, abs=1e-6)
         xs = sorted(part.mesh.positions[part.mesh.indices.reshape(-1, 3)[:, 0], 0])
         assert xs == [k, k + count, k + 2 * count]
+
+
+def test_faces_before_the_elements_they_use(tmp_path: Path) -> None:
+    """Positions, texture coordinates and normals all defined after the faces (and a quad)."""
+    rng = np.random.default_rng(7)
+    positions = rng.normal(size=(5, 3)).round(4)
+    uvs = rng.random((5, 2)).round(4)
+    normals = rng.normal(size=(5, 3))
+    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+    lines = ["f 1/1/1 2/2/2 3/3/3", "f 1/1/1 3/3/3 4/4/4 5/5/5"]
+    lines += [f"v {x} {y} {z}" for x, y, z in positions]
+    lines += [f"vt {u} {v}" for u, v in uvs]
+    lines += [f"vn {x:.6f} {y:.6f} {z:.6f}" for x, y, z in normals]
+    path = tmp_path / "forward.obj"
+    path.write_text("\n".join(lines) + "\n")
+    mesh = weft.load_obj(str(path))
+    theirs = trimesh.load(str(path), force="mesh", process=False)
+    ours = mesh.indices.reshape(-1, 3)
+    assert len(ours) == len(theirs.faces) == 3
+
+    def triangles(positions: np.ndarray, uvs: np.ndarray) -> np.ndarray:
+        """(T, 3, 5) corners, each triangle turned to start at its smallest x (the winding
+        kept; trimesh splits the quad at another corner), in the order of their centroids."""
+        corners = np.concatenate([positions, uvs], -1)
+        start = np.argmin(positions[..., 0], axis=1)
+        turned = np.stack([np.roll(c, -k, axis=0) for c, k in zip(corners, start)])
+        return turned[np.argsort(turned[:, :, :3].mean(axis=1) @ [1.0, 1e3, 1e6])]
+
+    uv = mesh.uvs[ours]
+    np.testing.assert_allclose(
+        triangles(mesh.positions[ours], np.concatenate([uv[..., :1], 1 - uv[..., 1:]], -1)),
+        triangles(theirs.vertices[theirs.faces], np.asarray(theirs.visual.uv)[theirs.faces]),
+        atol=1e-6)
+    # the normals are the file's (each position has one)
+    corner_positions = mesh.positions[ours].reshape(-1, 3)
+    which = np.argmin(np.linalg.norm(corner_positions[:, None] - positions[None], axis=2), axis=1)
+    np.testing.assert_allclose(mesh.normals[ours].reshape(-1, 3), normals[which], atol=1e-5)
+
+
+def test_files_the_hand_written_reader_refused(tmp_path: Path) -> None:
+    """Statements before the first newmtl (the hand-written reader: "'Kd' before any 'newmtl'")
+    and an mtllib line naming a missing file before the one that exists (it read the whole line
+    as one name): tinyobjloader takes both, trimesh reads the same materials from the same .mtl."""
+    mtl = "# exported\nKd 0.1 0.2 0.3\nNs 7\n" + MTL
+    (tmp_path / "real.mtl").write_text(mtl)
+    weft.save_png(str(tmp_path / "tex.png"), texture_image())
+    path = tmp_path / "two.obj"
+    path.write_text(OBJ.replace("mtllib two.mtl", "mtllib missing.mtl real.mtl"))
+    reference = tmp_path / "reference.obj"  # trimesh reads one library per line
+    reference.write_text(OBJ.replace("mtllib two.mtl", "mtllib real.mtl"))
+    parts = {p.name: p for p in weft.load_obj_parts(str(path))}
+    theirs = trimesh_parts(reference)
+    assert set(parts) == set(theirs) == {"red", "textured"}
+    for name, part in parts.items():
+        m, tm = part.material, theirs[name].visual.material
+        np.testing.assert_allclose(m.kd, np.asarray(tm.diffuse[:3]) / 255.0, atol=0.5 / 255)
+        np.testing.assert_allclose(m.ks, np.asarray(tm.specular[:3]) / 255.0, atol=0.5 / 255)
+        assert m.shininess == pytest.approx(tm.glossiness)
+
+
+def test_errors_name_the_line(tmp_path: Path) -> None:
+    header = "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+    cases = (("v 1e999 0 0\nf 1 2 3", "bad.obj:4: position is not finite"),
+             ("vn 0 0 1\r\nf 1//1 2//1", "bad.obj:5: face needs at least 3 vertices, has 2"),
+             ("f 1 2 3 # a comment", "bad.obj:4: position index 0 is invalid.*comment"),
+             ("mtllib a.mtl b.mtl\nf 1 2 3", "bad.obj:4: cannot open MTL file '.*a.mtl'"))
+    for body, message in cases:
+        path = tmp_path / "bad.obj"
+        path.write_text(header + body + "\n")
+        with pytest.raises(weft.IoError, match=message):
+            weft.load_obj_parts(str(path))
+    # load_obj reads no material library
+    assert weft.load_obj(str(path)).triangle_count == 1
+
+
+def test_missing_statements_take_tinyobjloaders_defaults(tmp_path: Path) -> None:
+    """What ModelIo.h documents: Ks 0, Ns 1 (clamped to weft's >= 1), Kd 0 or 0.6 with a
+    map_Kd, a one-number Kd as (r, 0, 0)."""
+    weft.save_png(str(tmp_path / "t.png"), texture_image())
+    (tmp_path / "d.mtl").write_text("newmtl textured\nmap_Kd t.png\nnewmtl grey\nKd 0.5\n"
+                                   "newmtl bare\n")
+    path = tmp_path / "d.obj"
+    path.write_text("mtllib d.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n" +
+                    "".join(f"usemtl {n}\nf 1 2 3\n" for n in ("textured", "grey", "bare")))
+    got = {p.name: p.material for p in weft.load_obj_parts(str(path))}
+    assert got["textured"].kd == pytest.approx((0.6, 0.6, 0.6)) and got["textured"].texture
+    assert got["grey"].kd == pytest.approx((0.5, 0.0, 0.0))
+    assert got["bare"].kd == (0, 0, 0) and got["bare"].ks == (0, 0, 0)
+    assert got["bare"].shininess == 1.0

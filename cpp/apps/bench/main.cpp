@@ -8,6 +8,7 @@
 #include <iostream>
 #include <string>
 
+#include <CLI/CLI.hpp>
 #include <vulkan/vulkan.h>
 
 #include <weft/Device.h>
@@ -15,61 +16,21 @@
 
 #include "BenchReport.h"
 #include "BenchSets.h"
+#include "CliHelp.h"
 
 namespace {
 
-const char* kUsage = R"(usage: weft-bench [options]
-
-Renders the benchmark set on one Vulkan device and writes bench.json and bench.md:
+const char* kDescription = R"(Renders the benchmark set on one Vulkan device and writes bench.json and bench.md:
   demo  the seed-000 demo scene at 1280x720 and 1920x1080 (weft-demo's settings), per-pass GPU ms
   hair  seed 002: hair of 160,000 / 687,532 / 1,031,268 vertices and fur of 2,088,900 (and
         22,977,900 with --fur-23m) vertices at 800x800: B, B+S, B+S+T
   dome  seed 001: a ~40 k-vertex scene under an environment with 0 / 16 / 64 dome shadow lights
         at 640x480 and 1280x1024, dome maps reused and re-rendered every frame
 Each seed row shows the seed's published fps and weft's fps as a ratio.
-
-options:
-  --quick            small sizes, one timed frame: proves the set runs (seconds on lavapipe)
-  --frames N         timed frames per row after one warm-up frame (default 3; --quick: 1)
-  --sets LIST        comma-separated subset of demo,hair,dome (default all)
-  --out DIR          output folder for bench.json and bench.md (default out/bench/gpu)
-  --images           also save the last frame of every row as OUT/images/NN_<row>.png
-  --device X         the Vulkan device: an index or a name substring (sets WEFT_DEVICE);
-                     default: discrete, then integrated, then virtual, then CPU (lavapipe)
-  --list-devices     print the devices (tab-separated: device, index, type, name, Vulkan
-                     version, driver, "chosen" or "-"), then "validation" and whether the
-                     Khronos validation layer is installed, and exit
-  --require-gpu      fail (exit 4) when the chosen device is a CPU rasteriser
-  --fur-23m          also the 22,977,900-vertex fur (default on a GPU; ~1.3 GB of buffers)
-  --no-fur-23m       leave it out
-  -h, --help         show this help
-
-WEFT_VALIDATION=1 turns the Vulkan validation layers on; any message fails the run (exit 3).
 )";
 
-int parseInt(const std::string& flag, const char* value) {
-    char* end = nullptr;
-    const long v = std::strtol(value, &end, 10);
-    if (!*value || *end || v < 1 || v > 1000)
-        throw weft::InvalidArgument(flag + " needs an integer in [1, 1000], got '" + value + "'");
-    return int(v);
-}
-
-std::vector<std::string> splitSets(const std::string& list) {
-    std::vector<std::string> out;
-    std::string item;
-    for (size_t i = 0; i <= list.size(); ++i) {
-        if (i == list.size() || list[i] == ',') {
-            if (item != "demo" && item != "hair" && item != "dome")
-                throw weft::InvalidArgument("--sets: unknown set '" + item + "' (demo, hair, dome)");
-            out.push_back(item);
-            item.clear();
-        } else {
-            item += list[i];
-        }
-    }
-    return out;
-}
+const char* kFooter =
+    "WEFT_VALIDATION=1 turns the Vulkan validation layers on; any message fails the run (exit 3).\n";
 
 bool validationLayerAvailable() {
     uint32_t n = 0;
@@ -108,41 +69,52 @@ void writeFile(const std::filesystem::path& path, const std::string& text) {
 
 int main(int argc, char** argv) {
     weft::bench::BenchOptions o;
-    std::string out = "out/bench/gpu";
-    bool listOnly = false, requireGpu = false, framesGiven = false;
-    int fur23m = -1; // -1: on for a GPU, off for a CPU rasteriser
+    std::string out = "out/bench/gpu", deviceName;
+    bool images = false, listOnly = false, requireGpu = false, furOn = false, furOff = false;
+    CLI::App app(kDescription, "weft-bench");
+    weft::apps::useHelpLayout(app, kFooter);
+    app.add_flag("--quick", o.quick,
+                 "small sizes, one timed frame: proves the set runs (seconds on lavapipe)");
+    CLI::Option* frames = app.add_option("--frames", o.frames,
+                   "timed frames per row after one warm-up frame (default 3; --quick: 1)")
+        ->option_text("N")->check(CLI::Range(1, 1000));
+    app.add_option("--sets", o.sets, "comma-separated subset of demo,hair,dome (default all)")
+        ->option_text("LIST")->delimiter(',')->check(CLI::IsMember({"demo", "hair", "dome"}));
+    app.add_option("--out", out, "output folder for bench.json and bench.md (default out/bench/gpu)")
+        ->option_text("DIR");
+    app.add_flag("--images", images,
+                 "also save the last frame of every row as OUT/images/NN_<row>.png");
+    app.add_option("--device", deviceName,
+                   "the Vulkan device: an index or a name substring (sets WEFT_DEVICE);\n"
+                   "default: discrete, then integrated, then virtual, then CPU (lavapipe)")
+        ->option_text("X")->check(CLI::Validator([](std::string& v) -> std::string {
+            return v.empty() ? "needs an index or a name" : "";
+        }, ""));
+    app.add_flag("--list-devices", listOnly,
+                 "print the devices (tab-separated: device, index, type, name, Vulkan\n"
+                 "version, driver, \"chosen\" or \"-\"), then \"validation\" and whether the\n"
+                 "Khronos validation layer is installed, and exit");
+    app.add_flag("--require-gpu", requireGpu,
+                 "fail (exit 4) when the chosen device is a CPU rasteriser");
+    app.add_flag("--fur-23m", furOn,
+                 "also the 22,977,900-vertex fur (default on a GPU; ~1.3 GB of buffers)");
+    app.add_flag("--no-fur-23m", furOff, "leave it out");
+    weft::apps::addHelp(app);
     try {
-        for (int i = 1; i < argc; ++i) {
-            const std::string a = argv[i];
-            auto next = [&]() -> const char* {
-                if (i + 1 >= argc) throw weft::InvalidArgument(a + " needs a value");
-                return argv[++i];
-            };
-            if (a == "-h" || a == "--help") {
-                std::cout << kUsage;
-                return 0;
-            } else if (a == "--quick") o.quick = true;
-            else if (a == "--frames") { o.frames = parseInt(a, next()); framesGiven = true; }
-            else if (a == "--sets") o.sets = splitSets(next());
-            else if (a == "--out") out = next();
-            else if (a == "--images") o.imageDir = "images";
-            else if (a == "--device") {
-                const char* v = next();
-                if (!*v) throw weft::InvalidArgument("--device needs an index or a name");
-                setenv("WEFT_DEVICE", v, 1); // read by the first Vulkan use below
-            }
-            else if (a == "--list-devices") listOnly = true;
-            else if (a == "--require-gpu") requireGpu = true;
-            else if (a == "--fur-23m") fur23m = 1;
-            else if (a == "--no-fur-23m") fur23m = 0;
-            else throw weft::InvalidArgument("unknown option '" + a + "' (see --help)");
-        }
-        if (o.quick && !framesGiven) o.frames = 1;
-        if (!o.imageDir.empty()) o.imageDir = (std::filesystem::path(out) / "images").string();
-    } catch (const std::exception& e) {
-        std::cerr << "weft-bench: error: " << e.what() << std::endl;
+        app.parse(argc, argv);
+        if (furOn && furOff)
+            throw CLI::ValidationError("--fur-23m and --no-fur-23m exclude each other");
+    } catch (const CLI::CallForHelp&) {
+        std::cout << app.help();
+        return 0;
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "weft-bench: error: " << e.what() << " (see --help)" << std::endl;
         return 2;
     }
+    if (o.quick && frames->count() == 0) o.frames = 1;
+    if (images) o.imageDir = (std::filesystem::path(out) / "images").string();
+    if (!deviceName.empty()) setenv("WEFT_DEVICE", deviceName.c_str(), 1); // read by Vulkan
+    const int fur23m = furOn ? 1 : furOff ? 0 : -1; // -1: on for a GPU, off for a CPU rasteriser
     try {
         const weft::bench::DeviceReport device = deviceReport();
         if (listOnly) {

@@ -8,6 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "CliHelp.h"
+
 #include <weft/Demo.h>
 #include <weft/Error.h>
 #include <weft/ShaderReload.h>
@@ -38,25 +40,6 @@ bounce, hour, day-night, light-azimuth, shadows, pcf, hair-transparency, hair-sh
 fur, wind, wind-direction, paused, normal-map, btf, holes, reflective, panel).
 )";
 
-// CLI11's help, laid out as the demo's help always was: usage line first, then what the demo
-// does, the options, and the window controls.
-class HelpFormatter : public CLI::Formatter {
-public:
-    std::string make_help(const CLI::App* app, std::string name, CLI::AppFormatMode mode) const override {
-        std::ostringstream out;
-        // make_groups starts each group with a blank line.
-        out << "usage: " << name << " [options]\n\n" << app->get_description()
-            << make_groups(app, mode) << "\n" << app->get_footer();
-        return out.str();
-    }
-    std::string make_option_name(const CLI::Option* opt, bool positional) const override {
-        std::string name = CLI::Formatter::make_option_name(opt, positional);
-        for (size_t at = name.find(','); at != std::string::npos; at = name.find(',', at + 2))
-            name.insert(at + 1, " "); // "-h, --help"
-        return name;
-    }
-};
-
 } // namespace
 
 int main(int argc, char** argv) {
@@ -67,13 +50,7 @@ int main(int argc, char** argv) {
     else if (std::filesystem::is_directory(WEFT_SOURCE_SHADER_DIR)) o.shaderDir = WEFT_SOURCE_SHADER_DIR;
 #endif
     CLI::App app(kDescription, "weft-demo");
-    auto formatter = std::make_shared<HelpFormatter>();
-    formatter->column_width(21);
-    formatter->label("OPTIONS", "options");
-    app.formatter(formatter);
-    app.footer(kControls);
-    app.set_help_flag(); // added again last, in the "options" group, as the help always listed it
-    app.option_defaults()->group("options");
+    weft::apps::useHelpLayout(app, kControls);
     app.add_option("--width", o.width, "image/window width in pixels (default 1280)")->option_text("N");
     app.add_option("--height", o.height, "image/window height in pixels (default 720)")->option_text("N");
     app.add_option("--frames", o.frames,
@@ -141,7 +118,7 @@ int main(int argc, char** argv) {
     app.add_flag("--no-panel", noPanel, "window: no panel over the picture (it shows what a\n"
                                         "headless render shows)");
     app.add_flag("--quiet", o.quiet, "no progress lines on stderr");
-    app.set_help_flag("-h,--help", "show this help");
+    weft::apps::addHelp(app);
 
     try {
         app.parse(argc, argv);

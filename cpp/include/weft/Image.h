@@ -75,12 +75,16 @@ ImageF loadExr(const std::string& path);
 /// Writes 32-bit float channels (1: Y, 2: Y A, 3: R G B, 4: R G B A), ZIP compression.
 void saveExr(const std::string& path, const ImageF& image);
 
-/// Reads a Radiance RGBE .hdr/.pic file (flat or run-length encoded scanlines, -Y +X order;
-/// other orientations are rejected). Returns 3 channels. Throws IoError when corrupt.
+/// Reads a Radiance RGBE .hdr/.pic file through stb_image (a FORMAT=32-bit_rle_rgbe header line;
+/// flat or run-length encoded scanlines, -Y +X order; other orientations are rejected; a pixel
+/// decodes as mantissa * 2^(exponent - 136), stb_image's convention). Returns 3 channels.
+/// Throws IoError naming the file when it is missing, not a regular file, over
+/// kMaxInputFileBytes, larger than 65536 pixels a side, shorter than its stated size needs,
+/// cut short or corrupt.
 ImageF loadHdr(const std::string& path);
-/// Writes a Radiance RGBE file with run-length encoded scanlines (flat when width is outside
-/// [8, 32767]). Only channels 1 (grey) and 3/4 (alpha dropped) are accepted; values must be
-/// finite and >= 0.
+/// Writes a Radiance RGBE file through stb_image_write, run-length encoded scanlines (flat when
+/// the width is outside [8, 32767]). Only channels 1 (grey) and 3/4 (alpha dropped) are
+/// accepted; values must be finite, >= 0 and below 2^127 (the largest RGBE holds).
 void saveHdr(const std::string& path, const ImageF& image);
 
 /// Loads .exr, .hdr or .png by extension (PNG values are divided by 255, no decoding).

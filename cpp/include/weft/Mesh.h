@@ -68,12 +68,18 @@ std::vector<glm::vec3> computeNormals(const std::vector<glm::vec3>& positions,
 /// Throws InvalidArgument without positions.
 std::vector<glm::vec2> computePlanarUvs(const std::vector<glm::vec3>& positions);
 
-/// Loads a Wavefront OBJ: v, vt, vn, f (triangles and convex polygons, fan-triangulated;
-/// v, v/t, v//n, v/t/n; negative indices count back from the elements defined so far, positive
-/// ones may refer to elements defined later in the file, as tinyobjloader and trimesh allow).
+/// Loads a Wavefront OBJ through tinyobjloader (Debian's libtinyobjloader), which reads the text:
+/// v, vt, vn, f (triangles and convex polygons, fan-triangulated; v, v/t, v//n, v/t/n; negative
+/// indices count back from the elements defined so far, positive ones may refer to elements
+/// defined later in the file, as tinyobjloader and trimesh allow). Numbers are read as
+/// tinyobjloader reads them (a word that is no number reads as 0, a missing one as 0; indices
+/// as atoi reads them, so in an f line such a word, e.g. a trailing # comment, is index 0 and
+/// refused).
 /// Missing normals are computed (area-weighted), missing UVs are zero. Groups, objects and
 /// materials are ignored (loadObjParts in ModelIo.h reads materials). Throws IoError naming the
-/// file and line for missing files, malformed lines, index 0 or out-of-range indices.
+/// file (and line) for a missing or non-regular file or one over kMaxInputFileBytes (4 GiB), a
+/// face with fewer than 3 corners, a position index 0, an out-of-range index, a value outside
+/// float range, more than 2^32 - 1 distinct vertices or no faces.
 /// OBJ puts vt v = 0 at the bottom image row, so the loaded uv is (u, 1 - v). Each distinct
 /// (v, vt, vn) triple becomes one vertex; computed normals are smooth over each OBJ position.
 Mesh loadObj(const std::string& path);

@@ -40,10 +40,15 @@ struct MeshPart {
 std::vector<MeshPart> loadGltf(const std::string& path);
 
 /// Loads an OBJ file with its materials: one part per `usemtl` material used by faces (faces
-/// before any `usemtl` get a default Material), geometry as loadObj reads it. `mtllib` files
-/// are read relative to the OBJ; Kd -> kd, Ks -> ks, Ns -> shininess (clamped to >= 1),
-/// map_Kd -> texture (PNG, sRGB; relative to the .mtl). Throws IoError naming the file for
-/// what loadObj refuses, a missing .mtl or texture, an unknown material name, or bad numbers.
+/// before any `usemtl` get a default Material), geometry as loadObj reads it. tinyobjloader reads
+/// the `mtllib` files (relative to the OBJ; of several names on one line the first that loads)
+/// and their statements; Kd -> kd, Ks -> ks, Ns -> shininess (clamped to >= 1), map_Kd ->
+/// texture (PNG, sRGB; relative to the .mtl; its options such as -s or -o are skipped). A
+/// statement the .mtl leaves out has tinyobjloader's default: Ks 0, Ns 1, Kd 0 -- or 0.6 for a
+/// material with a map_Kd when no Kd line came before it in the file; a one-number Kd or Ks
+/// reads as (r, 0, 0). Throws IoError naming the file for what loadObj refuses, an mtllib line
+/// none of whose files can be read (missing, not regular, over 4 GiB), an unknown material
+/// name, a negative or non-finite Kd, Ks or Ns, or a texture loadPng refuses.
 std::vector<MeshPart> loadObjParts(const std::string& path);
 
 } // namespace weft

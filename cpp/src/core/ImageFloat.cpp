@@ -1,5 +1,5 @@
-// ImageF helpers and float image file IO: OpenEXR (through the OpenEXR library) and Radiance
-// RGBE .hdr (written here; format facts from Greg Ward's Radiance file format description).
+// ImageF helpers and float image file IO: OpenEXR (through the OpenEXR library); Radiance .hdr
+// is in ImageHdr.cpp (stb_image).
 #include <weft/Error.h>
 #include <weft/Image.h>
 
@@ -13,13 +13,8 @@
 #include <OpenEXR/ImfThreading.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
-#include <iterator>
-#include <memory>
 #include "core/FileRead.h"
 
 namespace weft {
@@ -63,10 +58,6 @@ std::string lowerExtension(const std::string& path) {
     std::string ext = path.substr(dot + 1);
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
-}
-
-std::vector<unsigned char> readWholeFile(const std::string& path, const char* kind) {
-    return readInputFile(path, kind);
 }
 
 // ---- OpenEXR -----------------------------------------------------------------------------------
@@ -187,181 +178,6 @@ void saveExr(const std::string& path, const ImageF& image) {
     } catch (const std::exception& e) {
         std::remove(path.c_str());
         throw IoError("cannot write EXR " + quoted(path) + ": " + e.what());
-    }
-}
-
-// ---- Radiance RGBE -----------------------------------------------------------------------------
-
-namespace {
-
-void rgbeToFloat(const unsigned char* e, float* out) {
-    if (e[3] == 0) {
-        out[0] = out[1] = out[2] = 0.0f;
-        return;
-    }
-    const float scale = std::ldexp(1.0f, int(e[3]) - (128 + 8));
-    for (int c = 0; c < 3; ++c) out[c] = (float(e[c]) + 0.5f) * scale;
-}
-
-void floatToRgbe(const float* rgb, unsigned char* e) {
-    const float m = std::max(rgb[0], std::max(rgb[1], rgb[2]));
-    if (m < 1e-32f) {
-        e[0] = e[1] = e[2] = e[3] = 0;
-        return;
-    }
-    int exponent = 0;
-    const float mantissa = std::frexp(m, &exponent); // m = mantissa * 2^exponent, [0.5, 1)
-    const float scale = mantissa * 256.0f / m;
-    for (int c = 0; c < 3; ++c) e[c] = (unsigned char)std::min(255.0f, rgb[c] * scale);
-    e[3] = (unsigned char)(exponent + 128);
-}
-
-struct HdrCursor {
-    const std::vector<unsigned char>& bytes;
-    size_t pos = 0;
-    const std::string& path;
-    [[noreturn]] void fail(const std::string& why) const {
-        throw IoError("cannot read HDR " + quoted(path) + " (truncated or corrupt): " + why);
-    }
-    std::string line() {
-        const size_t start = pos;
-        while (pos < bytes.size() && bytes[pos] != '\n') ++pos;
-        if (pos >= bytes.size()) fail("header ends without a resolution line");
-        return std::string(bytes.begin() + ptrdiff_t(start), bytes.begin() + ptrdiff_t(pos++));
-    }
-    unsigned char byte() {
-        if (pos >= bytes.size()) fail("pixel data ends early");
-        return bytes[pos++];
-    }
-};
-
-// One scanline of `width` RGBE pixels: run-length encoded (new style) or flat.
-void readScanline(HdrCursor& in, int width, std::vector<unsigned char>& rgbe) {
-    const bool rle = width >= 8 && width <= 32767 && in.pos + 4 <= in.bytes.size() &&
-                     in.bytes[in.pos] == 2 && in.bytes[in.pos + 1] == 2 &&
-                     (in.bytes[in.pos + 2] & 0x80) == 0;
-    if (!rle) {
-        for (int x = 0; x < width; ++x)
-            for (int c = 0; c < 4; ++c) rgbe[size_t(x) * 4 + c] = in.byte();
-        return;
-    }
-    in.pos += 2;
-    const int encodedWidth = (int(in.byte()) << 8) | int(in.byte());
-    if (encodedWidth != width) in.fail("scanline width " + std::to_string(encodedWidth) +
-                                       " does not match the image width " + std::to_string(width));
-    for (int c = 0; c < 4; ++c) {
-        int x = 0;
-        while (x < width) {
-            int count = in.byte();
-            if (count > 128) { // a run of one value
-                count -= 128;
-                if (x + count > width) in.fail("run overflows the scanline");
-                const unsigned char v = in.byte();
-                for (int k = 0; k < count; ++k) rgbe[size_t(x++) * 4 + c] = v;
-            } else { // literal values
-                if (count == 0 || x + count > width) in.fail("bad literal count");
-                for (int k = 0; k < count; ++k) rgbe[size_t(x++) * 4 + c] = in.byte();
-            }
-        }
-    }
-}
-
-} // namespace
-
-ImageF loadHdr(const std::string& path) {
-    const std::vector<unsigned char> bytes = readWholeFile(path, "HDR");
-    HdrCursor in{bytes, 0, path};
-    const std::string magic = in.line();
-    if (magic.rfind("#?", 0) != 0) in.fail("missing the '#?' signature");
-    bool rgbeFormat = true;
-    for (;;) {
-        const std::string l = in.line();
-        if (l.empty()) break;
-        if (l.rfind("FORMAT=", 0) == 0) rgbeFormat = l == "FORMAT=32-bit_rle_rgbe";
-    }
-    if (!rgbeFormat) in.fail("only FORMAT=32-bit_rle_rgbe is supported");
-    const std::string res = in.line();
-    int height = 0, width = 0;
-    char extra = 0;
-    if (std::sscanf(res.c_str(), "-Y %d +X %d %c", &height, &width, &extra) != 2)
-        in.fail("resolution line '" + res + "' is not '-Y <height> +X <width>'");
-    if (width <= 0 || height <= 0 || width > 65536 || height > 65536)
-        in.fail("impossible size " + std::to_string(width) + "x" + std::to_string(height));
-    // Run-length encoding needs at least 4 + 4 * 2 bytes per scanline... only bound what is
-    // certain: every scanline takes at least 4 bytes plus one per 128 pixels per channel.
-    const uint64_t minBytes = uint64_t(height) * (4 + 4 * ((uint64_t(width) + 127) / 128));
-    if (bytes.size() - in.pos < minBytes) in.fail("file too short for the stated size");
-    ImageF img(width, height, 3);
-    std::vector<unsigned char> rgbe(size_t(width) * 4);
-    for (int y = 0; y < height; ++y) {
-        readScanline(in, width, rgbe);
-        for (int x = 0; x < width; ++x) rgbeToFloat(&rgbe[size_t(x) * 4], img.at(x, y));
-    }
-    return img;
-}
-
-void saveHdr(const std::string& path, const ImageF& image) {
-    image.validate();
-    if (image.channels == 2)
-        throw InvalidArgument("saveHdr: a grey+alpha image has no RGBE form; pass 1, 3 or 4 channels");
-    for (float v : image.pixels)
-        if (!std::isfinite(v) || v < 0.0f)
-            throw InvalidArgument("saveHdr: values must be finite and >= 0");
-    std::vector<unsigned char> out;
-    const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " +
-                               std::to_string(image.height) + " +X " +
-                               std::to_string(image.width) + "\n";
-    out.insert(out.end(), header.begin(), header.end());
-    const int w = image.width;
-    const bool rle = w >= 8 && w <= 32767;
-    std::vector<unsigned char> rgbe(size_t(w) * 4);
-    for (int y = 0; y < image.height; ++y) {
-        for (int x = 0; x < w; ++x) {
-            const float* p = image.at(x, y);
-            const float rgb[3] = {p[0], image.channels == 1 ? p[0] : p[1],
-                                  image.channels == 1 ? p[0] : p[2]};
-            floatToRgbe(rgb, &rgbe[size_t(x) * 4]);
-        }
-        if (!rle) {
-            out.insert(out.end(), rgbe.begin(), rgbe.end());
-            continue;
-        }
-        out.insert(out.end(), {2, 2, (unsigned char)(w >> 8), (unsigned char)(w & 255)});
-        for (int c = 0; c < 4; ++c) {
-            int x = 0;
-            while (x < w) {
-                // A run of >= 3 equal values is worth encoding as a run.
-                int run = 1;
-                while (x + run < w && run < 127 && rgbe[size_t(x + run) * 4 + c] == rgbe[size_t(x) * 4 + c])
-                    ++run;
-                if (run >= 3) {
-                    out.push_back((unsigned char)(128 + run));
-                    out.push_back(rgbe[size_t(x) * 4 + c]);
-                    x += run;
-                    continue;
-                }
-                // Literals up to the next run of 3 (or 128 values).
-                int count = 0;
-                while (x + count < w && count < 128) {
-                    const int k = x + count;
-                    if (k + 2 < w && rgbe[size_t(k) * 4 + c] == rgbe[size_t(k + 1) * 4 + c] &&
-                        rgbe[size_t(k) * 4 + c] == rgbe[size_t(k + 2) * 4 + c])
-                        break;
-                    ++count;
-                }
-                out.push_back((unsigned char)count);
-                for (int k = 0; k < count; ++k) out.push_back(rgbe[size_t(x + k) * 4 + c]);
-                x += count;
-            }
-        }
-    }
-    std::FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) throw IoError("cannot create HDR " + quoted(path) + ": " + std::strerror(errno));
-    const bool ok = std::fwrite(out.data(), 1, out.size(), f) == out.size();
-    const bool closed = std::fclose(f) == 0;
-    if (!ok || !closed) {
-        std::remove(path.c_str());
-        throw IoError("cannot write HDR " + quoted(path));
     }
 }
 
