@@ -20,6 +20,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include "core/ExrHeader.h"
 #include "core/FileRead.h"
 
 namespace weft {
@@ -125,6 +126,7 @@ ImageF loadExr(const std::string& path) {
     {
         fileSize = checkInputFile(path, "EXR");
     }
+    checkExrHeaderSizes(path, fileSize); // before OpenEXR allocates what the header declares
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
