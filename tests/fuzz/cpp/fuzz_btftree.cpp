@@ -86,9 +86,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         case 1: stem = in.ConsumeRandomLengthString(40); break;
         case 2: {
             char buf[80];
-            const int tl = in.ConsumeIntegralInRange(0, 999), pl = in.ConsumeIntegralInRange(0, 999);
-            const int tv = in.ConsumeIntegralInRange(0, 999), pv = in.ConsumeIntegralInRange(0, 999);
-            std::snprintf(buf, sizeof buf, "x tl%d pl%d tv%d pv%d", tl, pl, tv, pv);
+            int angles[4];
+            for (int& a : angles) a = in.ConsumeIntegralInRange(0, 999);
+            std::snprintf(buf, sizeof buf, "x tl%d pl%d tv%d pv%d", angles[0], angles[1],
+                          angles[2], angles[3]);
             stem = buf;
             break;
         }
