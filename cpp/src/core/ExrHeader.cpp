@@ -68,41 +68,53 @@ bool skip(std::istream& in, uint64_t& pos, uint64_t bytes) {
 
 } // namespace
 
-void checkExrHeaderSizes(const std::string& path, uint64_t fileSize) {
+ExrHeaderFacts checkExrHeaderSizes(const std::string& path, uint64_t fileSize) {
+    ExrHeaderFacts facts;
     std::ifstream in(path, std::ios::binary);
     unsigned char magic[4];
     uint32_t version = 0;
     uint64_t pos = 0;
-    if (!in.read(reinterpret_cast<char*>(magic), 4) || std::memcmp(magic, kMagic, 4) != 0) return;
+    if (!in.read(reinterpret_cast<char*>(magic), 4) || std::memcmp(magic, kMagic, 4) != 0)
+        return facts;
     pos = 4;
-    if (!readU32(in, pos, version)) return;
+    if (!readU32(in, pos, version)) return facts;
     const bool multiPart = (version & kMultiPart) != 0;
     std::string name, type, channel;
-    for (;;) { // headers
+    for (bool first = true;; first = false) { // headers
         bool empty = true;
         for (;;) { // attributes
-            if (!readName(in, pos, name)) return;
+            if (!readName(in, pos, name)) return facts;
             if (name.empty()) break;
             empty = false;
             uint32_t size = 0;
-            if (!readName(in, pos, type) || !readU32(in, pos, size)) return;
+            if (!readName(in, pos, type) || !readU32(in, pos, size)) return facts;
             if (int32_t(size) < 0 || size > fileSize - pos)
                 throw IoError("EXR '" + path + "': header attribute '" + name + "' (" + type +
                               ") declares " + std::to_string(int32_t(size)) + " bytes, but " +
                               std::to_string(fileSize - pos) + " follow it (corrupt)");
             if (type == "chlist") {
                 for (;;) {
-                    if (!readName(in, pos, channel)) return;
+                    if (!readName(in, pos, channel)) return facts;
                     if (channel.empty()) break;
-                    if (fileSize - pos < kChannelBytes || !skip(in, pos, kChannelBytes)) return;
+                    if (fileSize - pos < kChannelBytes || !skip(in, pos, kChannelBytes))
+                        return facts;
                 }
+                continue;
+            }
+            if (first && name == "dataWindow" && type == "box2i") {
+                uint32_t box[4]; // min x, min y, max x, max y
+                for (uint32_t& v : box)
+                    if (!readU32(in, pos, v)) return facts;
+                facts.haveDataWindow = true;
+                facts.width = int64_t(int32_t(box[2])) - int32_t(box[0]) + 1;
+                facts.height = int64_t(int32_t(box[3])) - int32_t(box[1]) + 1;
                 continue;
             }
             uint64_t bytes = fixedValueBytes(type);
             if (bytes == 0) bytes = type == "floatvector" ? size / 4 * 4 : size;
-            if (bytes > fileSize - pos || !skip(in, pos, bytes)) return;
+            if (bytes > fileSize - pos || !skip(in, pos, bytes)) return facts;
         }
-        if (!multiPart || empty) return;
+        if (!multiPart || empty) return facts;
     }
 }
 

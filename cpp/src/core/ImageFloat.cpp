@@ -126,13 +126,20 @@ ImageF loadExr(const std::string& path) {
     {
         fileSize = checkInputFile(path, "EXR");
     }
-    checkExrHeaderSizes(path, fileSize); // before OpenEXR allocates what the header declares
+    auto impossibleWindow = [](int64_t w, int64_t h) {
+        return w <= 0 || h <= 0 || w > 65536 || h > 65536;
+    };
+    // Before OpenEXR allocates what the header declares: attributes, and line buffers as wide as
+    // the data window (gigabytes of address space for a window of millions of pixels a side).
+    const ExrHeaderFacts facts = checkExrHeaderSizes(path, fileSize);
+    if (facts.haveDataWindow && impossibleWindow(facts.width, facts.height))
+        throw IoError("EXR " + quoted(path) + " has an impossible data window");
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
         const int64_t w64 = int64_t(dw.max.x) - dw.min.x + 1;
         const int64_t h64 = int64_t(dw.max.y) - dw.min.y + 1;
-        if (w64 <= 0 || h64 <= 0 || w64 > 65536 || h64 > 65536)
+        if (impossibleWindow(w64, h64))
             throw IoError("EXR " + quoted(path) + " has an impossible data window");
         const Imf::ChannelList& list = file.header().channels();
         const bool rgb = list.findChannel("R") && list.findChannel("G") && list.findChannel("B");
