@@ -9,9 +9,12 @@
 #include "TempDir.h"
 #include "core/ExrHeader.h"
 
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -55,6 +58,45 @@ std::string exrWithAttribute(const TempDir& dir, const std::string& extra) {
     }
     ADD_FAILURE() << "no offset table found";
     return bytes;
+}
+
+// A saved 4x3 RGB EXR (ZIP, one chunk) split into its header, its offset table's position and
+// the chunk: the table entry at p holds p + 8, where the chunk starts.
+struct ExrParts {
+    std::string bytes;
+    size_t table = 0;
+};
+
+ExrParts savedExr(const TempDir& dir, float scale = 0.1f) {
+    weft::ImageF img(4, 3, 3);
+    for (size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = scale * float(i);
+    const std::string path = dir.file("base.exr");
+    weft::saveExr(path, img);
+    ExrParts parts{readBytes(path), 0};
+    for (size_t p = 8; p + 8 <= parts.bytes.size(); ++p) {
+        uint64_t v = 0;
+        for (int i = 7; i >= 0; --i) v = v << 8 | uint8_t(parts.bytes[p + size_t(i)]);
+        if (v == p + 8) {
+            parts.table = p;
+            return parts;
+        }
+    }
+    ADD_FAILURE() << "no offset table found";
+    return parts;
+}
+
+// Replaces the 16 bytes of the dataWindow box (min x, min y, max x, max y).
+void setDataWindow(std::string& bytes, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
+    const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0' + le32(16);
+    const size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    bytes.replace(at + key.size(), 16, le32(x0) + le32(y0) + le32(x1) + le32(y1));
+}
+
+long maxRssKiB() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss;
 }
 
 } // namespace
@@ -141,6 +183,72 @@ TEST(FuzzFindings, ExrDataWindowIsCheckedBeforeOpenExrOpensTheFile) {
         EXPECT_NE(std::string(e.what()).find("impossible data window"), std::string::npos)
             << e.what();
     }
+}
+
+// A forged 4.4 KiB PIZ file (PIZ and DWA have no known best ratio, so only the 4 GiB cap
+// applied) with a 16384 x 16384 RGB window and an offset table whose 512 entries all point at
+// one empty chunk: weft zero-filled a 3 GiB image before OpenEXR found the data missing (17.8 s,
+// 3.1 GB resident). The file is now decoded strip by strip first and fails at the first strip.
+TEST(FuzzFindings, ForgedPizExrFailsBeforeTheImageIsAllocated) {
+    TempDir dir;
+    ExrParts parts = savedExr(dir);
+    std::string header = parts.bytes.substr(0, parts.table);
+    const std::string key = std::string("compression") + '\0' + "compression" + '\0' + le32(1);
+    const size_t at = header.find(key);
+    ASSERT_NE(at, std::string::npos);
+    header[at + key.size()] = 4; // PIZ_COMPRESSION
+    setDataWindow(header, 0, 0, 16383, 16383);
+    const size_t chunks = 16384 / 32; // PIZ stores 32 scanlines per chunk
+    const uint64_t chunk = header.size() + 8 * chunks;
+    std::string file = header;
+    for (size_t i = 0; i < chunks; ++i)
+        for (int b = 0; b < 8; ++b) file.push_back(char(chunk >> (8 * b)));
+    file += le32(0) + le32(8) + std::string(8, '\0'); // y 0, 8 bytes of data
+    const std::string path = dir.write("forged.exr", file);
+    const long rssBefore = maxRssKiB();
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_THROW(weft::loadExr(path), weft::IoError);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 2.0);
+    EXPECT_LT(maxRssKiB() - rssBefore, 256 * 1024) << "KiB of peak resident memory added";
+}
+
+// A file decoded strip by strip first (more than 64 MiB of floats and 64 times its size) loads
+// the same pixels: 3072 x 2048 RGB, constant but for the first row and one pixel of the last.
+TEST(FuzzFindings, LargeCompressibleExrLoadsThroughTheStripCheck) {
+    TempDir dir;
+    weft::ImageF img(3072, 2048, 3);
+    for (float& v : img.pixels) v = 0.25f;
+    for (int x = 0; x < img.width; ++x) img.at(x, 0)[0] = float(x);
+    img.at(3071, 2047)[2] = 7.0f;
+    const std::string path = dir.file("big.exr");
+    weft::saveExr(path, img);
+    ASSERT_GT(img.pixels.size() * 4, 64u * std::filesystem::file_size(path)); // takes the check
+    const weft::ImageF back = weft::loadExr(path);
+    ASSERT_EQ(back.width, 3072);
+    ASSERT_EQ(back.height, 2048);
+    EXPECT_TRUE(back.pixels == img.pixels);
+}
+
+// A data window far from the origin: OpenEXR addresses the frame buffer from the window's
+// origin, a base that weft computed with pointer arithmetic that overflowed (UBSan: "pointer
+// index expression ... overflowed") for a window 65536 wide near y = 2^30. The base is an
+// integer now; the wide file (no such data) is refused, a 4x3 one far out loads its pixels.
+TEST(FuzzFindings, ExrWindowFarFromTheOriginHasNoPointerOverflow) {
+    TempDir dir;
+    ExrParts wide = savedExr(dir);
+    setDataWindow(wide.bytes, 0, (1 << 30) - 10, 65535, (1 << 30) - 9);
+    EXPECT_THROW(weft::loadExr(dir.write("wide.exr", wide.bytes)), weft::IoError);
+
+    ExrParts far = savedExr(dir, 0.5f);
+    const int32_t y0 = (1 << 30) - 10;
+    setDataWindow(far.bytes, -7, y0, -4, y0 + 2);
+    far.bytes.replace(far.table + 8, 4, le32(y0)); // the chunk's first scanline
+    const weft::ImageF img = weft::loadExr(dir.write("far.exr", far.bytes));
+    ASSERT_EQ(img.width, 4);
+    ASSERT_EQ(img.height, 3);
+    for (size_t i = 0; i < img.pixels.size(); ++i) ASSERT_FLOAT_EQ(img.pixels[i], 0.5f * float(i));
 }
 
 // weft-demo's --environment loader (now loadEnvironmentCube, so that a fuzz target can call it)
