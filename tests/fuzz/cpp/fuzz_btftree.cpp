@@ -7,6 +7,8 @@
 // folder or zip, stored or deflated. Loaded samples must be finite and >= 0.
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <set>
 
 #include <fuzzer/FuzzedDataProvider.h>
 
@@ -54,6 +56,64 @@ fs::path insideFolder(const fs::path& root, const std::string& name) {
         start = end + 1;
     }
     return any ? out : fs::path();
+}
+
+// The folder of the previous input, as on disk: files with their bytes, and folders.
+std::map<fs::path, std::vector<uint8_t>> gFolderFiles;
+std::set<fs::path> gFolderDirs;
+
+// Makes scratchDir()/tree hold `entries` written in order into an empty folder -- a later entry
+// replaces an earlier one of the same name; an entry below a name that is a file, or named like
+// a folder, is left out (the file system says no) -- changing only what differs from the
+// previous input's folder (most inputs share the 81 images of a complete set). With
+// WEFT_FUZZ_VERIFY_TREE set, the folder is compared with the entries after every change.
+fs::path syncFolder(const std::vector<std::pair<std::string, std::vector<uint8_t>>>& entries) {
+    const fs::path root = weft::fuzz::scratchDir() / "tree";
+    std::map<fs::path, std::vector<uint8_t>> files;
+    std::set<fs::path> dirs;
+    for (const auto& [name, content] : entries) {
+        const fs::path p = insideFolder(root, name);
+        if (p.empty() || dirs.count(p)) continue;
+        std::vector<fs::path> parents;
+        for (fs::path a = p.parent_path(); a != root; a = a.parent_path()) parents.push_back(a);
+        bool blocked = false;
+        for (const fs::path& a : parents) blocked = blocked || files.count(a) > 0;
+        if (blocked) continue;
+        dirs.insert(parents.begin(), parents.end());
+        files[p] = content;
+    }
+    std::error_code ec;
+    fs::create_directories(root, ec);
+    for (const auto& [p, bytes] : gFolderFiles)
+        if (!files.count(p)) fs::remove(p, ec);
+    for (auto it = gFolderDirs.rbegin(); it != gFolderDirs.rend(); ++it) // deepest first
+        if (!dirs.count(*it)) fs::remove_all(*it, ec);
+    for (const fs::path& d : dirs) fs::create_directories(d, ec);
+    for (const auto& [p, bytes] : files) {
+        const auto old = gFolderFiles.find(p);
+        if (old == gFolderFiles.end() || old->second != bytes)
+            weft::fuzz::writeFile(p, bytes.data(), bytes.size());
+    }
+    gFolderFiles = std::move(files);
+    gFolderDirs = std::move(dirs);
+    static const bool verify = std::getenv("WEFT_FUZZ_VERIFY_TREE") != nullptr;
+    if (verify) { // the folder on disk must be exactly what the entries say
+        size_t seenFiles = 0, seenDirs = 0;
+        for (fs::recursive_directory_iterator it(root), end; it != end; ++it) {
+            if (it->is_directory()) {
+                ++seenDirs;
+                if (!gFolderDirs.count(it->path())) weft::fuzz::finding("harness: extra folder");
+            } else {
+                ++seenFiles;
+                const auto f = gFolderFiles.find(it->path());
+                if (f == gFolderFiles.end() || readAll(it->path()) != f->second)
+                    weft::fuzz::finding("harness: extra or stale file " + it->path().string());
+            }
+        }
+        if (seenFiles != gFolderFiles.size() || seenDirs != gFolderDirs.size())
+            weft::fuzz::finding("harness: missing files or folders");
+    }
+    return root;
 }
 
 } // namespace
@@ -110,9 +170,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     const bool asZip = in.ConsumeBool(), deflate = in.ConsumeBool();
 
-    const fs::path root = weft::fuzz::scratchDir() / "tree";
-    std::error_code ec;
-    fs::remove_all(root, ec);
     std::string path;
     if (asZip) {
         path = (weft::fuzz::scratchDir() / "tree.zip").string();
@@ -124,15 +181,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             return 0; // libzip cannot write these names (duplicates, empty): nothing to read
         }
     } else {
-        fs::create_directories(root);
-        for (const auto& [name, content] : entries) {
-            const fs::path p = insideFolder(root, name);
-            if (p.empty()) continue;
-            fs::create_directories(p.parent_path(), ec);
-            if (ec || fs::is_directory(p, ec)) continue; // a name both a file and a folder
-            weft::fuzz::writeFile(p, content.data(), content.size());
-        }
-        path = root.string();
+        path = syncFolder(entries).string();
     }
     weft::BtfLoadOptions options;
     options.threads = 1;
