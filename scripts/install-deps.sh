@@ -2,7 +2,8 @@
 # Installs what weft needs on a Debian machine, only when missing: system packages from Debian
 # (Vulkan loader + lavapipe + validation layers, glslc, GLFW, GLM, libpng, OpenEXR, GoogleTest, Xvfb,
 # tinygltf and tinyobjloader: glTF and OBJ + MTL meshes, stb: .hdr images and, with Dear ImGui and
-# its GLFW and Vulkan backends, weft-demo's panel)
+# its GLFW and Vulkan backends, weft-demo's panel; clang 14 with its runtime libraries, which hold
+# libFuzzer: the C++ fuzz targets, scripts/fuzz.sh)
 # and Python build/test packages from PyPI (av = PyAV, its wheels bundle FFmpeg: video files as
 # environment captures, weft.ibl.read_video_frames; matplotlib draws the BTF report's figures and
 # the benchmarks' plots, tqdm their progress; trimesh and pygltflib are the independent mesh
@@ -17,7 +18,7 @@ packages=(g++ pkg-config ccache libvulkan-dev mesa-vulkan-drivers vulkan-validat
           libglfw3-dev libglm-dev libpng-dev libopenexr-dev libgtest-dev xvfb xauth
           libjpeg62-turbo-dev libzip-dev libceres-dev libshaderc-dev glslang-dev spirv-tools
           libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev libcli11-dev patchelf libimgui-dev
-          libstb-dev)
+          libstb-dev clang-14 libclang-rt-14-dev)
 command -v cmake >/dev/null || packages+=(cmake)
 command -v ninja >/dev/null || packages+=(ninja-build)
 

@@ -2,8 +2,9 @@
 # Every test: install, build, then ctest (C++ unit tests, demo, consumer project against the
 # installed CMake package), pytest (Python API, shading oracle, shadows, window, CLI, bench) and
 # the sanitizer lane (the C++ tests again under AddressSanitizer + UndefinedBehaviorSanitizer,
-# scripts/sanitize.sh). Vulkan validation layers are on throughout; any validation message or
-# sanitizer finding fails the test.
+# scripts/sanitize.sh) and the libFuzzer lane (the loaders' C++ fuzz targets built with clang,
+# a short fixed-seed run of each: scripts/fuzz.sh). Vulkan validation layers are on throughout;
+# any validation message, sanitizer or fuzzer finding fails the test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -13,3 +14,4 @@ export WEFT_VALIDATION=1
 ctest --test-dir build/py --output-on-failure --timeout 600
 python3 -m pytest tests/python -q -p no:cacheprovider
 bash scripts/sanitize.sh
+bash scripts/fuzz.sh

@@ -13,6 +13,7 @@
 // - Equirectangular: column u = 0.5 + atan2(d.x, -d.z) / (2 pi) (centre looks along -Z, +X to
 //   the right), row v = acos(d.y) / pi (+Y at the top); wraps horizontally.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -59,5 +60,18 @@ std::vector<float> cubeToSphere(const CubeMap& cube, int size, const glm::mat4& 
 /// their value, unseen ones get a smooth interpolation of the nearest seen regions (across
 /// faces). Throws InvalidArgument when nothing was seen or the mask size is wrong.
 void fillUnseen(CubeMap& cube, const std::vector<uint8_t>& valid);
+
+/// Largest radiance an environment file may hold (weft.ibl.capture.MAX_RADIANCE is the same):
+/// far above any real capture, low enough that the resampling sums stay finite in float.
+constexpr float kMaxEnvironmentRadiance = 1e30f;
+
+/// Reads an environment capture (weft-demo's --environment) with loadImageF (.hdr / .pic, .exr,
+/// or .png as value / 255) and converts it to a radiance cube map of face `size` (> 0): a 2:1
+/// image as an equirectangular panorama, a square one as a 360-degree sphere map (wrap 1,
+/// sphere space = world space, unseen texels filled). Channels after the third are ignored.
+/// Throws IoError when the file cannot be read, InvalidArgument naming the file for fewer than
+/// 3 channels, any other shape, or a value that is not finite, negative or above
+/// kMaxEnvironmentRadiance (an EXR can store NaN and inf, which would light the scene with NaN).
+CubeMap loadEnvironmentCube(const std::string& path, int size);
 
 } // namespace weft

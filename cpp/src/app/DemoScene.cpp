@@ -247,24 +247,9 @@ void DemoScene::buildTerrain() {
 }
 
 void DemoScene::lightWith(const std::string& path) {
-    // An equirectangular panorama (2:1) or a 360-degree sphere map (square), as captured.
-    const ImageF image = loadImageF(path);
-    if (image.channels < 3) throw InvalidArgument("environment image '" + path + "' needs RGB");
-    ImageF rgb(image.width, image.height, 3);
-    for (size_t t = 0; t < size_t(image.width) * size_t(image.height); ++t)
-        for (int c = 0; c < 3; ++c) rgb.pixels[t * 3 + size_t(c)] = image.pixels[t * size_t(image.channels) + size_t(c)];
-    CubeMap cube;
-    if (image.width == 2 * image.height) {
-        cube = equirectToCube(rgbView(rgb), 128); // also painted onto the sky dome
-    } else if (image.width == image.height) {
-        CaptureCube capture = sphereToCube(rgbView(rgb), glm::mat4(1.0f), 1.0f, 128);
-        fillUnseen(capture.cube, capture.valid);
-        cube = std::move(capture.cube);
-    } else {
-        throw InvalidArgument("environment image '" + path + "' must be equirectangular (2:1) or "
-                              "a sphere map (square), got " + std::to_string(image.width) + "x" +
-                              std::to_string(image.height));
-    }
+    // An equirectangular panorama (2:1) or a 360-degree sphere map (square), as captured;
+    // radiance checked (finite, >= 0, at most kMaxEnvironmentRadiance).
+    CubeMap cube = loadEnvironmentCube(path, 128); // also painted onto the sky dome
     EnvironmentLighting env;
     env.environment = std::make_shared<Environment>(std::move(cube));
     env.domeLights = 16; // shadows from the dome (SPEC §4.5), 4 maps refreshed per frame

@@ -2,7 +2,9 @@
 // The demo's named settings: what weft-demo's panel shows and edits, and what a --script line
 // "<frame> set <name> <value>" changes. One table serves both, so a script drives exactly the
 // state the panel's widgets are bound to. Each applies to the scene (DemoScene) or to the
-// renderer's settings (DemoControls::render).
+// renderer's settings (DemoControls::render). Parsing (DemoSettings.cpp) needs no scene, so the
+// --script parser links without the renderer (its libFuzzer target, tests/fuzz/cpp); applying
+// is DemoSettingsApply.cpp.
 #include <string>
 #include <vector>
 
@@ -26,6 +28,26 @@ struct DemoSetting {
 
 /// Every setting, in the panel's order.
 const std::vector<DemoSetting>& demoSettings();
+
+/// The settings, in the panel's order (the same as demoSettings()).
+enum class DemoSettingId {
+    Exposure, ToneMap, Msaa, Ao, Bounce, Hour, DayNight, LightAzimuth, Shadows, Pcf,
+    HairTransparency, HairShadows, Fur, Wind, WindDirection, Paused, NormalMap, Btf, Holes,
+    Reflective, Panel
+};
+
+/// A setting's value as parsed: `number` for numbers (exposure, ao, hour, angles, wind),
+/// `index` for choices (tone map, MSAA 1/2/4/8 -> 0..3, PCF radius, fur model), `on` for on|off.
+struct DemoSettingValue {
+    DemoSettingId id = DemoSettingId::Exposure;
+    float number = 0.0f;
+    int index = 0;
+    bool on = false;
+};
+
+/// Parses `value` for setting `name`; throws InvalidArgument unless `name` is a setting and
+/// `value` one of its values.
+DemoSettingValue parseDemoSetting(const std::string& name, const std::string& value);
 
 /// Throws InvalidArgument unless `name` is a setting and `value` one of its values.
 void checkDemoSetting(const std::string& name, const std::string& value);

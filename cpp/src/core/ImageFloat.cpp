@@ -14,7 +14,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include "core/ExrHeader.h"
 #include "core/FileRead.h"
 
 namespace weft {
@@ -92,6 +94,12 @@ uint64_t exrBestRatio(Imf::Compression c) {
     }
 }
 
+// loadExr decodes a file whose image would be larger than kExrVerifyBytes and kExrVerifyRatio
+// times the file once into a strip of at most kExrVerifyStripBytes before allocating it.
+constexpr uint64_t kExrVerifyBytes = uint64_t(64) << 20;
+constexpr uint64_t kExrVerifyRatio = 64;
+constexpr uint64_t kExrVerifyStripBytes = uint64_t(16) << 20;
+
 // `values` floats would be decoded: refuse more than the documented cap, and more than the
 // file's bytes could hold (half samples, 2 bytes each, are the smallest stored).
 void checkExrDecodedSize(const std::string& path, uint64_t values, Imf::Compression c,
@@ -116,12 +124,20 @@ ImageF loadExr(const std::string& path) {
     {
         fileSize = checkInputFile(path, "EXR");
     }
+    auto impossibleWindow = [](int64_t w, int64_t h) {
+        return w <= 0 || h <= 0 || w > 65536 || h > 65536;
+    };
+    // Before OpenEXR allocates what the header declares: attributes, and line buffers as wide as
+    // the data window (gigabytes of address space for a window of millions of pixels a side).
+    const ExrHeaderFacts facts = checkExrHeaderSizes(path, fileSize);
+    if (facts.haveDataWindow && impossibleWindow(facts.width, facts.height))
+        throw IoError("EXR " + quoted(path) + " has an impossible data window");
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
         const int64_t w64 = int64_t(dw.max.x) - dw.min.x + 1;
         const int64_t h64 = int64_t(dw.max.y) - dw.min.y + 1;
-        if (w64 <= 0 || h64 <= 0 || w64 > 65536 || h64 > 65536)
+        if (impossibleWindow(w64, h64))
             throw IoError("EXR " + quoted(path) + " has an impossible data window");
         const Imf::ChannelList& list = file.header().channels();
         const bool rgb = list.findChannel("R") && list.findChannel("G") && list.findChannel("B");
@@ -133,20 +149,41 @@ ImageF loadExr(const std::string& path) {
         if (rgb) names = {"R", "G", "B"};
         else names = {"Y"};
         if (alpha) names.push_back("A");
-        checkExrDecodedSize(path, uint64_t(w64) * uint64_t(h64) * names.size(),
-                            file.header().compression(), fileSize);
-        ImageF img(int(w64), int(h64), int(names.size()));
-        const size_t xs = sizeof(float) * size_t(img.channels);
-        const size_t ys = xs * size_t(img.width);
-        // The slice base is addressed with the data window's origin (OpenEXR convention).
-        char* base = reinterpret_cast<char*>(img.pixels.data()) - ptrdiff_t(dw.min.x) * ptrdiff_t(xs) -
-                     ptrdiff_t(dw.min.y) * ptrdiff_t(ys);
-        Imf::FrameBuffer fb;
-        for (size_t c = 0; c < names.size(); ++c)
-            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys, 1, 1,
-                                           c == 3 || (grey && c == 1) ? 1.0 : 0.0));
-        file.setFrameBuffer(fb);
-        file.readPixels(dw.min.y, dw.max.y);
+        const uint64_t values = uint64_t(w64) * uint64_t(h64) * names.size();
+        checkExrDecodedSize(path, values, file.header().compression(), fileSize);
+        const size_t channels = names.size();
+        const size_t xs = sizeof(float) * channels;
+        const size_t ys = xs * size_t(w64);
+        // Reads rows y0..y1 of the data window into `rows` (the image's layout). OpenEXR
+        // addresses a slice from the window's origin, so the base lies before `rows`, possibly
+        // far before the address space: computed as an integer, where wrapping is defined.
+        auto readRows = [&](float* rows, int y0, int y1) {
+            const uintptr_t origin = reinterpret_cast<uintptr_t>(rows) -
+                                     uintptr_t(intptr_t(dw.min.x)) * xs -
+                                     uintptr_t(intptr_t(y0)) * ys;
+            Imf::FrameBuffer fb;
+            for (size_t c = 0; c < channels; ++c) {
+                char* base = reinterpret_cast<char*>(origin + c * sizeof(float));
+                const double fill = c == 3 || (grey && c == 1) ? 1.0 : 0.0; // alpha: opaque
+                fb.insert(names[c], Imf::Slice(Imf::FLOAT, base, xs, ys, 1, 1, fill));
+            }
+            file.setFrameBuffer(fb);
+            file.readPixels(y0, y1);
+        };
+        // Far more pixels than bytes (past what the ratio check bounds, or a codec without a
+        // known ratio: PIZ, DWA): decode the file in strips of at most 16 MiB into one buffer
+        // first, so that a file whose data is missing or corrupt fails before the image is
+        // allocated (a forged 4 KiB PIZ file otherwise made weft zero-fill 3 GiB first).
+        if (values * sizeof(float) > kExrVerifyBytes &&
+            values * sizeof(float) > kExrVerifyRatio * fileSize) {
+            const int lines =
+                int(std::clamp<uint64_t>(kExrVerifyStripBytes / ys, 1, uint64_t(h64)));
+            std::vector<float> strip(size_t(lines) * size_t(w64) * channels);
+            for (int64_t y = dw.min.y; y <= dw.max.y; y += lines)
+                readRows(strip.data(), int(y), int(std::min<int64_t>(y + lines - 1, dw.max.y)));
+        }
+        ImageF img(static_cast<int>(w64), static_cast<int>(h64), static_cast<int>(channels));
+        readRows(img.pixels.data(), dw.min.y, dw.max.y);
         return img;
     } catch (const Error&) {
         throw;

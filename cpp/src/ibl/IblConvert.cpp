@@ -273,4 +273,37 @@ void fillUnseen(CubeMap& cube, const std::vector<uint8_t>& valid) {
     std::copy(coarse.data(), coarse.data() + coarse.floatCount(), cube.data());
 }
 
+CubeMap loadEnvironmentCube(const std::string& path, int size) {
+    if (size < 1) throw InvalidArgument("environment cube size must be positive, got " +
+                                        std::to_string(size));
+    const ImageF image = loadImageF(path);
+    if (image.channels < 3)
+        throw InvalidArgument("environment image '" + path + "' needs RGB, it has " +
+                              std::to_string(image.channels) + " channel(s)");
+    // The RGB of every pixel, each value checked: an EXR may hold NaN, inf or negative values,
+    // an RGBE file values up to ~1.7e38 whose resampling sums overflow to inf.
+    ImageF rgb(image.width, image.height, 3);
+    const size_t pixels = size_t(image.width) * size_t(image.height);
+    for (size_t t = 0; t < pixels; ++t)
+        for (size_t c = 0; c < 3; ++c) {
+            const float v = image.pixels[t * size_t(image.channels) + c];
+            if (!(v >= 0.0f && v <= kMaxEnvironmentRadiance))
+                throw InvalidArgument(
+                    "environment image '" + path + "': radiance must be finite and in [0, 1e30], "
+                    "got " + std::to_string(v) + " at pixel (" +
+                    std::to_string(t % size_t(image.width)) + ", " +
+                    std::to_string(t / size_t(image.width)) + ")");
+            rgb.pixels[t * 3 + c] = v;
+        }
+    if (image.width == 2 * image.height) return equirectToCube(rgbView(rgb), size);
+    if (image.width == image.height) {
+        CaptureCube capture = sphereToCube(rgbView(rgb), glm::mat4(1.0f), 1.0f, size);
+        fillUnseen(capture.cube, capture.valid);
+        return std::move(capture.cube);
+    }
+    throw InvalidArgument("environment image '" + path + "' must be equirectangular (2:1) or "
+                          "a sphere map (square), got " + std::to_string(image.width) + "x" +
+                          std::to_string(image.height));
+}
+
 } // namespace weft
