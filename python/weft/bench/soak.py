@@ -21,9 +21,11 @@ import os
 import shutil
 import tempfile
 import time
-from typing import Any, Dict, List
+from typing import Any, Dict, List, Optional
 
 import numpy as np
+
+from weft.reporting import Progress, add_progress_arguments
 
 DESCRIPTION = "memory and frame time stay flat over thousands of demo frames"
 
@@ -48,6 +50,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--reload-every", type=int, default=500,
                         help="frames between shader edits with --hot-reload (500)")
     parser.add_argument("--out", default="out/bench/soak")
+    add_progress_arguments(parser)
 
 
 def _rss_bytes() -> int:
@@ -100,11 +103,15 @@ RELOADED_SHADER = os.path.join("render", "forward.frag")
 
 def soak(frames: int, size=(64, 48), samples: int = 50, warmup: float = 0.2,
          scene_name: str = "demo", hair_transparency: bool = True,
-         hot_reload: str = None, reload_every: int = 500) -> Dict[str, Any]:
+         hot_reload: str = None, reload_every: int = 500,
+         progress: Optional[bool] = False) -> Dict[str, Any]:
+    """Renders ``frames`` frames and measures memory and frame time (the module's docstring);
+    ``progress``: a bar on stderr (True, False, or None = only on a terminal)."""
     import weft
 
     if hot_reload is None:
-        return _soak(frames, size, samples, warmup, scene_name, hair_transparency, None, 0)
+        return _soak(frames, size, samples, warmup, scene_name, hair_transparency, None, 0,
+                     progress)
     if not os.path.isfile(os.path.join(hot_reload, RELOADED_SHADER)):
         raise weft.InvalidArgument(f"--hot-reload needs a folder laid out like glsl/ (no "
                                    f"{RELOADED_SHADER} in {hot_reload!r})")
@@ -118,13 +125,14 @@ def soak(frames: int, size=(64, 48), samples: int = 50, warmup: float = 0.2,
         weft.set_shader_directory(watched)
         try:
             return _soak(frames, size, samples, warmup, scene_name, hair_transparency,
-                         os.path.join(watched, RELOADED_SHADER), reload_every)
+                         os.path.join(watched, RELOADED_SHADER), reload_every, progress)
         finally:
             weft.set_shader_directory("")
 
 
 def _soak(frames: int, size, samples: int, warmup: float, scene_name: str,
-          hair_transparency: bool, edited: str, reload_every: int) -> Dict[str, Any]:
+          hair_transparency: bool, edited: str, reload_every: int,
+          progress: Optional[bool]) -> Dict[str, Any]:
     import weft
 
     if scene_name == "default":
@@ -142,6 +150,7 @@ def _soak(frames: int, size, samples: int, warmup: float, scene_name: str,
     last, last_frame = time.perf_counter(), 0
     finite = True
     edits = recompiled = 0
+    bar = Progress(frames, enabled=progress)
     for f in range(1, frames + 1):
         if edited and f % reload_every == 0:
             # mtime has a coarse clock on some file systems: the size changes too
@@ -161,6 +170,10 @@ def _soak(frames: int, size, samples: int, warmup: float, scene_name: str,
                          "device_used_mib": mem["used_bytes"] / 2 ** 20,
                          "frame_ms": 1000.0 * (now - last) / (f - last_frame)})
             last, last_frame = now, f
+            bar.update(f"soak: {rows[-1]['rss_mib']:.1f} MiB RSS, "
+                       f"{rows[-1]['frame_ms']:.0f} ms/frame")
+        bar.step()
+    bar.close()
     start = int(len(rows) * warmup)
     measured = rows[start:]
     span = measured[-1]["frame"] - measured[0]["frame"] if measured else 0
@@ -242,7 +255,8 @@ def run(args: argparse.Namespace) -> int:
 
     frames = 300 if args.quick else int(args.frames)
     result = soak(frames, tuple(args.size), args.samples, args.warmup, args.scene,
-                  not args.no_hair_transparency, args.hot_reload, args.reload_every)
+                  not args.no_hair_transparency, args.hot_reload, args.reload_every,
+                  args.progress)
     problems = verdict(result, args.rss_tolerance_mib)
     result["machine"] = machine_info()
     result["problems"] = problems
