@@ -40,7 +40,7 @@ TOP_PRIVATE = {
     # the demo's panel (cpp/apps/demo, linked into weft-demo only, so the library links no UI)
     # adds a pass after tone mapping and draws into the swapchain
     "apps": {"render/FrameGraph.h", "render/FramePasses.h", "render/RenderTargets.h",
-             "render/FrameOverlay.h", "vk/Context.h", "vk/Swapchain.h", "vk/Vk.h",
+             "render/FrameOverlay.h", "vk/Context.h", "vk/WindowNative.h", "vk/Vk.h",
              "app/DemoSettings.h", "app/DemoPanel.h"},
 }
 

@@ -21,11 +21,14 @@ HairPrimitive primitiveOf(const std::string& s) {
     throw InvalidArgument("hair_primitive must be 'lines' or 'ribbons' (got '" + s + "')");
 }
 
+// Python names of OitWeight, in its order (7 .. 10); 'eq7' .. 'eq10' are accepted too.
+const char* const kOitWeightNames[] = {"near_quadratic", "near_cubic", "far_quartic", "ndc_cubic"};
+
 OitWeight weightOf(const std::string& s) {
     for (int eq = 7; eq <= 10; ++eq)
-        if (s == "eq" + std::to_string(eq)) return OitWeight(eq);
-    throw InvalidArgument("hair_oit_weight must be 'eq7', 'eq8', 'eq9' or 'eq10' (got '" + s +
-                          "')");
+        if (s == kOitWeightNames[eq - 7] || s == "eq" + std::to_string(eq)) return OitWeight(eq);
+    throw InvalidArgument("hair_oit_weight must be 'near_quadratic', 'near_cubic', 'far_quartic' "
+                          "or 'ndc_cubic' (or 'eq7' .. 'eq10'; got '" + s + "')");
 }
 
 template <typename Get, typename Set>
@@ -100,11 +103,14 @@ void bindHairRender(py::module_& m) {
             [](RenderSettings& s, py::object v) { s.hairTransparency = v.cast<bool>(); },
             "Weighted blended OIT for hair with transparency > 0 (else drawn opaque).");
     setting(renderer, "hair_oit_weight",
-            [](const RenderSettings& s) { return "eq" + std::to_string(int(s.hairOitWeight)); },
+            [](const RenderSettings& s) {
+                return std::string(kOitWeightNames[int(s.hairOitWeight) - 7]);
+            },
             [](RenderSettings& s, py::object v) {
                 s.hairOitWeight = weightOf(v.cast<std::string>());
             },
-            "WBOIT weight function: 'eq7', 'eq8', 'eq9' or 'eq10' (SPEC §5.4).");
+            "WBOIT depth weight (McGuire & Bavoil 2013, eq. 7-10): 'near_quadratic', "
+            "'near_cubic', 'far_quartic' or 'ndc_cubic' ('eq7' .. 'eq10' also accepted).");
     renderer.def("hair_dom_map", [](const Renderer& r, int light) {
             const HairDomInfo i = r.hairDeepOpacity(light);
             py::dict d;

@@ -730,7 +730,7 @@ class Renderer:
     @property
     def hair_oit_weight(self) -> str:
         """
-        WBOIT weight function: 'eq7', 'eq8', 'eq9' or 'eq10' (SPEC §5.4).
+        WBOIT depth weight (McGuire & Bavoil 2013, eq. 7-10): 'near_quadratic', 'near_cubic', 'far_quartic' or 'ndc_cubic' ('eq7' .. 'eq10' also accepted).
         """
     @hair_oit_weight.setter
     def hair_oit_weight(self, arg1: typing.Any) -> None:

@@ -136,6 +136,27 @@ def test_wboit_composite_equals_the_reference(weight):
     assert np.allclose(img[0, 0, :3], scene.background, atol=1e-6)  # no hair: background kept
 
 
+@pytest.mark.parametrize("name,alias", [("near_quadratic", "eq7"), ("near_cubic", "eq8"),
+                                        ("far_quartic", "eq9"), ("ndc_cubic", "eq10")])
+def test_oit_weights_are_named_for_their_shape(name, alias):
+    """The weights' names (what Renderer.hair_oit_weight reads back) draw exactly what the
+    equation-number aliases draw, and each weight differs from the default's image."""
+    scene = layer_scene(np.array([[0.9, 0.1, 0.1], [0.1, 0.8, 0.2]]), np.array([0.5, 0.6]),
+                        np.array([0.5, -8.0]))
+    cam = weft.Camera((0.0, 0.0, 3.0), (0.0, 0.0, 0.0), (0, 1, 0), 0.6)
+    images = {}
+    for w in (name, alias, "near_quadratic"):
+        r = weft.Renderer(16, 16, shadow_map_size=64)
+        r.hair_primitive, r.hair_width = "ribbons", 0.5
+        r.hair_oit_weight = w
+        assert r.hair_oit_weight == (name if w != "near_quadratic" else w)
+        images[w] = r.render_linear(scene, cam)
+    assert weft.Renderer(8, 8).hair_oit_weight == "near_quadratic"
+    assert np.array_equal(images[name], images[alias])
+    if name != "near_quadratic":
+        assert not np.array_equal(images[name], images["near_quadratic"])
+
+
 def test_meshes_shadow_hair_under_a_deep_opacity_map():
     """A board between the light and half of the slab: with the DOM on, the hair under it is in
     its shadow (visibility 0) while the other half keeps the DOM's transmittance; a board that

@@ -10,7 +10,7 @@
 #include "render/FramePasses.h"
 #include "render/RenderTargets.h"
 #include "vk/Context.h"
-#include "vk/Swapchain.h"
+#include "vk/WindowNative.h"
 
 namespace weft::demo {
 namespace {

@@ -26,8 +26,14 @@ void setFrameOverlay(Renderer& renderer, FrameOverlay* overlay);
 
 /// How strands are drawn: 1-pixel lines or camera-facing ribbons (width = hairWidth * thickness).
 enum class HairPrimitive { Lines = 0, Ribbons = 1 };
-/// Weighted blended OIT weight functions w(z, alpha) of SPEC §5.4, eq. 7-10.
-enum class OitWeight { Eq7 = 7, Eq8 = 8, Eq9 = 9, Eq10 = 10 };
+/// Weighted blended OIT weight w(z, alpha) (McGuire & Bavoil 2013, eq. 7-10; the value is the
+/// equation's number), z the view-space depth:
+enum class OitWeight {
+    NearQuadratic = 7, // alpha * clamp(10 / (1e-5 + (|z|/5)^2 + (|z|/200)^6), 1e-2, 3e3)
+    NearCubic = 8,     // alpha * clamp(10 / (1e-5 + (|z|/10)^3 + (|z|/200)^6), 1e-2, 3e3)
+    FarQuartic = 9,    // alpha * clamp(0.03 / (1e-5 + (|z|/200)^4), 1e-2, 3e3)
+    NdcCubic = 10,     // alpha * max(1e-2, 3e3 * (1 - z_ndc)^3)
+};
 /// How the output pass maps exposed linear radiance to [0, 1] before sRGB encoding.
 enum class ToneMap {
     Clamp = 0,   // the seed's look: values above 1 clip
@@ -76,7 +82,7 @@ struct RenderSettings {
     float hairDomLayerSize = 0.0f;  // d in world units; 0: the hair's depth extent / 3 (or / 7)
     uint32_t hairDomSize = 512;     // texels per side of each deep opacity map
     bool hairTransparency = true;   // WBOIT for hair with transparency > 0 (else opaque lines)
-    OitWeight hairOitWeight = OitWeight::Eq7;
+    OitWeight hairOitWeight = OitWeight::NearQuadratic;
     /// Throws InvalidArgument for out-of-range values.
     void validate() const;
 };

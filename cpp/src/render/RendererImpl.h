@@ -25,7 +25,7 @@
 #include "render/ScenePipelines.h"
 #include "render/ShadowFit.h"
 #include "vk/Pipeline.h"
-#include "vk/Swapchain.h"
+#include "vk/WindowNative.h"
 
 namespace weft {
 

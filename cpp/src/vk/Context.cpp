@@ -4,21 +4,13 @@
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
-#include <iostream>
 
 #include <weft/Device.h>
 
+#include "vk/Validation.h"
+
 namespace weft::vk {
 namespace {
-
-// Validation messages outlive any context so tests can read them after a renderer is gone.
-std::mutex gMessageMutex;
-std::vector<std::string> gMessages;
-
-bool envFlag(const char* name) {
-    const char* v = std::getenv(name);
-    return v && *v && std::strcmp(v, "0") != 0;
-}
 
 VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                              VkDebugUtilsMessageTypeFlagsEXT,
@@ -28,11 +20,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBits
     std::string text = (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error: "
                                                                                    : "warning: ");
     text += data && data->pMessage ? data->pMessage : "(no message)";
-    {
-        std::lock_guard<std::mutex> lock(gMessageMutex);
-        gMessages.push_back(text);
-    }
-    if (envFlag("WEFT_VALIDATION_PRINT")) std::cerr << "[weft validation] " << text << "\n";
+    recordValidationMessage(text);
     return VK_FALSE;
 }
 
@@ -142,7 +130,12 @@ size_t chooseDevice(const std::vector<VkPhysicalDevice>& devices) {
     return best;
 }
 
-std::vector<VkPhysicalDevice> enumerate(VkInstance instance) {
+std::mutex gSharedMutex;
+std::weak_ptr<Context> gShared;
+
+} // namespace
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
     uint32_t n = 0;
     VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, nullptr));
     std::vector<VkPhysicalDevice> devices(n);
@@ -150,29 +143,9 @@ std::vector<VkPhysicalDevice> enumerate(VkInstance instance) {
     return devices;
 }
 
-std::mutex gSharedMutex;
-std::weak_ptr<Context> gShared;
-
-} // namespace
-
-std::string deviceTypeName(VkPhysicalDeviceType type) {
-    switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
-        return "discrete";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
-        return "integrated";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
-        return "virtual";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU:
-        return "cpu";
-    default:
-        return "other";
-    }
-}
-
-std::string versionString(uint32_t v) {
-    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) +
-           "." + std::to_string(VK_API_VERSION_PATCH(v));
+std::shared_ptr<Context> Context::existing() {
+    std::lock_guard<std::mutex> lock(gSharedMutex);
+    return gShared.lock();
 }
 
 std::shared_ptr<Context> Context::shared() {
@@ -285,7 +258,7 @@ void Context::createInstance() {
 }
 
 void Context::pickPhysicalDevice() {
-    const auto devices = enumerate(mInstance);
+    const auto devices = physicalDevices(mInstance);
     mPhysical = devices[chooseDevice(devices)];
     vkGetPhysicalDeviceProperties(mPhysical, &mProperties);
 }
@@ -472,55 +445,3 @@ std::shared_ptr<void> Context::cached(const std::string& key,
 }
 
 } // namespace weft::vk
-
-namespace weft {
-
-bool validationEnabled() { return vk::envFlag("WEFT_VALIDATION"); }
-
-std::vector<std::string> validationMessages() {
-    std::lock_guard<std::mutex> lock(vk::gMessageMutex);
-    return vk::gMessages;
-}
-
-void clearValidationMessages() {
-    std::lock_guard<std::mutex> lock(vk::gMessageMutex);
-    vk::gMessages.clear();
-}
-
-std::vector<DeviceInfo> listDevices() {
-    auto ctx = vk::Context::shared();
-    const auto devices = vk::enumerate(ctx->instance());
-    std::vector<DeviceInfo> out;
-    for (size_t i = 0; i < devices.size(); ++i) {
-        VkPhysicalDeviceProperties2 p{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
-        VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
-        p.pNext = &driver;
-        vkGetPhysicalDeviceProperties2(devices[i], &p);
-        DeviceInfo d;
-        d.index = uint32_t(i);
-        d.name = p.properties.deviceName;
-        d.type = vk::deviceTypeName(p.properties.deviceType);
-        d.apiVersion = vk::versionString(p.properties.apiVersion);
-        d.driver = std::string(driver.driverName) + " " + driver.driverInfo;
-        d.selected = devices[i] == ctx->physicalDevice();
-        out.push_back(d);
-    }
-    return out;
-}
-
-DeviceMemoryStats deviceMemoryStats() {
-    std::shared_ptr<vk::Context> ctx;
-    {
-        std::lock_guard<std::mutex> lock(vk::gSharedMutex);
-        ctx = vk::gShared.lock();
-    }
-    DeviceMemoryStats out;
-    if (!ctx) return out;
-    const vk::Allocator::Stats s = ctx->allocator().stats();
-    out.blocks = s.blocks;
-    out.reservedBytes = uint64_t(s.reserved);
-    out.usedBytes = uint64_t(s.used);
-    return out;
-}
-
-} // namespace weft

@@ -27,6 +27,8 @@ class Context {
 public:
     /// The shared context, created on first use and destroyed when the last user lets go.
     static std::shared_ptr<Context> shared();
+    /// The shared context if one lives, else null (creates nothing).
+    static std::shared_ptr<Context> existing();
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
@@ -98,7 +100,8 @@ private:
     std::deque<std::pair<uint64_t, std::function<void()>>> mRetired;
 };
 
-/// Instance-level helpers shared by Context and listDevices().
+/// Instance-level helpers shared by Context and listDevices() (vk/Device.cpp).
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance);
 std::string deviceTypeName(VkPhysicalDeviceType type);
 std::string versionString(uint32_t version);
 

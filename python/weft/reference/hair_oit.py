@@ -35,7 +35,10 @@ def weight_eq10(z: np.ndarray, alpha: np.ndarray, z_ndc: np.ndarray) -> np.ndarr
 
 
 WEIGHTS: Dict[str, Callable[..., np.ndarray]] = {
-    "eq7": weight_eq7, "eq8": weight_eq8, "eq9": weight_eq9, "eq10": weight_eq10}
+    "eq7": weight_eq7, "eq8": weight_eq8, "eq9": weight_eq9, "eq10": weight_eq10,
+    # the renderer's names of the same weights (Renderer.hair_oit_weight)
+    "near_quadratic": weight_eq7, "near_cubic": weight_eq8, "far_quartic": weight_eq9,
+    "ndc_cubic": weight_eq10}
 
 
 def wboit_composite(color: np.ndarray, alpha: np.ndarray, z: np.ndarray, z_ndc: np.ndarray,

@@ -1,4 +1,4 @@
-#include "vk/Swapchain.h"
+#include "vk/WindowNative.h"
 
 #include <algorithm>
 #include <chrono>
