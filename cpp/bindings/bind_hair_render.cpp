@@ -3,6 +3,7 @@
 
 #include <pybind11/stl.h>
 
+#include <weft/Debug.h>
 #include <weft/Renderer.h>
 
 #include "Convert.h"
@@ -112,7 +113,7 @@ void bindHairRender(py::module_& m) {
             "WBOIT depth weight (McGuire & Bavoil 2013, eq. 7-10): 'near_quadratic', "
             "'near_cubic', 'far_quartic' or 'ndc_cubic' ('eq7' .. 'eq10' also accepted).");
     renderer.def("hair_dom_map", [](const Renderer& r, int light) {
-            const HairDomInfo i = r.hairDeepOpacity(light);
+            const HairDomInfo i = debug::hairDeepOpacity(r, light);
             py::dict d;
             py::array_t<float> texels({py::ssize_t(i.size), py::ssize_t(i.size), py::ssize_t(4)});
             std::memcpy(texels.mutable_data(), i.texels.data(), i.texels.size() * sizeof(float));

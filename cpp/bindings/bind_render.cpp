@@ -5,6 +5,7 @@
 
 #include <pybind11/stl.h>
 
+#include <weft/Debug.h>
 #include <weft/Renderer.h>
 
 #include "Convert.h"
@@ -243,7 +244,7 @@ void bindRender(py::module_& m) {
                                "The last frame: passes run with CPU/GPU ms, culled passes.")
         .def("shadow_map", [](Renderer& r, int light, int view) {
             uint32_t size = 0;
-            std::vector<float> data = r.shadowMap(light, &size, view);
+            std::vector<float> data = debug::shadowMap(r, light, &size, view);
             py::array_t<float> out({py::ssize_t(size), py::ssize_t(size)});
             std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
             return out;
@@ -252,7 +253,7 @@ void bindRender(py::module_& m) {
            "light's six views +X, -X, +Y, -Y, +Z, -Z).")
         .def("reflection_probe", [](Renderer& r) {
             uint32_t size = 0;
-            std::vector<float> data = r.reflectionProbe(&size);
+            std::vector<float> data = debug::reflectionProbe(r, &size);
             const py::ssize_t n = size;
             py::array_t<float> out({py::ssize_t(6), n, n, py::ssize_t(4)});
             std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
@@ -260,7 +261,7 @@ void bindRender(py::module_& m) {
         }, "The last frame's dynamic reflection capture, (6, S, S, 4) linear RGBA (faces +X, -X,\n"
            "+Y, -Y, +Z, -Z as weft.ibl.CubeMap).")
         .def("shadow_info", [](const Renderer& r, int light) {
-            const ShadowInfo i = r.shadowInfo(light);
+            const ShadowInfo i = debug::shadowInfo(r, light);
             py::dict d;
             d["active"] = i.active;
             d["size"] = i.size;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <weft/Device.h>
+#include <weft/Debug.h>
 #include <weft/Renderer.h>
 #include <weft/Scene.h>
 
@@ -66,7 +67,7 @@ TEST(HairScene, FrameRunsOnlyTheHairPassesTheSceneNeeds) {
     EXPECT_EQ(passNames(r), (std::vector<std::string>{"shadow[0]", "forward", "hair_dom_depth",
                                                       "hair_dom_opacity", "hair", "hair_fringe",
                                                       "hair_composite", "readback"}));
-    EXPECT_EQ(r.hairDeepOpacity(0).texels.size(), 32u * 32u * 4u);
+    EXPECT_EQ(weft::debug::hairDeepOpacity(r, 0).texels.size(), 32u * 32u * 4u);
     scene.addHair(twoStrands(0.5f));
     settings.hairDeepOpacity = false;
     r.setSettings(settings);

@@ -7,6 +7,7 @@
 #include <weft/Device.h>
 #include <weft/Environment.h>
 #include <weft/Texture.h>
+#include <weft/Debug.h>
 #include <weft/Renderer.h>
 #include <weft/Scene.h>
 
@@ -83,7 +84,7 @@ TEST_F(RendererTest, NoShadowCastingLightMeansNoShadowPass) {
     weft::Renderer r(32, 32, settings);
     r.render(scene, camera);
     EXPECT_EQ(passNames(r), (std::vector<std::string>{"forward", "output", "readback"}));
-    EXPECT_FALSE(r.shadowInfo(0).active);
+    EXPECT_FALSE(weft::debug::shadowInfo(r, 0).active);
 }
 
 TEST_F(RendererTest, BadInputThrowsCleanly) {

@@ -37,8 +37,8 @@ void linearizeStyle(ImGuiStyle& style) {
 } // namespace
 
 ImGuiLayer::ImGuiLayer(Window& window, Renderer& renderer)
-    : mWindow(window), mRenderer(renderer), mCtx(*window.native().ctx),
-      mFormat(window.native().format) {
+    : mWindow(window), mRenderer(renderer), mCtx(*vk::WindowAccess::native(window).ctx),
+      mFormat(vk::WindowAccess::native(window).format) {
     VkDevice device = mCtx.device();
     // Draws over the tone-mapped image: loads it and leaves it where the frame graph expects a
     // colour attachment (the graph's barriers move it on to readback or presentation).
@@ -79,7 +79,7 @@ ImGuiLayer::ImGuiLayer(Window& window, Renderer& renderer)
     ImGui::StyleColorsDark();
     if (isSrgb(mFormat)) linearizeStyle(ImGui::GetStyle());
     // Chains the window's own GLFW callbacks (set when it was made), so the demo keeps its input.
-    ImGui_ImplGlfw_InitForVulkan(window.native().window, true);
+    ImGui_ImplGlfw_InitForVulkan(vk::WindowAccess::native(window).window, true);
     ImGui_ImplVulkan_InitInfo info{};
     info.Instance = mCtx.instance();
     info.PhysicalDevice = mCtx.physicalDevice();
@@ -132,9 +132,9 @@ void ImGuiLayer::dropFramebuffers() {
 }
 
 VkFramebuffer ImGuiLayer::framebuffer(VkImageView view, uint32_t width, uint32_t height) {
-    if (mWindow.native().swapchain != mSwapchain) {
+    if (vk::WindowAccess::native(mWindow).swapchain != mSwapchain) {
         dropFramebuffers();
-        mSwapchain = mWindow.native().swapchain;
+        mSwapchain = vk::WindowAccess::native(mWindow).swapchain;
     }
     if (auto it = mFramebuffers.find(view); it != mFramebuffers.end()) return it->second;
     VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};

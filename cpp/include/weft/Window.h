@@ -8,6 +8,10 @@
 
 namespace weft {
 
+namespace vk {
+struct WindowAccess; // the renderer's way to the swapchain (vk/WindowNative.h)
+}
+
 class Window {
 public:
     Window(int width, int height, const std::string& title, bool vsync = true);
@@ -32,10 +36,9 @@ public:
     /// Cursor movement callback: (x, y) in pixels from the top-left corner.
     void onCursor(std::function<void(double, double)> callback);
 
-    struct Native; // GLFW window + Vulkan surface/swapchain, owned here, used by the renderer
-    Native& native() { return *mNative; }
-
 private:
+    friend struct vk::WindowAccess;
+    struct Native; // GLFW window + Vulkan surface/swapchain, owned here, used by the renderer
     std::unique_ptr<Native> mNative;
     bool mVsync;
 };

@@ -3,6 +3,7 @@
 // views, cookie textures, the per-frame uniform block), computed from Scene + Camera + settings.
 #include <vector>
 
+#include <weft/Debug.h>
 #include <weft/Renderer.h>
 
 #include "render/GpuCache.h"

@@ -11,6 +11,7 @@
 #include <functional>
 #include <vector>
 
+#include <weft/Debug.h>
 #include <weft/Renderer.h>
 
 #include "render/FrameGraph.h"

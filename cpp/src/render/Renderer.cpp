@@ -198,7 +198,7 @@ ImageU8 Renderer::present(Window& window, const Scene& scene, const Camera& came
     const auto t0 = Clock::now();
     camera.validate();
     Impl& m = *mImpl;
-    Window::Native& n = window.native();
+    auto& n = vk::WindowAccess::native(window);
     if (capture && !n.transferSrc) throw Error("this swapchain does not allow screenshots");
     FrameSlot& slot = m.beginFrame();
     uint32_t index = 0;
@@ -236,64 +236,5 @@ void render::setFrameOverlay(Renderer& renderer, FrameOverlay* overlay) {
 }
 
 uint32_t Renderer::msaaSamples() const { return mImpl->supportedSamples(mImpl->settings.msaa); }
-
-ShadowInfo Renderer::shadowInfo(int lightIndex) const {
-    if (lightIndex < 0 || size_t(lightIndex) >= mImpl->shadowInfos.size())
-        throw InvalidArgument("light index " + std::to_string(lightIndex) +
-                              " is not a light of the last rendered scene");
-    return mImpl->shadowInfos[size_t(lightIndex)];
-}
-
-HairDomInfo Renderer::hairDeepOpacity(int lightIndex) const {
-    if (!mImpl->hair) throw InvalidArgument("the last rendered scene had no hair");
-    return mImpl->hair->domInfo(lightIndex);
-}
-
-std::vector<float> Renderer::reflectionProbe(uint32_t* sizeOut) {
-    Impl& m = *mImpl;
-    if (m.probe.instance() < 0)
-        throw InvalidArgument("the last rendered scene had no material with dynamic_reflection");
-    vk::Image& cube = m.probe.cube();
-    const uint32_t size = cube.desc().width;
-    const VkDeviceSize bytes = VkDeviceSize(6) * size * size * 4 * sizeof(float);
-    vk::Buffer buffer(m.ctx.get(), bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback);
-    m.ctx->immediate([&](VkCommandBuffer cmd) {
-        const render::UseState s = render::useState(Use::TransferRead, false);
-        vk::transition(*m.ctx, cmd, cube, s.layout, s.stage, s.access);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 6};
-        region.imageExtent = {size, size, 1};
-        vkCmdCopyImageToBuffer(cmd, cube.get(), s.layout, buffer.get(), 1, &region);
-    });
-    std::vector<float> out(size_t(bytes / sizeof(float)));
-    std::memcpy(out.data(), buffer.mapped(), bytes);
-    if (sizeOut) *sizeOut = size;
-    return out;
-}
-
-std::vector<float> Renderer::shadowMap(int lightIndex, uint32_t* sizeOut, int view) {
-    const ShadowInfo info = shadowInfo(lightIndex);
-    if (!info.active) throw InvalidArgument("light " + std::to_string(lightIndex) + " cast no shadow in the last frame");
-    if (view < 0 || size_t(view) >= info.views.size())
-        throw InvalidArgument("light " + std::to_string(lightIndex) + " has " +
-                              std::to_string(info.views.size()) + " shadow view(s), not view " +
-                              std::to_string(view));
-    Impl& m = *mImpl;
-    const uint32_t size = m.shadowMaps.desc().width;
-    vk::Buffer buffer(m.ctx.get(), VkDeviceSize(size) * size * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                      vk::MemoryUsage::Readback);
-    m.ctx->immediate([&](VkCommandBuffer cmd) {
-        const render::UseState s = render::useState(Use::TransferRead, true);
-        vk::transition(*m.ctx, cmd, m.shadowMaps, s.layout, s.stage, s.access);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, uint32_t(info.layer + view), 1};
-        region.imageExtent = {size, size, 1};
-        vkCmdCopyImageToBuffer(cmd, m.shadowMaps.get(), s.layout, buffer.get(), 1, &region);
-    });
-    std::vector<float> out(size_t(size) * size);
-    std::memcpy(out.data(), buffer.mapped(), out.size() * sizeof(float));
-    if (sizeOut) *sizeOut = size;
-    return out;
-}
 
 } // namespace weft

@@ -1,6 +1,7 @@
 #pragma once
 // The state of a weft::Renderer, shared by Renderer.cpp (lifecycle, settings, render/present,
 // read-backs) and FrameRecording.cpp (one frame's graph of passes).
+#include <weft/Debug.h>
 #include <weft/Renderer.h>
 #include <weft/ShaderReload.h>
 

@@ -39,4 +39,11 @@ struct Window::Native {
     ~Native();
 };
 
+namespace vk {
+/// The native side of a Window, for the renderer and the demo's panel (not on the public API).
+struct WindowAccess {
+    static Window::Native& native(Window& window) { return *window.mNative; }
+};
+} // namespace vk
+
 } // namespace weft
