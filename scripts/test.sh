@@ -7,11 +7,18 @@
 # any validation message, sanitizer or fuzzer finding fails the test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+phase() { echo "test.sh: $1 done at ${SECONDS} s"; }  # where CI time goes
 bash scripts/install-deps.sh
+phase install-deps
 bash scripts/build.sh
+phase build
 source scripts/env.sh
 export WEFT_VALIDATION=1
 ctest --test-dir build/py --output-on-failure --timeout 600
-python3 -m pytest tests/python -q -p no:cacheprovider
+phase ctest
+python3 -m pytest tests/python -q -p no:cacheprovider --durations=25
+phase pytest
 bash scripts/sanitize.sh
+phase sanitize
 bash scripts/fuzz.sh
+phase fuzz
