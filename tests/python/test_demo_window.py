@@ -175,7 +175,7 @@ def test_scripted_drag_moves_the_cloth_in_the_window(xvfb_display: str, tmp_path
     env = window_env(xvfb_display)
     script = tmp_path / "drag.txt"
     script.write_text(DRAG_SCRIPT)
-    size = ["--width", "320", "--height", "240", "--frames", "40"]
+    size = ["--width", "320", "--height", "240", "--frames", "28"]  # the script ends at frame 25
     win = tmp_path / "window.png"
     proc = run_demo_process(size + no_panel() + ["--script", str(script), "--screenshot", str(win)],
                             env)
