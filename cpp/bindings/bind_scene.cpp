@@ -1,7 +1,6 @@
-// Bindings of the scene description: Mesh, Texture, Material, lights, Camera, Scene.
-#include <cmath>
+// Bindings of the scene description: Mesh, Camera, Scene (materials: bind_material.cpp, lights:
+// bind_lights.cpp).
 #include <cstring>
-#include <sstream>
 
 #include <pybind11/stl.h>
 
@@ -9,6 +8,7 @@
 #include <weft/Scene.h>
 
 #include "Convert.h"
+#include "ValueProperty.h"
 
 namespace weft::py_bind {
 
@@ -61,33 +61,10 @@ std::shared_ptr<Mesh> makeMesh(py::handle positions, py::handle normals, py::han
     return mesh;
 }
 
-// Sets one field of a validated value type, restoring it if validation fails.
-template <typename T, typename F> void setChecked(T& obj, F&& assign) {
-    T before = obj;
-    assign(obj);
-    try {
-        obj.validate();
-    } catch (...) {
-        obj = before;
-        throw;
-    }
-}
-
-#define WEFT_VEC3_PROPERTY(cls, pyname, field)                                                     \
-    def_property(                                                                                  \
-        pyname, [](const cls& o) { return fromVec3(o.field); },                                    \
-        [](cls& o, py::handle v) {                                                                 \
-            glm::vec3 value = toVec3(v, pyname);                                                   \
-            setChecked(o, [&](cls& x) { x.field = value; });                                       \
-        })
-
-std::string vecRepr(const glm::vec3& v) {
-    std::ostringstream s;
-    s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
-    return s.str();
-}
-
 } // namespace
+
+void bindMaterial(py::module_& m); // bind_material.cpp
+void bindLights(py::module_& m);   // bind_lights.cpp
 
 void bindScene(py::module_& m) {
     py::class_<Mesh, std::shared_ptr<Mesh>>(m, "Mesh",
@@ -141,286 +118,8 @@ void bindScene(py::module_& m) {
     m.def("load_obj", [](const std::string& path) { return std::make_shared<Mesh>(loadObj(path)); },
           py::arg("path"), "Loads a Wavefront OBJ file (read by tinyobjloader) as a Mesh.");
 
-    py::class_<Texture, std::shared_ptr<Texture>>(m, "Texture",
-        "An RGBA8 texture (sRGB colour by default), uploaded to the GPU on first use.")
-        .def(py::init([](py::handle image, bool srgb, bool mipmaps) {
-            return std::make_shared<Texture>(fromNumpy(image), srgb, mipmaps);
-        }), py::arg("image"), py::arg("srgb") = true, py::arg("mipmaps") = true,
-            "A texture from a uint8 (H, W, 4) or (H, W, 3) image; srgb: the colours are sRGB- "
-            "encoded (base colour), False for data (normal, specular maps).")
-        .def_static("load", [](const std::string& path, bool srgb, bool mipmaps) {
-            return std::make_shared<Texture>(loadPng(path), srgb, mipmaps);
-        }, py::arg("path"), py::arg("srgb") = true, py::arg("mipmaps") = true,
-            "Loads an image file as a Texture (srgb, mipmaps as for the constructor). Raises "
-            "IoError naming the file.")
-        .def_property_readonly("width", [](const Texture& t) { return t.image().width; })
-        .def_property_readonly("height", [](const Texture& t) { return t.image().height; })
-        .def_property_readonly("srgb", &Texture::srgb)
-        .def_property_readonly("mipmaps", &Texture::mipmaps)
-        .def_property_readonly("image", [](const Texture& t) { return toNumpy(t.image()); })
-        .def("__repr__", [](const Texture& t) {
-            return "<weft.Texture " + std::to_string(t.image().width) + "x" +
-                   std::to_string(t.image().height) + (t.srgb() ? " sRGB" : " linear") + ">";
-        });
-
-    py::class_<Material>(m, "Material",
-        "Blinn-Phong material: P = (I_A K_A + I_D K_D a) T + I_S K_S a (SPEC eq. 2.10).\n"
-        "normal_map: tangent-space normal map (a linear Texture; x right, y up in the image,\n"
-        "(128, 128, 255) flat); specular_map: its RGB multiplies ks; alpha_cutoff > 0 discards\n"
-        "fragments whose base-texture alpha is below it, in the image and the shadow maps;\n"
-        "ambient_map (linear) replaces the scene's ambient per texel; specular_vertex_normal\n"
-        "evaluates the highlight with the unmapped normal (BTF n_s = (0, 0, 1), eq. 4.30).")
-        .def(py::init([](py::handle ka, py::handle kd, py::handle ks, float shininess,
-                         py::handle baseColor, std::shared_ptr<Texture> texture,
-                         std::shared_ptr<Texture> normalMap, std::shared_ptr<Texture> specularMap,
-                         float alphaCutoff, std::shared_ptr<Texture> ambientMap,
-                         bool specularVertexNormal, bool twoSided, py::handle reflectivity,
-                         float environmentDiffuse, bool dynamicReflection, bool glossInAlpha,
-                         bool phantom) {
-            Material mat;
-            mat.ka = toVec3(ka, "ka");
-            mat.kd = toVec3(kd, "kd");
-            mat.ks = toVec3(ks, "ks");
-            mat.shininess = shininess;
-            mat.baseColor = toVec3(baseColor, "base_color");
-            mat.texture = texture;
-            mat.normalMap = normalMap;
-            mat.specularMap = specularMap;
-            mat.alphaCutoff = alphaCutoff;
-            mat.ambientMap = ambientMap;
-            mat.specularVertexNormal = specularVertexNormal;
-            mat.twoSided = twoSided;
-            mat.reflectivity = toVec3(reflectivity, "reflectivity");
-            mat.environmentDiffuse = environmentDiffuse;
-            mat.dynamicReflection = dynamicReflection;
-            mat.glossInAlpha = glossInAlpha;
-            mat.phantom = phantom;
-            mat.validate();
-            return mat;
-        }), py::arg("ka") = py::make_tuple(1, 1, 1), py::arg("kd") = py::make_tuple(1, 1, 1),
-           py::arg("ks") = py::make_tuple(0, 0, 0), py::arg("shininess") = 32.0f,
-           py::arg("base_color") = py::make_tuple(1, 1, 1), py::arg("texture") = nullptr,
-           py::arg("normal_map") = nullptr, py::arg("specular_map") = nullptr,
-           py::arg("alpha_cutoff") = 0.0f, py::arg("ambient_map") = nullptr,
-           py::arg("specular_vertex_normal") = false, py::arg("two_sided") = false,
-           py::arg("reflectivity") = py::make_tuple(0, 0, 0),
-           py::arg("environment_diffuse") = 0.0f, py::arg("dynamic_reflection") = false,
-           py::arg("gloss_in_alpha") = false, py::arg("phantom") = false,
-            "A material with the coefficients, textures and flags the class description lists "
-            "(colours as RGB triples in [0, 1] or more).")
-        .WEFT_VEC3_PROPERTY(Material, "ka", ka)
-        .WEFT_VEC3_PROPERTY(Material, "kd", kd)
-        .WEFT_VEC3_PROPERTY(Material, "ks", ks)
-        .WEFT_VEC3_PROPERTY(Material, "base_color", baseColor)
-        .def_property("shininess", [](const Material& x) { return x.shininess; },
-                      [](Material& x, float v) { setChecked(x, [&](Material& y) { y.shininess = v; }); })
-        .def_property("texture",
-                      [](const Material& x) { return std::const_pointer_cast<Texture>(x.texture); },
-                      [](Material& x, std::shared_ptr<Texture> t) { x.texture = t; })
-        .def_property("normal_map",
-                      [](const Material& x) { return std::const_pointer_cast<Texture>(x.normalMap); },
-                      [](Material& x, std::shared_ptr<Texture> t) {
-                          setChecked(x, [&](Material& y) { y.normalMap = t; });
-                      })
-        .def_property("specular_map",
-                      [](const Material& x) { return std::const_pointer_cast<Texture>(x.specularMap); },
-                      [](Material& x, std::shared_ptr<Texture> t) { x.specularMap = t; })
-        .def_property("ambient_map",
-                      [](const Material& x) { return std::const_pointer_cast<Texture>(x.ambientMap); },
-                      [](Material& x, std::shared_ptr<Texture> t) {
-                          setChecked(x, [&](Material& y) { y.ambientMap = t; });
-                      })
-        .def_readwrite("specular_vertex_normal", &Material::specularVertexNormal)
-        .def_readwrite("two_sided", &Material::twoSided,
-                       "Draw both faces; the back face uses the flipped normal (cloth: always).")
-        .WEFT_VEC3_PROPERTY(Material, "reflectivity", reflectivity)
-        .def_property("environment_diffuse", [](const Material& x) { return x.environmentDiffuse; },
-                      [](Material& x, float v) {
-                          setChecked(x, [&](Material& y) { y.environmentDiffuse = v; });
-                      })
-        .def_property("dynamic_reflection", [](const Material& x) { return x.dynamicReflection; },
-                      [](Material& x, bool v) {
-                          setChecked(x, [&](Material& y) { y.dynamicReflection = v; });
-                      }, "Reflect a cube captured from this instance's origin (one per scene).")
-        .def_property("gloss_in_alpha", [](const Material& x) { return x.glossInAlpha; },
-                      [](Material& x, bool v) { setChecked(x, [&](Material& y) { y.glossInAlpha = v; }); },
-                      "The base texture's alpha is the decal's gloss (SPEC 4.4): environment light\n"
-                      "= T * lerp(specular, diffuse, alpha).")
-        .def_property("phantom", [](const Material& x) { return x.phantom; },
-                      [](Material& x, bool v) { setChecked(x, [&](Material& y) { y.phantom = v; }); },
-                      "A stand-in for a real object (AR): shows the background image times the\n"
-                      "shadows it receives (lit / unshadowed diffuse light), nothing else.")
-        .def_property("alpha_cutoff", [](const Material& x) { return x.alphaCutoff; },
-                      [](Material& x, float v) { setChecked(x, [&](Material& y) { y.alphaCutoff = v; }); })
-        .def_property("normal_scale", [](const Material& x) { return x.normalScale; },
-                      [](Material& x, float v) { setChecked(x, [&](Material& y) { y.normalScale = v; }); },
-                      "Scale of the normal map's x and y before normalisation (glTF), > 0.")
-        .def_property("shininess_max", [](const Material& x) { return x.shininessMax; },
-                      [](Material& x, float v) { setChecked(x, [&](Material& y) { y.shininessMax = v; }); },
-                      "> 0: the specular map's alpha a holds the exponent per texel,\n"
-                      "shininess * (shininess_max / shininess)^a; 0: unused.")
-        .def_property("ambient_map_is_radiance", [](const Material& x) { return x.ambientMapIsRadiance; },
-                      [](Material& x, bool v) {
-                          setChecked(x, [&](Material& y) { y.ambientMapIsRadiance = v; });
-                      }, "The ambient term is ka * ambient_map (not times T or the scene's ambient).")
-        .def("__repr__", [](const Material& x) {
-            return "<weft.Material kd=" + vecRepr(x.kd) + " ks=" + vecRepr(x.ks) +
-                   " shininess=" + std::to_string(x.shininess) +
-                   (x.texture ? " textured>" : ">");
-        });
-
-    py::class_<DirectionalLight>(m, "DirectionalLight",
-        "Sun-like light. `direction` points from the light into the scene.")
-        .def(py::init([](py::handle direction, py::handle color, float intensity, bool shadows,
-                         float angularRadius) {
-            DirectionalLight l;
-            l.direction = toVec3(direction, "direction");
-            l.color = toVec3(color, "color");
-            l.intensity = intensity;
-            l.castShadows = shadows;
-            l.angularRadius = angularRadius;
-            l.validate();
-            return l;
-        }), py::arg("direction") = py::make_tuple(0, -1, 0), py::arg("color") = py::make_tuple(1, 1, 1),
-           py::arg("intensity") = 1.0f, py::arg("cast_shadows") = true,
-           py::arg("angular_radius") = 0.0f,
-            "A directional light shining along `direction` with `color` x `intensity`; "
-            "`angular_radius` (radians) of its disc softens its shadow.")
-        .WEFT_VEC3_PROPERTY(DirectionalLight, "direction", direction)
-        .WEFT_VEC3_PROPERTY(DirectionalLight, "color", color)
-        .def_property("intensity", [](const DirectionalLight& l) { return l.intensity; },
-                      [](DirectionalLight& l, float v) {
-                          setChecked(l, [&](DirectionalLight& x) { x.intensity = v; });
-                      })
-        .def_readwrite("cast_shadows", &DirectionalLight::castShadows)
-        .def_property("angular_radius", [](const DirectionalLight& l) { return l.angularRadius; },
-                      [](DirectionalLight& l, float v) {
-                          setChecked(l, [&](DirectionalLight& x) { x.angularRadius = v; });
-                      }, "Radians of the disc the light comes from (the sun: 0.0047); > 0 softens "
-                         "its shadow by the penumbra that disc casts, 0 keeps the fixed PCF kernel.")
-        .def("__repr__", [](const DirectionalLight& l) {
-            return "<weft.DirectionalLight direction=" + vecRepr(l.direction) +
-                   " color=" + vecRepr(l.color) + " intensity=" + std::to_string(l.intensity) +
-                   (l.castShadows ? " shadows>" : ">");
-        });
-
-    auto attenuationOf = [](py::handle terms, float radius) {
-        Attenuation a;
-        auto t = numericArray(terms, "attenuation");
-        if (t.ndim() != 1 || t.shape(0) != 3)
-            throw InvalidArgument("attenuation must be (k_c, k_l, k_q)");
-        a.constant = float(t.at(0));
-        a.linear = float(t.at(1));
-        a.quadratic = float(t.at(2));
-        a.radius = radius;
-        return a;
-    };
-    auto terms = [](const Attenuation& a) { return py::make_tuple(a.constant, a.linear, a.quadratic); };
-
-    py::class_<PointLight>(m, "PointLight",
-        "Light from a point in all directions. Attenuation a(d) = 1 / (k_c + k_l d + k_q d^2)\n"
-        "(eq. 2.3), or max(0, 1 - d^2 / radius^2) (eq. 2.4) when radius > 0. Shadows use six\n"
-        "perspective views.")
-        .def(py::init([=](py::handle position, py::handle color, float intensity,
-                          py::handle attenuation, float radius, bool shadows, float shadowNear) {
-            PointLight l;
-            l.position = toVec3(position, "position");
-            l.color = toVec3(color, "color");
-            l.intensity = intensity;
-            l.attenuation = attenuationOf(attenuation, radius);
-            l.castShadows = shadows;
-            l.shadowNear = shadowNear;
-            l.validate();
-            return l;
-        }), py::arg("position") = py::make_tuple(0, 2, 0), py::arg("color") = py::make_tuple(1, 1, 1),
-           py::arg("intensity") = 1.0f, py::arg("attenuation") = py::make_tuple(1, 0, 0),
-           py::arg("radius") = 0.0f, py::arg("cast_shadows") = true, py::arg("shadow_near") = 0.05f,
-            "A point light at `position` with `color` x `intensity`; attenuation (k_c, k_l, "
-            "k_q) of 1 / (k_c + k_l d + k_q d²), or with radius > 0 the windowed falloff "
-            "(SPEC §1.2); shadow_near: the near plane of its shadow views.")
-        .WEFT_VEC3_PROPERTY(PointLight, "position", position)
-        .WEFT_VEC3_PROPERTY(PointLight, "color", color)
-        .def_property("intensity", [](const PointLight& l) { return l.intensity; },
-                      [](PointLight& l, float v) { setChecked(l, [&](PointLight& x) { x.intensity = v; }); })
-        .def_property("attenuation", [=](const PointLight& l) { return terms(l.attenuation); },
-                      [=](PointLight& l, py::handle v) {
-                          const Attenuation a = attenuationOf(v, l.attenuation.radius);
-                          setChecked(l, [&](PointLight& x) { x.attenuation = a; });
-                      })
-        .def_property("radius", [](const PointLight& l) { return l.attenuation.radius; },
-                      [](PointLight& l, float v) { setChecked(l, [&](PointLight& x) { x.attenuation.radius = v; }); })
-        .def_readwrite("cast_shadows", &PointLight::castShadows)
-        .def_property("shadow_near", [](const PointLight& l) { return l.shadowNear; },
-                      [](PointLight& l, float v) { setChecked(l, [&](PointLight& x) { x.shadowNear = v; }); })
-        .def("attenuation_at", [](const PointLight& l, float d) {
-            if (!(d >= 0.0f && std::isfinite(d)))
-                throw InvalidArgument("PointLight.attenuation_at: distance must be finite and >= 0, "
-                                      "got " + std::to_string(d));
-            return l.attenuation(d);
-        },
-             py::arg("distance"), "a(d) at a distance from the light.")
-        .def("__repr__", [](const PointLight& l) {
-            return "<weft.PointLight position=" + vecRepr(l.position) + " color=" + vecRepr(l.color) +
-                   " intensity=" + std::to_string(l.intensity) + (l.castShadows ? " shadows>" : ">");
-        });
-
-    py::class_<SpotLight>(m, "SpotLight",
-        "Light into a cone around `direction`: full intensity within inner_angle of the axis,\n"
-        "smooth falloff to zero at outer_angle (half-angles, radians), distance attenuation as\n"
-        "PointLight, an optional `cookie` texture projected over the cone (RGB modulates).")
-        .def(py::init([=](py::handle position, py::handle direction, py::handle color,
-                          float intensity, float inner, float outer, py::handle attenuation,
-                          float radius, std::shared_ptr<Texture> cookie, bool shadows,
-                          float shadowNear) {
-            SpotLight l;
-            l.position = toVec3(position, "position");
-            l.direction = toVec3(direction, "direction");
-            l.color = toVec3(color, "color");
-            l.intensity = intensity;
-            l.innerAngle = inner;
-            l.outerAngle = outer;
-            l.attenuation = attenuationOf(attenuation, radius);
-            l.cookie = cookie;
-            l.castShadows = shadows;
-            l.shadowNear = shadowNear;
-            l.validate();
-            return l;
-        }), py::arg("position") = py::make_tuple(0, 2, 0), py::arg("direction") = py::make_tuple(0, -1, 0),
-           py::arg("color") = py::make_tuple(1, 1, 1), py::arg("intensity") = 1.0f,
-           py::arg("inner_angle") = 0.35f, py::arg("outer_angle") = 0.5f,
-           py::arg("attenuation") = py::make_tuple(1, 0, 0), py::arg("radius") = 0.0f,
-           py::arg("cookie") = nullptr, py::arg("cast_shadows") = true, py::arg("shadow_near") = 0.05f,
-            "A spot light at `position` shining along `direction`, full inside inner_angle "
-            "and falling smoothly to zero at outer_angle (radians); attenuation and radius as "
-            "PointLight; an optional cookie Texture projected through the cone.")
-        .WEFT_VEC3_PROPERTY(SpotLight, "position", position)
-        .WEFT_VEC3_PROPERTY(SpotLight, "direction", direction)
-        .WEFT_VEC3_PROPERTY(SpotLight, "color", color)
-        .def_property("intensity", [](const SpotLight& l) { return l.intensity; },
-                      [](SpotLight& l, float v) { setChecked(l, [&](SpotLight& x) { x.intensity = v; }); })
-        .def_property("inner_angle", [](const SpotLight& l) { return l.innerAngle; },
-                      [](SpotLight& l, float v) { setChecked(l, [&](SpotLight& x) { x.innerAngle = v; }); })
-        .def_property("outer_angle", [](const SpotLight& l) { return l.outerAngle; },
-                      [](SpotLight& l, float v) { setChecked(l, [&](SpotLight& x) { x.outerAngle = v; }); })
-        .def_property("attenuation", [=](const SpotLight& l) { return terms(l.attenuation); },
-                      [=](SpotLight& l, py::handle v) {
-                          const Attenuation a = attenuationOf(v, l.attenuation.radius);
-                          setChecked(l, [&](SpotLight& x) { x.attenuation = a; });
-                      })
-        .def_property("radius", [](const SpotLight& l) { return l.attenuation.radius; },
-                      [](SpotLight& l, float v) { setChecked(l, [&](SpotLight& x) { x.attenuation.radius = v; }); })
-        .def_property("cookie",
-                      [](const SpotLight& l) { return std::const_pointer_cast<Texture>(l.cookie); },
-                      [](SpotLight& l, std::shared_ptr<Texture> t) { l.cookie = t; })
-        .def_readwrite("cast_shadows", &SpotLight::castShadows)
-        .def_property("shadow_near", [](const SpotLight& l) { return l.shadowNear; },
-                      [](SpotLight& l, float v) { setChecked(l, [&](SpotLight& x) { x.shadowNear = v; }); })
-        .def("__repr__", [](const SpotLight& l) {
-            return "<weft.SpotLight position=" + vecRepr(l.position) + " direction=" +
-                   vecRepr(l.direction) + " color=" + vecRepr(l.color) + " intensity=" +
-                   std::to_string(l.intensity) + (l.cookie ? " cookie" : "") +
-                   (l.castShadows ? " shadows>" : ">");
-        });
+    bindMaterial(m); // Texture, Material, then the lights: before the Scene methods taking them
+    bindLights(m);
 
     py::class_<Camera>(m, "Camera", "Perspective camera (fov_y in radians).")
         .def(py::init([](py::handle position, py::handle target, py::handle up, float fovY,
