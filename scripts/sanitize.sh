@@ -6,6 +6,8 @@
 # detection: llvmpipe's JIT-compiled shaders allocate from code that has no symbols or module
 # (LeakSanitizer reports "<unknown module>", which no suppression can name) -- ASan's memory
 # errors and UBSan still apply to them.
+#   bash scripts/sanitize.sh         build and run the tests (part of scripts/test.sh)
+#   bash scripts/sanitize.sh build   build only (scripts/test.sh builds it while pytest runs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(cd .. && pwd)}"
@@ -20,6 +22,7 @@ cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWEFT_BUILD
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
 cmake --build build/asan --parallel "$(nproc)"
+[ "${1:-}" = build ] && exit 0
 source scripts/env.sh
 export WEFT_VALIDATION=1
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"

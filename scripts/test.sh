@@ -14,10 +14,25 @@ bash scripts/build.sh
 phase build
 source scripts/env.sh
 export WEFT_VALIDATION=1
+# The sanitizer and fuzzer builds (two more builds of the library, the longest part of a run on a
+# fresh machine) go on beside the tests at low priority: they take the CPU time pytest leaves
+# idle (its single-threaded Python, its waits on subprocesses) and give way to it otherwise.
+lanes_log=build/lanes-build.log
+mkdir -p build
+setsid nice -n 15 bash -c 'bash scripts/sanitize.sh build && bash scripts/fuzz.sh build' \
+    > "$lanes_log" 2>&1 &
+lanes=$!
+trap 'kill -- -"$lanes" 2>/dev/null || true' EXIT  # a failed test stops the builds too
 ctest --test-dir build/py --output-on-failure --timeout 600
 phase ctest
 python3 -m pytest tests/python -q -p no:cacheprovider --durations=25
 phase pytest
+if ! wait "$lanes"; then
+    tail -n 60 "$lanes_log"
+    echo "test.sh: the sanitizer or fuzzer build failed (log: $lanes_log)" >&2
+    exit 1
+fi
+phase "sanitizer and fuzzer builds (beside the tests)"
 bash scripts/sanitize.sh
 phase sanitize
 bash scripts/fuzz.sh
