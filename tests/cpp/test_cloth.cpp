@@ -8,7 +8,6 @@
 
 #include <weft/Cloth.h>
 
-#include "core/ThreadPool.h"
 
 namespace {
 
@@ -26,37 +25,6 @@ weft::ClothParams hanging(int n, int threads) {
 }
 
 } // namespace
-
-TEST(ThreadPool, EveryIndexExactlyOnce) {
-    for (int threads : {1, 2, 3, 7}) {
-        weft::ThreadPool pool(threads);
-        for (int n : {1, 5, 100, 5000, 100003}) {
-            std::vector<std::atomic<int>> hits(static_cast<size_t>(n));
-            for (auto& h : hits) h = 0;
-            pool.parallelFor(n, [&](int b, int e) {
-                for (int i = b; i < e; ++i) hits[size_t(i)]++;
-            }, 1);
-            for (int i = 0; i < n; ++i) ASSERT_EQ(hits[size_t(i)].load(), 1) << threads << " " << n;
-        }
-    }
-}
-
-TEST(ThreadPool, ManyQuickJobsEachRunOnce) {
-    // Back-to-back jobs, some with fewer items than threads: a worker that wakes late must not
-    // run a chunk of a job that is over, nor miss one of the next.
-    for (int threads : {2, 3, 7}) {
-        weft::ThreadPool pool(threads);
-        std::vector<std::atomic<int>> hits(64);
-        for (int job = 0; job < 20000; ++job) {
-            const int n = 1 + job % 64;
-            for (int i = 0; i < n; ++i) hits[size_t(i)] = 0;
-            pool.parallelFor(n, [&](int b, int e) {
-                for (int i = b; i < e; ++i) hits[size_t(i)]++;
-            }, 1);
-            for (int i = 0; i < n; ++i) ASSERT_EQ(hits[size_t(i)].load(), 1) << threads << " " << job;
-        }
-    }
-}
 
 TEST(Cloth, ResultDoesNotDependOnThreadCount) {
     weft::Cloth one(hanging(96, 1)), two(hanging(96, 2));

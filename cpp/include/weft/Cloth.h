@@ -62,7 +62,7 @@ struct ClothParams {
     float tearStrain = 0.0f;
     float sleepThreshold = 0.0f;         // sleep below this mean speed (m/s); 0 = never sleep
     int sleepSteps = 30;                 // ... for this many consecutive steps
-    int threads = 0;                     // worker threads; 0 = hardware concurrency
+    int threads = 0;                     // at most this many of the engine pool's threads; 0 = all
 
     /// Throws InvalidArgument for impossible values (sizes, NaN, counts, axes) and values
     /// outside the ranges of cloth_limits.

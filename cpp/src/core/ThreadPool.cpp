@@ -7,6 +7,8 @@
 #include <system_error>
 #include <chrono>
 
+#include <unistd.h>
+
 #if defined(__x86_64__) || defined(_M_X64)
 #include <immintrin.h>
 #define WEFT_PAUSE() _mm_pause()
@@ -19,13 +21,18 @@ namespace weft {
 namespace {
 // About a microsecond of pause instructions: the usual gap between jobs of one cloth sweep.
 constexpr int kSpinsBeforeYield = 64;
+int hardwareThreads() { return int(std::max(1u, std::thread::hardware_concurrency())); }
 } // namespace
 
-ThreadPool::ThreadPool(int threads) {
-    const int hw = int(std::max(1u, std::thread::hardware_concurrency()));
-    if (threads > kMaxPoolThreads)
+void checkThreads(int threads) {
+    if (threads < 0 || threads > kMaxPoolThreads)
         throw InvalidArgument("threads must be 0 (all cores) or 1.." +
                               std::to_string(kMaxPoolThreads) + ", got " + std::to_string(threads));
+}
+
+ThreadPool::ThreadPool(int threads) {
+    const int hw = hardwareThreads();
+    if (threads > kMaxPoolThreads) checkThreads(threads);
     mSize = std::max(1, threads > 0 ? threads : std::min(hw, kMaxPoolThreads));
     mClaimed = std::make_unique<std::atomic<unsigned>[]>(size_t(mSize));
     for (int c = 0; c < mSize; ++c) mClaimed[size_t(c)].store(0, std::memory_order_relaxed);
@@ -62,11 +69,21 @@ void ThreadPool::runChunks(int first, unsigned generation) {
         if (!mClaimed[size_t(c)].compare_exchange_strong(expected, generation,
                                                          std::memory_order_acq_rel))
             continue;
-        // Claimed: the caller waits for this chunk, so body and count are this job's.
+        // Claimed: the caller waits for this chunk, so body and counts are this job's. Slots
+        // beyond the job's chunk count are claimed like the others and hold nothing.
         const int count = mCount.load(std::memory_order_relaxed);
-        const int begin = int(int64_t(count) * c / mSize);
-        const int end = int(int64_t(count) * (c + 1) / mSize);
-        if (end > begin) (*mBody.load(std::memory_order_relaxed))(begin, end);
+        const int chunks = mChunks.load(std::memory_order_relaxed);
+        if (c < chunks && !mFailed.load(std::memory_order_relaxed)) {
+            const int begin = int(int64_t(count) * c / chunks);
+            const int end = int(int64_t(count) * (c + 1) / chunks);
+            try {
+                if (end > begin) (*mBody.load(std::memory_order_relaxed))(begin, end);
+            } catch (...) {
+                std::lock_guard<std::mutex> lock(mErrorMutex);
+                if (!mError) mError = std::current_exception();
+                mFailed.store(true, std::memory_order_relaxed);
+            }
+        }
         mDone.fetch_add(1, std::memory_order_acq_rel);
     }
 }
@@ -96,9 +113,11 @@ void ThreadPool::workerLoop(int index) {
     }
 }
 
-void ThreadPool::parallelFor(int n, const std::function<void(int, int)>& body, int minParallel) {
+void ThreadPool::parallelFor(int n, const std::function<void(int, int)>& body, int minParallel,
+                             int chunks) {
     if (n <= 0) return;
-    if (mSize == 1 || n < minParallel) {
+    chunks = chunks <= 0 ? mSize : std::min(chunks, mSize);
+    if (chunks == 1 || n < minParallel) {
         body(0, n);
         return;
     }
@@ -109,6 +128,8 @@ void ThreadPool::parallelFor(int n, const std::function<void(int, int)>& body, i
     }
     mBody.store(&body, std::memory_order_relaxed);
     mCount.store(n, std::memory_order_relaxed);
+    mChunks.store(chunks, std::memory_order_relaxed);
+    mFailed.store(false, std::memory_order_relaxed);
     mDone.store(0, std::memory_order_relaxed);
     const unsigned generation = mGeneration.load(std::memory_order_relaxed) + 1;
     mGeneration.store(generation); // publishes the job (sequentially consistent with mSleeping)
@@ -123,6 +144,68 @@ void ThreadPool::parallelFor(int n, const std::function<void(int, int)>& body, i
         if (spins < kSpinsBeforeYield) WEFT_PAUSE();
         else std::this_thread::yield();
     }
+    if (mFailed.load(std::memory_order_relaxed)) {
+        std::exception_ptr error;
+        {
+            std::lock_guard<std::mutex> lock(mErrorMutex);
+            std::swap(error, mError);
+        }
+        std::rethrow_exception(error);
+    }
+}
+
+void ThreadPool::parallelForDynamic(int n, int grain, const std::function<void(int, int)>& body,
+                                    int chunks) {
+    if (n <= 0) return;
+    grain = std::max(grain, 1);
+    const int participants = std::min(chunks <= 0 ? mSize : chunks, (n + grain - 1) / grain);
+    if (participants <= 1) {
+        body(0, n);
+        return;
+    }
+    std::atomic<int> next{0};
+    std::atomic<bool> failed{false};
+    parallelFor(participants, [&](int p0, int p1) {
+        for (int p = p0; p < p1; ++p) {
+            for (int b; !failed.load(std::memory_order_relaxed) &&
+                        (b = next.fetch_add(grain, std::memory_order_relaxed)) < n;) {
+                try {
+                    body(b, std::min(n, b + grain));
+                } catch (...) {
+                    failed = true; // the others stop taking items; parallelFor rethrows
+                    throw;
+                }
+            }
+        }
+    }, 1, participants);
+}
+
+ThreadPool& enginePool() {
+    // Deliberately never destroyed: a body may run during static destruction (a Python object
+    // freed at exit), and joining threads there can deadlock. A child process made by fork()
+    // (Python's multiprocessing) inherits the pool but not its threads: it starts its own.
+    static std::mutex mutex;
+    static ThreadPool* pool = nullptr;
+    static pid_t owner = 0;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (pool == nullptr || owner != ::getpid()) {
+        for (int threads = std::min(hardwareThreads(), kMaxPoolThreads);; threads /= 2) {
+            try {
+                pool = new ThreadPool(threads);
+                break;
+            } catch (const Error&) {
+                if (threads <= 1) throw;
+            }
+        }
+        owner = ::getpid();
+    }
+    return *pool;
+}
+
+PoolShare::PoolShare(int threads) {
+    if (threads > kMaxPoolThreads) checkThreads(threads);
+    const int size = enginePool().size();
+    mChunks = threads <= 0 ? size : std::min(threads, size);
 }
 
 } // namespace weft

@@ -99,8 +99,7 @@ HairStrands generateFur(const Mesh& mesh, const FurParams& params, const ImageU8
     if (texture) h.colors.resize(h.points.size());
     const float segmentLength = params.length / float(params.segments);
 
-    ThreadPool pool(params.threads);
-    pool.parallelFor(int(triangles), [&](int begin, int end) {
+    PoolShare(params.threads).parallelFor(int(triangles), [&](int begin, int end) {
         for (int t = begin; t < end; ++t) {
             const uint32_t i0 = mesh.indices[3 * size_t(t)], i1 = mesh.indices[3 * size_t(t) + 1],
                            i2 = mesh.indices[3 * size_t(t) + 2];

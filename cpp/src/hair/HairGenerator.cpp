@@ -67,8 +67,7 @@ HairStrands generateHair(const HairStyle& style) {
     h.points.resize(size_t(style.points));
     h.info = "weft generated hair";
 
-    ThreadPool pool(style.threads);
-    pool.parallelFor(int(n), [&](int begin, int end) {
+    PoolShare(style.threads).parallelFor(int(n), [&](int begin, int end) {
         for (int s = begin; s < end; ++s) {
             const uint32_t id = uint32_t(s);
             // Root: uniform in height over the cap and in azimuth, scaled onto the ellipsoid.

@@ -55,7 +55,7 @@ bool Cloth::Impl::publish() {
 Cloth::Cloth(const ClothParams& params) : mImpl(std::make_unique<Impl>()) {
     params.validate();
     mImpl->params = params;
-    mImpl->pool = std::make_unique<ThreadPool>(params.threads);
+    mImpl->pool = std::make_unique<PoolShare>(params.threads);
     mImpl->build();
     mImpl->applyInverseMasses();
     mImpl->publish();
@@ -84,7 +84,7 @@ void Cloth::setParams(const ClothParams& p) {
     const bool tethersChanged = p.tethers != o.tethers;
     const bool threadsChanged = p.threads != o.threads;
     mImpl->params = p;
-    if (threadsChanged) mImpl->pool = std::make_unique<ThreadPool>(p.threads);
+    if (threadsChanged) mImpl->pool = std::make_unique<PoolShare>(p.threads);
     if (tethersChanged) mImpl->rebuildTethers();
     wake();
 }

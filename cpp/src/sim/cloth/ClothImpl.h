@@ -108,7 +108,7 @@ struct Cloth::Impl {
     int quietSteps = 0;
     bool asleep = false;
     float lastH = 1.0f / 60.0f;
-    std::unique_ptr<ThreadPool> pool;
+    std::unique_ptr<PoolShare> pool; // this cloth's share of the engine pool
     cloth::Isa isa = cloth::bestIsa();
 
     void build();                    // grid, constraints, batches (ClothSetup.cpp)
