@@ -123,6 +123,7 @@ def test_peer_tiny_run(tmp_path: Path) -> None:
         assert mode["filament_ms"] > 0.0 and mode["weft_ms"] > 0.0
         assert mode["ratio_weft_over_filament"] == pytest.approx(
             mode["weft_ms"] / mode["filament_ms"])
+        assert mode["ratio_pairs_median"] > 0.0
         assert mode["filament_image_std"] > 5.0  # the scene, not a uniform clear colour
     assert peer["modes"]["defaults"]["filament_settings"]["msaa"] == 4
     assert peer["modes"]["post_off"]["weft_settings"]["msaa"] == 1

@@ -455,6 +455,8 @@ def measure_peer(width: int, height: int, frames: int, progress: Any = None,
             "filament_ms": f_med,
             "weft_ms": w_med,
             "ratio_weft_over_filament": (w_med / f_med) if f_med and w_med else None,
+            # the median of frame-pair ratios: each pair ran back to back, under one load
+            "ratio_pairs_median": _median([w / f for w, f in zip(weft_ms, fil_ms) if f > 0]),
             "filament_frames_ms": fil_ms,
             "weft_frames_ms": weft_ms,
             "filament_settings": fil_settings,
@@ -503,7 +505,7 @@ def to_markdown(peer: Dict[str, Any]) -> str:
         "",
     ]
     header = ["mode", "Filament settings", "weft settings", "Filament ms", "weft ms",
-              "weft / Filament"]
+              "weft / Filament", "median pair ratio"]
     rows = []
     for mode, m in peer["modes"].items():
         f, w = m["filament_settings"], m["weft_settings"]
@@ -512,7 +514,8 @@ def to_markdown(peer: Dict[str, Any]) -> str:
         weft_text = (f"MSAA {w.get('msaa', '?')}, tone map {w.get('tone_map', '?')}, AO "
                      f"{w.get('ambient_occlusion', '?')}, bounce {w.get('bounce', '?')}")
         rows.append([mode, fil_text, weft_text, _fmt(m["filament_ms"]), _fmt(m["weft_ms"]),
-                     _fmt(m["ratio_weft_over_filament"], 3)])
+                     _fmt(m["ratio_weft_over_filament"], 3),
+                     _fmt(m.get("ratio_pairs_median"), 3)])
     lines.append(markdown_table(header, rows))
     lines += ["", "Not matched: " + "; ".join(peer.get("unmatched", [])) + "."]
     if peer.get("picture"):
