@@ -9,12 +9,19 @@ without the global terms (bounce light, ambient occlusion; their accuracy is mea
 the path tracer by ``weft.bench picture``). Times are medians over the frames; errors are the
 worst frame's (max) or the average (mean). ``render()`` (colour only, no debug read-back) is
 timed as well, both that way and at the renderer's defaults (global terms on).
+
+The Filament peer (:mod:`weft.bench.render_peer`, issue 19) renders the matched default scene
+at 1280x720 beside weft in the same run, with both renderers' defaults and with
+post-processing off on both, and reports weft / Filament; it runs when open3d imports
+(``--peer`` / ``--no-peer``; ``--quick`` skips it unless ``--peer``), and is reported as
+skipped, with the reason, otherwise.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import os
 import statistics
 import sys
 import time
@@ -23,6 +30,8 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from weft.bench import Progress, machine_info, markdown_table, write_report
+from weft.bench.render_peer import measure_peer
+from weft.bench.render_peer import to_markdown as peer_markdown
 from weft.reporting import add_progress_arguments
 
 DESCRIPTION = ("frame time (CPU, GPU per pass) vs resolution and shadow-map size, with the "
@@ -33,6 +42,9 @@ SHADOW_SIZES: Tuple[int, ...] = (1024, 2048, 4096)
 QUICK_RESOLUTIONS: Tuple[Tuple[int, int], ...] = ((160, 120),)
 QUICK_SHADOW_SIZES: Tuple[int, ...] = (512,)
 PASS_GROUPS: Tuple[str, ...] = ("shadow", "forward", "output")
+#: The Filament peer's resolution (issue 19), and with --quick.
+PEER_RESOLUTION: Tuple[int, int] = (1280, 720)
+PEER_QUICK_RESOLUTION: Tuple[int, int] = (160, 120)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -43,6 +55,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--frames", type=int, default=None,
                         help="timed frames per setting after one warm-up frame "
                              "(default 5, 1 with --quick)")
+    parser.add_argument("--peer", action=argparse.BooleanOptionalAction, default=None,
+                        help="the Filament peer (Open3D's OffscreenRenderer, extra "
+                             "weft[filament]) on the matched default scene at 1280x720, "
+                             "160x120 with --quick; default: run it when open3d imports, "
+                             "except with --quick")
+    parser.add_argument("--peer-only", action="store_true",
+                        help="run the Filament peer alone, without the resolution x shadow-map "
+                             "settings")
     add_progress_arguments(parser)
 
 
@@ -317,11 +337,21 @@ def to_markdown(report: Dict[str, Any]) -> str:
             f"{100.0 * o['u8_over_1']:.3f}%" if o else "n/a",
             f"{100.0 * o['shadow_mismatch']:.3f}%" if o else "n/a",
         ])
-    lines.append(markdown_table(header, rows))
+    if rows:
+        lines.append(markdown_table(header, rows))
     errors = sorted({r["oracle_error"] for r in report["results"] if r.get("oracle_error")})
     for e in errors:
         lines += ["", f"Oracle not evaluated: {e}"]
+    if report.get("peer") is not None:
+        lines += ["", peer_markdown(report["peer"]).rstrip("\n")]
     return "\n".join(lines) + "\n"
+
+
+def _device_name() -> Optional[str]:
+    import weft
+
+    selected = [d for d in weft.devices() if d.get("selected")]
+    return selected[0]["name"] if selected else None
 
 
 def run(args: argparse.Namespace) -> int:
@@ -335,24 +365,43 @@ def run(args: argparse.Namespace) -> int:
         print("python -m weft.bench render: error: --frames must be >= 1", file=sys.stderr)
         return 2
 
-    settings = [(w, h, s) for (w, h) in resolutions for s in shadow_sizes]
-    progress = Progress(len(settings), enabled=args.progress)
+    run_peer = args.peer if args.peer is not None else not args.quick
+    if args.peer_only and args.peer is False:
+        print("python -m weft.bench render: error: --peer-only with --no-peer",
+              file=sys.stderr)
+        return 2
+    run_peer = run_peer or args.peer_only
+    settings = [] if args.peer_only else \
+        [(w, h, s) for (w, h) in resolutions for s in shadow_sizes]
+    progress = Progress(len(settings) + int(run_peer), enabled=args.progress)
     results = []
     for w, h, s in settings:
         results.append(measure_setting(w, h, s, frames, progress))
         progress.step(f"{w}x{h} shadow {s} done")
+    if run_peer:
+        pw, ph = PEER_QUICK_RESOLUTION if args.quick else PEER_RESOLUTION
+        peer = measure_peer(pw, ph, frames, progress,
+                            picture_path=os.path.join(args.out, "peer.png"))
+        progress.step("Filament peer done")
+    else:
+        peer = {"skipped": True,
+                "note": "not asked for (--quick runs the Filament peer only with --peer)"
+                if args.quick else "switched off with --no-peer"}
     progress.close()
 
     machine = machine_info()
     report = {
         "benchmark": "render",
         "command": "python -m weft.bench render" + (" --quick" if args.quick else "")
-                   + (f" --frames {args.frames}" if args.frames is not None else ""),
+                   + (f" --frames {args.frames}" if args.frames is not None else "")
+                   + ({True: " --peer", False: " --no-peer", None: ""}[args.peer])
+                   + (" --peer-only" if args.peer_only else ""),
         "scene": "default_scene()",
         "frames": frames,
-        "device": results[0]["device"] if results else None,
+        "device": results[0]["device"] if results else _device_name(),
         "machine": machine,
         "results": results,
+        "peer": peer,
     }
     markdown = to_markdown(report)
     paths = write_report(args.out, report, markdown)
