@@ -142,9 +142,8 @@ def make_target(target: str):
 
 def write_seeds() -> None:
     import numpy as np
-    from PIL import Image
-
     import weft
+    from PIL import Image
 
     jdir = os.path.join(CORPUS, "jpeg")
     os.makedirs(jdir, exist_ok=True)

@@ -70,7 +70,6 @@ SEEDS = {
 
 def write_seeds() -> None:
     import numpy as np
-
     import weft
 
     for target, seeds in SEEDS.items():

@@ -7,7 +7,6 @@ import os
 from typing import Dict, List
 
 import numpy as np
-
 import weft.btf.synth as synth
 
 SCENE_SCRIPT = '''import weft

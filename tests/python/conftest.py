@@ -15,7 +15,6 @@ from typing import Callable, Iterator  # noqa: E402
 
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
-
 import weft  # noqa: E402
 
 

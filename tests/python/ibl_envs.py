@@ -6,7 +6,6 @@ from __future__ import annotations
 from typing import Callable, Sequence
 
 import numpy as np
-
 from weft.reference import ibl as ref
 
 Env = Callable[[np.ndarray], np.ndarray]  # (N, 3) unit directions -> (N, 3) radiance

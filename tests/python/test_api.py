@@ -8,7 +8,6 @@ import os
 
 import numpy as np
 import pytest
-
 import weft
 from weft import Error, InvalidArgument, IoError
 

@@ -9,7 +9,6 @@ import inspect
 import math
 
 import pytest
-
 import weft
 import weft._core as core
 

@@ -15,7 +15,6 @@ import signal
 
 import numpy as np
 import pytest
-
 import weft
 import weft._core as core
 

@@ -9,13 +9,11 @@ import re
 
 import numpy as np
 import pytest
-
 import weft
 import weft.batch as wb
 import weft.btf.synth as synth
-from weft.__main__ import main as weft_main
-
 from batch_data import tree, write_datasets, write_render_jobs
+from weft.__main__ import main as weft_main
 
 
 def _masked_metrics(path: str) -> dict:

@@ -23,7 +23,6 @@ os.environ.setdefault("RAY_AUTH_MODE", "token")
 ray = pytest.importorskip("ray")
 
 import weft.batch as wb  # noqa: E402
-
 from batch_data import tree, write_datasets, write_render_jobs  # noqa: E402
 
 

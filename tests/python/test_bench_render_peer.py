@@ -17,7 +17,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 import weft
 from weft.bench import main as bench_main
 from weft.bench import render_peer

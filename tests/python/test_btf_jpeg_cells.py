@@ -9,7 +9,6 @@ import os
 
 import numpy as np
 import pytest
-
 import weft
 from weft import btf
 from weft.btf import synth

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from weft import btf
 from weft.btf import synth
 from weft.btf.material import BtfMaterial

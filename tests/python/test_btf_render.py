@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 import weft
 from weft import btf
 from weft import reference as ref

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 import weft
 from weft import btf
 from weft.btf import scoring, synth

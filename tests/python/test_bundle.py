@@ -21,7 +21,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 import weft
 
 ROOT = Path(__file__).resolve().parents[2]

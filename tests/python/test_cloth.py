@@ -13,7 +13,6 @@ from typing import Any, Dict
 
 import numpy as np
 import pytest
-
 import weft
 from weft.reference import cloth as ref
 

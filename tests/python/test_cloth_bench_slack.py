@@ -4,7 +4,6 @@ trajectory spread at the peer's setting (python/weft/bench/cloth.py)."""
 from __future__ import annotations
 
 import pytest
-
 from weft.bench import cloth as bench
 
 

@@ -9,10 +9,15 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
-from weft.bench.cloth import (DIVERGED_STRAIN, SETTINGS, STRAIN_SLACK, STRAIN_STEPS, Setting,
-                               WeftEngine)
 import weft.bench.cloth_peer_gs as gs
+from weft.bench.cloth import (
+    DIVERGED_STRAIN,
+    SETTINGS,
+    STRAIN_SLACK,
+    STRAIN_STEPS,
+    Setting,
+    WeftEngine,
+)
 
 
 @pytest.mark.parametrize("setting", [Setting("sub2", 1, 2), Setting("tethers-it2", 2, 1, tethers=True),

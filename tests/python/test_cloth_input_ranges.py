@@ -13,7 +13,6 @@ import math
 
 import numpy as np
 import pytest
-
 import weft
 
 DT = 1.0 / 60.0

@@ -10,11 +10,9 @@ from typing import Any, List, Tuple
 
 import numpy as np
 import pytest
-
 import weft
-from weft.reference import cloth as ref
-
 from test_cloth import DT, G, hanging, positions64, triangle_set
+from weft.reference import cloth as ref
 
 # --------------------------------------------------------------------------------------------
 # Colliders

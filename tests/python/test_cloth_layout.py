@@ -16,7 +16,6 @@ from typing import Any, Callable, Dict, Optional
 
 import numpy as np
 import pytest
-
 import weft
 
 pytestmark = pytest.mark.skipif(not weft.Cloth.soa_kernels_available(),

@@ -14,7 +14,6 @@ from typing import Tuple
 
 import numpy as np
 import pytest
-
 import weft
 from weft.reference.cloth import ClothReference, PlaneShape
 

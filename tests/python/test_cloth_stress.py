@@ -10,7 +10,6 @@ from typing import Any, Callable, Dict
 
 import numpy as np
 import pytest
-
 import weft
 
 STEPS = 10_000

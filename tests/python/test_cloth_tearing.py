@@ -13,7 +13,6 @@ from typing import Tuple
 
 import numpy as np
 import pytest
-
 import weft
 
 DT = 1.0 / 60.0

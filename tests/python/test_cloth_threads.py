@@ -13,7 +13,6 @@ import time
 from typing import Callable, List
 
 import numpy as np
-
 import weft
 
 DT = 1.0 / 60.0

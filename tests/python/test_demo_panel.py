@@ -11,7 +11,6 @@ from typing import List
 
 import numpy as np
 import pytest
-
 import weft
 from test_demo_window import psnr, run_demo_process, window_env, xvfb_display  # noqa: F401
 

@@ -14,7 +14,6 @@ from typing import Dict, Iterator, List
 
 import numpy as np
 import pytest
-
 import weft
 
 DEMO_TIMEOUT_S = 300

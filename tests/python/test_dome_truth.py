@@ -11,11 +11,10 @@ circles where the truth has 0-1, angular variation 9-12x the truth's). After: 0.
 
 from __future__ import annotations
 
+import dome_truth as dt
 import numpy as np
 import pytest
-
 import weft
-import dome_truth as dt
 
 SUN = (0.6, 0.7, 0.3)
 

@@ -5,7 +5,6 @@ pass; the pass lists say so, and reuse never changes the picture."""
 from __future__ import annotations
 
 import numpy as np
-
 import weft
 
 

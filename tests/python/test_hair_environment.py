@@ -5,7 +5,6 @@ kernel over every cube texel with its solid angle: (1 / pi^2) sum L(w) sin(t, w)
 from __future__ import annotations
 
 import numpy as np
-
 import weft
 import weft.ibl as ibl
 from weft.reference import ibl as ref

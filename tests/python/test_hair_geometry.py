@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 import weft
 from weft.reference import hair_geometry as G
 

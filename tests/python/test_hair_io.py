@@ -7,7 +7,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 import weft
 from weft.reference.hair_geometry import hair_bytes, parse_hair_bytes
 

@@ -7,7 +7,6 @@ import dataclasses
 
 import numpy as np
 import pytest
-
 import weft
 from weft.reference import hair as R
 

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from weft.reference import hair_oit as O
 from weft.reference import hair_shadow as D
 

@@ -10,7 +10,6 @@ from typing import Iterator
 
 import numpy as np
 import pytest
-
 import weft
 from weft import reference as ref
 

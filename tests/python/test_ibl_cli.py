@@ -5,10 +5,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import ibl_envs as envs
 import numpy as np
 import pytest
-
-import ibl_envs as envs
 import weft
 import weft.ibl as ibl
 from weft.__main__ import main

@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
+import ibl_envs as envs
 import numpy as np
 import pytest
-
-import ibl_envs as envs
 import weft
 import weft.ibl as ibl
 from weft.reference import ibl as ref

@@ -6,7 +6,6 @@ import math
 from pathlib import Path
 
 import pytest
-
 import weft
 from weft.ibl import files
 

@@ -5,13 +5,11 @@ alone was 20-30% off on average and 100%+ at worst."""
 
 from __future__ import annotations
 
+import ibl_envs as envs
 import numpy as np
 import pytest
-
 import weft.ibl as ibl
 from weft.reference import ibl as ref
-
-import ibl_envs as envs
 
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 SUNS = {

@@ -13,13 +13,11 @@ compute result stays within 5e-7 of float64 while the CPU's is 1.6e-3 off. The b
 
 from __future__ import annotations
 
+import ibl_envs as envs
 import numpy as np
 import pytest
-
-import ibl_envs as envs
 import weft
 import weft.ibl as ibl
-from weft.reference import ibl as ref
 
 
 def faces(cube) -> np.ndarray:

@@ -6,11 +6,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 import weft
 import weft.ibl
-from weft.reference import ibl as ref_ibl
 from ibl_envs import sky_gradient, to_faces
+from weft.reference import ibl as ref_ibl
 
 CENTRE, RADIUS = np.array([0.0, 0.8, 0.0]), 0.5
 FACES = to_faces(sky_gradient(), 32, supersample=2)

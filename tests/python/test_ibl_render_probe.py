@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 import weft
 from weft.reference import ibl_shading as ref
 

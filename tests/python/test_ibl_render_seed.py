@@ -9,12 +9,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 import weft
 import weft.ibl
+from ibl_envs import constant, random_smooth, sky_gradient, to_faces
 from weft.reference import ibl as ref_ibl
 from weft.reference import ibl_shading as ref
-from ibl_envs import constant, random_smooth, sky_gradient, to_faces
 
 EYE = (0.0, 0.4, 3.0)
 

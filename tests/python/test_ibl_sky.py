@@ -7,7 +7,6 @@ import math
 
 import numpy as np
 import pytest
-
 import weft
 import weft.ibl as ibl
 

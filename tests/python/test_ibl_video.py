@@ -11,11 +11,10 @@ from typing import List
 
 import numpy as np
 import pytest
-
 import weft
 import weft.ibl as ibl
-from weft.reference import ibl as ref_ibl
 from ibl_envs import mirror_ball_directions
+from weft.reference import ibl as ref_ibl
 
 av = pytest.importorskip("av")
 

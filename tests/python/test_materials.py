@@ -8,7 +8,6 @@ import math
 
 import numpy as np
 import pytest
-
 import weft
 from weft import reference as ref
 

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 import weft
 import weft.ibl
 from weft.reference.texture import srgb_decode

@@ -14,7 +14,6 @@ import math
 
 import numpy as np
 import pytest
-
 import weft
 import weft.ibl
 import weft.reference.ibl

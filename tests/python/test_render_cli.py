@@ -15,13 +15,12 @@ from typing import List
 
 import numpy as np
 import pytest
-
 import weft
 import weft.ibl
 import weft.scenes
 from ibl_envs import mirror_ball_directions, sky_gradient, sun_disc, to_faces
-from weft.reference import ibl as ref_ibl
 from weft.__main__ import _CLOTH_STEPS, main
+from weft.reference import ibl as ref_ibl
 
 TIMEOUT_S = 300
 W, H = 160, 120

@@ -7,7 +7,6 @@ import argparse
 import io
 
 import numpy as np
-
 from weft.reporting import Progress, add_progress_arguments, markdown_table, pyplot, save_figure
 
 

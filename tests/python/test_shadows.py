@@ -9,7 +9,6 @@ from typing import Dict, Tuple
 
 import numpy as np
 import pytest
-
 import weft
 from weft import reference as ref
 

@@ -6,7 +6,6 @@ with d = x / (h tan a) clamped to [-1, 1] (analytic, no weft code)."""
 
 import numpy as np
 import pytest
-
 import weft
 import weft.ibl
 import weft.scenes

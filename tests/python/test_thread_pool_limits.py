@@ -14,7 +14,6 @@ import textwrap
 import time
 
 import pytest
-
 import weft
 
 

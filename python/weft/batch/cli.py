@@ -13,6 +13,7 @@ import argparse
 import json
 import sys
 from typing import Any, Dict
+
 from weft.reporting import add_progress_arguments
 
 _EPILOG = ("Without --address a private local Ray cluster is started for the batch (all cores, "

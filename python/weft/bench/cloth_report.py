@@ -8,8 +8,18 @@ from typing import Any, Dict, Optional, Sequence
 
 from weft.bench import markdown_table
 from weft.bench.cloth import (
-    GS_RATIO_TARGET, NUMPY_RATIO_TARGET, PEER_RATIO_TARGET, REST_ENERGY, STRAIN_SLACK, STRAIN_STEPS, TARGET_MAX,
-    TARGET_MEAN, TARGET_SIZE, TARGET_SPEED, XPBD, pareto_front,
+    GS_RATIO_TARGET,
+    NUMPY_RATIO_TARGET,
+    PEER_RATIO_TARGET,
+    REST_ENERGY,
+    STRAIN_SLACK,
+    STRAIN_STEPS,
+    TARGET_MAX,
+    TARGET_MEAN,
+    TARGET_SIZE,
+    TARGET_SPEED,
+    XPBD,
+    pareto_front,
 )
 from weft.reporting import pyplot, save_figure
 

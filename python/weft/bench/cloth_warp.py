@@ -10,7 +10,6 @@ import numpy as np
 
 from weft.bench.cloth import DT, Engine, Setting, scene_kwargs
 
-
 _WARP_KERNELS: Optional[Dict[str, Any]] = None
 
 

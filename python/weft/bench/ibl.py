@@ -442,7 +442,7 @@ def bench_seed_options(size: Tuple[int, int], frames: int, samples: int) -> Dict
 def to_markdown(r: Dict[str, Any]) -> str:
     f3 = lambda v: f"{v:.3f}"  # noqa: E731
     pct = lambda v: f"{100 * v:.2f}%"  # noqa: E731
-    lines = [f"# IBL benchmark", "", f"`{r['command']}` on {r['machine'].get('processor', '?')} "
+    lines = ["# IBL benchmark", "", f"`{r['command']}` on {r['machine'].get('processor', '?')} "
              f"({r['machine'].get('cpu_count')} CPUs)", "", "## Conversion", ""]
     lines.append(markdown_table(["step", "input", "cube", "ms", "mean rel. error"],
                                 [[x["step"], x["input"], x["size"], f3(x["ms"]), pct(x["mean_err"])]

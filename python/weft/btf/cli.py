@@ -21,7 +21,6 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-import weft
 from weft.btf import fit_report, synth
 from weft.reporting import add_progress_arguments
 

@@ -15,7 +15,12 @@ from typing import Iterable, Iterator, Optional, Sequence, Tuple
 import numpy as np
 
 from weft._core import (
-    CubeMap, InvalidArgument, IoError, equirect_to_cube, fill_unseen, fisheye_to_cube,
+    CubeMap,
+    InvalidArgument,
+    IoError,
+    equirect_to_cube,
+    fill_unseen,
+    fisheye_to_cube,
     sphere_to_cube,
 )
 
@@ -225,7 +230,7 @@ def cross_to_cube(image: np.ndarray, layout: str = "auto") -> CubeMap:
         if not layout:
             raise InvalidArgument(f"a cube cross must be 4:3 or 3:4, got {w} x {h}")
     if layout not in ("horizontal", "vertical"):
-        raise InvalidArgument(f"cross layout must be 'horizontal', 'vertical' or 'auto'")
+        raise InvalidArgument("cross layout must be 'horizontal', 'vertical' or 'auto'")
     s = w // 4 if layout == "horizontal" else w // 3
     expected = (3 * s, 4 * s) if layout == "horizontal" else (4 * s, 3 * s)
     if s < 1 or (h, w) != expected:

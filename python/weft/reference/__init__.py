@@ -40,13 +40,13 @@ from weft.reference.shading import (
     SurfaceMaterial,
     as_light,
     attenuation,
-    incident,
-    spot_basis,
     blinn_phong,
     compare_frame,
     first_shadow_light,
+    incident,
     material_maps,
     shade_debug_frame,
+    spot_basis,
 )
 from weft.reference.shadow import ShadowLookup, pcf_visibility, shadow_lookup
 from weft.reference.texture import (

@@ -70,22 +70,18 @@ from weft.reference.cloth_colliders import (  # noqa: E402  (re-exported: the cl
     plane_distance,
     sphere_distance,
 )
+from weft.reference.cloth_formulas import (  # noqa: E402  (re-exported: the cloth's API)
+    free_fall,
+    pendulum_period,
+    project_distance,
+)
 from weft.reference.cloth_grid import (  # noqa: E402  (re-exported: the cloth's API)
-    BEND,
-    SHEAR,
-    STRETCH,
     constraint_pattern,
-    constraints_on_surface,
     grid_normals,
     grid_positions,
     grid_triangles,
     hole_mask_from_image,
     strain,
-)
-from weft.reference.cloth_formulas import (  # noqa: E402  (re-exported: the cloth's API)
-    free_fall,
-    pendulum_period,
-    project_distance,
 )
 from weft.reference.cloth_interaction import ClothInteraction  # noqa: E402
 from weft.reference.cloth_self import (  # noqa: E402
@@ -93,7 +89,6 @@ from weft.reference.cloth_self import (  # noqa: E402
     SELF_COLLISION_PASSES,
     self_collide_pass,
 )
-
 
 # --------------------------------------------------------------------------------------------
 # The solver

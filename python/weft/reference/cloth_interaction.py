@@ -10,8 +10,7 @@ from typing import Any, Sequence, Union
 import numpy as np
 
 from weft.reference.cloth_colliders import WindSetting, _points, _vec
-from weft.reference.cloth_grid import (constraints_on_surface, grid_triangles,
-                                       hole_mask_from_image)
+from weft.reference.cloth_grid import constraints_on_surface, grid_triangles, hole_mask_from_image
 
 ArrayLike = Union[np.ndarray, Sequence[float], float]
 

@@ -37,9 +37,15 @@ from typing import Any, Dict, Iterable, List, Mapping, NamedTuple, Optional, Seq
 
 import numpy as np
 
-from weft.reference.texture import (_bilinear_clamp, build_mip_chain, encode_u8,
-                                    sample_bilinear_repeat, sample_trilinear_repeat, texture_lod,
-                                    texture_to_linear)
+from weft.reference.texture import (
+    _bilinear_clamp,
+    build_mip_chain,
+    encode_u8,
+    sample_bilinear_repeat,
+    sample_trilinear_repeat,
+    texture_lod,
+    texture_to_linear,
+)
 
 ArrayLike = Union[np.ndarray, Sequence[float], float]
 Vec3 = Tuple[float, float, float]

@@ -19,7 +19,7 @@ reflection are the same GGX coat, and ``ka = kd`` so that the ambient is a sky's
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Callable, Dict, Optional, Sequence, Tuple
+from typing import Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
