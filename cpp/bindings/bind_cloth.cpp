@@ -36,7 +36,9 @@ std::vector<int> indices(py::handle obj, const char* name) {
     std::vector<int> out;
     for (py::ssize_t i = 0; i < i64.size(); ++i) {
         const int64_t v = i64.data()[i];
-        if (v < 0 || v > INT32_MAX) throw InvalidArgument(std::string(name) + ": index out of range");
+        if (v < 0 || v > INT32_MAX)
+            throw InvalidArgument(std::string(name) + ": particle index " + std::to_string(v) +
+                                  " (entry " + std::to_string(i) + ") out of range");
         out.push_back(int(v));
     }
     return out;

@@ -46,6 +46,24 @@ def test_a_negative_count_names_the_value():
         weft.generate_hair(-1)
 
 
+def test_a_bad_index_or_shape_is_named():
+    """Issue 13's cases: Cloth.pin([-1]) named no index, btf.deviation(s, zeros(5)) raised
+    NumPy's IndexError."""
+    cloth = weft.Cloth(nx=4, ny=3)
+    with pytest.raises(weft.InvalidArgument, match=r"pin: particle index -1 \(entry 1\)"):
+        cloth.pin([0, -1])
+    with pytest.raises(weft.InvalidArgument, match=r"pin: particle index 12 out of range \[0, 12\)"):
+        cloth.pin([12])
+    from weft import btf
+
+    samples, _ = btf.synthesize("corduroy", size=4)
+    with pytest.raises(weft.InvalidArgument, match=r"shape \(81,\).*got shape \(5,\)"):
+        btf.deviation(samples, [0.0] * 5)
+    with pytest.raises(weft.InvalidArgument, match="finite"):
+        btf.deviation(samples, [math.nan] * 81)
+    assert btf.deviation(samples, [0.01] * 81)["total"] == pytest.approx(1.0)
+
+
 def test_a_wrong_type_names_the_method():
     scene = weft.Scene()
     with pytest.raises(weft.ArgumentError, match=r"weft.Scene.add_mesh\(\): the arguments \(3\)"):

@@ -255,6 +255,12 @@ def deviation(samples: Any, errors: np.ndarray) -> Dict[str, Any]:
     [0, 1] values, x 100, in %), per θ_l group and per view."""
     errors = np.asarray(errors, dtype=np.float64)
     angles = np.asarray(samples.angles)
+    if errors.shape != (len(angles),):
+        raise weft.InvalidArgument(
+            f"errors must hold one value per sample, shape ({len(angles)},) "
+            f"(sample_errors), got shape {errors.shape}")
+    if not np.all(np.isfinite(errors)):
+        raise weft.InvalidArgument("errors must be finite")
     groups = {f"{int(t)}": float(errors[angles[:, 0] == t].mean() * 100)
               for t in np.unique(angles[:, 0])}
     views: Dict[str, float] = {}
