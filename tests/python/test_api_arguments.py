@@ -52,7 +52,8 @@ def test_a_bad_index_or_shape_is_named():
     cloth = weft.Cloth(nx=4, ny=3)
     with pytest.raises(weft.InvalidArgument, match=r"pin: particle index -1 \(entry 1\)"):
         cloth.pin([0, -1])
-    with pytest.raises(weft.InvalidArgument, match=r"pin: particle index 12 out of range \[0, 12\)"):
+    with pytest.raises(weft.InvalidArgument,
+                       match=r"pin: particle index 12 out of range \[0, 12\)"):
         cloth.pin([12])
     from weft import btf
 
