@@ -12,7 +12,7 @@ from typing import List
 import numpy as np
 import pytest
 import weft
-from test_demo_window import psnr, run_demo_process, window_env, xvfb_display  # noqa: F401
+from test_demo_window import psnr, run_demo_process, window_env
 
 EXE = os.environ.get("WEFT_DEMO_EXE")
 pytestmark = pytest.mark.skipif(not EXE or not Path(EXE).exists(),
