@@ -78,7 +78,7 @@ from weft._core import (  # noqa: E402 (after the compiled callables are wrapped
     validation_enabled,
     validation_messages,
 )
-from weft.fur import add_fur
+from weft.fur import add_fur  # noqa: E402 (re-exported with the wrapped callables above)
 
 __all__ = [
     "ArgumentError",

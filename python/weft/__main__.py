@@ -56,8 +56,8 @@ def build_parser() -> argparse.ArgumentParser:
         description="weft: real-time cloth, hair and fur with BTF materials and image-based "
                     "lighting (Vulkan). Run the demo, list Vulkan devices, render the default "
                     "or the cloth scene to a PNG (lit by a captured environment, composited "
-                    "over a photo), synthesise or fit BTFs, convert and filter environments, and run "
-                    "batches of BTF fits or frames on a Ray cluster.",
+                    "over a photo), synthesise or fit BTFs, convert and filter environments, and "
+                    "run batches of BTF fits or frames on a Ray cluster.",
         epilog="Environment: WEFT_DEVICE=<index|name substring> picks the Vulkan device, "
                "WEFT_VALIDATION=1 enables the validation layers. Benchmarks: "
                "python -m weft.bench --help",

@@ -67,7 +67,8 @@ def _tree_entries(data: bytes, names, images):
             stem = (f"x tl{fdp.ConsumeIntInRange(0, 999)} pl{fdp.ConsumeIntInRange(0, 999)} "
                     f"tv{fdp.ConsumeIntInRange(0, 999)} pv{fdp.ConsumeIntInRange(0, 999)}")
         else:
-            stem = names[fdp.ConsumeIntInRange(0, len(names) - 1)] + fdp.ConsumeUnicodeNoSurrogates(8)
+            stem = (names[fdp.ConsumeIntInRange(0, len(names) - 1)] +
+                    fdp.ConsumeUnicodeNoSurrogates(8))
         name = (_PREFIXES[fdp.ConsumeIntInRange(0, len(_PREFIXES) - 1)] + stem +
                 _EXTENSIONS[fdp.ConsumeIntInRange(0, len(_EXTENSIONS) - 1)])
         pick = fdp.ConsumeIntInRange(0, len(images) + 1)
@@ -175,6 +176,7 @@ def write_seeds() -> None:
     tdir = os.path.join(CORPUS, "btftree")
     os.makedirs(tdir, exist_ok=True)
     # FuzzedDataProvider input: "complete set" flag, no extras, then zip / folder.
-    for name, data in (("set_folder", b"\x01\x00\x00\x00\x00"), ("set_zip", b"\x01\x00" + b"\x01" * 8)):
+    for name, data in (("set_folder", b"\x01\x00\x00\x00\x00"),
+                       ("set_zip", b"\x01\x00" + b"\x01" * 8)):
         with open(os.path.join(tdir, name), "wb") as f:
             f.write(data)

@@ -53,7 +53,8 @@ def with_sun(direction: Sequence[float], radius: float, radiance: float):
     s /= np.linalg.norm(s)
 
     def env(d: np.ndarray) -> np.ndarray:
-        return sky(d) + ((d @ s) >= np.cos(radius))[:, None] * radiance * np.array([1.0, 0.95, 0.85])
+        return (sky(d) + ((d @ s) >= np.cos(radius))[:, None] * radiance
+                * np.array([1.0, 0.95, 0.85]))
 
     return env
 
@@ -73,8 +74,8 @@ def ground_truth(faces: np.ndarray, points: np.ndarray, centre, radius: float,
     c = np.asarray(centre, np.float64)
     out = np.empty((len(points), 3))
     for k in range(0, len(points), 256):
-        oc = c[None, :] - points[k:k + 256]                    # (n, 3)
-        b = oc @ d.T                                            # (n, T): distance to closest approach
+        oc = c[None, :] - points[k:k + 256]                  # (n, 3)
+        b = oc @ d.T                                          # (n, T): distance to closest approach
         far = np.einsum("nk,nk->n", oc, oc)[:, None] - radius * radius
         hit = (b > 0.0) & (b * b - far > 0.0)
         out[k:k + 256] = full[None, :] - hit.astype(np.float64) @ lw
@@ -123,7 +124,8 @@ def scene_and_camera(weft, faces, lights: int, ground_casts: bool = False, **kw)
     return scene, camera
 
 
-def measure(weft, renderer, faces, lights: int, truth=None, ground_casts: bool = False, **kw) -> Dict[str, object]:
+def measure(weft, renderer, faces, lights: int, truth=None, ground_casts: bool = False,
+            **kw) -> Dict[str, object]:
     """Renders the scene; compares the ground's shadow ratio (dome-shadowed / unshadowed
     radiance, which cancels SH9's irradiance error) and its absolute radiance with the truth."""
     scene, camera = scene_and_camera(weft, faces, lights, ground_casts, **kw)
@@ -144,7 +146,8 @@ def measure(weft, renderer, faces, lights: int, truth=None, ground_casts: bool =
     got_ratio[ground] = (image[ground] @ LUMA) / np.maximum(plain[ground] @ LUMA, 1e-12)
     shadow = ground & (want_ratio < 0.98)
     rel = np.abs(got_ratio - want_ratio)[shadow] / want_ratio[shadow]
-    abs_rel = np.abs(image[ground] @ LUMA - truth["vis"] @ LUMA / np.pi) / (truth["vis"] @ LUMA / np.pi)
+    abs_rel = (np.abs(image[ground] @ LUMA - truth["vis"] @ LUMA / np.pi) /
+               (truth["vis"] @ LUMA / np.pi))
     # affine pixel <-> ground map from the debug positions (camera straight down)
     rows, cols = np.nonzero(ground)
     a = np.c_[pos[ground][:, 0], pos[ground][:, 2], np.ones(len(rows))]
@@ -162,7 +165,8 @@ def measure(weft, renderer, faces, lights: int, truth=None, ground_casts: bool =
     centre = core(want_ratio)
     # circles outside the sphere's image (radius ~0.75 on the ground from this camera)
     radii = np.array([0.8, 1.0, 1.2, 1.5])
-    g, w = circle_minima(got_ratio, pixel_of, centre, radii), circle_minima(want_ratio, pixel_of, centre, radii)
+    g, w = (circle_minima(got_ratio, pixel_of, centre, radii),
+            circle_minima(want_ratio, pixel_of, centre, radii))
     passes = [p for p in stats["passes"] if p["name"].startswith("dome")]
     return dict(truth=truth, got_ratio=got_ratio, want_ratio=want_ratio, image=image,
                 mean_rel=float(rel.mean()), p95_rel=float(np.percentile(rel, 95)),

@@ -27,7 +27,8 @@ def test_bench_batch_quick(tmp_path: Path) -> None:
     assert set(rows) == {(k, c) for k in ("btf", "render") for c in ("serial", "ray 1", "ray 2")}
     for r in rows.values():
         assert r["error"] == 0 and r["failed"] == 0 and r["throughput"] > 0
-    assert rows[("btf", "serial")]["amount"] == 2 * 12 * 12 and rows[("render", "ray 2")]["amount"] == 4
+    assert (rows[("btf", "serial")]["amount"] == 2 * 12 * 12
+            and rows[("render", "ray 2")]["amount"] == 4)
     for kind in ("btf", "render"):
         assert rows[(kind, "ray 2")]["scaling_efficiency"] > 0
         assert all("overhead_per_task_s" in rows[(kind, c)] for c in ("serial", "ray 1"))

@@ -92,7 +92,8 @@ def test_cells_contain_pillows_decode(jpeg_data):
 def test_no_cells_without_jpeg(tmp_path, jpeg_data):
     folder, s = jpeg_data
     assert btf.load(folder).jpeg_cells is None  # only when asked for
-    assert btf.load(folder, gamma="linear", jpeg_cells=True).jpeg_cells is None  # cells hold 8-bit raw values
+    # cells hold 8-bit raw values
+    assert btf.load(folder, gamma="linear", jpeg_cells=True).jpeg_cells is None
     samples, _ = synth.synthesize_random(11, 16, noise=0.004)
     png = str(tmp_path / "png")
     btf.write(png, samples, fmt="png")

@@ -43,8 +43,8 @@ def _env(**extra: str) -> dict:
 @pytest.fixture(scope="module")
 def dist(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("dist")
-    run = subprocess.run(["bash", str(ROOT / "scripts" / "bundle.sh"), "--out", str(out), "--wheel"],
-                         cwd=ROOT, capture_output=True, text=True, timeout=900)
+    run = subprocess.run(["bash", str(ROOT / "scripts" / "bundle.sh"), "--out", str(out),
+                          "--wheel"], cwd=ROOT, capture_output=True, text=True, timeout=900)
     assert run.returncode == 0, run.stdout + run.stderr
     return out
 
@@ -110,8 +110,8 @@ def test_bundle_is_relocatable(bundle: Path) -> None:
         else:
             assert path.startswith(os.path.realpath(bundle / "lib")), (soname, path)
     assert (bundle / "lib" / "fallback" / "libvulkan.so.1").exists()
-    run = subprocess.run([str(bundle / "bin" / "weft-demo"), "--width", "nope"], capture_output=True,
-                         text=True, env=_env())
+    run = subprocess.run([str(bundle / "bin" / "weft-demo"), "--width", "nope"],
+                         capture_output=True, text=True, env=_env())
     # the relocated binary runs far enough to parse its options (CLI11: exit 2, the option named)
     assert run.returncode == 2 and "--width" in run.stderr, (run.returncode, run.stderr)
 

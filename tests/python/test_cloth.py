@@ -146,7 +146,8 @@ def test_one_xpbd_projection() -> None:
     w = float(cloth.inverse_masses[0])
     cloth.project_constraints()
     dlam = -0.5 / (2 * w + alpha * 3600.0)
-    expect = np.stack([xa - w * dlam * np.array([1.0, 0, 0]), xb + w * dlam * np.array([1.0, 0, 0])])
+    expect = np.stack([xa - w * dlam * np.array([1.0, 0, 0]),
+                       xb + w * dlam * np.array([1.0, 0, 0])])
     np.testing.assert_allclose(positions64(cloth), expect, atol=1e-6)
 
 
@@ -327,7 +328,8 @@ def test_mesh_output() -> None:
     assert mesh["uvs"].shape == (n, 2) and mesh["tangents"].shape == (n, 4)
     np.testing.assert_array_equal(mesh["positions"], cloth.positions)
     jj, ii = np.meshgrid(np.arange(ny), np.arange(nx), indexing="ij")
-    np.testing.assert_allclose(mesh["uvs"], np.stack([ii.ravel() / (nx - 1), jj.ravel() / (ny - 1)], 1),
+    np.testing.assert_allclose(mesh["uvs"],
+                               np.stack([ii.ravel() / (nx - 1), jj.ravel() / (ny - 1)], 1),
                                atol=1e-7)
     np.testing.assert_allclose(np.linalg.norm(mesh["normals"], axis=1), 1.0, atol=1e-5)
     np.testing.assert_allclose(mesh["normals"], np.tile([0, 1, 0], (n, 1)), atol=1e-5)

@@ -20,7 +20,8 @@ from weft.bench.cloth import (
 )
 
 
-@pytest.mark.parametrize("setting", [Setting("sub2", 1, 2), Setting("tethers-it2", 2, 1, tethers=True),
+@pytest.mark.parametrize("setting", [Setting("sub2", 1, 2),
+                                     Setting("tethers-it2", 2, 1, tethers=True),
                                      Setting("xpbd", 2, 2, (0.0, 1e-2, 1.0))])
 def test_peer_in_weft_order_reproduces_weft(setting: Setting) -> None:
     peer = gs.NaturalGsCloth(16, setting, order="weft")

@@ -25,7 +25,8 @@ DT = 1.0 / 60.0
 
 
 def run(monkeypatch: pytest.MonkeyPatch, aos: bool, n: int, m: int, steps: int,
-        setup: Optional[Callable[[Any], None]] = None, during: Optional[Callable[[Any, int], None]] = None,
+        setup: Optional[Callable[[Any], None]] = None,
+        during: Optional[Callable[[Any, int], None]] = None,
         **settings: Any) -> np.ndarray:
     if aos:
         monkeypatch.setenv("WEFT_CLOTH_AOS", "1")

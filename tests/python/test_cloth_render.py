@@ -41,9 +41,11 @@ def closest_on_triangles(p: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndar
         out = a + ab * (vb * denom)[..., None] + ac * (vc * denom)[..., None]  # inside
         # edges
         v_ab = d1 / (d1 - d3)
-        out = np.where(((vc <= 0) & (d1 >= 0) & (d3 <= 0))[..., None], a + ab * v_ab[..., None], out)
+        out = np.where(((vc <= 0) & (d1 >= 0) & (d3 <= 0))[..., None],
+                       a + ab * v_ab[..., None], out)
         w_ac = d2 / (d2 - d6)
-        out = np.where(((vb <= 0) & (d2 >= 0) & (d6 <= 0))[..., None], a + ac * w_ac[..., None], out)
+        out = np.where(((vb <= 0) & (d2 >= 0) & (d6 <= 0))[..., None],
+                       a + ac * w_ac[..., None], out)
         w_bc = (d4 - d3) / ((d4 - d3) + (d5 - d6))
         out = np.where(((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0))[..., None],
                        b + (c - b) * w_bc[..., None], out)

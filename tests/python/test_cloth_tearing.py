@@ -183,7 +183,8 @@ def test_rendered_tear_shows_the_attached_surface(make_renderer, tmp_path) -> No
     mesh = cloth.mesh()
     x, tris = mesh["positions"].astype(np.float64), mesh["indices"]
     assert np.ptp(x[:, 1]) < 1e-6  # still in its plane
-    area = 0.5 * np.abs(np.cross(x[tris[:, 1]] - x[tris[:, 0]], x[tris[:, 2]] - x[tris[:, 0]])[:, 1]).sum()
+    area = 0.5 * np.abs(np.cross(x[tris[:, 1]] - x[tris[:, 0]],
+                                 x[tris[:, 2]] - x[tris[:, 0]])[:, 1]).sum()
     assert area > 0.6  # of the 1 m² cloth, stretched: most of it is drawn
 
     scene = weft.Scene()

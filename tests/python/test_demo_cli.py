@@ -62,7 +62,8 @@ def test_headless_run_prints_progress_and_writes_json(tmp_path: Path) -> None:
     progress = proc.stderr.splitlines()
     assert any("building the scene" in line for line in progress), proc.stderr
     assert any("rendering the first frame" in line for line in progress), proc.stderr
-    assert any(line.startswith("weft-demo: [") and "frame 2/2" in line for line in progress), proc.stderr
+    assert any(line.startswith("weft-demo: [") and "frame 2/2" in line
+               for line in progress), proc.stderr
     assert "written to" in proc.stdout and "building" not in proc.stdout, proc.stdout
     last = json.loads(stats.read_text())
     assert last["frame_index"] == 1 and last["passes"]
@@ -72,7 +73,7 @@ def test_headless_run_prints_progress_and_writes_json(tmp_path: Path) -> None:
 
 
 def test_quiet_run_prints_no_progress(tmp_path: Path) -> None:
-    proc = demo("--headless", "--quiet", "--width", "32", "--height", "24", "--msaa", "1", "--ao", "0",
-                "--out", str(tmp_path / "q.png"), "--no-hot-reload")
+    proc = demo("--headless", "--quiet", "--width", "32", "--height", "24", "--msaa", "1",
+                "--ao", "0", "--out", str(tmp_path / "q.png"), "--no-hot-reload")
     assert proc.returncode == 0, proc.stderr
     assert proc.stderr == "" and "written to" in proc.stdout, proc.stdout + proc.stderr

@@ -12,7 +12,7 @@ from typing import List
 import numpy as np
 import pytest
 import weft
-from test_demo_window import psnr, run_demo_process, window_env, xvfb_display  # noqa: F401
+from test_demo_window import psnr, run_demo_process, window_env
 
 EXE = os.environ.get("WEFT_DEMO_EXE")
 pytestmark = pytest.mark.skipif(not EXE or not Path(EXE).exists(),
@@ -47,7 +47,8 @@ def test_panel_draws_over_the_window_only(xvfb_display: str, tmp_path: Path) -> 
     assert panel_passes.index("panel") == panel_passes.index("output") + 1, panel_passes
     # the panel covers its region and nothing else
     differs = np.abs(panel.astype(int) - plain.astype(int)).max(axis=2) > 8
-    assert differs[PANEL].mean() > 0.5, f"the panel changed only {differs[PANEL].mean():.0%} of its region"
+    assert differs[PANEL].mean() > 0.5, (
+        f"the panel changed only {differs[PANEL].mean():.0%} of its region")
     outside = np.ones(differs.shape, bool)
     outside[PANEL] = False
     assert differs[outside].mean() < 0.01, "pixels outside the panel changed"

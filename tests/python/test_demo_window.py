@@ -5,12 +5,10 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import subprocess
 import sys
-import time
 from pathlib import Path
-from typing import Dict, Iterator, List
+from typing import Dict, List
 
 import numpy as np
 import pytest
@@ -72,64 +70,8 @@ def test_run_demo_headless(tmp_path: Path) -> None:
 
 
 # --------------------------------------------------------------------------------------------
-# Window under Xvfb
+# Window under Xvfb (the display: conftest.py's xvfb_display fixture)
 # --------------------------------------------------------------------------------------------
-
-def _free_display(start: int = 90) -> int:
-    for n in range(start, start + 200):
-        if not os.path.exists(f"/tmp/.X{n}-lock") and not os.path.exists(f"/tmp/.X11-unix/X{n}"):
-            return n
-    raise RuntimeError("no free X display number")
-
-
-@pytest.fixture(scope="module")
-def xvfb_display() -> Iterator[str]:
-    """Starts ``Xvfb :<n> -screen 0 1280x1024x24`` on a free display; yields ``":<n>"``."""
-    xvfb = shutil.which("Xvfb")
-    if xvfb is None:
-        if os.environ.get("CI"):
-            pytest.fail("Xvfb is not installed but CI is set: the window test must run")
-        pytest.skip("Xvfb is not installed (apt-get install xvfb); window test skipped")
-    proc = None
-    display = -1
-    last_error = ""
-    start = 90
-    for _attempt in range(5):
-        display = _free_display(start)
-        proc = subprocess.Popen([xvfb, f":{display}", "-screen", "0", "1280x1024x24",
-                                 "-nolisten", "tcp"],
-                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-        socket = f"/tmp/.X11-unix/X{display}"
-        deadline = time.monotonic() + 20.0
-        while time.monotonic() < deadline and proc.poll() is None and not os.path.exists(socket):
-            time.sleep(0.05)
-        if proc.poll() is None and os.path.exists(socket):
-            break
-        # lost a race for the display number or failed to start: clean up and try the next
-        if proc.poll() is None:
-            proc.terminate()
-        try:
-            _, err = proc.communicate(timeout=5)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            _, err = proc.communicate()
-        proc = None
-        start = display + 1
-        last_error = err.decode(errors="replace") if err else ""
-    if proc is None:
-        pytest.fail(f"could not start Xvfb: {last_error}")
-    try:
-        yield f":{display}"
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(timeout=10)
-        if proc.stderr is not None:
-            proc.stderr.close()
-
 
 #: The window tests' size: small, as every frame of the demo scene costs ~0.5 s on lavapipe here
 #: (shadow maps, the bounce captures and the fur's deep opacity redone as the cloth moves).

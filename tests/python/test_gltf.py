@@ -46,7 +46,8 @@ def write_gltf(path: Path, positions, indices, normals=None, uvs=None, png=None,
         while len(blob) % 4:
             blob += b"\0"
         raw = data.tobytes()
-        views.append(g.BufferView(buffer=0, byteOffset=len(blob), byteLength=len(raw), target=target))
+        views.append(g.BufferView(buffer=0, byteOffset=len(blob), byteLength=len(raw),
+                                  target=target))
         blob += raw
         if type_ == "image":
             return len(views) - 1
@@ -66,7 +67,8 @@ def write_gltf(path: Path, positions, indices, normals=None, uvs=None, png=None,
     images, textures, samplers = [], [], []
     mat = dict(material or {})
     pbr = g.PbrMetallicRoughness(**{k: v for k, v in mat.items()
-                                    if k in ("baseColorFactor", "metallicFactor", "roughnessFactor")})
+                                    if k in ("baseColorFactor", "metallicFactor",
+                                             "roughnessFactor")})
     if png is not None:
         view = add(np.frombuffer(png, np.uint8), "image", 0)
         images.append(g.Image(bufferView=view, mimeType="image/png"))
@@ -77,10 +79,12 @@ def write_gltf(path: Path, positions, indices, normals=None, uvs=None, png=None,
                     alphaCutoff=mat.get("alphaCutoff"), doubleSided=mat.get("doubleSided", False))
     gltf = g.GLTF2(
         scene=0, scenes=[g.Scene(nodes=[0])], nodes=[g.Node(mesh=0, **(node or {}))],
-        meshes=[g.Mesh(name="quad", primitives=[g.Primitive(attributes=attributes, indices=index_accessor,
+        meshes=[g.Mesh(name="quad", primitives=[g.Primitive(attributes=attributes,
+                                                            indices=index_accessor,
                                                             material=0, mode=mode)])],
         materials=[gm], accessors=accessors, bufferViews=views,
-        buffers=[g.Buffer(byteLength=len(blob))], images=images, textures=textures, samplers=samplers)
+        buffers=[g.Buffer(byteLength=len(blob))], images=images, textures=textures,
+        samplers=samplers)
     if texture_extensions:
         gltf.extensionsUsed = list(texture_extensions)
     gltf.set_binary_blob(blob)

@@ -62,7 +62,8 @@ def test_sadeghi_lobes_peak_at_their_shifts(lobe: int) -> None:
 
 def test_default_shifts_follow_marschner_relations() -> None:
     a = weft.HairMaterial().shift
-    assert a[1] == pytest.approx(-a[0] / 2, rel=1e-5) and a[2] == pytest.approx(-1.5 * a[0], rel=1e-5)
+    assert (a[1] == pytest.approx(-a[0] / 2, rel=1e-5)
+            and a[2] == pytest.approx(-1.5 * a[0], rel=1e-5))
 
 
 def test_kajiya_kay_special_cases() -> None:

@@ -124,7 +124,8 @@ def test_environment_is_baked_only_when_it_changes(make_renderer) -> None:
     brighter = r.render_linear(scene, camera())
     assert r.stats["environment_bakes"] == 0
     covered = first[..., :3].sum(axis=-1) > 0.01
-    np.testing.assert_allclose(brighter[covered, :3], 2.0 * first[covered, :3], rtol=1e-5, atol=1e-6)
+    np.testing.assert_allclose(brighter[covered, :3], 2.0 * first[covered, :3],
+                               rtol=1e-5, atol=1e-6)
     # new radiance (content version) -> baked again, and the image follows it
     env.set_radiance(to_faces(sky_gradient(), 16) * 0.5)
     darker = r.render_linear(scene, camera())

@@ -142,7 +142,7 @@ def test_spot_light_with_cookie_matches_oracle(make_renderer) -> None:
     ground = debug["mask"] & (np.abs(debug["position"][..., 1]) < 1e-3)
     lit = ground & (debug["linear"][..., :3].max(axis=-1) > 0.2)
     assert 0.02 < lit.sum() / ground.sum() < 0.6
-    red, green = debug["linear"][lit][:, 0], debug["linear"][lit][:, 1]
+    red = debug["linear"][lit][:, 0]
     x = debug["position"][lit]
     assert np.corrcoef(red, x[:, 0])[0, 1] > 0.5  # red grows along +u (world +X here)
 
@@ -219,7 +219,8 @@ def test_point_light_shadow_faces_cover_all_directions(make_renderer) -> None:
     assert np.mean(np.abs(vis[ground] - debug["shadow"][ground]) < 0.5) >= 0.99
     # behind each post, along the axis, the floor is shadowed; between them it is lit
     for x, z in ((1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)):
-        behind = ground & (np.abs(p[..., 0] - 2.5 * x) < 0.05) & (np.abs(p[..., 2] - 2.5 * z) < 0.05)
+        behind = ground & (np.abs(p[..., 0] - 2.5 * x) < 0.05) & \
+            (np.abs(p[..., 2] - 2.5 * z) < 0.05)
         assert behind.sum() > 0 and np.all(debug["shadow"][behind] == 0.0), (x, z)
     diagonal = ground & (np.abs(np.abs(p[..., 0]) - 2.0) < 0.1) & \
         (np.abs(np.abs(p[..., 2]) - 2.0) < 0.1)

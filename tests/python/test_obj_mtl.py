@@ -94,7 +94,8 @@ def test_parts_match_trimesh(two_materials: Path) -> None:
             assert m.texture is None
         else:
             assert m.texture.srgb
-            np.testing.assert_array_equal(m.texture.image[..., :3], np.asarray(tm.image.convert("RGB")))
+            np.testing.assert_array_equal(m.texture.image[..., :3],
+                                          np.asarray(tm.image.convert("RGB")))
 
 
 def test_map_options_are_skipped(tmp_path: Path, two_materials: Path) -> None:
@@ -103,7 +104,8 @@ def test_map_options_are_skipped(tmp_path: Path, two_materials: Path) -> None:
                                                   "map_Kd -s 1 1 1 -o 0.5 -clamp on my tex.png"))
     weft.save_png(str(tmp_path / "my tex.png"), texture_image())
     parts = {p.name: p for p in weft.load_obj_parts(str(two_materials))}
-    np.testing.assert_array_equal(parts["textured"].material.texture.image[..., :3], texture_image())
+    np.testing.assert_array_equal(parts["textured"].material.texture.image[..., :3],
+                                  texture_image())
 
 
 def test_load_obj_still_gives_one_mesh_and_ignores_materials(tmp_path: Path) -> None:
@@ -167,7 +169,8 @@ def test_trimesh_export_round_trip(tmp_path: Path) -> None:
     theirs = trimesh.load(str(tmp_path / "box.obj"), force="mesh", process=False)
     np.testing.assert_allclose(part.mesh.positions[part.mesh.indices.reshape(-1, 3)],
                                theirs.vertices[theirs.faces], atol=1e-6)
-    np.testing.assert_allclose(part.material.kd, np.asarray(theirs.visual.material.diffuse[:3]) / 255,
+    np.testing.assert_allclose(part.material.kd,
+                               np.asarray(theirs.visual.material.diffuse[:3]) / 255,
                                atol=0.5 / 255)
     np.testing.assert_array_equal(part.material.texture.image[..., :3], image)
 
@@ -203,7 +206,8 @@ def test_many_interleaved_materials(tmp_path: Path) -> None:
         mtl += [f"newmtl m{k}", f"Kd {k / count:.6f} 0.5 0.5"]
     for t in range(3 * count):
         x = float(t)
-        lines += [f"v {x} 0 0", f"v {x + 1} 0 0", f"v {x} 1 0", f"usemtl m{t % count}", "f -3 -2 -1"]
+        lines += [f"v {x} 0 0", f"v {x + 1} 0 0", f"v {x} 1 0", f"usemtl m{t % count}",
+                  "f -3 -2 -1"]
     (tmp_path / "many.mtl").write_text("\n".join(mtl) + "\n")
     path = tmp_path / "many.obj"
     path.write_text("\n".join(lines) + "\n")

@@ -145,8 +145,9 @@ def test_mypy_accepts_the_readme_blocks(tmp_path: Path) -> None:
     script = tmp_path / "readme_blocks.py"
     script.write_text("\n".join(parts), encoding="utf-8")
     env = dict(os.environ, MYPYPATH=str(ROOT / "python"))
-    run = subprocess.run([sys.executable, "-m", "mypy", "--no-incremental", "--follow-imports=silent",
-                          "--allow-redefinition", "--cache-dir", str(tmp_path / "cache"),
+    run = subprocess.run([sys.executable, "-m", "mypy", "--no-incremental",
+                          "--follow-imports=silent", "--allow-redefinition",
+                          "--cache-dir", str(tmp_path / "cache"),
                           str(script)], capture_output=True, text=True, timeout=600, cwd=tmp_path,
                          env=env)
     assert run.returncode == 0, run.stdout + run.stderr

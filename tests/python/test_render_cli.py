@@ -75,8 +75,8 @@ def api_render(sky: Path, dome: int) -> tuple:
 def test_cloth_scene_lit_by_a_mirror_ball_with_dome_shadows(sky: Path, tmp_path: Path) -> None:
     out = tmp_path / "cloth.png"
     proc = run(["-m", "weft", "render", "--scene", "cloth", "--environment", str(sky),
-                "--source", "sphere", "--wrap", "1", "--dome", "16", "--no-bounce", "--width", str(W),
-                "--height", str(H), "--out", str(out)])
+                "--source", "sphere", "--wrap", "1", "--dome", "16", "--no-bounce",
+                "--width", str(W), "--height", str(H), "--out", str(out)])
     assert out.is_file() and out.name in proc.stdout and "environment" in proc.stdout
     assert "dome[15]" in proc.stdout and "dome[16]" not in proc.stdout  # 16 dome shadow maps
     image = weft.load_png(str(out))
@@ -102,8 +102,8 @@ def test_cloth_scene_lit_by_a_mirror_ball_with_dome_shadows(sky: Path, tmp_path:
 
 def test_without_the_dome_the_ground_is_uniform(sky: Path, tmp_path: Path, capsys) -> None:
     out = tmp_path / "nodome.png"
-    assert main(["render", "--scene", "cloth", "--environment", str(sky), "--dome", "0", "--no-bounce",
-                 "--width", str(W), "--height", str(H), "--out", str(out)]) == 0
+    assert main(["render", "--scene", "cloth", "--environment", str(sky), "--dome", "0",
+                 "--no-bounce", "--width", str(W), "--height", str(H), "--out", str(out)]) == 0
     assert "dome[" not in capsys.readouterr().out
     image = weft.load_png(str(out))
     debug, colour = api_render(sky, 0)

@@ -94,7 +94,8 @@ def _job_key(job: BtfJob) -> str:
 
 
 def fit_btf_batch(jobs: Sequence[BtfJob], out: str, executor: Any,
-                  progress: Optional[bool] = None, on_event: Optional[Callable[[Event], None]] = None) -> Dict[str, Any]:
+                  progress: Optional[bool] = None,
+                  on_event: Optional[Callable[[Event], None]] = None) -> Dict[str, Any]:
     """Fits ``jobs`` (:func:`make_jobs`) on ``executor`` (:func:`weft.batch.executor`) into
     ``out``. Finished jobs (same key in the manifest, metrics.json present) are skipped; a
     failing job is recorded and the others go on. Returns the summary (also in the manifest):

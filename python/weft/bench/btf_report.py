@@ -125,8 +125,10 @@ def summary_by_model(rows: List[Dict[str, Any]]) -> List[List[str]]:
             return float(np.max(v)) if v else None
 
         out.append([model, str(max(r["outside"] for r in rs)),
-                    f"{_f(med('normal_mean_deg', clear), 2)} / {_f(top('normal_mean_deg', clear), 2)}",
-                    f"{_f(med('normal_mean_deg', shade), 2)} / {_f(top('normal_p95_deg', shade), 2)}",
+                    f"{_f(med('normal_mean_deg', clear), 2)} / "
+                    f"{_f(top('normal_mean_deg', clear), 2)}",
+                    f"{_f(med('normal_mean_deg', shade), 2)} / "
+                    f"{_f(top('normal_p95_deg', shade), 2)}",
                     _f(med("exponent_rel", clear)), _f(med("k_s_rel", clear)),
                     _f(top("drawn_vs_fitted", rs)), _f(med("drawn_vs_floor", clear), 2),
                     f"{med('texels_per_s', rs) / 1e3:.1f} k"])

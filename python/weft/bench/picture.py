@@ -5,11 +5,12 @@ For every reference scene (weft.reference.picture.scenes) Mitsuba renders the tr
 (``path``, full global illumination; ``direct`` as well, to tell missing bounce light from
 errors of the direct light), plus a second frame of another seed whose FLIP against the first
 is the reference's own noise floor. weft then renders each setting -- dome lights, GGX prefilter
-samples, MSAA where the renderer has it, one bounce off -- timed (median of ``--frames`` renders after a
-warm-up; maps reused, the scene is static) and compared: mean FLIP (LDR) and relative error over
-the whole image, the covered pixels, the objects, the geometric edges and the objects' unlit
-side. The anti-aliasing reference (4x4 supersampled frame) scores mesh and hair edges. Writes
-bench.json, bench.md, error_vs_time.png and, per scene, ``<scene>.png`` (weft | Mitsuba | FLIP).
+samples, MSAA where the renderer has it, one bounce off -- timed (median of ``--frames`` renders
+after a warm-up; maps reused, the scene is static) and compared: mean FLIP (LDR) and relative
+error over the whole image, the covered pixels, the objects, the geometric edges and the
+objects' unlit side. The anti-aliasing reference (4x4 supersampled frame) scores mesh and hair
+edges. Writes bench.json, bench.md, error_vs_time.png and, per scene, ``<scene>.png`` (weft |
+Mitsuba | FLIP).
 """
 
 from __future__ import annotations

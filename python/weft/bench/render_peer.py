@@ -447,7 +447,7 @@ def measure_peer(width: int, height: int, frames: int, progress: Any = None,
                 progress.update(f"Filament peer {mode}: frame {i + 1}/{frames}")
             ms, fil_image = _timed(filament.render)
             fil_ms.append(ms)
-            ms, weft_image = _timed(lambda: renderer.render(scene, camera))
+            ms, weft_image = _timed(lambda r=renderer: r.render(scene, camera))
             weft_ms.append(ms)
         f_med, w_med = _median(fil_ms), _median(weft_ms)
         fil_rgb = _rgb(fil_image)

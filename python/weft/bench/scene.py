@@ -1,6 +1,6 @@
 """Scene benchmark: the demo scene (terrain, sphere, furry ball drawn with deep opacity maps and
-weighted blended OIT, the 32 x 32 cloth in the wind, sun) per frame, against shadow-map size, PCF kernel and light count, with the simulation cost
-per frame (issue 5).
+weighted blended OIT, the 32 x 32 cloth in the wind, sun) per frame, against shadow-map size,
+PCF kernel and light count, with the simulation cost per frame (issue 5).
 
 Every frame steps the cloth once (1/60 s) and renders, so the cloth's mesh upload and the
 shadow maps (the cloth casts) are part of every frame, as in the running demo. Per setting:

@@ -182,20 +182,23 @@ def _soak(frames: int, size, samples: int, warmup: float, scene_name: str,
         "frames": frames, "scene": scene_name, "size": list(size),
         "hair_transparency": bool(hair_transparency), "sample_every": every, "rows": rows,
         "warmup_frames": measured[0]["frame"] if measured else 0,
-        "rss_slope_kib_per_1000_frames": 1000 * _steady_slope(fx, [r["rss_mib"] for r in measured]) * 1024,
+        "rss_slope_kib_per_1000_frames":
+            1000 * _steady_slope(fx, [r["rss_mib"] for r in measured]) * 1024,
         "device_slope_kib_per_1000_frames":
             1000 * _steady_slope(fx, [r["device_reserved_mib"] for r in measured]) * 1024,
         "device_used_slope_kib_per_1000_frames":
             1000 * _steady_slope(fx, [r["device_used_mib"] for r in measured]) * 1024,
         "frame_ms_first": measured[0]["frame_ms"] if measured else None,
         "frame_ms_last": measured[-1]["frame_ms"] if measured else None,
-        "frame_ms_median": float(np.median([r["frame_ms"] for r in measured])) if measured else None,
+        "frame_ms_median":
+            float(np.median([r["frame_ms"] for r in measured])) if measured else None,
         "measured_frames": span,
         "cloth_finite": finite,
         "shader_edits": edits,
         "shader_recompiles": recompiled,
         "shader_errors": len(weft.shader_errors()) if edited else None,
-        "validation_messages": len(weft.validation_messages()) if weft.validation_enabled() else None,
+        "validation_messages":
+            len(weft.validation_messages()) if weft.validation_enabled() else None,
     }
     result["rss_growth_mib"] = result["rss_slope_kib_per_1000_frames"] * span / 1000 / 1024
     result["device_growth_mib"] = result["device_slope_kib_per_1000_frames"] * span / 1000 / 1024

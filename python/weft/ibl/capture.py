@@ -359,8 +359,8 @@ def environments_from_frames(frames: Iterable[np.ndarray], size: int, sphere_siz
     setup) into a ``sphere_size`` sphere map, convert it with ``wrap`` and ``world_to_sphere``
     and (``fill``) fill what the ball cannot show. Whole-frame captures: ``source`` ('sphere',
     'equirect', 'cross' or 'fisheye') converts each frame with :func:`to_cube` (``wrap``,
-    ``fov``, ``world_to_sphere``, ``fill``). Exactly one of ``rect``, ``marker_to_camera`` and ``source``
-    must be given; the choice is checked when called, each frame when it is reached."""
+    ``fov``, ``world_to_sphere``, ``fill``). Exactly one of ``rect``, ``marker_to_camera`` and
+    ``source`` must be given; the choice is checked when called, each frame when it is reached."""
     given = sum(x is not None for x in (rect, marker_to_camera, source))
     if given != 1:
         raise InvalidArgument("give exactly one of a fixed rect, per-frame marker_to_camera "

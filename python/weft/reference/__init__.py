@@ -1,9 +1,10 @@
 """Independent NumPy references for weft's GPU results.
 
-``weft.reference.shading`` (with ``texture`` and ``shadow``) re-derives every covered pixel of a frame from the renderer's debug
-outputs (SPEC §1.3 eq. 2.5, 2.8–2.10: ambient + Lambert + Blinn-Phong, and §1.5: shadow map
-with normal offset, slope-scaled bias and PCF). Tests and benchmarks use it as the oracle;
-later shading models add their own functions next to it. Nothing here calls the renderer.
+``weft.reference.shading`` (with ``texture`` and ``shadow``) re-derives every covered pixel of
+a frame from the renderer's debug outputs (SPEC §1.3 eq. 2.5, 2.8–2.10: ambient + Lambert +
+Blinn-Phong, and §1.5: shadow map with normal offset, slope-scaled bias and PCF). Tests and
+benchmarks use it as the oracle; later shading models add their own functions next to it.
+Nothing here calls the renderer.
 
 ``weft.reference.cloth`` is the cloth solver of SPEC §2 in NumPy (float64):
 :class:`ClothReference` runs the same algorithm as ``weft.Cloth`` (same constraint batches,

@@ -16,7 +16,8 @@ The formulas live in :mod:`weft.reference.cloth_formulas`, the collider shapes i
 :mod:`weft.reference.cloth_colliders`, the grid (positions, constraint pattern, normals,
 triangles, strain) in :mod:`weft.reference.cloth_grid` -- all re-exported here -- what a user
 does between steps (pins, grabs, holes, wind, colliders) in
-:mod:`weft.reference.cloth_interaction` and self-collision in :mod:`weft.reference.cloth_self`. Nothing here calls weft's compiled code.
+:mod:`weft.reference.cloth_interaction` and self-collision in :mod:`weft.reference.cloth_self`.
+Nothing here calls weft's compiled code.
 """
 
 from __future__ import annotations
@@ -484,8 +485,9 @@ class ClothReference(ClothInteraction):
         return {"mean_strain": mean, "max_strain": mx, "active_constraints": int(self.active.sum())}
 
     def constraints(self) -> Dict[str, np.ndarray]:
-        return {"a": self.a.astype(np.int32), "b": self.b.astype(np.int32), "rest": self.rest.copy(),
-                "family": self.family.copy(), "active": self.active.copy()}
+        return {"a": self.a.astype(np.int32), "b": self.b.astype(np.int32),
+                "rest": self.rest.copy(), "family": self.family.copy(),
+                "active": self.active.copy()}
 
     def kinetic_energy(self) -> float:
         """Sum of m v^2 / 2 over the cloth (not holes), v = (x - x_prev)/h of the last

@@ -68,7 +68,8 @@ def sorted_over(color: np.ndarray, alpha: np.ndarray, z: np.ndarray,
 
 
 def random_stack_errors(stacks: int = 2000, layers: int = 8, seed: int = 0):
-    """Mean and max |WBOIT - sorted over| per weight on random stacks (8 layers, alpha in [0.05, 0.6], z in [0.5, 20] m, z_ndc = z / 25)."""
+    """Mean and max |WBOIT - sorted over| per weight on random stacks (8 layers, alpha in
+    [0.05, 0.6], z in [0.5, 20] m, z_ndc = z / 25)."""
     rng = np.random.default_rng(seed)
     c = rng.random((stacks, layers, 3))
     a = rng.uniform(0.05, 0.6, (stacks, layers))

@@ -198,7 +198,8 @@ def incident(light: Any, position: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
             with np.errstate(divide="ignore", invalid="ignore"):
                 z = np.einsum("...k,k->...", q, axis) * np.tan(lt.outer_angle)
                 uv = 0.5 + 0.5 * np.stack([np.einsum("...k,k->...", q, right),
-                                           -np.einsum("...k,k->...", q, up)], axis=-1) / z[..., None]
+                                           -np.einsum("...k,k->...", q, up)],
+                                          axis=-1) / z[..., None]
             front = cos_angle > 0.0
             uv = np.where(front[..., None], uv, 0.5)
             cookie = texture_to_linear(lt.cookie, lt.cookie_srgb)[:, :, :3]
@@ -422,9 +423,10 @@ def shade_debug_frame(debug: Mapping[str, np.ndarray], camera_position: ArrayLik
 
     ``debug`` needs ``position``, ``normal``, ``uv``, ``mask`` and (unless ``shadow`` is
     given) ``shadow``; ``shadow`` overrides the visibility as in :func:`blinn_phong` (e.g. a
-    {light index: visibility} mapping for several shadow-casting lights). ``materials`` is one material for every covered pixel, or a list indexed
-    by ``labels`` (H, W) (defaults to ``debug["instance"]`` when the frame has one). Uncovered
-    pixels get ``(background, 1)``; covered pixels ``(blinn_phong(...), 1)``
+    {light index: visibility} mapping for several shadow-casting lights). ``materials`` is one
+    material for every covered pixel, or a list indexed by ``labels`` (H, W) (defaults to
+    ``debug["instance"]`` when the frame has one). Uncovered pixels get ``(background, 1)``;
+    covered pixels ``(blinn_phong(...), 1)``
     (SPEC §1.3 eq. 2.5, 2.8–2.10; shadows §1.5). Mip-mapped textures are sampled trilinearly
     at the LOD estimated from the frame's UV derivatives (``mip_lod``; see
     :func:`texture_lod` for where that is approximate; ``lod_bias`` is added to it), others

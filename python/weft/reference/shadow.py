@@ -9,9 +9,9 @@ from typing import Any, Mapping, NamedTuple, Optional, Sequence, Union
 
 import numpy as np
 
-ArrayLike = Union[np.ndarray, Sequence[float], float]
-
 from weft.reference.shading import LightDesc, _vec3, as_light, incident
+
+ArrayLike = Union[np.ndarray, Sequence[float], float]
 
 __all__ = ["ShadowLookup", "shadow_lookup", "pcf_visibility"]
 

@@ -2,8 +2,8 @@
 exposure + clamp + sRGB, then FLIP (LDR, ``flip_evaluator``; Andersson et al. 2020) per pixel and
 the mean relative error of the linear luminance, over the whole image, the covered pixels
 (background masked), the objects (not the ground), the geometric edges (where weft's instance
-id changes between 8-neighbours; background pixels only once weft draws the sky there) and, with a key light, the objects'
-unlit side (n . l <= 0: only bounce / environment light there).
+id changes between 8-neighbours; background pixels only once weft draws the sky there) and,
+with a key light, the objects' unlit side (n . l <= 0: only bounce / environment light there).
 """
 
 from __future__ import annotations
