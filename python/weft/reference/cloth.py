@@ -76,8 +76,12 @@ from weft.reference.cloth_formulas import (  # noqa: E402  (re-exported: the clo
     pendulum_period,
     project_distance,
 )
-from weft.reference.cloth_grid import (  # noqa: E402  (re-exported: the cloth's API)
+from weft.reference.cloth_grid import (  # noqa: E402, F401  (re-exported: the cloth's API)
+    BEND,
+    SHEAR,
+    STRETCH,
     constraint_pattern,
+    constraints_on_surface,
     grid_normals,
     grid_positions,
     grid_triangles,
