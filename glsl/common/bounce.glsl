@@ -9,7 +9,9 @@ layout(set = 0, binding = 16) uniform sampler2D bounceRadiance;
 #include "cube_faces.glsl"
 
 // The instance's bounce capture, or -1 (none, or a frame without bounce light).
-int bounceProbe(Instance ins) { return frame.sky.z > 0.5 ? int(ins.flags.y) - 1 : -1; }
+int bounceProbe(Instance ins) {
+    return featureOn(FEATURE_BOUNCE) && frame.sky.z > 0.5 ? int(ins.flags.y) - 1 : -1;
+}
 
 // SH9 basis at unit n, each band scaled by w (x: l = 0, y: l = 1, z: l = 2).
 void shBasis9(vec3 n, vec3 w, out float b[9]) {

@@ -43,7 +43,8 @@ vec3 casterBounce(vec3 p, vec3 n, int self, out vec3 hiddenSky,
     vec3 e = vec3(0.0);
     hiddenSky = vec3(0.0);
     covered = 0.0;
-    if (frame.sky.z < 0.5) return e; // no bounce light in this frame, or a capture
+    // no bounce light in this frame, or a capture
+    if (!featureOn(FEATURE_BOUNCE) || frame.sky.z < 0.5) return e;
     bool hideSky = frame.environment.x > 0.0;
     for (int c = 0; c < MAX_BOUNCE_CASTERS; ++c) {
         float r = frame.bounceSpheres[c].w;

@@ -158,7 +158,7 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
     e.visibility = e.floorVisibility = 1.0;
     bool probe = hasFlag(ins, DYNAMIC_REFLECTION);
     bool sphere = frame.options.x > 0.5;
-    if (frame.environment.x <= 0.0 && !probe) return e;
+    if (!featureOn(FEATURE_ENVIRONMENT) || (frame.environment.x <= 0.0 && !probe)) return e;
     vec3 irradiance = vec3(0.0), lit = vec3(-1.0);
     if (frame.environment.x > 0.0) {
         irradiance = sphere ? textureLod(sphereIrradiance, sphereMapUv(n), 0.0).rgb *

@@ -18,3 +18,11 @@ layout(set = 0, binding = 12) uniform sampler2D sphereGlossy;      // mips by ro
 layout(set = 0, binding = 13) uniform samplerCube environmentRadiance; // the background's source
 
 layout(push_constant) uniform Push { uint instance; } push;
+
+// What the frame may use (specialization constant 0, FEATURE_* of gpu_types.h): a pipeline made
+// for a frame without an environment, an ambient dome or bounce light has that code removed when
+// lavapipe compiles it, instead of running it under a mask that is false everywhere (which it
+// does: those unused terms were a third of the forward pass). The runtime tests stay, so the
+// default, every feature, draws exactly what a specialized pipeline draws.
+layout(constant_id = 0) const uint kFrameFeatures = 0xFFFFFFFFu;
+bool featureOn(uint feature) { return (kFrameFeatures & feature) != 0u; }

@@ -40,6 +40,11 @@ WEFT_CONST(uint, AMBIENT_RADIANCE, 32u);      // the ambient map is the ambient 
 WEFT_CONST(uint, TWO_SIDED, 64u);             // back faces shaded with the flipped normal
 WEFT_CONST(uint, MIRRORED, 128u);             // det(model) < 0: front and back swap
 WEFT_CONST(uint, DYNAMIC_REFLECTION, 256u);   // reflects the dynamic capture
+// Frame features, specialization constant 0 of the forward shader (frame.glsl, kFrameFeatures)
+WEFT_CONST(uint, FEATURE_ENVIRONMENT, 1u);  // an environment, or a dynamic-reflection capture
+WEFT_CONST(uint, FEATURE_AMBIENT_DOME, 2u); // the ambient read as a sky behind dome shadows
+WEFT_CONST(uint, FEATURE_BOUNCE, 4u);       // bounce light (Frame.sky.z)
+WEFT_CONST(uint, FEATURE_ALL, 7u);
 
 struct Light {
     vec4 position;    // xyz: position (point, spot); w: LIGHT_*

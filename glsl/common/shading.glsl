@@ -269,7 +269,7 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     float casterCovered;
     vec3 hiddenSky;
     sh.bounce = casterBounce(p, n, bp, hiddenSky, casterCovered) * ins.kd.rgb * sf.T;
-    if (frame.sky.w > 0.5) {
+    if (featureOn(FEATURE_AMBIENT_DOME) && frame.sky.w > 0.5) {
         // the proxies' cover is a floor under the dome's occlusion (see environmentTerms)
         float f = 1.0 - casterCovered;
         float v = clamp(1.0 - dot(domeOccluded(p, n), vec3(0.2126, 0.7152, 0.0722)), 0.0, f);

@@ -77,9 +77,10 @@ int sampleIndex(uint32_t samples) { // 1, 2, 4, 8 -> 0..3
 } // namespace
 
 VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool twoSided,
-                                      uint32_t samples) {
+                                      uint32_t samples, uint32_t features) {
     const int facing = twoSided ? 2 : mirrored ? 1 : 0;
-    vk::Pipeline& p = mForward[debug][dome][facing][sampleIndex(samples)];
+    features &= gpu::FEATURE_ALL;
+    vk::Pipeline& p = mForward[debug][dome][facing][sampleIndex(samples)][features];
     if (p) return p;
     static const char* const shaders[2][2] = {
         {"render/forward.frag", "render/forward_dome.frag"},
@@ -96,6 +97,7 @@ VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool
     d.cullMode = facing == 2 ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
     d.frontFace = facing == 1 ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
     d.samples = VkSampleCountFlagBits(samples);
+    d.fragmentConstant = features;
     p = vk::createGraphicsPipeline(mCtx, d);
     return p;
 }
@@ -122,7 +124,8 @@ void ScenePipelines::createPipelines() {
     for (auto& byDebug : mForward) // created again on first use
         for (auto& byDome : byDebug)
             for (auto& byFacing : byDome)
-                for (vk::Pipeline& p : byFacing) p = vk::Pipeline();
+                for (auto& bySamples : byFacing)
+                    for (vk::Pipeline& p : bySamples) p = vk::Pipeline();
     for (auto& byDepth : mBackground)
         for (vk::Pipeline& p : byDepth) p = vk::Pipeline();
 

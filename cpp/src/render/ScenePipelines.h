@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include "render/GpuTypes.h"
 #include "vk/Pipeline.h"
 
 namespace weft::render {
@@ -34,8 +35,10 @@ struct ScenePipelines {
     /// Forward shading for an output set (`debug` outputs, `dome` output for the blur pass) and
     /// a facing: back faces culled, the same for mirroring transforms (det < 0 reverses the
     /// winding), or two-sided (no culling). Created on first use.
-    /// `samples`: MSAA samples of the targets (1, 2, 4, 8).
-    VkPipeline forwardFor(bool debug, bool dome, bool mirrored, bool twoSided, uint32_t samples);
+    /// `samples`: MSAA samples of the targets (1, 2, 4, 8). `features`: the gpu::FEATURE_* bits
+    /// the frame may use (frameFeatures); the others' code is left out of the pipeline.
+    VkPipeline forwardFor(bool debug, bool dome, bool mirrored, bool twoSided, uint32_t samples,
+                          uint32_t features = gpu::FEATURE_ALL);
     /// The background (image or environment) into a colour target of `samples`; `withDepth`:
     /// drawn inside a pass that has a depth attachment (not tested, not written).
     VkPipeline backgroundFor(uint32_t samples, bool withDepth = false);
@@ -50,7 +53,8 @@ struct ScenePipelines {
 private:
     vk::Context& mCtx;
     std::unordered_map<int, vk::Pipeline> mOutput; // by format
-    vk::Pipeline mForward[2][2][3][4];             // [debug][dome][facing][samples 1, 2, 4, 8]
+    // [debug][dome][facing][samples 1, 2, 4, 8][features]
+    vk::Pipeline mForward[2][2][3][4][gpu::FEATURE_ALL + 1];
     vk::Pipeline mBackground[2][4];                // [with depth][samples]
 };
 

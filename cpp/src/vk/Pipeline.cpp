@@ -11,10 +11,16 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
     s.module = vert;
     s.pName = "main";
     stages.push_back(s);
+    const VkSpecializationMapEntry constant0{0, 0, sizeof(uint32_t)};
+    VkSpecializationInfo specialization{1, &constant0, sizeof(uint32_t), nullptr};
     if (d.fragmentShader) {
         frag = createShaderModule(ctx, d.fragmentShader);
         s.stage = VK_SHADER_STAGE_FRAGMENT_BIT;
         s.module = frag;
+        if (d.fragmentConstant) {
+            specialization.pData = &*d.fragmentConstant;
+            s.pSpecializationInfo = &specialization;
+        }
         stages.push_back(s);
     }
 

@@ -1,5 +1,6 @@
 #pragma once
 // Graphics pipelines for dynamic rendering, described by a small struct.
+#include <optional>
 #include <vector>
 
 #include "vk/Resources.h"
@@ -29,6 +30,8 @@ struct GraphicsPipelineDesc {
     bool depthWrite = true;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT; // of the attachments drawn into
     VkPipelineLayout layout = VK_NULL_HANDLE;
+    /// Specialization constant 0 of the fragment shader (constant_id = 0), when set.
+    std::optional<uint32_t> fragmentConstant;
 };
 
 Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);
