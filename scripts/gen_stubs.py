@@ -3,7 +3,7 @@
 
     python scripts/gen_stubs.py [--out FILE]     (default: python/weft/_core.pyi)
 
-Run it after changing a binding; tests/python/test_typing.py regenerates the stubs and fails
+Run it after changing a binding; tests/python/project/test_typing.py regenerates the stubs and fails
 when the committed file differs. Needs an installed weft (pip install .) and pybind11-stubgen.
 """
 

@@ -8,7 +8,7 @@
 A subsystem is a folder of cpp/src/ (one OBJECT library each, cpp/CMakeLists.txt). A public
 header include/weft/X.h belongs to the subsystem whose weft_subsystem(... HEADERS X) names it.
 The allowed graph is ALLOWED below; the build declares the same one (DEPENDS), and
-tests/python/test_layers.py checks that both agree and that no #include leaves it. See
+tests/python/project/test_layers.py checks that both agree and that no #include leaves it. See
 docs/design/ARCHITECTURE.md, "Layers".
 """
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """How weft's lighting units and materials map onto a physically based renderer (Mitsuba 3).
 
 Each mapping is a place where a reference can silently lie, so each is written out here once
-and tested (tests/python/test_picture_reference.py):
+and tested (tests/python/render/test_picture_reference.py):
 
 - **Lights.** weft's direct diffuse is ``K_D T (n.l) L`` with ``L = colour * intensity`` (no
   1/pi, glsl/common/shading.glsl). A Lambertian BRDF of albedo ``rho`` gives ``rho / pi * E

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-EXE = Path(__file__).resolve().parents[2] / "build" / "py" / "cpp" / "weft-bench"
+EXE = Path(__file__).resolve().parents[3] / "build" / "py" / "cpp" / "weft-bench"
 pytestmark = pytest.mark.skipif(not EXE.exists(), reason="needs scripts/build.sh's weft-bench")
 
 OPTIONS = ["--quick", "--frames", "--sets", "--out", "--images", "--device", "--list-devices",

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 EXE = os.environ.get("WEFT_DEMO_EXE")
-README = Path(__file__).resolve().parents[2] / "README.md"
+README = Path(__file__).resolve().parents[3] / "README.md"
 pytestmark = pytest.mark.skipif(not EXE or not Path(EXE).exists(),
                                 reason="WEFT_DEMO_EXE (source scripts/env.sh) not built")
 

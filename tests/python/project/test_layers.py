@@ -4,7 +4,7 @@ The compile-time side (a planted back-edge fails to compile) is ctest's layers.*
 import importlib.util
 import pathlib
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
+ROOT = pathlib.Path(__file__).resolve().parents[3]
 _spec = importlib.util.spec_from_file_location("weft_layers", ROOT / "scripts" / "layers.py")
 layers = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(layers)

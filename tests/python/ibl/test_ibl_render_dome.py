@@ -39,7 +39,7 @@ def dome_passes(stats) -> list:
 def test_dome_diffuse_converges_to_the_visibility_weighted_irradiance(make_renderer) -> None:
     # each dome light is soft (a cone of its cell's spread, environment.glsl), so the ground is no
     # longer eq. 2.23 with one-tap visibility per light; against the exact integral it is close
-    # and closer with more lights. tests/python/test_dome_truth.py measures it in depth.
+    # and closer with more lights. tests/python/render/test_dome_truth.py measures it in depth.
     env = weft.ibl.Environment(FACES)
     r = make_renderer(64, 64)
     exact_error = {}

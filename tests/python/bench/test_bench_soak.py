@@ -106,7 +106,7 @@ def test_demo_soak_with_opaque_fur_is_flat():
     assert soak.verdict(result, 8.0) == [] and result["rss_growth_mib"] < 8.0
 
 
-GLSL = Path(__file__).resolve().parents[2] / "glsl"
+GLSL = Path(__file__).resolve().parents[3] / "glsl"
 
 
 @pytest.mark.skipif(not __import__("weft").shader_hot_reload_available(),

@@ -5,7 +5,7 @@ comments used to point to a file outside the repository)."""
 import re
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 CITE = re.compile(r"SPEC §(\d+(?:\.\d+)*)")
 HEADING = re.compile(r"^#{2,3} (\d+(?:\.\d+)*)\.? ", re.M)
 SOURCES = ("cpp", "glsl", "python", "tests", "scripts")

@@ -13,7 +13,7 @@ import pytest
 import weft
 from weft import reference as ref
 
-GLSL = Path(__file__).resolve().parents[2] / "glsl"
+GLSL = Path(__file__).resolve().parents[3] / "glsl"
 
 pytestmark = pytest.mark.skipif(not weft.shader_hot_reload_available(),
                                 reason="built without libshaderc")

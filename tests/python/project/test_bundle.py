@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 import weft
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 BUILD = ROOT / "build" / "py"
 # What the bundle leaves to the system (scripts/bundle.sh): glibc, the C++ runtime, the loader.
 SYSTEM_LIB = re.compile(r"^(linux-vdso|ld-linux|libc|libm|libdl|libpthread|librt|libutil|"
