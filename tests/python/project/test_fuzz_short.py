@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import os
 import re
+import resource
 import shutil
 import subprocess
 import sys
@@ -30,8 +31,14 @@ def test_short_fuzz_run_finds_nothing(target, tmp_path):
     runs = RUNS[target]
     corpus = tmp_path / "corpus"
     shutil.copytree(os.path.join(ROOT, "fuzz", "corpus", target), corpus)
+    # libFuzzer's -rss_limit_mb (default 2048) checks the peak resident set, and a child
+    # starts with its parent's peak (Linux keeps the high-water mark across fork and exec), so
+    # once pytest itself had grown past 2 GiB every run here stopped as "out-of-memory" at its
+    # first input. The limit is 2 GiB above what this process has reached.
+    inherited_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024
     run = subprocess.run([sys.executable, SCRIPT, target, f"-runs={runs}", "-seed=1",
-                          "-max_len=70000", f"-artifact_prefix={tmp_path}/", str(corpus)],
+                          "-max_len=70000", f"-rss_limit_mb={inherited_mb + 2048}",
+                          f"-artifact_prefix={tmp_path}/", str(corpus)],
                          capture_output=True, text=True, timeout=300, cwd=tmp_path)
     log = run.stdout + run.stderr
     assert run.returncode == 0, log[-3000:]
