@@ -11,8 +11,12 @@
 #     and goes on without validation.
 #   No GPU: says so and exits 2, unless --allow-cpu (then it runs on lavapipe, for testing).
 #
+#   Timing: with validation on, the benchmark runs twice: once validated (any message fails it)
+#     and once more without the layer, whose frame times are the figures to quote (the layer's
+#     CPU work would otherwise be timed on a fast GPU); --no-timing-run leaves the second out.
+#
 # Usage: gpu-check.sh [--out DIR] [--allow-cpu] [--quick] [--device X] [--frames N] [--images]
-#                     [--no-validation]
+#                     [--no-validation] [--no-timing-run]
 # Exit: 0 all passed; 1 a test, the benchmark or validation failed; 2 no GPU (or bad usage).
 set -uo pipefail
 
@@ -22,6 +26,7 @@ allow_cpu=0
 quick=0
 device=""
 validation=1
+timing_run=1
 bench_args=()
 while (($#)); do
     case "$1" in
@@ -32,6 +37,7 @@ while (($#)); do
         --frames) bench_args+=(--frames "${2:?--frames needs a number}"); shift 2 ;;
         --images) bench_args+=(--images); shift ;;
         --no-validation) validation=0; shift ;;
+        --no-timing-run) timing_run=0; shift ;;
         -h|--help) awk 'NR > 1 && !/^#/ {exit} NR > 1 {sub(/^# ?/, ""); print}' "$0"; exit 0 ;;
         *) echo "gpu-check: unknown option '$1' (see --help)" >&2; exit 2 ;;
     esac
@@ -79,31 +85,59 @@ fi
 
 # 2. The devices. A GPU is a discrete, integrated or virtual device; lavapipe reports "cpu".
 list() { "$bench" --list-devices 2>>"$log"; }
-if ! devices=$(list); then
-    say "Vulkan is not usable here (no driver / ICD?):"
-    tail -n 3 "$log" >&2
-    exit 2
-fi
-# Containers often get NVIDIA's driver libraries but not its Vulkan ICD manifest: then Vulkan
-# sees no GPU although nvidia-smi does. Write the manifest (what the driver installs as
-# nvidia_icd.json) into the output folder and point the loader at it.
+devices=$(list)
+list_rc=$?
+# Containers often get NVIDIA's driver but not all of it where the loader looks: the ICD
+# manifest missing, or present while the driver's libraries sit outside the linker's path
+# (/usr/local/nvidia/lib64): then Vulkan sees no GPU (or fails with INCOMPATIBLE_DRIVER) although
+# nvidia-smi does. Try the manifests the driver installed with its library folder on the path,
+# else write a manifest (what the driver installs as nvidia_icd.json) into the output folder.
 icd_note=""
-if ! echo "$devices" | awk -F'\t' '$1 == "device" && $3 != "cpu"' | grep -q . &&
+if { ((list_rc != 0)) || ! echo "$devices" | awk -F'\t' '$1 == "device" && $3 != "cpu"' | grep -q .; } &&
     command -v nvidia-smi >/dev/null 2>&1 && nvidia-smi -L >/dev/null 2>&1; then
+    nv_libs=""
+    for d in /usr/local/nvidia/lib64 /usr/local/nvidia/lib; do
+        [ -d "$d" ] && nv_libs=${nv_libs:+$nv_libs:}$d
+    done
+    for manifest in /usr/local/nvidia/share/vulkan/icd.d/*.json /usr/local/nvidia/etc/vulkan/icd.d/*.json \
+                    /usr/share/vulkan/icd.d/nvidia*.json /etc/vulkan/icd.d/nvidia*.json; do
+        [ -f "$manifest" ] || continue
+        if more=$(LD_LIBRARY_PATH="$nv_libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+                  VK_ICD_FILENAMES="$manifest" VK_DRIVER_FILES="$manifest" list) &&
+            echo "$more" | awk -F'\t' '$1 == "device" && $3 != "cpu"' | grep -q .; then
+            export VK_ICD_FILENAMES="$manifest" VK_DRIVER_FILES="$manifest"
+            [ -n "$nv_libs" ] && export LD_LIBRARY_PATH="$nv_libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+            devices=$more
+            list_rc=0
+            icd_note="the loader did not find NVIDIA's Vulkan ICD manifest: using $manifest"
+            say "$icd_note"
+            break
+        fi
+    done
+    [ -z "$icd_note" ] &&
     for lib in libGLX_nvidia.so.0 libEGL_nvidia.so.0; do
-        ldconfig -p 2>/dev/null | grep -q "$lib" || continue
+        ldconfig -p 2>/dev/null | grep -q "$lib" ||
+            for d in ${nv_libs//:/ }; do [ -e "$d/$lib" ] && break; false; done || continue
         printf '{"file_format_version": "1.0.0", "ICD": {"library_path": "%s", "api_version": "1.3"}}\n' \
             "$lib" > "$out/nvidia_icd.json"
-        if more=$(VK_ICD_FILENAMES="$out/nvidia_icd.json" VK_DRIVER_FILES="$out/nvidia_icd.json" list) &&
+        if more=$(LD_LIBRARY_PATH="$nv_libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+                  VK_ICD_FILENAMES="$out/nvidia_icd.json" VK_DRIVER_FILES="$out/nvidia_icd.json" list) &&
             echo "$more" | awk -F'\t' '$1 == "device" && $3 != "cpu"' | grep -q .; then
             export VK_ICD_FILENAMES="$out/nvidia_icd.json" VK_DRIVER_FILES="$out/nvidia_icd.json"
+            [ -n "$nv_libs" ] && export LD_LIBRARY_PATH="$nv_libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
             devices=$more
+            list_rc=0
             icd_note="NVIDIA's Vulkan ICD manifest was missing: wrote $out/nvidia_icd.json ($lib)"
             say "$icd_note"
             break
         fi
     done
     [ -z "$icd_note" ] && say "nvidia-smi sees a GPU but Vulkan does not, and no NVIDIA ICD library (libGLX_nvidia.so.0 / libEGL_nvidia.so.0) loads: the driver's Vulkan part is missing here"
+fi
+if ((list_rc != 0)); then
+    say "Vulkan is not usable here (no driver / ICD?):"
+    tail -n 3 "$log" >&2
+    exit 2
 fi
 echo "$devices" > "$out/devices.txt"
 pick=""
@@ -179,11 +213,20 @@ start=$(date +%s)
 bench_rc=$?
 bench_s=$(($(date +%s) - start))
 say "benchmark: exit $bench_rc (${bench_s} s), $out/bench/bench.md"
+timing_rc=0
+timing_s=0
+if ((validation && timing_run && bench_rc == 0)); then
+    start=$(date +%s)
+    WEFT_VALIDATION=0 "$bench" "${bench_args[@]}" --out "$out/bench-timing" 2> >(tee -a "$log" >&2)
+    timing_rc=$?
+    timing_s=$(($(date +%s) - start))
+    say "benchmark without the validation layer (the timings): exit $timing_rc (${timing_s} s), $out/bench-timing/bench.md"
+fi
 
 # 6. The summary, JSON and Markdown, written with the shell alone (no Python on the machine).
 esc() { printf '%s' "$1" | sed 's/\\/\\\\/g; s/"/\\"/g' | tr -d '\000-\037'; }
 status=passed
-((tests_rc == 0 && bench_rc == 0)) || status=failed
+((tests_rc == 0 && bench_rc == 0 && timing_rc == 0)) || status=failed
 cat > "$out/gpu-check.json" <<EOF
 {"status": "$status", "gpu": $( ((gpu)) && echo true || echo false), "date": "$(date -u +%Y-%m-%dT%H:%M:%SZ)",
  "host": "$(esc "$(uname -srm)")", "cpu": "$(esc "$(sed -n 's/^model name\t*: //p' /proc/cpuinfo | head -1)")",
@@ -192,7 +235,9 @@ cat > "$out/gpu-check.json" <<EOF
  "gpu_tool": "$(esc "$gpu_info")", "icd": "$(esc "$icd_note")", "loader": "$(esc "$loader")", "validation": "$(esc "$validation_note")",
  "tests": {"exit": $tests_rc, "passed": ${tests_passed:-0}, "failed": ${tests_failed:-0},
            "skipped": ${tests_skipped:-0}, "seconds": $tests_s, "log": "tests.log"},
- "bench": {"exit": $bench_rc, "seconds": $bench_s, "json": "bench/bench.json", "markdown": "bench/bench.md"}}
+ "bench": {"exit": $bench_rc, "seconds": $bench_s, "json": "bench/bench.json", "markdown": "bench/bench.md"},
+ "timing": {"ran": $([ -f "$out/bench-timing/bench.json" ] && echo true || echo false), "exit": $timing_rc, "seconds": $timing_s,
+            "json": "bench-timing/bench.json", "markdown": "bench-timing/bench.md"}}
 EOF
 {
     echo "# weft gpu-check: $status"
@@ -204,9 +249,16 @@ EOF
     echo "- Vulkan loader: $loader; validation: $validation_note"
     echo "- host: $(uname -srm); $(sed -n 's/^model name\t*: //p' /proc/cpuinfo | head -1)"
     echo "- C++ tests: ${tests_passed:-0} passed, ${tests_failed:-0} failed, ${tests_skipped:-0} skipped (exit $tests_rc, ${tests_s} s)"
-    echo "- benchmark: exit $bench_rc, ${bench_s} s"
-    echo
-    [ -f "$out/bench/bench.md" ] && sed 's/^#/##/' "$out/bench/bench.md"
+    echo "- benchmark (validation $validation_note): exit $bench_rc, ${bench_s} s"
+    if [ -f "$out/bench-timing/bench.md" ]; then
+        echo "- benchmark without the validation layer: exit $timing_rc, ${timing_s} s; its tables follow"
+        echo "  (the validated run's are in bench/bench.md)"
+        echo
+        sed 's/^#/##/' "$out/bench-timing/bench.md"
+    else
+        echo
+        [ -f "$out/bench/bench.md" ] && sed 's/^#/##/' "$out/bench/bench.md"
+    fi
 } > "$out/gpu-check.md"
 say "$status: $out/gpu-check.md"
 [ "$status" = passed ] || exit 1
