@@ -204,7 +204,8 @@ void bindRender(py::module_& m) {
         .def("render_linear", [](Renderer& r, const Scene& scene, const Camera& camera) {
             Frame f = renderFrame(r, scene, camera, OutputLinear);
             return floatImage(f.linear, f.height, f.width, 4, 4, 0);
-        }, py::arg("scene"), py::arg("camera"), "Linear radiance RGBA float32 (H, W, 4).")
+        }, py::arg("scene"), py::arg("camera"), "Linear radiance RGBA float32 (H, W, 4), rendered in half floats (11 significant bits; "
+           "weft.reference.LINEAR_STORAGE_RTOL).")
         .def("render_debug", [](Renderer& r, const Scene& scene, const Camera& camera) {
             Frame f = renderFrame(r, scene, camera, OutputColor | OutputLinear | OutputDebug);
             const int h = f.height, w = f.width;

@@ -626,7 +626,7 @@ class Renderer:
         """
     def render_linear(self, scene: Scene, camera: Camera) -> numpy.typing.NDArray[numpy.float32]:
         """
-        Linear radiance RGBA float32 (H, W, 4).
+        Linear radiance RGBA float32 (H, W, 4), rendered in half floats (11 significant bits; weft.reference.LINEAR_STORAGE_RTOL).
         """
     def resize(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> None:
         """

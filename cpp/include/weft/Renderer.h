@@ -93,11 +93,12 @@ struct RenderSettings {
 /// Which images a frame returns besides the 8-bit sRGB colour.
 enum FrameOutput : uint32_t {
     OutputColor = 1u << 0,  // RGBA8 sRGB
-    OutputLinear = 1u << 1, // RGBA32F linear radiance before encoding
+    OutputLinear = 1u << 1, // linear radiance before encoding (rendered as RGBA16F)
     OutputDebug = 1u << 2,  // position, normal, uv, light depth, shadow visibility, albedo
 };
 
-/// Images of one frame, rows top to bottom. Float images are interleaved RGBA32F.
+/// Images of one frame, rows top to bottom. Float images are interleaved RGBA floats (linear
+/// radiance with the half-float precision it was rendered in, the debug images exact).
 struct Frame {
     int width = 0;
     int height = 0;

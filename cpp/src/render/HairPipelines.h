@@ -10,7 +10,9 @@ namespace weft::render {
 struct ScenePipelines;
 
 constexpr VkFormat kDomOpacityFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-constexpr VkFormat kOitAccumFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+// sum of C a w (rgb) and the revealage (alpha): half floats as in McGuire & Bavoil 2013, whose
+// weights (eq. 7-10, clamped to [0.01, 3000]) are sized for them
+constexpr VkFormat kOitAccumFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 // r: sum of a w; g / b: the opaque strands' coverage of a partly covered pixel (anti-aliased
 // frames; alpha unused)
 constexpr VkFormat kOitWeightFormat = VK_FORMAT_R32G32B32A32_SFLOAT;

@@ -6,7 +6,10 @@
 
 namespace weft::render {
 
-constexpr VkFormat kHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+// Linear radiance in half floats (11-bit mantissa: 0.05% relative, up to 65504): half the
+// bytes per sample of RGBA32F for the forward pass's MSAA target, its resolve, the probes and the
+// hair composite; blending at full rate on GPUs whose ROPs blend 32-bit floats at a quarter of it.
+constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDebugFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_SRGB;

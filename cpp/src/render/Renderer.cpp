@@ -173,9 +173,8 @@ Frame Renderer::render(const Scene& scene, const Camera& camera, uint32_t output
     f.height = int(m.height);
     const size_t pixels = size_t(m.width) * m.height;
     auto floats = [&](vk::Image& im) {
-        std::vector<float> v(pixels * 4);
-        std::memcpy(v.data(), m.targets.readbackFor(*m.ctx, &im).mapped(), v.size() * sizeof(float));
-        return v;
+        return vk::readFloats(m.targets.readbackFor(*m.ctx, &im).mapped(), pixels * 4,
+                              im.desc().format);
     };
     if (outputs & OutputColor) {
         f.color = ImageU8(f.width, f.height, 4);

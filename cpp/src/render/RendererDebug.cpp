@@ -35,7 +35,8 @@ std::vector<float> reflectionProbe(Renderer& renderer, uint32_t* sizeOut) {
         throw InvalidArgument("the last rendered scene had no material with dynamic_reflection");
     vk::Image& cube = m.probe.cube();
     const uint32_t size = cube.desc().width;
-    const VkDeviceSize bytes = VkDeviceSize(6) * size * size * 4 * sizeof(float);
+    const size_t values = size_t(6) * size * size * 4;
+    const VkDeviceSize bytes = VkDeviceSize(6) * size * size * vk::formatBytes(cube.desc().format);
     vk::Buffer buffer(m.ctx.get(), bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback);
     m.ctx->immediate([&](VkCommandBuffer cmd) {
         const render::UseState s = render::useState(Use::TransferRead, false);
@@ -45,8 +46,7 @@ std::vector<float> reflectionProbe(Renderer& renderer, uint32_t* sizeOut) {
         region.imageExtent = {size, size, 1};
         vkCmdCopyImageToBuffer(cmd, cube.get(), s.layout, buffer.get(), 1, &region);
     });
-    std::vector<float> out(size_t(bytes / sizeof(float)));
-    std::memcpy(out.data(), buffer.mapped(), bytes);
+    std::vector<float> out = vk::readFloats(buffer.mapped(), values, cube.desc().format);
     if (sizeOut) *sizeOut = size;
     return out;
 }

@@ -3,6 +3,8 @@
 #include <cstring>
 #include <string>
 
+#include <glm/gtc/packing.hpp>
+
 #include "vk/EmbeddedShaders.h"
 #include "vk/ShaderSource.h"
 
@@ -77,6 +79,19 @@ uint32_t formatBytes(VkFormat f) {
     default:
         throw Error("formatBytes: unsupported format " + std::to_string(int(f)));
     }
+}
+
+std::vector<float> readFloats(const void* mapped, size_t count, VkFormat format) {
+    std::vector<float> v(count);
+    if (format == VK_FORMAT_R32G32B32A32_SFLOAT) {
+        std::memcpy(v.data(), mapped, count * sizeof(float));
+    } else if (format == VK_FORMAT_R16G16B16A16_SFLOAT) {
+        const auto* h = static_cast<const uint16_t*>(mapped);
+        for (size_t i = 0; i < count; ++i) v[i] = glm::unpackHalf1x16(h[i]);
+    } else {
+        throw Error("readFloats: not a float format: " + std::to_string(int(format)));
+    }
+    return v;
 }
 
 Image::Image(Context* ctx, const ImageDesc& desc) : mCtx(ctx), mDesc(desc) {

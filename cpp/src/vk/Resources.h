@@ -132,6 +132,8 @@ private:
 bool isDepthFormat(VkFormat format);
 /// Bytes per texel of the uncompressed formats weft uses.
 uint32_t formatBytes(VkFormat format);
+/// `count` values of a read-back RGBA32F or RGBA16F image as floats (weft::Error otherwise).
+std::vector<float> readFloats(const void* mapped, size_t count, VkFormat format);
 
 /// Records a full-image layout transition (sync2), updating the image's tracked state.
 void transition(Context& ctx, VkCommandBuffer cmd, Image& image, VkImageLayout layout,

@@ -132,7 +132,8 @@ def frame_oracle(renderer: Any, scene: Any, camera: Any, debug: Dict[str, np.nda
 
     background = np.asarray(scene.background, dtype=np.float64)
     bg = ~mask
-    result["background_max_abs"] = (float(np.abs(debug["linear"][..., :3][bg] - background).max())
+    result["background_max_abs"] = (float(ref.storage_excess(debug["linear"][..., :3][bg],
+                                                             background).max())
                                     if bg.any() else 0.0)
 
     shadow_light = ref.first_shadow_light(lights)

@@ -36,6 +36,7 @@ from weft.reference.cloth import (
     strain,
 )
 from weft.reference.shading import (
+    LINEAR_STORAGE_RTOL,
     LightDesc,
     OracleErrors,
     SurfaceMaterial,
@@ -48,6 +49,7 @@ from weft.reference.shading import (
     material_maps,
     shade_debug_frame,
     spot_basis,
+    storage_excess,
 )
 from weft.reference.shadow import ShadowLookup, pcf_visibility, shadow_lookup
 from weft.reference.texture import (
@@ -83,6 +85,7 @@ __all__ = [
     "project_distance",
     "sphere_distance",
     "strain",
+    "LINEAR_STORAGE_RTOL",
     "LightDesc",
     "OracleErrors",
     "ShadowLookup",
@@ -91,6 +94,7 @@ __all__ = [
     "attenuation",
     "incident",
     "spot_basis",
+    "storage_excess",
     "blinn_phong",
     "build_mip_chain",
     "compare_frame",

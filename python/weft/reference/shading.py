@@ -474,6 +474,19 @@ class OracleErrors(NamedTuple):
         return dict(self._asdict())
 
 
+# The renderer keeps linear radiance in half floats (RGBA16F: 11 significant bits), and Vulkan
+# lets a float -> half conversion round to nearest or toward zero: a linear value v reads back
+# within LINEAR_STORAGE_RTOL * |v| of the float the shader computed (one half-float ulp).
+LINEAR_STORAGE_RTOL = 2.0 ** -10
+
+
+def storage_excess(linear: np.ndarray, oracle: np.ndarray) -> np.ndarray:
+    """|linear - oracle| beyond the half-float storage rounding of the oracle's value (>= 0)."""
+    oracle = np.asarray(oracle, dtype=np.float64)
+    diff = np.abs(np.asarray(linear, dtype=np.float64) - oracle)
+    return np.maximum(diff - LINEAR_STORAGE_RTOL * np.abs(oracle), 0.0)
+
+
 def compare_frame(debug: Mapping[str, np.ndarray], oracle_linear: np.ndarray,
                   mask: Optional[np.ndarray] = None) -> OracleErrors:
     """Compares ``debug["linear"]`` and ``debug["color"]`` with the oracle's linear image on

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 import weft
 import weft.ibl
+from weft.reference import LINEAR_STORAGE_RTOL
 
 KA = 0.8           # the caster's K_A = K_D
 GROUND = 0.5       # the ground's K_A = K_D: its radiance is GROUND * I_A under the ambient alone
@@ -64,7 +65,7 @@ def test_without_bounce_the_ambient_is_unoccluded(make_renderer):
     scene, camera, sphere = floating_sphere()
     r = make_renderer(96, 72, bounce=False, ambient_occlusion=0)
     rgb, _ = sphere_pixels(r.render_debug(scene, camera), sphere)
-    np.testing.assert_allclose(rgb, KA * AMBIENT, rtol=1e-4)
+    np.testing.assert_allclose(rgb, KA * AMBIENT, rtol=LINEAR_STORAGE_RTOL)
 
 
 def test_the_environment_the_ground_hides_is_replaced_by_the_ground(make_renderer):

@@ -67,7 +67,7 @@ def oracle_error(renderer: weft.Renderer, scene: weft.Scene, camera: weft.Camera
     if not shadows:
         assert np.all(debug["shadow"] == 1.0)
     mask = debug["mask"]
-    err = np.abs(debug["linear"][..., :3] - oracle[..., :3]).max(axis=-1)[mask]
+    err = ref.storage_excess(debug["linear"][..., :3], oracle[..., :3]).max(axis=-1)[mask]
     return err, debug
 
 
