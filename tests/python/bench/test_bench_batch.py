@@ -10,6 +10,8 @@ from pathlib import Path
 
 import pytest
 
+pytestmark = pytest.mark.slow  # a benchmark run (pyproject.toml: markers)
+
 pytest.importorskip("ray")
 
 

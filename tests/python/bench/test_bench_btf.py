@@ -9,7 +9,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
 import weft
+
+pytestmark = pytest.mark.slow  # a benchmark run (pyproject.toml: markers)
 
 MODELS = {"linear", "linear (robust)", "linear + specular eq4.30", "linear + specular eq4.29",
           "Blinn-Phong n_s=n", "Blinn-Phong n_s=(0,0,1)", "Blinn-Phong (chosen)",

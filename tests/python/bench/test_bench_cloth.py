@@ -10,7 +10,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
 from weft.bench import cloth as bench_cloth
+
+pytestmark = pytest.mark.slow  # a benchmark run (pyproject.toml: markers)
 
 TIMEOUT_S = 300
 

@@ -8,6 +8,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
+pytestmark = pytest.mark.slow  # a benchmark run (pyproject.toml: markers)
+
 
 def test_bench_hair_quick(tmp_path: Path) -> None:
     out = tmp_path / "bench"

@@ -10,6 +10,9 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
+
+pytestmark = pytest.mark.slow  # a benchmark run (pyproject.toml: markers)
 
 
 def test_bench_ibl_quick(tmp_path: Path) -> None:

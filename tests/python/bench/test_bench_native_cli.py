@@ -12,7 +12,8 @@ from pathlib import Path
 import pytest
 
 EXE = Path(__file__).resolve().parents[3] / "build" / "py" / "cpp" / "weft-bench"
-pytestmark = pytest.mark.skipif(not EXE.exists(), reason="needs scripts/build.sh's weft-bench")
+pytestmark = [pytest.mark.slow,  # a benchmark run (pyproject.toml: markers)
+              pytest.mark.skipif(not EXE.exists(), reason="needs scripts/build.sh's weft-bench")]
 
 OPTIONS = ["--quick", "--frames", "--sets", "--out", "--images", "--device", "--list-devices",
            "--require-gpu", "--fur-23m", "--no-fur-23m", "--help"]

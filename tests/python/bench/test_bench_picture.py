@@ -11,6 +11,8 @@ from pathlib import Path
 
 import pytest
 
+pytestmark = pytest.mark.slow  # a benchmark run (pyproject.toml: markers)
+
 pytest.importorskip("mitsuba", reason="mitsuba (PyPI) is not installed: no path-traced reference")
 pytest.importorskip("flip_evaluator", reason="flip-evaluator (PyPI) is not installed")
 

@@ -21,6 +21,8 @@ import weft
 from weft.bench import main as bench_main
 from weft.bench import render_peer
 
+pytestmark = pytest.mark.slow  # a benchmark run (pyproject.toml: markers)
+
 TIMEOUT_S = 300
 
 

@@ -20,6 +20,8 @@ import numpy as np
 import pytest
 from weft.bench import soak
 
+pytestmark = pytest.mark.slow  # a benchmark run (pyproject.toml: markers)
+
 
 @pytest.fixture(scope="module")
 def demo():

@@ -12,6 +12,8 @@ from typing import List
 
 import pytest
 
+pytestmark = pytest.mark.slow  # a benchmark run (pyproject.toml: markers)
+
 TIMEOUT_S = 300
 
 

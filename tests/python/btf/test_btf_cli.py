@@ -14,6 +14,8 @@ import pytest
 import weft
 from weft import btf
 
+pytestmark = pytest.mark.slow  # the BTF CLI over every model (~35 s)
+
 TIMEOUT_S = 300
 MODELS = {"linear", "linear_robust", "specular_eq4.29", "specular_eq4.30", "blinn_phong_n",
           "blinn_phong_flat", "lafortune_1", "lafortune_2"}

@@ -29,9 +29,13 @@ BUILD = ROOT / "build" / "py"
 SYSTEM_LIB = re.compile(r"^(linux-vdso|ld-linux|libc|libm|libdl|libpthread|librt|libutil|"
                         r"libresolv|libnsl|libstdc\+\+|libgcc_s|libvulkan)\.so")
 
-pytestmark = pytest.mark.skipif(
-    not (BUILD / "cpp" / "weft-bench").exists() or not (BUILD / "tests" / "weft_tests").exists(),
-    reason="needs scripts/build.sh's build/py (weft-bench and the C++ tests)")
+pytestmark = [
+    pytest.mark.slow,  # builds the bundle and a wheel, installs it into a fresh venv
+    pytest.mark.skipif(
+        not (BUILD / "cpp" / "weft-bench").exists()
+        or not (BUILD / "tests" / "weft_tests").exists(),
+        reason="needs scripts/build.sh's build/py (weft-bench and the C++ tests)"),
+]
 
 
 def _env(**extra: str) -> dict:

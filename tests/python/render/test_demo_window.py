@@ -94,6 +94,7 @@ def window_env(display: str) -> Dict[str, str]:
     return env
 
 
+@pytest.mark.slow  # 18-39 s on 2 cores
 def test_window_screenshot_matches_headless(xvfb_display: str, tmp_path: Path) -> None:
     """12 frames in a real window (one fixed simulation step per frame) show exactly what 12
     headless frames show."""
@@ -114,6 +115,7 @@ def test_window_screenshot_matches_headless(xvfb_display: str, tmp_path: Path) -
     assert value >= MIN_PSNR_DB, f"PSNR(window, headless) = {value:.2f} dB < {MIN_PSNR_DB} dB"
 
 
+@pytest.mark.slow  # 18-39 s on 2 cores
 def test_scripted_drag_moves_the_cloth_in_the_window(xvfb_display: str, tmp_path: Path) -> None:
     """A scripted grab and drag in the window pulls the cloth up into the top left: its
     screenshot matches the headless run of the same script, and the cloth's red checks cover

@@ -31,6 +31,8 @@ from weft.reference.picture import evaluate as ev  # noqa: E402
 from weft.reference.picture import mitsuba_export as mx  # noqa: E402
 from weft.reference.picture import scenes  # noqa: E402
 
+pytestmark = pytest.mark.slow  # Mitsuba's reference renders (~30 s)
+
 W, H, SPP = 128, 96, 512
 
 #: Per scene and region: (FLIP ceiling, relative-error ceiling). Measured at 128 x 96, 512 spp
