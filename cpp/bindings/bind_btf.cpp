@@ -147,363 +147,419 @@ BtfSolver solverFrom(const std::string& s) {
 } // namespace
 
 void bindBtf(py::module_& m) {
-    m.def("btf_render_material", [](py::dict maps) {
-        py::array normal = py::array::ensure(maps["normal"]);
-        if (!normal || normal.ndim() != 3) throw InvalidArgument("normal must be (H, W, 3)");
-        return btfRenderMaterial(mapsFrom(normal.shape(0), normal.shape(1), maps));
-    }, py::arg("maps"), "The renderer's Material for BTF maps (BtfMaterial.core_maps()).");
-    m.def("btf_drawn_maps", [](py::dict maps) {
-        py::array normal = py::array::ensure(maps["normal"]);
-        if (!normal || normal.ndim() != 3) throw InvalidArgument("normal must be (H, W, 3)");
-        return mapsTo(btfDrawnMaps(mapsFrom(normal.shape(0), normal.shape(1), maps)));
-    }, py::arg("maps"), "BTF maps as the renderer draws them (BtfMaterial.as_drawn()).");
+    m.def(
+        "btf_render_material",
+        [](py::dict maps) {
+            py::array normal = py::array::ensure(maps["normal"]);
+            if (!normal || normal.ndim() != 3) throw InvalidArgument("normal must be (H, W, 3)");
+            return btfRenderMaterial(mapsFrom(normal.shape(0), normal.shape(1), maps));
+        },
+        py::arg("maps"), "The renderer's Material for BTF maps (BtfMaterial.core_maps()).");
+    m.def(
+        "btf_drawn_maps",
+        [](py::dict maps) {
+            py::array normal = py::array::ensure(maps["normal"]);
+            if (!normal || normal.ndim() != 3) throw InvalidArgument("normal must be (H, W, 3)");
+            return mapsTo(btfDrawnMaps(mapsFrom(normal.shape(0), normal.shape(1), maps)));
+        },
+        py::arg("maps"), "BTF maps as the renderer draws them (BtfMaterial.as_drawn()).");
 
     py::class_<BtfSamples>(m, "BtfSamples",
                            "BTF measurements: per sample (light, view) an RGB image; values "
                            "float32 (S, 3, H, W), angles (S, 4) degrees θ_l, φ_l, θ_v, φ_v.")
         .def(py::init([](py::handle values, py::handle angles) {
-            auto ang = anglesFrom(angles);
-            auto a = numericArray(values, "values");
-            if (a.ndim() != 4 || a.shape(0) != py::ssize_t(ang.size()) || a.shape(1) != 3)
-                throw InvalidArgument("values must have shape (S, 3, H, W) with S = len(angles)");
-            BtfSamples s(int(a.shape(3)), int(a.shape(2)), ang);
-            const double* d = a.data();
-            for (size_t i = 0; i < s.values().size(); ++i) s.values()[i] = float(d[i]);
-            s.requireFinite();
-            return s;
-        }), py::arg("values"), py::arg("angles"),
-            "Samples from values (S, 3, H, W) and angles (S, 4): (θ_l, φ_l, θ_v, φ_v) in "
-            "degrees per sample. Values must be finite (InvalidArgument otherwise).")
+                 auto ang = anglesFrom(angles);
+                 auto a = numericArray(values, "values");
+                 if (a.ndim() != 4 || a.shape(0) != py::ssize_t(ang.size()) || a.shape(1) != 3)
+                     throw InvalidArgument(
+                         "values must have shape (S, 3, H, W) with S = len(angles)");
+                 BtfSamples s(int(a.shape(3)), int(a.shape(2)), ang);
+                 const double* d = a.data();
+                 for (size_t i = 0; i < s.values().size(); ++i) s.values()[i] = float(d[i]);
+                 s.requireFinite();
+                 return s;
+             }),
+             py::arg("values"), py::arg("angles"),
+             "Samples from values (S, 3, H, W) and angles (S, 4): (θ_l, φ_l, θ_v, φ_v) in "
+             "degrees per sample. Values must be finite (InvalidArgument otherwise).")
         .def_property_readonly("width", &BtfSamples::width)
         .def_property_readonly("height", &BtfSamples::height)
         .def_property_readonly("count", &BtfSamples::count)
-        .def_property_readonly("values", [](const BtfSamples& s) {
-            return toArray(s.values(), {s.count(), 3, s.height(), s.width()});
-        }, "A copy of the samples, float32 (S, 3, H, W).")
-        .def_property_readonly("angles", [](const BtfSamples& s) {
-            py::array_t<float> out({s.count(), 4});
-            for (int i = 0; i < s.count(); ++i) {
-                const BtfAngles& a = s.angles()[size_t(i)];
-                const float v[4] = {a.thetaLight, a.phiLight, a.thetaView, a.phiView};
-                std::memcpy(out.mutable_data() + i * 4, v, sizeof v);
-            }
-            return out;
-        })
-        .def_property_readonly("light_dirs", [](const BtfSamples& s) {
-            py::array_t<float> out({s.count(), 3});
-            for (int i = 0; i < s.count(); ++i)
-                for (int k = 0; k < 3; ++k) out.mutable_data()[i * 3 + k] = s.light(i)[k];
-            return out;
-        })
-        .def_property_readonly("view_dirs", [](const BtfSamples& s) {
-            py::array_t<float> out({s.count(), 3});
-            for (int i = 0; i < s.count(); ++i)
-                for (int k = 0; k < 3; ++k) out.mutable_data()[i * 3 + k] = s.view(i)[k];
-            return out;
-        })
-        .def_property_readonly("jpeg_cells", [](const BtfSamples& s) -> py::object {
-            const BtfJpegCells* cells = s.jpegCells();
-            if (!cells) return py::none();
-            const size_t count = size_t(s.count()), nc = cells->components.size();
-            py::list comps;
-            for (size_t c = 0; c < nc; ++c) {
-                const auto& comp = cells->components[c];
-                const size_t bh = size_t(comp.blocksHigh), bw = size_t(comp.blocksWide);
-                py::array_t<int16_t> coef({count, bh, bw, size_t(8), size_t(8)});
-                py::array_t<uint16_t> quant({count, size_t(8), size_t(8)});
-                int16_t* co = coef.mutable_data();
-                uint16_t* qo = quant.mutable_data();
-                for (size_t k = 0; k < count; ++k) {
-                    const int16_t* src = cells->coefficients.data() +
-                                         k * cells->coefficientsPerSample + comp.offset;
-                    std::copy(src, src + bh * bw * 64, co + k * bh * bw * 64);
-                    const uint16_t* q = cells->quant.data() + (k * nc + c) * 64;
-                    std::copy(q, q + 64, qo + k * 64);
+        .def_property_readonly(
+            "values",
+            [](const BtfSamples& s) {
+                return toArray(s.values(), {s.count(), 3, s.height(), s.width()});
+            },
+            "A copy of the samples, float32 (S, 3, H, W).")
+        .def_property_readonly(
+            "angles",
+            [](const BtfSamples& s) {
+                py::array_t<float> out({s.count(), 4});
+                for (int i = 0; i < s.count(); ++i) {
+                    const BtfAngles& a = s.angles()[size_t(i)];
+                    const float v[4] = {a.thetaLight, a.phiLight, a.thetaView, a.phiView};
+                    std::memcpy(out.mutable_data() + i * 4, v, sizeof v);
                 }
-                py::dict d;
-                d["coefficients"] = coef;
-                d["quant"] = quant;
-                d["sampling"] = py::make_tuple(comp.hSampling, comp.vSampling);
-                comps.append(d);
-            }
-            py::dict out;
-            out["ycbcr"] = cells->ycbcr;
-            out["components"] = comps;
-            return out;
-        })
+                return out;
+            })
+        .def_property_readonly("light_dirs",
+                               [](const BtfSamples& s) {
+                                   py::array_t<float> out({s.count(), 3});
+                                   for (int i = 0; i < s.count(); ++i)
+                                       for (int k = 0; k < 3; ++k)
+                                           out.mutable_data()[i * 3 + k] = s.light(i)[k];
+                                   return out;
+                               })
+        .def_property_readonly("view_dirs",
+                               [](const BtfSamples& s) {
+                                   py::array_t<float> out({s.count(), 3});
+                                   for (int i = 0; i < s.count(); ++i)
+                                       for (int k = 0; k < 3; ++k)
+                                           out.mutable_data()[i * 3 + k] = s.view(i)[k];
+                                   return out;
+                               })
+        .def_property_readonly(
+            "jpeg_cells",
+            [](const BtfSamples& s) -> py::object {
+                const BtfJpegCells* cells = s.jpegCells();
+                if (!cells) return py::none();
+                const size_t count = size_t(s.count()), nc = cells->components.size();
+                py::list comps;
+                for (size_t c = 0; c < nc; ++c) {
+                    const auto& comp = cells->components[c];
+                    const size_t bh = size_t(comp.blocksHigh), bw = size_t(comp.blocksWide);
+                    py::array_t<int16_t> coef({count, bh, bw, size_t(8), size_t(8)});
+                    py::array_t<uint16_t> quant({count, size_t(8), size_t(8)});
+                    int16_t* co = coef.mutable_data();
+                    uint16_t* qo = quant.mutable_data();
+                    for (size_t k = 0; k < count; ++k) {
+                        const int16_t* src = cells->coefficients.data() +
+                                             k * cells->coefficientsPerSample + comp.offset;
+                        std::copy(src, src + bh * bw * 64, co + k * bh * bw * 64);
+                        const uint16_t* q = cells->quant.data() + (k * nc + c) * 64;
+                        std::copy(q, q + 64, qo + k * 64);
+                    }
+                    py::dict d;
+                    d["coefficients"] = coef;
+                    d["quant"] = quant;
+                    d["sampling"] = py::make_tuple(comp.hSampling, comp.vSampling);
+                    comps.append(d);
+                }
+                py::dict out;
+                out["ycbcr"] = cells->ycbcr;
+                out["components"] = comps;
+                return out;
+            })
         .def("__repr__", [](const BtfSamples& s) {
             return "<weft.BtfSamples " + std::to_string(s.count()) + " samples of " +
                    std::to_string(s.width()) + "x" + std::to_string(s.height()) + " RGB>";
         });
 
-    m.def("btf_standard_directions", [] {
-        const auto& d = btfStandardDirections();
-        py::array_t<float> out({py::ssize_t(d.size()), py::ssize_t(2)});
-        for (size_t i = 0; i < d.size(); ++i) {
-            out.mutable_data()[i * 2] = d[i].x;
-            out.mutable_data()[i * 2 + 1] = d[i].y;
-        }
-        return out;
-    },
+    m.def(
+        "btf_standard_directions",
+        [] {
+            const auto& d = btfStandardDirections();
+            py::array_t<float> out({py::ssize_t(d.size()), py::ssize_t(2)});
+            for (size_t i = 0; i < d.size(); ++i) {
+                out.mutable_data()[i * 2] = d[i].x;
+                out.mutable_data()[i * 2 + 1] = d[i].y;
+            }
+            return out;
+        },
         "The 81 directions the Bonn database uses for lights and views, (81, 2) as (θ, φ) in "
         "degrees: rings θ = 0, 15, ..., 75, each by increasing φ.");
-    m.def("btf_decode_image", [](py::bytes data, const std::string& name) -> py::object {
-        const std::string raw = data;
-        const std::vector<uint8_t> bytes(raw.begin(), raw.end());
-        DecodedImage img;
-        {
-            py::gil_scoped_release release;
-            img = decodeBtfImage(bytes, name);
-        }
-        const std::vector<py::ssize_t> shape = {img.height, img.width, img.channels};
-        if (!img.pixels16.empty())
-            return py::array_t<uint16_t>(shape, img.pixels16.data());
-        return py::array_t<uint8_t>(shape, img.pixels.data());
-    }, py::arg("data"), py::arg("name") = "<bytes>",
-       "Decodes JPEG or PNG bytes as the BTF reader does (values as stored, (H, W, C) uint8, or\n"
-       "uint16 for 16-bit PNG); IoError for anything else or anything corrupt.");
-    m.def("btf_parse_file_name", [](const std::string& name) -> py::object {
-        BtfAngles a;
-        if (!parseBtfFileName(name, a)) return py::none();
-        return py::make_tuple(a.thetaLight, a.phiLight, a.thetaView, a.phiView);
-    }, py::arg("name"),
+    m.def(
+        "btf_decode_image",
+        [](py::bytes data, const std::string& name) -> py::object {
+            const std::string raw = data;
+            const std::vector<uint8_t> bytes(raw.begin(), raw.end());
+            DecodedImage img;
+            {
+                py::gil_scoped_release release;
+                img = decodeBtfImage(bytes, name);
+            }
+            const std::vector<py::ssize_t> shape = {img.height, img.width, img.channels};
+            if (!img.pixels16.empty()) return py::array_t<uint16_t>(shape, img.pixels16.data());
+            return py::array_t<uint8_t>(shape, img.pixels.data());
+        },
+        py::arg("data"), py::arg("name") = "<bytes>",
+        "Decodes JPEG or PNG bytes as the BTF reader does (values as stored, (H, W, C) uint8, or\n"
+        "uint16 for 16-bit PNG); IoError for anything else or anything corrupt.");
+    m.def(
+        "btf_parse_file_name",
+        [](const std::string& name) -> py::object {
+            BtfAngles a;
+            if (!parseBtfFileName(name, a)) return py::none();
+            return py::make_tuple(a.thetaLight, a.phiLight, a.thetaView, a.phiView);
+        },
+        py::arg("name"),
         "(θ_l, φ_l, θ_v, φ_v) in degrees parsed from a Bonn file name's tl/pl/tv/pv keys, or "
         "None when one of them is missing.");
-    m.def("btf_load", [](const std::string& path, py::object views, const std::string& gamma,
-                         int threads, bool jpegCells) {
-        BtfLoadOptions o;
-        o.gamma = gammaFrom(gamma);
-        o.threads = threads;
-        o.jpegCells = jpegCells;
-        if (views.is_none()) {
-            o.views.clear();
-        } else {
-            auto a = numericArray(views, "views");
-            if (a.ndim() != 2 || a.shape(1) != 2 || a.shape(0) < 1)
-                throw InvalidArgument("views must have shape (V, 2): θ_v, φ_v in degrees");
-            o.views.clear();
-            for (py::ssize_t i = 0; i < a.shape(0); ++i)
-                o.views.emplace_back(float(a.data()[i * 2]), float(a.data()[i * 2 + 1]));
-        }
-        py::gil_scoped_release release;
-        return loadBtf(path, o);
-    }, py::arg("path"), py::arg("views"), py::arg("gamma") = "raw", py::arg("threads") = 0,
-       py::arg("jpeg_cells") = false,
+    m.def(
+        "btf_load",
+        [](const std::string& path, py::object views, const std::string& gamma, int threads,
+           bool jpegCells) {
+            BtfLoadOptions o;
+            o.gamma = gammaFrom(gamma);
+            o.threads = threads;
+            o.jpegCells = jpegCells;
+            if (views.is_none()) {
+                o.views.clear();
+            } else {
+                auto a = numericArray(views, "views");
+                if (a.ndim() != 2 || a.shape(1) != 2 || a.shape(0) < 1)
+                    throw InvalidArgument("views must have shape (V, 2): θ_v, φ_v in degrees");
+                o.views.clear();
+                for (py::ssize_t i = 0; i < a.shape(0); ++i)
+                    o.views.emplace_back(float(a.data()[i * 2]), float(a.data()[i * 2 + 1]));
+            }
+            py::gil_scoped_release release;
+            return loadBtf(path, o);
+        },
+        py::arg("path"), py::arg("views"), py::arg("gamma") = "raw", py::arg("threads") = 0,
+        py::arg("jpeg_cells") = false,
         "Loads a BTF in the Bonn layout (a folder or a zip) as BtfSamples: `views` (V, 2) "
         "(θ_v, φ_v) degrees picks views (None = all); gamma 'raw' keeps the stored values, "
         "'srgb' linearises them; jpeg_cells also keeps JPEG files' quantised DCT cells. Raises "
         "IoError naming the file (or the missing angles).");
-    m.def("btf_write", [](const std::string& path, const BtfSamples& samples,
-                          const std::string& format, int quality, bool zip,
-                          const std::string& gamma, const std::string& prefix) {
-        BtfWriteOptions o;
-        if (format == "jpg" || format == "jpeg") o.format = BtfImageFormat::Jpeg;
-        else if (format == "png") o.format = BtfImageFormat::Png;
-        else throw InvalidArgument("format must be 'jpg' or 'png', got '" + format + "'");
-        o.jpegQuality = quality;
-        o.zip = zip;
-        o.gamma = gammaFrom(gamma);
-        o.prefix = prefix;
-        py::gil_scoped_release release;
-        writeBtf(path, samples, o);
-    }, py::arg("path"), py::arg("samples"), py::arg("format") = "jpg", py::arg("quality") = 95,
-       py::arg("zip") = false, py::arg("gamma") = "raw", py::arg("prefix") = "",
+    m.def(
+        "btf_write",
+        [](const std::string& path, const BtfSamples& samples, const std::string& format,
+           int quality, bool zip, const std::string& gamma, const std::string& prefix) {
+            BtfWriteOptions o;
+            if (format == "jpg" || format == "jpeg")
+                o.format = BtfImageFormat::Jpeg;
+            else if (format == "png")
+                o.format = BtfImageFormat::Png;
+            else
+                throw InvalidArgument("format must be 'jpg' or 'png', got '" + format + "'");
+            o.jpegQuality = quality;
+            o.zip = zip;
+            o.gamma = gammaFrom(gamma);
+            o.prefix = prefix;
+            py::gil_scoped_release release;
+            writeBtf(path, samples, o);
+        },
+        py::arg("path"), py::arg("samples"), py::arg("format") = "jpg", py::arg("quality") = 95,
+        py::arg("zip") = false, py::arg("gamma") = "raw", py::arg("prefix") = "",
         "Writes samples (values in [0, 1], clipped, 8 bits) in the Bonn layout under "
         "path/UBO2003/MANYFILES/tvTTT_pvPPP/ as 'jpg' or 'png', optionally zipped; angles "
         "must be whole degrees.");
-    m.def("btf_render", [](py::dict maps, py::handle angles, py::object height, bool wrap,
-                           int threads) {
-        auto ang = anglesFrom(angles);
-        auto n = numericArray(maps["normal"], "normal");
-        if (n.ndim() != 3) throw InvalidArgument("normal must have shape (H, W, 3)");
-        BtfSamples shape(int(n.shape(1)), int(n.shape(0)), {ang[0]});
-        BtfMaterialMaps mm = mapsFrom(shape, maps);
-        BtfShadowing sh;
-        sh.wrap = wrap;
-        if (!height.is_none())
-            sh.height = floatArray(height, "height", {n.shape(0), n.shape(1)});
-        py::gil_scoped_release release;
-        return renderBtf(mm, ang, sh, threads);
-    }, py::arg("maps"), py::arg("angles"), py::arg("height") = py::none(),
-       py::arg("wrap") = true, py::arg("threads") = 0,
+    m.def(
+        "btf_render",
+        [](py::dict maps, py::handle angles, py::object height, bool wrap, int threads) {
+            auto ang = anglesFrom(angles);
+            auto n = numericArray(maps["normal"], "normal");
+            if (n.ndim() != 3) throw InvalidArgument("normal must have shape (H, W, 3)");
+            BtfSamples shape(int(n.shape(1)), int(n.shape(0)), {ang[0]});
+            BtfMaterialMaps mm = mapsFrom(shape, maps);
+            BtfShadowing sh;
+            sh.wrap = wrap;
+            if (!height.is_none())
+                sh.height = floatArray(height, "height", {n.shape(0), n.shape(1)});
+            py::gil_scoped_release release;
+            return renderBtf(mm, ang, sh, threads);
+        },
+        py::arg("maps"), py::arg("angles"), py::arg("height") = py::none(), py::arg("wrap") = true,
+        py::arg("threads") = 0,
         "Renders material maps (normal, diffuse, ... as from a fit) for each of `angles` (S, "
         "4) into BtfSamples; with a height field (H, W) a texel whose ray to the light passes "
         "below it gets only the ambient term (wrap: the field tiles).");
-    m.def("btf_fit_linear", [](const BtfSamples& s, bool robust, int iterations, float dark,
-                               int threads) {
-        BtfLinearFit f;
-        {
-            py::gil_scoped_release release;
-            f = fitBtfLinear(s, linearOptions(robust, iterations, dark, threads));
-        }
-        return linearTo(f);
-    }, py::arg("samples"), py::arg("robust") = false, py::arg("robust_iterations") = 4,
-       py::arg("dark_threshold") = 1e-4f, py::arg("threads") = 0,
+    m.def(
+        "btf_fit_linear",
+        [](const BtfSamples& s, bool robust, int iterations, float dark, int threads) {
+            BtfLinearFit f;
+            {
+                py::gil_scoped_release release;
+                f = fitBtfLinear(s, linearOptions(robust, iterations, dark, threads));
+            }
+            return linearTo(f);
+        },
+        py::arg("samples"), py::arg("robust") = false, py::arg("robust_iterations") = 4,
+        py::arg("dark_threshold") = 1e-4f, py::arg("threads") = 0,
         "Per-texel linear fit of all samples (normal, albedo, ambient; SPEC §4), optionally "
         "robust (samples darker than the fit by dark_threshold dropped over robust_iterations "
         "rounds). Returns a dict of arrays. Raises InvalidArgument when the lights do not "
         "span 3D.");
-    m.def("btf_solve_linear", [](const BtfSamples& s, py::handle texture, int threads) {
-        auto t = floatArray(texture, "texture", {s.height(), s.width(), 3});
-        BtfLinearFit f;
-        {
-            py::gil_scoped_release release;
-            f = solveBtfLinear(s, t, linearOptions(false, 4, 0.0f, threads));
-        }
-        return linearTo(f);
-    }, py::arg("samples"), py::arg("texture"), py::arg("threads") = 0,
+    m.def(
+        "btf_solve_linear",
+        [](const BtfSamples& s, py::handle texture, int threads) {
+            auto t = floatArray(texture, "texture", {s.height(), s.width(), 3});
+            BtfLinearFit f;
+            {
+                py::gil_scoped_release release;
+                f = solveBtfLinear(s, t, linearOptions(false, 4, 0.0f, threads));
+            }
+            return linearTo(f);
+        },
+        py::arg("samples"), py::arg("texture"), py::arg("threads") = 0,
         "The linear least squares for a given texture (H, W, 3) instead of the sample mean: "
         "per texel the normal and ambient that best explain the samples. Returns the same "
         "dict as btf_fit_linear.");
-    m.def("btf_material_from_linear", [](const BtfSamples& s, py::dict linear) {
-        return mapsTo(btfMaterialFromLinear(linearFrom(s, linear)));
-    }, py::arg("samples"), py::arg("linear"),
+    m.def(
+        "btf_material_from_linear",
+        [](const BtfSamples& s, py::dict linear) {
+            return mapsTo(btfMaterialFromLinear(linearFrom(s, linear)));
+        },
+        py::arg("samples"), py::arg("linear"),
         "The seed's material maps (no specular) from a btf_fit_linear result.");
-    m.def("btf_fit_specular", [](const BtfSamples& s, py::dict linear, bool flat, int maxExponent,
-                                 bool perTexel, int threads) {
-        const BtfLinearFit f = linearFrom(s, linear);
-        BtfSpecularOptions o;
-        o.flatSpecularNormal = flat;
-        o.maxExponent = maxExponent;
-        o.perTexel = perTexel;
-        o.threads = threads;
-        BtfSpecularFit r;
-        {
-            py::gil_scoped_release release;
-            r = fitBtfSpecular(s, f, o);
-        }
-        py::dict d;
-        d["maps"] = mapsTo(r.maps);
-        py::array_t<double> curve(py::ssize_t(r.curve.size()));
-        std::memcpy(curve.mutable_data(), r.curve.data(), r.curve.size() * sizeof(double));
-        d["curve"] = curve;
-        d["specular_sample"] = r.specularSample;
-        return d;
-    }, py::arg("samples"), py::arg("linear"), py::arg("flat_specular_normal") = true,
-       py::arg("max_exponent") = 4096, py::arg("per_texel") = false, py::arg("threads") = 0,
+    m.def(
+        "btf_fit_specular",
+        [](const BtfSamples& s, py::dict linear, bool flat, int maxExponent, bool perTexel,
+           int threads) {
+            const BtfLinearFit f = linearFrom(s, linear);
+            BtfSpecularOptions o;
+            o.flatSpecularNormal = flat;
+            o.maxExponent = maxExponent;
+            o.perTexel = perTexel;
+            o.threads = threads;
+            BtfSpecularFit r;
+            {
+                py::gil_scoped_release release;
+                r = fitBtfSpecular(s, f, o);
+            }
+            py::dict d;
+            d["maps"] = mapsTo(r.maps);
+            py::array_t<double> curve(py::ssize_t(r.curve.size()));
+            std::memcpy(curve.mutable_data(), r.curve.data(), r.curve.size() * sizeof(double));
+            d["curve"] = curve;
+            d["specular_sample"] = r.specularSample;
+            return d;
+        },
+        py::arg("samples"), py::arg("linear"), py::arg("flat_specular_normal") = true,
+        py::arg("max_exponent") = 4096, py::arg("per_texel") = false, py::arg("threads") = 0,
         "Specular map from the residual of the θ_l = 0 sample and the exponent minimising the "
         "total squared error (SPEC eq. 4.29/4.30). Returns {'maps', 'curve' (error per "
         "candidate exponent), 'specular_sample'}.");
-    m.def("btf_sample_errors", [](const BtfSamples& s, py::dict maps, bool reconstruct,
-                                  int threads) -> py::object {
-        const BtfMaterialMaps mm = mapsFrom(s, maps);
-        std::vector<float> recon;
-        std::vector<double> errors;
-        {
-            py::gil_scoped_release release;
-            errors = btfSampleErrors(s, mm, reconstruct ? &recon : nullptr, threads);
-        }
-        py::array_t<double> e(py::ssize_t(errors.size()));
-        std::memcpy(e.mutable_data(), errors.data(), errors.size() * sizeof(double));
-        if (!reconstruct) return e;
-        return py::make_tuple(e, toArray(recon, {s.count(), 3, s.height(), s.width()}));
-    }, py::arg("samples"), py::arg("maps"), py::arg("reconstruct") = false,
-       py::arg("threads") = 0,
+    m.def(
+        "btf_sample_errors",
+        [](const BtfSamples& s, py::dict maps, bool reconstruct, int threads) -> py::object {
+            const BtfMaterialMaps mm = mapsFrom(s, maps);
+            std::vector<float> recon;
+            std::vector<double> errors;
+            {
+                py::gil_scoped_release release;
+                errors = btfSampleErrors(s, mm, reconstruct ? &recon : nullptr, threads);
+            }
+            py::array_t<double> e(py::ssize_t(errors.size()));
+            std::memcpy(e.mutable_data(), errors.data(), errors.size() * sizeof(double));
+            if (!reconstruct) return e;
+            return py::make_tuple(e, toArray(recon, {s.count(), 3, s.height(), s.width()}));
+        },
+        py::arg("samples"), py::arg("maps"), py::arg("reconstruct") = false, py::arg("threads") = 0,
         "Per-sample mean squared error (S,) of `maps` against the samples; with "
         "reconstruct=True also the model's samples (S, 3, H, W), as a tuple.");
-    m.def("btf_fit_lafortune", [](const BtfSamples& s, py::dict seed, int lobes,
-                                  int maxIterations, int threads, bool visibility,
-                                  bool fixedNormal) {
-        const BtfMaterialMaps mm = mapsFrom(s, seed);
-        BtfLafortuneFit f;
-        {
-            py::gil_scoped_release release;
-            f = fitBtfLafortune(s, mm, lobes, maxIterations, threads, visibility, fixedNormal);
-        }
-        const py::ssize_t h = f.height, w = f.width, l = f.lobes;
-        py::dict d;
-        d["normal"] = toArray(f.normal, {h, w, 3});
-        d["diffuse"] = toArray(f.diffuse, {h, w, 3});
-        d["ambient"] = toArray(f.ambient, {h, w, 3});
-        d["lobe_albedo"] = toArray(f.lobeAlbedo, {h, w, l, 3});
-        d["lobe_shape"] = toArray(f.lobeShape, {h, w, l, 4});
-        d["mean_iterations"] = f.meanIterations;
-        return d;
-    }, py::arg("samples"), py::arg("seed"), py::arg("lobes") = 1,
-       py::arg("max_iterations") = 30, py::arg("threads") = 0, py::arg("visibility") = false,
-       py::arg("fixed_normal") = false,
+    m.def(
+        "btf_fit_lafortune",
+        [](const BtfSamples& s, py::dict seed, int lobes, int maxIterations, int threads,
+           bool visibility, bool fixedNormal) {
+            const BtfMaterialMaps mm = mapsFrom(s, seed);
+            BtfLafortuneFit f;
+            {
+                py::gil_scoped_release release;
+                f = fitBtfLafortune(s, mm, lobes, maxIterations, threads, visibility, fixedNormal);
+            }
+            const py::ssize_t h = f.height, w = f.width, l = f.lobes;
+            py::dict d;
+            d["normal"] = toArray(f.normal, {h, w, 3});
+            d["diffuse"] = toArray(f.diffuse, {h, w, 3});
+            d["ambient"] = toArray(f.ambient, {h, w, 3});
+            d["lobe_albedo"] = toArray(f.lobeAlbedo, {h, w, l, 3});
+            d["lobe_shape"] = toArray(f.lobeShape, {h, w, l, 4});
+            d["mean_iterations"] = f.meanIterations;
+            return d;
+        },
+        py::arg("samples"), py::arg("seed"), py::arg("lobes") = 1, py::arg("max_iterations") = 30,
+        py::arg("threads") = 0, py::arg("visibility") = false, py::arg("fixed_normal") = false,
         "Per-texel Lafortune fit (`lobes` lobes, Levenberg-Marquardt) seeded from `seed` "
         "maps. Returns normal, diffuse, ambient, lobe_albedo (H, W, L, 3), lobe_shape (H, W, "
         "L, 4) and mean_iterations.");
-    m.def("btf_lafortune_errors", [](const BtfSamples& s, py::dict fit, int threads) {
-        const py::ssize_t h = s.height(), w = s.width();
-        BtfLafortuneFit f;
-        f.width = s.width();
-        f.height = s.height();
-        auto shape = numericArray(fit["lobe_shape"], "lobe_shape");
-        if (shape.ndim() != 4) throw InvalidArgument("lobe_shape must be (H, W, lobes, 4)");
-        f.lobes = int(shape.shape(2));
-        f.normal = floatArray(fit["normal"], "normal", {h, w, 3});
-        f.diffuse = floatArray(fit["diffuse"], "diffuse", {h, w, 3});
-        f.ambient = floatArray(fit["ambient"], "ambient", {h, w, 3});
-        f.lobeAlbedo = floatArray(fit["lobe_albedo"], "lobe_albedo", {h, w, f.lobes, 3});
-        f.lobeShape = floatArray(fit["lobe_shape"], "lobe_shape", {h, w, f.lobes, 4});
-        std::vector<double> errors;
-        {
-            py::gil_scoped_release release;
-            errors = btfLafortuneErrors(s, f, nullptr, threads);
-        }
-        py::array_t<double> e(py::ssize_t(errors.size()));
-        std::memcpy(e.mutable_data(), errors.data(), errors.size() * sizeof(double));
-        return e;
-    }, py::arg("samples"), py::arg("fit"), py::arg("threads") = 0,
+    m.def(
+        "btf_lafortune_errors",
+        [](const BtfSamples& s, py::dict fit, int threads) {
+            const py::ssize_t h = s.height(), w = s.width();
+            BtfLafortuneFit f;
+            f.width = s.width();
+            f.height = s.height();
+            auto shape = numericArray(fit["lobe_shape"], "lobe_shape");
+            if (shape.ndim() != 4) throw InvalidArgument("lobe_shape must be (H, W, lobes, 4)");
+            f.lobes = int(shape.shape(2));
+            f.normal = floatArray(fit["normal"], "normal", {h, w, 3});
+            f.diffuse = floatArray(fit["diffuse"], "diffuse", {h, w, 3});
+            f.ambient = floatArray(fit["ambient"], "ambient", {h, w, 3});
+            f.lobeAlbedo = floatArray(fit["lobe_albedo"], "lobe_albedo", {h, w, f.lobes, 3});
+            f.lobeShape = floatArray(fit["lobe_shape"], "lobe_shape", {h, w, f.lobes, 4});
+            std::vector<double> errors;
+            {
+                py::gil_scoped_release release;
+                errors = btfLafortuneErrors(s, f, nullptr, threads);
+            }
+            py::array_t<double> e(py::ssize_t(errors.size()));
+            std::memcpy(e.mutable_data(), errors.data(), errors.size() * sizeof(double));
+            return e;
+        },
+        py::arg("samples"), py::arg("fit"), py::arg("threads") = 0,
         "Per-sample mean squared error (S,) of a btf_fit_lafortune result against the "
         "samples.");
     m.def("btf_have_ceres", &btfHaveCeres,
-        "True when weft was built with Ceres Solver (btf_fit_blinn_phong solver='ceres').");
+          "True when weft was built with Ceres Solver (btf_fit_blinn_phong solver='ceres').");
     m.def("btf_resolvable_exponent", &btfResolvableExponent, py::arg("samples"),
           py::arg("fraction") = 0.01,
-        "The largest Blinn-Phong exponent the sampling resolves: a lobe at one sample's half "
-        "vector keeps `fraction` of its peak at the nearest neighbouring half vector.");
-    m.def("btf_blinn_phong_noise", [](const BtfSamples& s, py::dict seed, float minExponent,
-                                      float maxExponent, int threads, bool flatSpecularNormal,
-                                      bool luminanceNormals) {
-        const BtfMaterialMaps mm = mapsFrom(s, seed);
-        BtfNonlinearOptions o;
-        o.luminanceNormals = luminanceNormals;
-        o.flatSpecularNormal = flatSpecularNormal;
-        o.minExponent = minExponent;
-        o.maxExponent = maxExponent;
-        o.threads = threads;
-        py::gil_scoped_release release;
-        return btfBlinnPhongNoise(s, mm, o);
-    }, py::arg("samples"), py::arg("seed"), py::arg("min_exponent") = 1.0f,
-       py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
-       py::arg("flat_specular_normal") = false, py::arg("luminance_normals") = false,
+          "The largest Blinn-Phong exponent the sampling resolves: a lobe at one sample's half "
+          "vector keeps `fraction` of its peak at the nearest neighbouring half vector.");
+    m.def(
+        "btf_blinn_phong_noise",
+        [](const BtfSamples& s, py::dict seed, float minExponent, float maxExponent, int threads,
+           bool flatSpecularNormal, bool luminanceNormals) {
+            const BtfMaterialMaps mm = mapsFrom(s, seed);
+            BtfNonlinearOptions o;
+            o.luminanceNormals = luminanceNormals;
+            o.flatSpecularNormal = flatSpecularNormal;
+            o.minExponent = minExponent;
+            o.maxExponent = maxExponent;
+            o.threads = threads;
+            py::gil_scoped_release release;
+            return btfBlinnPhongNoise(s, mm, o);
+        },
+        py::arg("samples"), py::arg("seed"), py::arg("min_exponent") = 1.0f,
+        py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
+        py::arg("flat_specular_normal") = false, py::arg("luminance_normals") = false,
         "The data's noise level (σ of a sample's channel sum) that btf_fit_blinn_phong "
         "estimates for its cast-shadow classification when given noise=0.");
-    m.def("btf_fit_blinn_phong", [](const BtfSamples& s, py::dict seed, const std::string& solver,
-                                    int maxIterations, float minExponent, float maxExponent,
-                                    int threads, bool flatSpecularNormal, bool visibility,
-                                    bool luminanceNormals, double noise) {
-        const BtfMaterialMaps mm = mapsFrom(s, seed);
-        BtfNonlinearOptions o;
-        o.noise = noise;
-        o.luminanceNormals = luminanceNormals;
-        o.flatSpecularNormal = flatSpecularNormal;
-        o.visibility = visibility;
-        o.solver = solverFrom(solver);
-        o.maxIterations = maxIterations;
-        o.minExponent = minExponent;
-        o.maxExponent = maxExponent;
-        o.threads = threads;
-        BtfNonlinearFit r;
-        {
-            py::gil_scoped_release release;
-            r = fitBtfBlinnPhong(s, mm, o);
-        }
-        py::dict d;
-        d["maps"] = mapsTo(r.maps);
-        d["mean_iterations"] = r.meanIterations;
-        d["solver"] = r.solver;
-        d["shadowed_fraction"] = r.shadowedFraction;
-        d["noise"] = r.noise;
-        return d;
-    }, py::arg("samples"), py::arg("seed"), py::arg("solver") = "auto",
-       py::arg("max_iterations") = 30, py::arg("min_exponent") = 1.0f,
-       py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
-       py::arg("flat_specular_normal") = false, py::arg("visibility") = true,
-       py::arg("luminance_normals") = false, py::arg("noise") = 0.0,
+    m.def(
+        "btf_fit_blinn_phong",
+        [](const BtfSamples& s, py::dict seed, const std::string& solver, int maxIterations,
+           float minExponent, float maxExponent, int threads, bool flatSpecularNormal,
+           bool visibility, bool luminanceNormals, double noise) {
+            const BtfMaterialMaps mm = mapsFrom(s, seed);
+            BtfNonlinearOptions o;
+            o.noise = noise;
+            o.luminanceNormals = luminanceNormals;
+            o.flatSpecularNormal = flatSpecularNormal;
+            o.visibility = visibility;
+            o.solver = solverFrom(solver);
+            o.maxIterations = maxIterations;
+            o.minExponent = minExponent;
+            o.maxExponent = maxExponent;
+            o.threads = threads;
+            BtfNonlinearFit r;
+            {
+                py::gil_scoped_release release;
+                r = fitBtfBlinnPhong(s, mm, o);
+            }
+            py::dict d;
+            d["maps"] = mapsTo(r.maps);
+            d["mean_iterations"] = r.meanIterations;
+            d["solver"] = r.solver;
+            d["shadowed_fraction"] = r.shadowedFraction;
+            d["noise"] = r.noise;
+            return d;
+        },
+        py::arg("samples"), py::arg("seed"), py::arg("solver") = "auto",
+        py::arg("max_iterations") = 30, py::arg("min_exponent") = 1.0f,
+        py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
+        py::arg("flat_specular_normal") = false, py::arg("visibility") = true,
+        py::arg("luminance_normals") = false, py::arg("noise") = 0.0,
         "Nonlinear per-texel Blinn-Phong fit (normal, ρ, a, k, exponent) seeded from `seed` "
         "maps, with the built-in Levenberg-Marquardt or Ceres ('auto', 'builtin', 'ceres'); "
         "visibility leaves estimated cast shadows out, their test bounded by the data's noise "

@@ -130,7 +130,8 @@ HairModel modelOf(const std::string& s) {
     if (s == "kajiya_kay") return HairModel::KajiyaKay;
     if (s == "marschner") return HairModel::Marschner;
     if (s == "sadeghi") return HairModel::Sadeghi;
-    throw InvalidArgument("hair model must be 'kajiya_kay', 'marschner' or 'sadeghi', got '" + s + "'");
+    throw InvalidArgument("hair model must be 'kajiya_kay', 'marschner' or 'sadeghi', got '" + s +
+                          "'");
 }
 
 // Sets one field on a copy, validates the copy and only then keeps it.
@@ -162,7 +163,8 @@ std::string materialRepr(const HairMaterial& m) {
         } else {
             s << " intensity=";
             v3(m.intensity);
-            s << " tt_azimuthal_width=" << m.ttAzimuthalWidth << " glint_intensity=" << m.glintIntensity;
+            s << " tt_azimuthal_width=" << m.ttAzimuthalWidth
+              << " glint_intensity=" << m.glintIntensity;
         }
     }
     s << ">";
@@ -174,7 +176,9 @@ std::string materialRepr(const HairMaterial& m) {
 #define WEFT_HAIR_FLOAT(name, field)                                                               \
     def_property(                                                                                  \
         name, [](const HairMaterial& m) { return m.field; },                                       \
-        [](HairMaterial& m, float v) { updateMaterial(m, [&](HairMaterial& x) { x.field = v; }); })
+        [](HairMaterial& m, float v) {                                                             \
+            updateMaterial(m, [&](HairMaterial& x) { x.field = v; });                              \
+        })
 #define WEFT_HAIR_VEC3(name, field)                                                                \
     def_property(                                                                                  \
         name, [](const HairMaterial& m) { return fromVec3(m.field); },                             \
@@ -184,7 +188,8 @@ std::string materialRepr(const HairMaterial& m) {
         })
 
 void bindHair(py::module_& m) {
-    py::class_<HairStrands, HairPtr>(m, "HairStrands",
+    py::class_<HairStrands, HairPtr>(
+        m, "HairStrands",
         "Hair strands as stored in .hair files (SPEC §5.1): points root to tip, strand after\n"
         "strand, with per-strand segment counts (or one default) and optional per-point\n"
         "thickness, transparency and colour (linear RGB). Immutable once made; the array\n"
@@ -192,195 +197,249 @@ void bindHair(py::module_& m) {
         "with the default).")
         .def(py::init(&makeStrands), py::arg("points"), py::arg("segments") = py::none(),
              py::arg("thickness") = py::none(), py::arg("transparency") = py::none(),
-             py::arg("colors") = py::none(), py::kw_only(), py::arg("default_segments") = py::none(),
-             py::arg("default_thickness") = 1.0f, py::arg("default_transparency") = 0.0f,
+             py::arg("colors") = py::none(), py::kw_only(),
+             py::arg("default_segments") = py::none(), py::arg("default_thickness") = 1.0f,
+             py::arg("default_transparency") = 0.0f,
              py::arg("default_color") = py::make_tuple(1.0, 1.0, 1.0), py::arg("info") = "",
              "points (P,3); segments (S,) integers with sum(segments + 1) == P, or\n"
              "default_segments for strands of equal length; thickness, transparency (P,),\n"
              "colors (P,3). Raises weft.InvalidArgument for bad shapes, NaN/inf or counts.")
-        .def_property_readonly("points", [](py::object self) {
-            const auto& h = self.cast<const HairStrands&>();
-            return floatView(&h.points[0].x, h.pointCount(), 3, self);
-        })
-        .def_property_readonly("segments", [](const HairStrands& h) {
-            py::array_t<uint16_t> out(py::ssize_t(h.strandCount()));
-            for (size_t s = 0; s < h.strandCount(); ++s)
-                out.mutable_data()[s] = h.segments.empty() ? uint16_t(h.defaultSegments) : h.segments[s];
-            return out;
-        }, "Segments per strand (uint16, points = segments + 1).")
-        .def_property_readonly("offsets", [](const HairStrands& h) {
-            const std::vector<uint64_t> o = h.offsets();
-            py::array_t<int64_t> out(py::ssize_t(o.size()));
-            for (size_t i = 0; i < o.size(); ++i) out.mutable_data()[i] = int64_t(o[i]);
-            return out;
-        }, "First point of each strand, then the point count: (S + 1,) int64.")
-        .def_property_readonly("thickness", [](py::object self) {
-            const auto& h = self.cast<const HairStrands&>();
-            return perPoint(h, h.thickness, h.defaultThickness, self);
-        })
-        .def_property_readonly("transparency", [](py::object self) {
-            const auto& h = self.cast<const HairStrands&>();
-            return perPoint(h, h.transparency, h.defaultTransparency, self);
-        })
-        .def_property_readonly("colors", [](py::object self) -> py::array {
-            const auto& h = self.cast<const HairStrands&>();
-            if (!h.colors.empty()) return floatView(&h.colors[0].x, h.pointCount(), 3, self);
-            return vec3Array(std::vector<glm::vec3>(h.pointCount(), h.defaultColor));
-        })
-        .def_property_readonly("arrays", [](const HairStrands& h) {
-            std::vector<std::string> out;
-            if (!h.segments.empty()) out.push_back("segments");
-            out.push_back("points");
-            if (!h.thickness.empty()) out.push_back("thickness");
-            if (!h.transparency.empty()) out.push_back("transparency");
-            if (!h.colors.empty()) out.push_back("colors");
-            return out;
-        }, "The arrays these strands hold (what save_hair writes), in file order.")
+        .def_property_readonly("points",
+                               [](py::object self) {
+                                   const auto& h = self.cast<const HairStrands&>();
+                                   return floatView(&h.points[0].x, h.pointCount(), 3, self);
+                               })
+        .def_property_readonly(
+            "segments",
+            [](const HairStrands& h) {
+                py::array_t<uint16_t> out(py::ssize_t(h.strandCount()));
+                for (size_t s = 0; s < h.strandCount(); ++s)
+                    out.mutable_data()[s] =
+                        h.segments.empty() ? uint16_t(h.defaultSegments) : h.segments[s];
+                return out;
+            },
+            "Segments per strand (uint16, points = segments + 1).")
+        .def_property_readonly(
+            "offsets",
+            [](const HairStrands& h) {
+                const std::vector<uint64_t> o = h.offsets();
+                py::array_t<int64_t> out(py::ssize_t(o.size()));
+                for (size_t i = 0; i < o.size(); ++i) out.mutable_data()[i] = int64_t(o[i]);
+                return out;
+            },
+            "First point of each strand, then the point count: (S + 1,) int64.")
+        .def_property_readonly("thickness",
+                               [](py::object self) {
+                                   const auto& h = self.cast<const HairStrands&>();
+                                   return perPoint(h, h.thickness, h.defaultThickness, self);
+                               })
+        .def_property_readonly("transparency",
+                               [](py::object self) {
+                                   const auto& h = self.cast<const HairStrands&>();
+                                   return perPoint(h, h.transparency, h.defaultTransparency, self);
+                               })
+        .def_property_readonly("colors",
+                               [](py::object self) -> py::array {
+                                   const auto& h = self.cast<const HairStrands&>();
+                                   if (!h.colors.empty())
+                                       return floatView(&h.colors[0].x, h.pointCount(), 3, self);
+                                   return vec3Array(
+                                       std::vector<glm::vec3>(h.pointCount(), h.defaultColor));
+                               })
+        .def_property_readonly(
+            "arrays",
+            [](const HairStrands& h) {
+                std::vector<std::string> out;
+                if (!h.segments.empty()) out.push_back("segments");
+                out.push_back("points");
+                if (!h.thickness.empty()) out.push_back("thickness");
+                if (!h.transparency.empty()) out.push_back("transparency");
+                if (!h.colors.empty()) out.push_back("colors");
+                return out;
+            },
+            "The arrays these strands hold (what save_hair writes), in file order.")
         .def_property_readonly("strand_count", &HairStrands::strandCount)
         .def_property_readonly("point_count", &HairStrands::pointCount)
-        .def_property_readonly("default_segments", [](const HairStrands& h) { return h.defaultSegments; })
-        .def_property_readonly("default_thickness", [](const HairStrands& h) { return h.defaultThickness; })
-        .def_property_readonly("default_transparency", [](const HairStrands& h) { return h.defaultTransparency; })
-        .def_property_readonly("default_color", [](const HairStrands& h) { return fromVec3(h.defaultColor); })
+        .def_property_readonly("default_segments",
+                               [](const HairStrands& h) { return h.defaultSegments; })
+        .def_property_readonly("default_thickness",
+                               [](const HairStrands& h) { return h.defaultThickness; })
+        .def_property_readonly("default_transparency",
+                               [](const HairStrands& h) { return h.defaultTransparency; })
+        .def_property_readonly("default_color",
+                               [](const HairStrands& h) { return fromVec3(h.defaultColor); })
         .def_property_readonly("info", [](const HairStrands& h) { return h.info; })
-        .def_property_readonly("warnings", [](const HairStrands& h) { return h.warnings; },
-                               "What the loader tolerated (unknown flag bits, trailing bytes).")
-        .def("tangents", [](const HairStrands& h) {
-            std::vector<glm::vec3> t;
-            {
-                py::gil_scoped_release release;
-                t = strandTangents(h);
-            }
-            return vec3Array(t);
-        }, "Unit tangent per point (P,3): central differences, one-sided at strand ends.")
-        .def("ribbons", [](const HairStrands& h, py::handle eye, float widthScale) {
-            const glm::vec3 e = toVec3(eye, "eye");
-            std::vector<glm::vec3> r;
-            {
-                py::gil_scoped_release release;
-                r = strandRibbons(h, e, widthScale);
-            }
-            return vec3Array(r);
-        }, py::arg("eye"), py::arg("width_scale") = 1.0f,
-           "Camera-facing ribbon vertices (2P,3): point i gives p -/+ s * w / 2, s = unit(t x\n"
-           "(eye - p)), w = width_scale * thickness.")
-        .def("ribbon_indices", [](const HairStrands& h) {
-            const std::vector<uint32_t> idx = ribbonIndices(h);
-            py::array_t<uint32_t> out({py::ssize_t(idx.size() / 3), py::ssize_t(3)});
-            if (!idx.empty()) std::memcpy(out.mutable_data(), idx.data(), idx.size() * 4);
-            return out;
-        }, "Triangles (T,3) uint32 over ribbons(): two per segment, facing the eye.")
-        .def("to_bytes", [](const HairStrands& h, bool zUp) {
-            const std::vector<uint8_t> b = serializeHair(h, zUp);
-            return py::bytes(reinterpret_cast<const char*>(b.data()), b.size());
-        }, py::arg("z_up") = false, "The .hair file bytes (see save_hair).")
+        .def_property_readonly(
+            "warnings", [](const HairStrands& h) { return h.warnings; },
+            "What the loader tolerated (unknown flag bits, trailing bytes).")
+        .def(
+            "tangents",
+            [](const HairStrands& h) {
+                std::vector<glm::vec3> t;
+                {
+                    py::gil_scoped_release release;
+                    t = strandTangents(h);
+                }
+                return vec3Array(t);
+            },
+            "Unit tangent per point (P,3): central differences, one-sided at strand ends.")
+        .def(
+            "ribbons",
+            [](const HairStrands& h, py::handle eye, float widthScale) {
+                const glm::vec3 e = toVec3(eye, "eye");
+                std::vector<glm::vec3> r;
+                {
+                    py::gil_scoped_release release;
+                    r = strandRibbons(h, e, widthScale);
+                }
+                return vec3Array(r);
+            },
+            py::arg("eye"), py::arg("width_scale") = 1.0f,
+            "Camera-facing ribbon vertices (2P,3): point i gives p -/+ s * w / 2, s = unit(t x\n"
+            "(eye - p)), w = width_scale * thickness.")
+        .def(
+            "ribbon_indices",
+            [](const HairStrands& h) {
+                const std::vector<uint32_t> idx = ribbonIndices(h);
+                py::array_t<uint32_t> out({py::ssize_t(idx.size() / 3), py::ssize_t(3)});
+                if (!idx.empty()) std::memcpy(out.mutable_data(), idx.data(), idx.size() * 4);
+                return out;
+            },
+            "Triangles (T,3) uint32 over ribbons(): two per segment, facing the eye.")
+        .def(
+            "to_bytes",
+            [](const HairStrands& h, bool zUp) {
+                const std::vector<uint8_t> b = serializeHair(h, zUp);
+                return py::bytes(reinterpret_cast<const char*>(b.data()), b.size());
+            },
+            py::arg("z_up") = false, "The .hair file bytes (see save_hair).")
         .def("__repr__", [](const HairStrands& h) {
             return "<weft.HairStrands " + std::to_string(h.strandCount()) + " strands, " +
                    std::to_string(h.pointCount()) + " points>";
         });
 
-    m.def("hair_from_bytes", [](py::bytes data, bool zUp) {
-        const std::string s = data;
-        py::gil_scoped_release release;
-        return std::make_shared<HairStrands>(
-            parseHair(reinterpret_cast<const uint8_t*>(s.data()), s.size(), zUp, "<bytes>"));
-    }, py::arg("data"), py::arg("z_up") = false, "Parses the bytes of a .hair file.");
-    m.def("load_hair", [](const std::string& path, bool zUp) {
-        py::gil_scoped_release release;
-        return std::make_shared<HairStrands>(loadHair(path, zUp));
-    }, py::arg("path"), py::arg("z_up") = false,
-       "Reads a .hair file (weft.IoError if missing, truncated or inconsistent). z_up: the file\n"
-       "is Z-up like the public models; points become Y-up, (x, y, z) -> (x, z, -y).");
-    m.def("save_hair", [](const std::string& path, const HairStrands& h, bool zUp) {
-        py::gil_scoped_release release;
-        saveHair(path, h, zUp);
-    }, py::arg("path"), py::arg("strands"), py::arg("z_up") = false,
-       "Writes a .hair file with the arrays the strands hold (z_up: rotate back to Z-up).");
+    m.def(
+        "hair_from_bytes",
+        [](py::bytes data, bool zUp) {
+            const std::string s = data;
+            py::gil_scoped_release release;
+            return std::make_shared<HairStrands>(
+                parseHair(reinterpret_cast<const uint8_t*>(s.data()), s.size(), zUp, "<bytes>"));
+        },
+        py::arg("data"), py::arg("z_up") = false, "Parses the bytes of a .hair file.");
+    m.def(
+        "load_hair",
+        [](const std::string& path, bool zUp) {
+            py::gil_scoped_release release;
+            return std::make_shared<HairStrands>(loadHair(path, zUp));
+        },
+        py::arg("path"), py::arg("z_up") = false,
+        "Reads a .hair file (weft.IoError if missing, truncated or inconsistent). z_up: the file\n"
+        "is Z-up like the public models; points become Y-up, (x, y, z) -> (x, z, -y).");
+    m.def(
+        "save_hair",
+        [](const std::string& path, const HairStrands& h, bool zUp) {
+            py::gil_scoped_release release;
+            saveHair(path, h, zUp);
+        },
+        py::arg("path"), py::arg("strands"), py::arg("z_up") = false,
+        "Writes a .hair file with the arrays the strands hold (z_up: rotate back to Z-up).");
 
-    m.def("generate_hair", [](uint32_t strands, uint64_t points, const std::string& style,
-                              float length, float lengthJitter, float waveAmplitude,
-                              float waveFrequency, float curlRadius, float droop,
-                              py::handle scalpCenter, py::handle scalpRadii, float scalpCutoff,
-                              uint32_t seed, int threads) {
-        HairStyle s;
-        s.kind = styleKind(style);
-        s.strands = strands;
-        s.points = points;
-        s.length = length;
-        s.lengthJitter = lengthJitter;
-        s.waveAmplitude = waveAmplitude;
-        s.waveFrequency = waveFrequency;
-        s.curlRadius = curlRadius;
-        s.droop = droop;
-        s.scalpCenter = toVec3(scalpCenter, "scalp_center");
-        s.scalpRadii = toVec3(scalpRadii, "scalp_radii");
-        s.scalpCutoff = scalpCutoff;
-        s.seed = seed;
-        s.threads = threads;
-        py::gil_scoped_release release;
-        return std::make_shared<HairStrands>(generateHair(s));
-    }, py::arg("strands") = 1000, py::arg("points") = 16000, py::arg("style") = "straight",
-       py::arg("length") = 0.25f, py::arg("length_jitter") = 0.0f,
-       py::arg("wave_amplitude") = 0.01f, py::arg("wave_frequency") = 8.0f,
-       py::arg("curl_radius") = 0.01f, py::arg("droop") = 0.6f,
-       py::arg("scalp_center") = py::make_tuple(0.0, 1.6, 0.0),
-       py::arg("scalp_radii") = py::make_tuple(0.09, 0.11, 0.1), py::arg("scalp_cutoff") = 0.1f,
-       py::arg("seed") = 1, py::arg("threads") = 0,
-       "Procedural hair on the upper part of an ellipsoid scalp (style 'straight', 'wavy' or\n"
-       "'curly'). `points` is the total: each strand gets points // strands points and the\n"
-       "first points % strands one more (the seed's sizes: 160,000 = 10,000 x 16, 687,532 and\n"
-       "1,031,268 = 10,000 and 15,000 strands of 68-69 points). wave_frequency: waves (curly:\n"
-       "turns) per metre; droop in [0, 1]: how far strands turn from the normal towards -Y.");
+    m.def(
+        "generate_hair",
+        [](uint32_t strands, uint64_t points, const std::string& style, float length,
+           float lengthJitter, float waveAmplitude, float waveFrequency, float curlRadius,
+           float droop, py::handle scalpCenter, py::handle scalpRadii, float scalpCutoff,
+           uint32_t seed, int threads) {
+            HairStyle s;
+            s.kind = styleKind(style);
+            s.strands = strands;
+            s.points = points;
+            s.length = length;
+            s.lengthJitter = lengthJitter;
+            s.waveAmplitude = waveAmplitude;
+            s.waveFrequency = waveFrequency;
+            s.curlRadius = curlRadius;
+            s.droop = droop;
+            s.scalpCenter = toVec3(scalpCenter, "scalp_center");
+            s.scalpRadii = toVec3(scalpRadii, "scalp_radii");
+            s.scalpCutoff = scalpCutoff;
+            s.seed = seed;
+            s.threads = threads;
+            py::gil_scoped_release release;
+            return std::make_shared<HairStrands>(generateHair(s));
+        },
+        py::arg("strands") = 1000, py::arg("points") = 16000, py::arg("style") = "straight",
+        py::arg("length") = 0.25f, py::arg("length_jitter") = 0.0f,
+        py::arg("wave_amplitude") = 0.01f, py::arg("wave_frequency") = 8.0f,
+        py::arg("curl_radius") = 0.01f, py::arg("droop") = 0.6f,
+        py::arg("scalp_center") = py::make_tuple(0.0, 1.6, 0.0),
+        py::arg("scalp_radii") = py::make_tuple(0.09, 0.11, 0.1), py::arg("scalp_cutoff") = 0.1f,
+        py::arg("seed") = 1, py::arg("threads") = 0,
+        "Procedural hair on the upper part of an ellipsoid scalp (style 'straight', 'wavy' or\n"
+        "'curly'). `points` is the total: each strand gets points // strands points and the\n"
+        "first points % strands one more (the seed's sizes: 160,000 = 10,000 x 16, 687,532 and\n"
+        "1,031,268 = 10,000 and 15,000 strands of 68-69 points). wave_frequency: waves (curly:\n"
+        "turns) per metre; droop in [0, 1]: how far strands turn from the normal towards -Y.");
 
-    m.def("generate_fur", [](const Mesh& mesh, int level, float density, int segments, float length,
-                             float lengthJitter, float directionJitter, py::handle down,
-                             py::object texture, uint32_t seed, int threads) {
-        FurParams p;
-        p.level = level;
-        p.density = density;
-        p.segments = segments;
-        p.length = length;
-        p.lengthJitter = lengthJitter;
-        p.directionJitter = directionJitter;
-        p.down = toVec3(down, "down");
-        p.seed = seed;
-        p.threads = threads;
-        ImageU8 image;
-        if (!texture.is_none()) image = fromNumpy(texture);
-        py::gil_scoped_release release;
-        return std::make_shared<HairStrands>(generateFur(mesh, p, texture.is_none() ? nullptr : &image));
-    }, py::arg("mesh"), py::arg("level") = 1, py::arg("density") = 0.0f, py::arg("segments") = 10,
-       py::arg("length") = 0.3f, py::arg("length_jitter") = 0.0f,
-       py::arg("direction_jitter") = 0.0f, py::arg("down") = py::make_tuple(0.0, -0.5, 0.0),
-       py::arg("texture") = py::none(), py::arg("seed") = 1, py::arg("threads") = 0,
-       "Fur (002 listing 1): one strand per sub-triangle (level^2 per triangle, or\n"
-       "round(sqrt(area * density)) ^ 2 when density > 0) from its centroid along the\n"
-       "interpolated normal; `segments` segments of length / segments, each bent further by\n"
-       "`down`. length_jitter (relative), direction_jitter (max radians) vary each strand;\n"
-       "texture (uint8 sRGB image) colours each strand at its root's UV.");
+    m.def(
+        "generate_fur",
+        [](const Mesh& mesh, int level, float density, int segments, float length,
+           float lengthJitter, float directionJitter, py::handle down, py::object texture,
+           uint32_t seed, int threads) {
+            FurParams p;
+            p.level = level;
+            p.density = density;
+            p.segments = segments;
+            p.length = length;
+            p.lengthJitter = lengthJitter;
+            p.directionJitter = directionJitter;
+            p.down = toVec3(down, "down");
+            p.seed = seed;
+            p.threads = threads;
+            ImageU8 image;
+            if (!texture.is_none()) image = fromNumpy(texture);
+            py::gil_scoped_release release;
+            return std::make_shared<HairStrands>(
+                generateFur(mesh, p, texture.is_none() ? nullptr : &image));
+        },
+        py::arg("mesh"), py::arg("level") = 1, py::arg("density") = 0.0f, py::arg("segments") = 10,
+        py::arg("length") = 0.3f, py::arg("length_jitter") = 0.0f,
+        py::arg("direction_jitter") = 0.0f, py::arg("down") = py::make_tuple(0.0, -0.5, 0.0),
+        py::arg("texture") = py::none(), py::arg("seed") = 1, py::arg("threads") = 0,
+        "Fur (002 listing 1): one strand per sub-triangle (level^2 per triangle, or\n"
+        "round(sqrt(area * density)) ^ 2 when density > 0) from its centroid along the\n"
+        "interpolated normal; `segments` segments of length / segments, each bent further by\n"
+        "`down`. length_jitter (relative), direction_jitter (max radians) vary each strand;\n"
+        "texture (uint8 sRGB image) colours each strand at its root's UV.");
 
-    py::class_<HairMaterial>(m, "HairMaterial",
+    py::class_<HairMaterial>(
+        m, "HairMaterial",
         "Hair shading parameters (SPEC §5.2) for model 'kajiya_kay', 'marschner' or 'sadeghi'.\n"
         "Angles in radians; every setter validates (weft.InvalidArgument).")
         .def(py::init([](const std::string& model, py::kwargs kwargs) {
-            py::object obj = py::cast(HairMaterial{});
-            obj.attr("model") = model;
-            py::object type = py::type::of(obj);
-            for (auto item : kwargs) {
-                const std::string key = py::str(item.first);
-                // only the properties below: a mistyped keyword must not become a plain attribute
-                // error (or, worse, be accepted)
-                if (!py::hasattr(type, key.c_str()) || key.empty() || key[0] == '_' ||
-                    !py::isinstance(type.attr(key.c_str()), py::module_::import("builtins").attr("property")))
-                    throw InvalidArgument("weft.HairMaterial(): unknown keyword argument '" + key +
-                                          "'; it takes model and any property of HairMaterial");
-                py::setattr(obj, item.first, item.second);
-            }
-            return obj.cast<HairMaterial>();
-        }), py::arg("model") = "sadeghi",
-           "HairMaterial(model='sadeghi', **attributes): any property below as a keyword.")
-        .def_property("model", [](const HairMaterial& x) { return modelName(x.model); },
-                      [](HairMaterial& x, const std::string& s) { x.model = modelOf(s); })
+                 py::object obj = py::cast(HairMaterial{});
+                 obj.attr("model") = model;
+                 py::object type = py::type::of(obj);
+                 for (auto item : kwargs) {
+                     const std::string key = py::str(item.first);
+                     // only the properties below: a mistyped keyword must not become a plain
+                     // attribute error (or, worse, be accepted)
+                     if (!py::hasattr(type, key.c_str()) || key.empty() || key[0] == '_' ||
+                         !py::isinstance(type.attr(key.c_str()),
+                                         py::module_::import("builtins").attr("property")))
+                         throw InvalidArgument(
+                             "weft.HairMaterial(): unknown keyword argument '" + key +
+                             "'; it takes model and any property of HairMaterial");
+                     py::setattr(obj, item.first, item.second);
+                 }
+                 return obj.cast<HairMaterial>();
+             }),
+             py::arg("model") = "sadeghi",
+             "HairMaterial(model='sadeghi', **attributes): any property below as a keyword.")
+        .def_property(
+            "model", [](const HairMaterial& x) { return modelName(x.model); },
+            [](HairMaterial& x, const std::string& s) { x.model = modelOf(s); })
         .WEFT_HAIR_VEC3("diffuse", diffuse)
         .WEFT_HAIR_VEC3("specular", specular)
         .WEFT_HAIR_FLOAT("shininess", shininess)
@@ -400,34 +459,39 @@ void bindHair(py::module_& m) {
         .WEFT_HAIR_FLOAT("glint_angle_max", glintAngleMax)
         .def("__repr__", &materialRepr);
 
-    m.def("hair_shade_eval", [](const HairMaterial& material, py::handle t, py::handle l,
-                                py::handle v, py::object strandIds) {
-        const auto tv = rowsOf<glm::vec3, 3>(t, "t"), lv = rowsOf<glm::vec3, 3>(l, "l"),
-                   vv = rowsOf<glm::vec3, 3>(v, "v");
-        std::vector<uint32_t> ids(tv.size(), 0);
-        if (!strandIds.is_none()) {
-            py::array a = py::array::ensure(strandIds);
-            if (!a || (a.dtype().kind() != 'i' && a.dtype().kind() != 'u'))
-                throw py::type_error("strand_ids must be integers");
-            auto i64 = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
-            if (i64.ndim() != 1 || size_t(i64.size()) != tv.size())
-                throw InvalidArgument("strand_ids must have shape (N,)");
-            for (size_t i = 0; i < ids.size(); ++i) {
-                if (i64.data()[i] < 0 || i64.data()[i] > int64_t(UINT32_MAX))
-                    throw InvalidArgument("strand_ids must be in [0, 2^32)");
-                ids[i] = uint32_t(i64.data()[i]);
+    m.def(
+        "hair_shade_eval",
+        [](const HairMaterial& material, py::handle t, py::handle l, py::handle v,
+           py::object strandIds) {
+            const auto tv = rowsOf<glm::vec3, 3>(t, "t"), lv = rowsOf<glm::vec3, 3>(l, "l"),
+                       vv = rowsOf<glm::vec3, 3>(v, "v");
+            std::vector<uint32_t> ids(tv.size(), 0);
+            if (!strandIds.is_none()) {
+                py::array a = py::array::ensure(strandIds);
+                if (!a || (a.dtype().kind() != 'i' && a.dtype().kind() != 'u'))
+                    throw py::type_error("strand_ids must be integers");
+                auto i64 =
+                    py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+                if (i64.ndim() != 1 || size_t(i64.size()) != tv.size())
+                    throw InvalidArgument("strand_ids must have shape (N,)");
+                for (size_t i = 0; i < ids.size(); ++i) {
+                    if (i64.data()[i] < 0 || i64.data()[i] > int64_t(UINT32_MAX))
+                        throw InvalidArgument("strand_ids must be in [0, 2^32)");
+                    ids[i] = uint32_t(i64.data()[i]);
+                }
             }
-        }
-        std::vector<glm::vec3> out;
-        {
-            py::gil_scoped_release release;
-            out = evaluateHairShading(material, tv, lv, vv, ids);
-        }
-        return vec3Array(out);
-    }, py::arg("material"), py::arg("t"), py::arg("l"), py::arg("v"), py::arg("strand_ids") = py::none(),
-       "Testing/analysis entry point: evaluates glsl/common/hair_shading.glsl's hairShade() in a\n"
-       "Vulkan compute shader for tangents t, light directions l and view directions v ((N,3),\n"
-       "normalised here) and strand ids (glint angle); returns f (N,3) float32.");
+            std::vector<glm::vec3> out;
+            {
+                py::gil_scoped_release release;
+                out = evaluateHairShading(material, tv, lv, vv, ids);
+            }
+            return vec3Array(out);
+        },
+        py::arg("material"), py::arg("t"), py::arg("l"), py::arg("v"),
+        py::arg("strand_ids") = py::none(),
+        "Testing/analysis entry point: evaluates glsl/common/hair_shading.glsl's hairShade() in a\n"
+        "Vulkan compute shader for tangents t, light directions l and view directions v ((N,3),\n"
+        "normalised here) and strand ids (glint angle); returns f (N,3) float32.");
 }
 
 } // namespace weft::py_bind

@@ -29,90 +29,104 @@ OitWeight weightOf(const std::string& s) {
     for (int eq = 7; eq <= 10; ++eq)
         if (s == kOitWeightNames[eq - 7] || s == "eq" + std::to_string(eq)) return OitWeight(eq);
     throw InvalidArgument("hair_oit_weight must be 'near_quadratic', 'near_cubic', 'far_quartic' "
-                          "or 'ndc_cubic' (or 'eq7' .. 'eq10'; got '" + s + "')");
+                          "or 'ndc_cubic' (or 'eq7' .. 'eq10'; got '" +
+                          s + "')");
 }
 
 template <typename Get, typename Set>
 void setting(py::class_<Renderer>& cls, const char* name, Get get, Set set, const char* doc) {
-    cls.def_property(name, [get](const Renderer& r) { return get(r.settings()); },
-                     [set](Renderer& r, py::object v) {
-                         RenderSettings s = r.settings();
-                         set(s, v);
-                         r.setSettings(s);
-                     }, doc);
+    cls.def_property(
+        name, [get](const Renderer& r) { return get(r.settings()); },
+        [set](Renderer& r, py::object v) {
+            RenderSettings s = r.settings();
+            set(s, v);
+            r.setSettings(s);
+        },
+        doc);
 }
 
 } // namespace
 
 void bindHairRender(py::module_& m) {
     py::class_<Scene, std::shared_ptr<Scene>> scene(m.attr("Scene"));
-    scene.def("add_hair", [](Scene& s, std::shared_ptr<HairStrands> strands,
-                             std::optional<HairMaterial> material, py::object transform,
-                             bool castShadows) {
-            const glm::mat4 t =
-                transform.is_none() ? glm::mat4(1.0f) : toMat4(transform, "transform");
-            return s.addHair(strands, material.value_or(HairMaterial{}), t, castShadows);
-        }, py::arg("strands"), py::arg("material") = py::none(), py::arg("transform") = py::none(),
-           py::arg("cast_shadows") = true,
-           "Adds hair (weft.HairStrands, drawn with a weft.HairMaterial); returns its hair id.\n"
-           "The strands must not change afterwards: the renderer uploads them once.")
-        .def("set_hair_transform", [](Scene& s, uint32_t id, py::handle t) {
-            s.setHairTransform(id, toMat4(t, "transform"));
-        }, py::arg("id"), py::arg("transform"),
+    scene
+        .def(
+            "add_hair",
+            [](Scene& s, std::shared_ptr<HairStrands> strands, std::optional<HairMaterial> material,
+               py::object transform, bool castShadows) {
+                const glm::mat4 t =
+                    transform.is_none() ? glm::mat4(1.0f) : toMat4(transform, "transform");
+                return s.addHair(strands, material.value_or(HairMaterial{}), t, castShadows);
+            },
+            py::arg("strands"), py::arg("material") = py::none(), py::arg("transform") = py::none(),
+            py::arg("cast_shadows") = true,
+            "Adds hair (weft.HairStrands, drawn with a weft.HairMaterial); returns its hair id.\n"
+            "The strands must not change afterwards: the renderer uploads them once.")
+        .def(
+            "set_hair_transform",
+            [](Scene& s, uint32_t id, py::handle t) {
+                s.setHairTransform(id, toMat4(t, "transform"));
+            },
+            py::arg("id"), py::arg("transform"),
             "Sets the 4x4 model matrix of the hair instance with this id.")
         .def("set_hair_material", &Scene::setHairMaterial, py::arg("id"), py::arg("material"),
-            "Replaces the HairMaterial of the hair instance with this id.")
+             "Replaces the HairMaterial of the hair instance with this id.")
         .def_property_readonly("hair_count", [](const Scene& s) { return s.hairs().size(); });
 
     py::class_<Renderer> renderer(m.attr("Renderer"));
-    setting(renderer, "hair_primitive",
-            [](const RenderSettings& s) { return primitiveName(s.hairPrimitive); },
-            [](RenderSettings& s, py::object v) {
-                s.hairPrimitive = primitiveOf(v.cast<std::string>());
-            },
-            "'lines' (1 pixel) or 'ribbons' (camera-facing, hair_width * thickness wide).");
-    setting(renderer, "hair_width", [](const RenderSettings& s) { return s.hairWidth; },
-            [](RenderSettings& s, py::object v) { s.hairWidth = v.cast<float>(); },
-            "Ribbon width per unit of strand thickness (world units).");
-    setting(renderer, "hair_dom", [](const RenderSettings& s) { return s.hairDeepOpacity; },
-            [](RenderSettings& s, py::object v) { s.hairDeepOpacity = v.cast<bool>(); },
-            "Deep opacity maps for shadow-casting directional lights (else the shadow map).");
-    setting(renderer, "hair_dom_spacing",
-            [](const RenderSettings& s) {
-                return std::string(s.hairDomLogSpacing ? "log" : "linear");
-            },
-            [](RenderSettings& s, py::object v) {
-                const std::string k = v.cast<std::string>();
-                if (k != "linear" && k != "log")
-                    throw InvalidArgument("hair_dom_spacing must be 'linear' or 'log' (got '" +
-                                          k + "')");
-                s.hairDomLogSpacing = k == "log";
-            }, "DOM layer spacing: 'linear' (d, 2d, 3d) or 'log' (d, 3d, 7d).");
-    setting(renderer, "hair_dom_layer_size",
-            [](const RenderSettings& s) { return s.hairDomLayerSize; },
-            [](RenderSettings& s, py::object v) { s.hairDomLayerSize = v.cast<float>(); },
-            "DOM layer size d (world units); 0: the hair's depth extent / 3 (log: / 7).");
-    setting(renderer, "hair_dom_size", [](const RenderSettings& s) { return s.hairDomSize; },
-            [](RenderSettings& s, py::object v) {
-                const int64_t n = v.cast<int64_t>();
-                if (n < 16 || n > 8192)
-                    throw InvalidArgument("hair_dom_size must be in [16, 8192]");
-                s.hairDomSize = uint32_t(n);
-            }, "Texels per side of each deep opacity map.");
-    setting(renderer, "hair_transparency",
-            [](const RenderSettings& s) { return s.hairTransparency; },
-            [](RenderSettings& s, py::object v) { s.hairTransparency = v.cast<bool>(); },
-            "Weighted blended OIT for hair with transparency > 0 (else drawn opaque).");
-    setting(renderer, "hair_oit_weight",
-            [](const RenderSettings& s) {
-                return std::string(kOitWeightNames[int(s.hairOitWeight) - 7]);
-            },
-            [](RenderSettings& s, py::object v) {
-                s.hairOitWeight = weightOf(v.cast<std::string>());
-            },
-            "WBOIT depth weight (McGuire & Bavoil 2013, eq. 7-10): 'near_quadratic', "
-            "'near_cubic', 'far_quartic' or 'ndc_cubic' ('eq7' .. 'eq10' also accepted).");
-    renderer.def("hair_dom_map", [](const Renderer& r, int light) {
+    setting(
+        renderer, "hair_primitive",
+        [](const RenderSettings& s) { return primitiveName(s.hairPrimitive); },
+        [](RenderSettings& s, py::object v) {
+            s.hairPrimitive = primitiveOf(v.cast<std::string>());
+        },
+        "'lines' (1 pixel) or 'ribbons' (camera-facing, hair_width * thickness wide).");
+    setting(
+        renderer, "hair_width", [](const RenderSettings& s) { return s.hairWidth; },
+        [](RenderSettings& s, py::object v) { s.hairWidth = v.cast<float>(); },
+        "Ribbon width per unit of strand thickness (world units).");
+    setting(
+        renderer, "hair_dom", [](const RenderSettings& s) { return s.hairDeepOpacity; },
+        [](RenderSettings& s, py::object v) { s.hairDeepOpacity = v.cast<bool>(); },
+        "Deep opacity maps for shadow-casting directional lights (else the shadow map).");
+    setting(
+        renderer, "hair_dom_spacing",
+        [](const RenderSettings& s) { return std::string(s.hairDomLogSpacing ? "log" : "linear"); },
+        [](RenderSettings& s, py::object v) {
+            const std::string k = v.cast<std::string>();
+            if (k != "linear" && k != "log")
+                throw InvalidArgument("hair_dom_spacing must be 'linear' or 'log' (got '" + k +
+                                      "')");
+            s.hairDomLogSpacing = k == "log";
+        },
+        "DOM layer spacing: 'linear' (d, 2d, 3d) or 'log' (d, 3d, 7d).");
+    setting(
+        renderer, "hair_dom_layer_size", [](const RenderSettings& s) { return s.hairDomLayerSize; },
+        [](RenderSettings& s, py::object v) { s.hairDomLayerSize = v.cast<float>(); },
+        "DOM layer size d (world units); 0: the hair's depth extent / 3 (log: / 7).");
+    setting(
+        renderer, "hair_dom_size", [](const RenderSettings& s) { return s.hairDomSize; },
+        [](RenderSettings& s, py::object v) {
+            const int64_t n = v.cast<int64_t>();
+            if (n < 16 || n > 8192) throw InvalidArgument("hair_dom_size must be in [16, 8192]");
+            s.hairDomSize = uint32_t(n);
+        },
+        "Texels per side of each deep opacity map.");
+    setting(
+        renderer, "hair_transparency", [](const RenderSettings& s) { return s.hairTransparency; },
+        [](RenderSettings& s, py::object v) { s.hairTransparency = v.cast<bool>(); },
+        "Weighted blended OIT for hair with transparency > 0 (else drawn opaque).");
+    setting(
+        renderer, "hair_oit_weight",
+        [](const RenderSettings& s) {
+            return std::string(kOitWeightNames[int(s.hairOitWeight) - 7]);
+        },
+        [](RenderSettings& s, py::object v) { s.hairOitWeight = weightOf(v.cast<std::string>()); },
+        "WBOIT depth weight (McGuire & Bavoil 2013, eq. 7-10): 'near_quadratic', "
+        "'near_cubic', 'far_quartic' or 'ndc_cubic' ('eq7' .. 'eq10' also accepted).");
+    renderer.def(
+        "hair_dom_map",
+        [](const Renderer& r, int light) {
             const HairDomInfo i = debug::hairDeepOpacity(r, light);
             py::dict d;
             py::array_t<float> texels({py::ssize_t(i.size), py::ssize_t(i.size), py::ssize_t(4)});
@@ -127,7 +141,8 @@ void bindHairRender(py::module_& m) {
             d["spacing"] = i.logSpacing ? "log" : "linear";
             d["resolution"] = i.size;
             return d;
-        }, py::arg("light_index") = 0,
+        },
+        py::arg("light_index") = 0,
         "The last frame's deep opacity map of a directional light: 'opacity' (size, size, 4):\n"
         "layers 0-2 (each including those before) and z0 as stored depth (near..far -> 0..1,\n"
         "1 where no hair), with the light grid (direction, center, extent, resolution) of\n"

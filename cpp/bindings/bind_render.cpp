@@ -14,8 +14,8 @@ namespace weft::py_bind {
 
 namespace {
 
-py::array_t<float> floatImage(const std::vector<float>& data, int h, int w, int channels,
-                              int take, int offset) {
+py::array_t<float> floatImage(const std::vector<float>& data, int h, int w, int channels, int take,
+                              int offset) {
     py::array_t<float> out(take == 1 ? std::vector<py::ssize_t>{h, w}
                                      : std::vector<py::ssize_t>{h, w, take});
     float* dst = out.mutable_data();
@@ -66,7 +66,8 @@ const char* const kToneMaps[] = {"clamp", "aces", "agx", "neutral"};
 ToneMap toneMapOf(const std::string& name) {
     for (int i = 0; i < 4; ++i)
         if (name == kToneMaps[i]) return ToneMap(i);
-    throw InvalidArgument("tone_map must be 'clamp', 'aces', 'agx' or 'neutral' (got '" + name + "')");
+    throw InvalidArgument("tone_map must be 'clamp', 'aces', 'agx' or 'neutral' (got '" + name +
+                          "')");
 }
 
 std::string toneMapName(ToneMap t) { return kToneMaps[int(t)]; }
@@ -83,57 +84,68 @@ std::string toneMapName(ToneMap t) { return kToneMaps[int(t)]; }
 } // namespace
 
 void bindRender(py::module_& m) {
-    py::class_<Renderer>(m, "Renderer",
+    py::class_<Renderer>(
+        m, "Renderer",
         "Vulkan renderer drawing a Scene from a Camera into an offscreen image of width x height.")
         .def(py::init([](int64_t width, int64_t height, int64_t shadowMapSize, int pcfRadius,
                          float biasConstant, float biasSlope, float biasMax, float normalOffset,
-                         bool reuseShadowMaps, int64_t msaa, float exposure, const std::string& toneMap,
-                         bool bounce, int64_t ambientOcclusion, float ambientOcclusionBlur) {
-            if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
-                throw InvalidArgument("render target size must be 1..65535 pixels per side (got " +
-                                      std::to_string(width) + "x" + std::to_string(height) + ")");
-            if (shadowMapSize <= 0 || shadowMapSize > 65535)
-                throw InvalidArgument("shadow_map_size out of range");
-            RenderSettings s;
-            s.shadowMapSize = uint32_t(shadowMapSize);
-            s.pcfRadius = pcfRadius;
-            s.biasConstant = biasConstant;
-            s.biasSlope = biasSlope;
-            s.biasMax = biasMax;
-            s.normalOffset = normalOffset;
-            s.reuseShadowMaps = reuseShadowMaps;
-            if (msaa != 1 && msaa != 2 && msaa != 4 && msaa != 8)
-                throw InvalidArgument("msaa must be 1, 2, 4 or 8 samples (got " + std::to_string(msaa) + ")");
-            s.msaa = uint32_t(msaa);
-            s.exposure = exposure;
-            s.toneMap = toneMapOf(toneMap);
-            s.bounce = bounce;
-            if (ambientOcclusion < 0 || ambientOcclusion > 64 || ambientOcclusion % 8 != 0)
-                throw InvalidArgument("ambient_occlusion must be 0 or a multiple of 8 up to 64 dome "
-                                      "lights (got " + std::to_string(ambientOcclusion) + ")");
-            s.ambientOcclusion = uint32_t(ambientOcclusion);
-            s.ambientOcclusionBlur = ambientOcclusionBlur;
-            return std::make_unique<Renderer>(uint32_t(width), uint32_t(height), s);
-        }), py::arg("width"), py::arg("height"), py::arg("shadow_map_size") = 2048,
-           py::arg("pcf_radius") = 1, py::arg("bias_constant") = 0.0005f,
-           py::arg("bias_slope") = 0.0015f, py::arg("bias_max") = 0.01f,
-           py::arg("normal_offset") = 1.5f, py::arg("reuse_shadow_maps") = true,
-           py::arg("msaa") = 4, py::arg("exposure") = 0.0f, py::arg("tone_map") = "clamp",
-           py::arg("bounce") = true, py::arg("ambient_occlusion") = 8,
-           py::arg("ambient_occlusion_blur") = 4.0f,
-            "An offscreen renderer of width x height pixels on the selected Vulkan device, "
-            "with its shadow, anti-aliasing (msaa 1/2/4/8), exposure, tone-map ('clamp', "
-            "'aces', 'agx', 'neutral'), bounce and ambient-occlusion settings. Raises "
-            "InvalidArgument for out-of-range settings, Error when no Vulkan device works.")
+                         bool reuseShadowMaps, int64_t msaa, float exposure,
+                         const std::string& toneMap, bool bounce, int64_t ambientOcclusion,
+                         float ambientOcclusionBlur) {
+                 if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
+                     throw InvalidArgument(
+                         "render target size must be 1..65535 pixels per side (got " +
+                         std::to_string(width) + "x" + std::to_string(height) + ")");
+                 if (shadowMapSize <= 0 || shadowMapSize > 65535)
+                     throw InvalidArgument("shadow_map_size out of range");
+                 RenderSettings s;
+                 s.shadowMapSize = uint32_t(shadowMapSize);
+                 s.pcfRadius = pcfRadius;
+                 s.biasConstant = biasConstant;
+                 s.biasSlope = biasSlope;
+                 s.biasMax = biasMax;
+                 s.normalOffset = normalOffset;
+                 s.reuseShadowMaps = reuseShadowMaps;
+                 if (msaa != 1 && msaa != 2 && msaa != 4 && msaa != 8)
+                     throw InvalidArgument("msaa must be 1, 2, 4 or 8 samples (got " +
+                                           std::to_string(msaa) + ")");
+                 s.msaa = uint32_t(msaa);
+                 s.exposure = exposure;
+                 s.toneMap = toneMapOf(toneMap);
+                 s.bounce = bounce;
+                 if (ambientOcclusion < 0 || ambientOcclusion > 64 || ambientOcclusion % 8 != 0)
+                     throw InvalidArgument(
+                         "ambient_occlusion must be 0 or a multiple of 8 up to 64 dome "
+                         "lights (got " +
+                         std::to_string(ambientOcclusion) + ")");
+                 s.ambientOcclusion = uint32_t(ambientOcclusion);
+                 s.ambientOcclusionBlur = ambientOcclusionBlur;
+                 return std::make_unique<Renderer>(uint32_t(width), uint32_t(height), s);
+             }),
+             py::arg("width"), py::arg("height"), py::arg("shadow_map_size") = 2048,
+             py::arg("pcf_radius") = 1, py::arg("bias_constant") = 0.0005f,
+             py::arg("bias_slope") = 0.0015f, py::arg("bias_max") = 0.01f,
+             py::arg("normal_offset") = 1.5f, py::arg("reuse_shadow_maps") = true,
+             py::arg("msaa") = 4, py::arg("exposure") = 0.0f, py::arg("tone_map") = "clamp",
+             py::arg("bounce") = true, py::arg("ambient_occlusion") = 8,
+             py::arg("ambient_occlusion_blur") = 4.0f,
+             "An offscreen renderer of width x height pixels on the selected Vulkan device, "
+             "with its shadow, anti-aliasing (msaa 1/2/4/8), exposure, tone-map ('clamp', "
+             "'aces', 'agx', 'neutral'), bounce and ambient-occlusion settings. Raises "
+             "InvalidArgument for out-of-range settings, Error when no Vulkan device works.")
         .def_property_readonly("width", &Renderer::width)
         .def_property_readonly("height", &Renderer::height)
         .def_property_readonly("device_name", &Renderer::deviceName)
-        .def("resize", [](Renderer& r, int64_t w, int64_t h) {
-            if (w <= 0 || h <= 0 || w > 65535 || h > 65535)
-                throw InvalidArgument("render target size must be 1..65535 pixels per side (got " +
-                                      std::to_string(w) + "x" + std::to_string(h) + ")");
-            r.resize(uint32_t(w), uint32_t(h));
-        }, py::arg("width"), py::arg("height"),
+        .def(
+            "resize",
+            [](Renderer& r, int64_t w, int64_t h) {
+                if (w <= 0 || h <= 0 || w > 65535 || h > 65535)
+                    throw InvalidArgument(
+                        "render target size must be 1..65535 pixels per side (got " +
+                        std::to_string(w) + "x" + std::to_string(h) + ")");
+                r.resize(uint32_t(w), uint32_t(h));
+            },
+            py::arg("width"), py::arg("height"),
             "Changes the output size (1..65535 pixels per side); the next render reallocates "
             "its targets.")
         .WEFT_SETTING("shadow_map_size", shadowMapSize, uint32_t)
@@ -144,7 +156,8 @@ void bindRender(py::module_& m) {
         .WEFT_SETTING("bias_max", biasMax, float)
         .WEFT_SETTING("normal_offset", normalOffset, float)
         .WEFT_SETTING("reuse_shadow_maps", reuseShadowMaps, bool)
-        .def_property("bounce", [](const Renderer& r) { return r.settings().bounce; },
+        .def_property(
+            "bounce", [](const Renderer& r) { return r.settings().bounce; },
             [](Renderer& r, bool v) {
                 RenderSettings s = r.settings();
                 s.bounce = v;
@@ -153,11 +166,13 @@ void bindRender(py::module_& m) {
             "One bounce of diffuse light: what the receivers (instances that cast no shadow, such "
             "as a ground) reflect onto the shadow casters, and the sky and ambient they hide from "
             "them (a small SH9 capture per caster, at most 8).")
-        .def_property("ambient_occlusion", [](const Renderer& r) { return r.settings().ambientOcclusion; },
+        .def_property(
+            "ambient_occlusion", [](const Renderer& r) { return r.settings().ambientOcclusion; },
             [](Renderer& r, int64_t v) {
                 if (v < 0 || v > 64 || v % 8 != 0)
                     throw InvalidArgument("ambient_occlusion must be 0 or a multiple of 8 up to 64 "
-                                          "dome lights (got " + std::to_string(v) + ")");
+                                          "dome lights (got " +
+                                          std::to_string(v) + ")");
                 RenderSettings s = r.settings();
                 s.ambientOcclusion = uint32_t(v);
                 r.setSettings(s);
@@ -165,7 +180,8 @@ void bindRender(py::module_& m) {
             "Ambient occlusion of a scene without an environment: its constant ambient is read as "
             "a uniform sky, occluded by the shadow casters through a dome of this many soft shadow "
             "lights (0: off; a multiple of 8 up to 64).")
-        .def_property("ambient_occlusion_blur",
+        .def_property(
+            "ambient_occlusion_blur",
             [](const Renderer& r) { return r.settings().ambientOcclusionBlur; },
             [](Renderer& r, float v) {
                 RenderSettings s = r.settings();
@@ -173,117 +189,146 @@ void bindRender(py::module_& m) {
                 r.setSettings(s);
             },
             "Blur radius in pixels of the ambient occlusion (0: per pixel).")
-        .def_property("msaa", [](const Renderer& r) { return r.settings().msaa; },
+        .def_property(
+            "msaa", [](const Renderer& r) { return r.settings().msaa; },
             [](Renderer& r, int64_t v) {
                 RenderSettings s = r.settings();
                 if (v != 1 && v != 2 && v != 4 && v != 8)
-                    throw InvalidArgument("msaa must be 1, 2, 4 or 8 samples (got " + std::to_string(v) + ")");
+                    throw InvalidArgument("msaa must be 1, 2, 4 or 8 samples (got " +
+                                          std::to_string(v) + ")");
                 s.msaa = uint32_t(v);
                 r.setSettings(s);
-            }, "Multisample anti-aliasing samples per pixel (1, 2, 4, 8; default 4), lowered to what\n"
-               "the device supports (msaa_samples). render_debug frames are not multisampled.")
+            },
+            "Multisample anti-aliasing samples per pixel (1, 2, 4, 8; default 4), lowered to what\n"
+            "the device supports (msaa_samples). render_debug frames are not multisampled.")
         .def_property_readonly("msaa_samples", &Renderer::msaaSamples,
-            "The samples per pixel the device renders for the msaa setting.")
-        .def_property("exposure", [](const Renderer& r) { return r.settings().exposure; },
+                               "The samples per pixel the device renders for the msaa setting.")
+        .def_property(
+            "exposure", [](const Renderer& r) { return r.settings().exposure; },
             [](Renderer& r, float v) {
                 RenderSettings s = r.settings();
                 s.exposure = v;
                 r.setSettings(s);
-            }, "Exposure in photographic stops: the colour output shows linear radiance x 2^exposure\n"
-               "(render_linear is not exposed).")
-        .def_property("tone_map", [](const Renderer& r) { return toneMapName(r.settings().toneMap); },
+            },
+            "Exposure in photographic stops: the colour output shows linear radiance x 2^exposure\n"
+            "(render_linear is not exposed).")
+        .def_property(
+            "tone_map", [](const Renderer& r) { return toneMapName(r.settings().toneMap); },
             [](Renderer& r, const std::string& v) {
                 RenderSettings s = r.settings();
                 s.toneMap = toneMapOf(v);
                 r.setSettings(s);
-            }, "'clamp' (the seed's look), 'aces' (Narkowicz's ACES fit), 'agx' (Blender's AgX) or\n"
-               "'neutral' (Khronos PBR Neutral): how exposed radiance maps to the 8-bit colour output.")
-        .def("render", [](Renderer& r, const Scene& scene, const Camera& camera) {
-            return colorImage(renderFrame(r, scene, camera, OutputColor).color);
-        }, py::arg("scene"), py::arg("camera"), "sRGB-encoded RGBA uint8 image (H, W, 4).")
-        .def("render_linear", [](Renderer& r, const Scene& scene, const Camera& camera) {
-            Frame f = renderFrame(r, scene, camera, OutputLinear);
-            return floatImage(f.linear, f.height, f.width, 4, 4, 0);
-        }, py::arg("scene"), py::arg("camera"), "Linear radiance RGBA float32 (H, W, 4), rendered in half floats (11 significant bits; "
-           "weft.reference.LINEAR_STORAGE_RTOL).")
-        .def("render_debug", [](Renderer& r, const Scene& scene, const Camera& camera) {
-            Frame f = renderFrame(r, scene, camera, OutputColor | OutputLinear | OutputDebug);
-            const int h = f.height, w = f.width;
-            py::dict d;
-            d["color"] = colorImage(f.color);
-            d["linear"] = floatImage(f.linear, h, w, 4, 4, 0);
-            d["position"] = floatImage(f.position, h, w, 4, 3, 0);
-            py::array_t<bool> mask({h, w});
-            for (size_t i = 0; i < size_t(h) * w; ++i) mask.mutable_data()[i] = f.position[i * 4 + 3] > 0.5f;
-            d["mask"] = mask;
-            d["normal"] = floatImage(f.normal, h, w, 4, 3, 0);
-            d["shadow"] = floatImage(f.normal, h, w, 4, 1, 3);
-            d["uv"] = floatImage(f.surface, h, w, 4, 2, 0);
-            d["albedo"] = floatImage(f.albedo, h, w, 4, 3, 0);
-            d["specular_map"] = floatImage(f.albedo, h, w, 4, 1, 3);
-            d["light_depth"] = floatImage(f.surface, h, w, 4, 1, 2);
-            py::array_t<int32_t> instance({h, w});
-            for (size_t i = 0; i < size_t(h) * w; ++i)
-                instance.mutable_data()[i] = int32_t(std::max(0L, std::lround(f.surface[i * 4 + 3]))) - 1;
-            d["instance"] = instance;
-            py::array_t<int32_t> hair({h, w}); // hair pixels store -(hair id + 1) in surface.w
-            for (size_t i = 0; i < size_t(h) * w; ++i)
-                hair.mutable_data()[i] = f.surface[i * 4 + 3] < -0.5f
-                                             ? -int32_t(std::lround(f.surface[i * 4 + 3])) - 1
-                                             : -1;
-            d["hair"] = hair;
-            return d;
-        }, py::arg("scene"), py::arg("camera"),
-           "One frame's colour, linear radiance and the inputs of its shading (position, mask,\n"
-           "normal, shadow visibility of the first shadow-casting light, uv, light_depth,\n"
-           "albedo: T = base colour * texture sample (what eq. 2.10 multiplies),\n"
-           "specular_map: the green channel of the specular-map sample (1 without a map),\n"
-           "instance: the mesh id drawn at each pixel or -1; hair: the hair id or -1, where hair\n"
-           "is drawn opaque normal holds its unit tangent, shadow its visibility, uv[..., 0]\n"
-           "its strand index and albedo its diffuse colour).")
-        .def_property_readonly("stats", [](const Renderer& r) { return statsDict(r.stats()); },
-                               "The last frame: passes run with CPU/GPU ms, culled passes.")
-        .def("shadow_map", [](Renderer& r, int light, int view) {
-            uint32_t size = 0;
-            std::vector<float> data = debug::shadowMap(r, light, &size, view);
-            py::array_t<float> out({py::ssize_t(size), py::ssize_t(size)});
-            std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
-            return out;
-        }, py::arg("light_index") = 0, py::arg("view") = 0,
-           "Depth in [0,1] of the last frame's shadow map of a light (`view`: one of a point\n"
-           "light's six views +X, -X, +Y, -Y, +Z, -Z).")
-        .def("reflection_probe", [](Renderer& r) {
-            uint32_t size = 0;
-            std::vector<float> data = debug::reflectionProbe(r, &size);
-            const py::ssize_t n = size;
-            py::array_t<float> out({py::ssize_t(6), n, n, py::ssize_t(4)});
-            std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
-            return out;
-        }, "The last frame's dynamic reflection capture, (6, S, S, 4) linear RGBA (faces +X, -X,\n"
-           "+Y, -Y, +Z, -Z as weft.ibl.CubeMap).")
-        .def("shadow_info", [](const Renderer& r, int light) {
-            const ShadowInfo i = debug::shadowInfo(r, light);
-            py::dict d;
-            d["active"] = i.active;
-            d["size"] = i.size;
-            d["view_proj"] = fromMat4(i.viewProj);
-            d["normal_offset_world"] = i.normalOffsetWorld;
-            d["layer"] = i.layer;
-            d["perspective"] = i.perspective;
-            d["near"] = i.zNear;
-            d["far"] = i.zFar;
-            py::list views;
-            for (const glm::mat4& v : i.views) views.append(fromMat4(v));
-            d["views"] = views;
-            d["bias_constant"] = i.settings.biasConstant;
-            d["bias_slope"] = i.settings.biasSlope;
-            d["bias_max"] = i.settings.biasMax;
-            d["pcf_radius"] = i.settings.pcfRadius;
-            return d;
-        }, py::arg("light_index") = 0, "What the shadow test of a light used in the last frame.")
+            },
+            "'clamp' (the seed's look), 'aces' (Narkowicz's ACES fit), 'agx' (Blender's AgX) or\n"
+            "'neutral' (Khronos PBR Neutral): how exposed radiance maps to the 8-bit colour output.")
+        .def(
+            "render",
+            [](Renderer& r, const Scene& scene, const Camera& camera) {
+                return colorImage(renderFrame(r, scene, camera, OutputColor).color);
+            },
+            py::arg("scene"), py::arg("camera"), "sRGB-encoded RGBA uint8 image (H, W, 4).")
+        .def(
+            "render_linear",
+            [](Renderer& r, const Scene& scene, const Camera& camera) {
+                Frame f = renderFrame(r, scene, camera, OutputLinear);
+                return floatImage(f.linear, f.height, f.width, 4, 4, 0);
+            },
+            py::arg("scene"), py::arg("camera"),
+            "Linear radiance RGBA float32 (H, W, 4), rendered in half floats (11 significant bits; "
+            "weft.reference.LINEAR_STORAGE_RTOL).")
+        .def(
+            "render_debug",
+            [](Renderer& r, const Scene& scene, const Camera& camera) {
+                Frame f = renderFrame(r, scene, camera, OutputColor | OutputLinear | OutputDebug);
+                const int h = f.height, w = f.width;
+                py::dict d;
+                d["color"] = colorImage(f.color);
+                d["linear"] = floatImage(f.linear, h, w, 4, 4, 0);
+                d["position"] = floatImage(f.position, h, w, 4, 3, 0);
+                py::array_t<bool> mask({h, w});
+                for (size_t i = 0; i < size_t(h) * w; ++i)
+                    mask.mutable_data()[i] = f.position[i * 4 + 3] > 0.5f;
+                d["mask"] = mask;
+                d["normal"] = floatImage(f.normal, h, w, 4, 3, 0);
+                d["shadow"] = floatImage(f.normal, h, w, 4, 1, 3);
+                d["uv"] = floatImage(f.surface, h, w, 4, 2, 0);
+                d["albedo"] = floatImage(f.albedo, h, w, 4, 3, 0);
+                d["specular_map"] = floatImage(f.albedo, h, w, 4, 1, 3);
+                d["light_depth"] = floatImage(f.surface, h, w, 4, 1, 2);
+                py::array_t<int32_t> instance({h, w});
+                for (size_t i = 0; i < size_t(h) * w; ++i)
+                    instance.mutable_data()[i] =
+                        int32_t(std::max(0L, std::lround(f.surface[i * 4 + 3]))) - 1;
+                d["instance"] = instance;
+                py::array_t<int32_t> hair({h, w}); // hair pixels store -(hair id + 1) in surface.w
+                for (size_t i = 0; i < size_t(h) * w; ++i)
+                    hair.mutable_data()[i] = f.surface[i * 4 + 3] < -0.5f
+                                                 ? -int32_t(std::lround(f.surface[i * 4 + 3])) - 1
+                                                 : -1;
+                d["hair"] = hair;
+                return d;
+            },
+            py::arg("scene"), py::arg("camera"),
+            "One frame's colour, linear radiance and the inputs of its shading (position, mask,\n"
+            "normal, shadow visibility of the first shadow-casting light, uv, light_depth,\n"
+            "albedo: T = base colour * texture sample (what eq. 2.10 multiplies),\n"
+            "specular_map: the green channel of the specular-map sample (1 without a map),\n"
+            "instance: the mesh id drawn at each pixel or -1; hair: the hair id or -1, where hair\n"
+            "is drawn opaque normal holds its unit tangent, shadow its visibility, uv[..., 0]\n"
+            "its strand index and albedo its diffuse colour).")
+        .def_property_readonly(
+            "stats", [](const Renderer& r) { return statsDict(r.stats()); },
+            "The last frame: passes run with CPU/GPU ms, culled passes.")
+        .def(
+            "shadow_map",
+            [](Renderer& r, int light, int view) {
+                uint32_t size = 0;
+                std::vector<float> data = debug::shadowMap(r, light, &size, view);
+                py::array_t<float> out({py::ssize_t(size), py::ssize_t(size)});
+                std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
+                return out;
+            },
+            py::arg("light_index") = 0, py::arg("view") = 0,
+            "Depth in [0,1] of the last frame's shadow map of a light (`view`: one of a point\n"
+            "light's six views +X, -X, +Y, -Y, +Z, -Z).")
+        .def(
+            "reflection_probe",
+            [](Renderer& r) {
+                uint32_t size = 0;
+                std::vector<float> data = debug::reflectionProbe(r, &size);
+                const py::ssize_t n = size;
+                py::array_t<float> out({py::ssize_t(6), n, n, py::ssize_t(4)});
+                std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
+                return out;
+            },
+            "The last frame's dynamic reflection capture, (6, S, S, 4) linear RGBA (faces +X, -X,\n"
+            "+Y, -Y, +Z, -Z as weft.ibl.CubeMap).")
+        .def(
+            "shadow_info",
+            [](const Renderer& r, int light) {
+                const ShadowInfo i = debug::shadowInfo(r, light);
+                py::dict d;
+                d["active"] = i.active;
+                d["size"] = i.size;
+                d["view_proj"] = fromMat4(i.viewProj);
+                d["normal_offset_world"] = i.normalOffsetWorld;
+                d["layer"] = i.layer;
+                d["perspective"] = i.perspective;
+                d["near"] = i.zNear;
+                d["far"] = i.zFar;
+                py::list views;
+                for (const glm::mat4& v : i.views) views.append(fromMat4(v));
+                d["views"] = views;
+                d["bias_constant"] = i.settings.biasConstant;
+                d["bias_slope"] = i.settings.biasSlope;
+                d["bias_max"] = i.settings.biasMax;
+                d["pcf_radius"] = i.settings.pcfRadius;
+                return d;
+            },
+            py::arg("light_index") = 0, "What the shadow test of a light used in the last frame.")
         .def("__repr__", [](const Renderer& r) {
-            return "<weft.Renderer " + std::to_string(r.width()) + "x" + std::to_string(r.height()) +
-                   " on " + r.deviceName() + ">";
+            return "<weft.Renderer " + std::to_string(r.width()) + "x" +
+                   std::to_string(r.height()) + " on " + r.deviceName() + ">";
         });
 }
 

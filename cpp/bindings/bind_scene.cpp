@@ -19,9 +19,11 @@ template <typename Vec, int K>
 std::vector<Vec> rows(py::handle obj, const char* name, size_t expected = size_t(-1)) {
     auto a = numericArray(obj, name);
     if (a.ndim() != 2 || a.shape(1) != K)
-        throw InvalidArgument(std::string(name) + " must have shape (N, " + std::to_string(K) + ")");
+        throw InvalidArgument(std::string(name) + " must have shape (N, " + std::to_string(K) +
+                              ")");
     if (expected != size_t(-1) && size_t(a.shape(0)) != expected)
-        throw InvalidArgument(std::string(name) + " must have " + std::to_string(expected) + " rows");
+        throw InvalidArgument(std::string(name) + " must have " + std::to_string(expected) +
+                              " rows");
     auto r = a.unchecked<2>();
     std::vector<Vec> out(size_t(a.shape(0)));
     for (py::ssize_t i = 0; i < a.shape(0); ++i)
@@ -53,10 +55,14 @@ std::shared_ptr<Mesh> makeMesh(py::handle positions, py::handle normals, py::han
         mesh->indices.push_back(uint32_t(data[i]));
     }
     // Missing attributes are computed (documented on weft.Mesh), not left for validate().
-    if (normals.is_none()) mesh->normals = computeNormals(mesh->positions, mesh->indices);
-    else mesh->normals = rows<glm::vec3, 3>(normals, "normals", mesh->positions.size());
-    if (uvs.is_none()) mesh->uvs = computePlanarUvs(mesh->positions);
-    else mesh->uvs = rows<glm::vec2, 2>(uvs, "uvs", mesh->positions.size());
+    if (normals.is_none())
+        mesh->normals = computeNormals(mesh->positions, mesh->indices);
+    else
+        mesh->normals = rows<glm::vec3, 3>(normals, "normals", mesh->positions.size());
+    if (uvs.is_none())
+        mesh->uvs = computePlanarUvs(mesh->positions);
+    else
+        mesh->uvs = rows<glm::vec2, 2>(uvs, "uvs", mesh->positions.size());
     mesh->validate();
     return mesh;
 }
@@ -67,8 +73,8 @@ void bindMaterial(py::module_& m); // bind_material.cpp
 void bindLights(py::module_& m);   // bind_lights.cpp
 
 void bindScene(py::module_& m) {
-    py::class_<Mesh, std::shared_ptr<Mesh>>(m, "Mesh",
-        "Indexed triangle mesh (counter-clockwise front faces). Immutable once made.")
+    py::class_<Mesh, std::shared_ptr<Mesh>>(
+        m, "Mesh", "Indexed triangle mesh (counter-clockwise front faces). Immutable once made.")
         .def(py::init(&makeMesh), py::arg("positions"), py::arg("normals") = py::none(),
              py::arg("uvs") = py::none(), py::arg("indices") = py::none(),
              "positions (N,3), normals (N,3), uvs (N,2) float arrays; indices (M,3) integers\n"
@@ -76,47 +82,61 @@ void bindScene(py::module_& m) {
              "vertex normals (a vertex without a non-degenerate triangle gets +Y); uvs=None: a\n"
              "planar projection along the bounds' thinnest axis, u along the longest one,\n"
              "both divided by the longest extent (u in [0, 1]).")
-        .def_property_readonly("positions", [](const Mesh& x) { return toRows<glm::vec3, 3>(x.positions); })
-        .def_property_readonly("normals", [](const Mesh& x) { return toRows<glm::vec3, 3>(x.normals); })
+        .def_property_readonly("positions",
+                               [](const Mesh& x) { return toRows<glm::vec3, 3>(x.positions); })
+        .def_property_readonly("normals",
+                               [](const Mesh& x) { return toRows<glm::vec3, 3>(x.normals); })
         .def_property_readonly("uvs", [](const Mesh& x) { return toRows<glm::vec2, 2>(x.uvs); })
-        .def_property_readonly("indices", [](const Mesh& x) {
-            py::array_t<uint32_t> out({py::ssize_t(x.triangleCount()), py::ssize_t(3)});
-            if (!x.indices.empty())
-                std::memcpy(out.mutable_data(), x.indices.data(), x.indices.size() * 4);
-            return out;
-        })
-        .def_property_readonly("tangents", [](const Mesh& x) {
-            return toRows<glm::vec4, 4>(computeTangents(x));
-        }, "(N, 4) tangents the renderer uses for normal mapping: xyz along +u, w = handedness\n"
-           "(bitangent w (n x t) points towards decreasing v, up the image).")
+        .def_property_readonly(
+            "indices",
+            [](const Mesh& x) {
+                py::array_t<uint32_t> out({py::ssize_t(x.triangleCount()), py::ssize_t(3)});
+                if (!x.indices.empty())
+                    std::memcpy(out.mutable_data(), x.indices.data(), x.indices.size() * 4);
+                return out;
+            })
+        .def_property_readonly(
+            "tangents", [](const Mesh& x) { return toRows<glm::vec4, 4>(computeTangents(x)); },
+            "(N, 4) tangents the renderer uses for normal mapping: xyz along +u, w = handedness\n"
+            "(bitangent w (n x t) points towards decreasing v, up the image).")
         .def_property_readonly("vertex_count", &Mesh::vertexCount)
         .def_property_readonly("triangle_count", &Mesh::triangleCount)
-        .def("bounds", [](const Mesh& x) {
-            glm::vec3 lo, hi;
-            x.bounds(lo, hi);
-            return py::make_tuple(fromVec3(lo), fromVec3(hi));
-        },
+        .def(
+            "bounds",
+            [](const Mesh& x) {
+                glm::vec3 lo, hi;
+                x.bounds(lo, hi);
+                return py::make_tuple(fromVec3(lo), fromVec3(hi));
+            },
             "Axis-aligned bounds ((min x, y, z), (max x, y, z)) of the positions.")
-        .def_static("plane", [](float sx, float sz, int nx, int nz) {
-            return std::make_shared<Mesh>(Mesh::plane(sx, sz, nx, nz));
-        }, py::arg("size_x") = 1.0f, py::arg("size_z") = 1.0f, py::arg("segments_x") = 1,
-           py::arg("segments_z") = 1, "Rectangle in the XZ plane, normal +Y.")
-        .def_static("uv_sphere", [](float r, int segments, int rings) {
-            return std::make_shared<Mesh>(Mesh::uvSphere(r, segments, rings));
-        }, py::arg("radius") = 0.5f, py::arg("segments") = 32, py::arg("rings") = 16,
+        .def_static(
+            "plane",
+            [](float sx, float sz, int nx, int nz) {
+                return std::make_shared<Mesh>(Mesh::plane(sx, sz, nx, nz));
+            },
+            py::arg("size_x") = 1.0f, py::arg("size_z") = 1.0f, py::arg("segments_x") = 1,
+            py::arg("segments_z") = 1, "Rectangle in the XZ plane, normal +Y.")
+        .def_static(
+            "uv_sphere",
+            [](float r, int segments, int rings) {
+                return std::make_shared<Mesh>(Mesh::uvSphere(r, segments, rings));
+            },
+            py::arg("radius") = 0.5f, py::arg("segments") = 32, py::arg("rings") = 16,
             "A sphere centred at the origin: `segments` around Y, `rings` from pole to pole, "
             "v = 0 at the +Y pole.")
-        .def_static("box", [](py::handle size) {
-            return std::make_shared<Mesh>(Mesh::box(toVec3(size, "size")));
-        }, py::arg("size") = py::make_tuple(1.0, 1.0, 1.0),
+        .def_static(
+            "box",
+            [](py::handle size) { return std::make_shared<Mesh>(Mesh::box(toVec3(size, "size"))); },
+            py::arg("size") = py::make_tuple(1.0, 1.0, 1.0),
             "An axis-aligned box centred at the origin with flat faces (24 vertices), each "
             "face's UVs spanning [0, 1].")
         .def("__repr__", [](const Mesh& x) {
             return "<weft.Mesh " + std::to_string(x.vertexCount()) + " vertices, " +
                    std::to_string(x.triangleCount()) + " triangles>";
         });
-    m.def("load_obj", [](const std::string& path) { return std::make_shared<Mesh>(loadObj(path)); },
-          py::arg("path"), "Loads a Wavefront OBJ file (read by tinyobjloader) as a Mesh.");
+    m.def(
+        "load_obj", [](const std::string& path) { return std::make_shared<Mesh>(loadObj(path)); },
+        py::arg("path"), "Loads a Wavefront OBJ file (read by tinyobjloader) as a Mesh.");
 
     bindMaterial(m); // Texture, Material, then the lights: before the Scene methods taking them
     bindLights(m);
@@ -124,177 +144,230 @@ void bindScene(py::module_& m) {
     py::class_<Camera>(m, "Camera", "Perspective camera (fov_y in radians).")
         .def(py::init([](py::handle position, py::handle target, py::handle up, float fovY,
                          float zNear, float zFar) {
-            Camera c;
-            c.position = toVec3(position, "position");
-            c.target = toVec3(target, "target");
-            c.up = toVec3(up, "up");
-            c.fovY = fovY;
-            c.zNear = zNear;
-            c.zFar = zFar;
-            c.validate();
-            return c;
-        }), py::arg("position") = py::make_tuple(0, 1, 4), py::arg("target") = py::make_tuple(0, 0, 0),
-           py::arg("up") = py::make_tuple(0, 1, 0), py::arg("fov_y") = 0.7853982f,
-           py::arg("near") = 0.05f, py::arg("far") = 100.0f,
-            "A perspective camera at `position` looking at `target`; fov_y in radians, near "
-            "and far clip distances.")
+                 Camera c;
+                 c.position = toVec3(position, "position");
+                 c.target = toVec3(target, "target");
+                 c.up = toVec3(up, "up");
+                 c.fovY = fovY;
+                 c.zNear = zNear;
+                 c.zFar = zFar;
+                 c.validate();
+                 return c;
+             }),
+             py::arg("position") = py::make_tuple(0, 1, 4),
+             py::arg("target") = py::make_tuple(0, 0, 0), py::arg("up") = py::make_tuple(0, 1, 0),
+             py::arg("fov_y") = 0.7853982f, py::arg("near") = 0.05f, py::arg("far") = 100.0f,
+             "A perspective camera at `position` looking at `target`; fov_y in radians, near "
+             "and far clip distances.")
         .WEFT_VEC3_PROPERTY(Camera, "position", position)
         .WEFT_VEC3_PROPERTY(Camera, "target", target)
         .WEFT_VEC3_PROPERTY(Camera, "up", up)
-        .def_property("fov_y", [](const Camera& c) { return c.fovY; },
-                      [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.fovY = v; }); })
-        .def_property("near", [](const Camera& c) { return c.zNear; },
-                      [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.zNear = v; }); })
-        .def_property("far", [](const Camera& c) { return c.zFar; },
-                      [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.zFar = v; }); })
-        .def("view_matrix", [](const Camera& c) { return fromMat4(c.view()); },
-             "World -> view matrix (4x4, acts on column vectors).")
-        .def("projection_matrix", [](const Camera& c, float aspect) {
-            return fromMat4(c.projection(aspect));
-        }, py::arg("aspect"), "View -> Vulkan clip space (y down, depth 0..1).")
+        .def_property(
+            "fov_y", [](const Camera& c) { return c.fovY; },
+            [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.fovY = v; }); })
+        .def_property(
+            "near", [](const Camera& c) { return c.zNear; },
+            [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.zNear = v; }); })
+        .def_property(
+            "far", [](const Camera& c) { return c.zFar; },
+            [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.zFar = v; }); })
+        .def(
+            "view_matrix", [](const Camera& c) { return fromMat4(c.view()); },
+            "World -> view matrix (4x4, acts on column vectors).")
+        .def(
+            "projection_matrix",
+            [](const Camera& c, float aspect) { return fromMat4(c.projection(aspect)); },
+            py::arg("aspect"), "View -> Vulkan clip space (y down, depth 0..1).")
         .def("__repr__", [](const Camera& c) {
-            return "<weft.Camera position=" + vecRepr(c.position) + " target=" + vecRepr(c.target) + ">";
+            return "<weft.Camera position=" + vecRepr(c.position) + " target=" + vecRepr(c.target) +
+                   ">";
         });
 
     py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "Meshes with materials, lights, ambient.")
-        .def(py::init<>(),
-            "An empty scene: add meshes, cloths, hair and lights.")
-        .def("add_mesh", [](Scene& s, std::shared_ptr<Mesh> mesh, std::optional<Material> material,
-                            py::object transform, bool castShadows) {
-            const glm::mat4 t = transform.is_none() ? glm::mat4(1.0f) : toMat4(transform, "transform");
-            return s.addMesh(mesh, material.value_or(Material{}), t, castShadows);
-        }, py::arg("mesh"), py::arg("material") = py::none(), py::arg("transform") = py::none(),
-           py::arg("cast_shadows") = true, "Adds a mesh instance; returns its id.")
-        .def("add_cloth", [](Scene& s, std::shared_ptr<Cloth> cloth, std::optional<Material> material,
-                             bool castShadows) {
-            return s.addCloth(cloth, material.value_or(Material{}), castShadows);
-        }, py::arg("cloth"), py::arg("material") = py::none(), py::arg("cast_shadows") = true,
-           "Adds a weft.Cloth, drawn two-sided from its state at each render (its mesh is\n"
-           "uploaded only when it changed). Do not step it while a render runs. Returns its id.")
-        .def("set_transform", [](Scene& s, uint32_t id, py::handle t) {
-            s.setTransform(id, toMat4(t, "transform"));
-        },
+        .def(py::init<>(), "An empty scene: add meshes, cloths, hair and lights.")
+        .def(
+            "add_mesh",
+            [](Scene& s, std::shared_ptr<Mesh> mesh, std::optional<Material> material,
+               py::object transform, bool castShadows) {
+                const glm::mat4 t =
+                    transform.is_none() ? glm::mat4(1.0f) : toMat4(transform, "transform");
+                return s.addMesh(mesh, material.value_or(Material{}), t, castShadows);
+            },
+            py::arg("mesh"), py::arg("material") = py::none(), py::arg("transform") = py::none(),
+            py::arg("cast_shadows") = true, "Adds a mesh instance; returns its id.")
+        .def(
+            "add_cloth",
+            [](Scene& s, std::shared_ptr<Cloth> cloth, std::optional<Material> material,
+               bool castShadows) {
+                return s.addCloth(cloth, material.value_or(Material{}), castShadows);
+            },
+            py::arg("cloth"), py::arg("material") = py::none(), py::arg("cast_shadows") = true,
+            "Adds a weft.Cloth, drawn two-sided from its state at each render (its mesh is\n"
+            "uploaded only when it changed). Do not step it while a render runs. Returns its id.")
+        .def(
+            "set_transform",
+            [](Scene& s, uint32_t id, py::handle t) { s.setTransform(id, toMat4(t, "transform")); },
             "Sets the 4x4 model matrix of the instance with this id.")
         .def("set_material", &Scene::setMaterial,
-            "Replaces the material of the instance with this id.")
-        .def("material", [](const Scene& s, uint32_t id) {
-            if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
-            return s.instances()[id].material;
-        }, py::arg("id"), "A copy of an instance's material.")
-        .def("transform", [](const Scene& s, uint32_t id) {
-            if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
-            return fromMat4(s.instances()[id].transform);
-        }, py::arg("id"), "An instance's object -> world matrix (4x4).")
+             "Replaces the material of the instance with this id.")
+        .def(
+            "material",
+            [](const Scene& s, uint32_t id) {
+                if (id >= s.instances().size())
+                    throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
+                return s.instances()[id].material;
+            },
+            py::arg("id"), "A copy of an instance's material.")
+        .def(
+            "transform",
+            [](const Scene& s, uint32_t id) {
+                if (id >= s.instances().size())
+                    throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
+                return fromMat4(s.instances()[id].transform);
+            },
+            py::arg("id"), "An instance's object -> world matrix (4x4).")
         // Read-only getters so that exporters (weft.reference.picture: the Mitsuba reference)
         // can read a scene back instead of rebuilding it from a second description.
-        .def("mesh", [](const Scene& s, uint32_t id) -> py::object {
-            if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
-            const MeshPtr& mesh = s.instances()[id].mesh;
-            if (!mesh) return py::none();
-            return py::cast(std::const_pointer_cast<Mesh>(mesh));
-        }, py::arg("id"), "An instance's weft.Mesh (object space), or None for a cloth instance.")
-        .def("cloth", [](const Scene& s, uint32_t id) -> py::object {
-            if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
-            const auto cloth = std::dynamic_pointer_cast<const Cloth>(s.instances()[id].deformable);
-            if (!cloth) return py::none();
-            return py::cast(std::const_pointer_cast<Cloth>(cloth));
-        }, py::arg("id"), "A cloth instance's weft.Cloth (its mesh() is world space), else None.")
-        .def("casts_shadows", [](const Scene& s, uint32_t id) {
-            if (id >= s.instances().size()) throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
-            return s.instances()[id].castShadows;
-        }, py::arg("id"), "Whether an instance casts shadows.")
+        .def(
+            "mesh",
+            [](const Scene& s, uint32_t id) -> py::object {
+                if (id >= s.instances().size())
+                    throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
+                const MeshPtr& mesh = s.instances()[id].mesh;
+                if (!mesh) return py::none();
+                return py::cast(std::const_pointer_cast<Mesh>(mesh));
+            },
+            py::arg("id"), "An instance's weft.Mesh (object space), or None for a cloth instance.")
+        .def(
+            "cloth",
+            [](const Scene& s, uint32_t id) -> py::object {
+                if (id >= s.instances().size())
+                    throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
+                const auto cloth =
+                    std::dynamic_pointer_cast<const Cloth>(s.instances()[id].deformable);
+                if (!cloth) return py::none();
+                return py::cast(std::const_pointer_cast<Cloth>(cloth));
+            },
+            py::arg("id"), "A cloth instance's weft.Cloth (its mesh() is world space), else None.")
+        .def(
+            "casts_shadows",
+            [](const Scene& s, uint32_t id) {
+                if (id >= s.instances().size())
+                    throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
+                return s.instances()[id].castShadows;
+            },
+            py::arg("id"), "Whether an instance casts shadows.")
         .def("add_light", &Scene::addLight, py::arg("light"),
              "Adds a DirectionalLight, PointLight or SpotLight; returns its id.")
         .def("set_light", &Scene::setLight, py::arg("id"), py::arg("light"),
-            "Replaces the light with this id (as returned by add_light).")
-        .def_property("ambient", [](const Scene& s) { return fromVec3(s.ambient()); },
-                      [](Scene& s, py::handle v) { s.setAmbient(toVec3(v, "ambient")); })
-        .def_property("background", [](const Scene& s) { return fromVec3(s.background()); },
-                      [](Scene& s, py::handle v) { s.setBackground(toVec3(v, "background")); })
-        .def("set_environment", [](Scene& s, py::object environment, float intensity, int specularSize,
-                                   int specularLevels, int specularSamples, int domeLights,
-                                   int domeMapSize, int domeRefresh, float domeBlur,
-                                   float domeBlurDepthTolerance, const std::string& lookup,
-                                   int sphereMapSize, bool background, float backgroundBlur) {
-            EnvironmentLighting e;
-            if (py::isinstance<Environment>(environment))
-                e.environment = environment.cast<std::shared_ptr<Environment>>();
-            else if (py::isinstance<CubeMap>(environment))
-                e.environment = std::make_shared<Environment>(environment.cast<const CubeMap&>());
-            else
-                throw InvalidArgument("Scene.set_environment: expected a weft.ibl.Environment or a "
-                                      "weft.ibl.CubeMap (radiance, world space)");
-            e.intensity = intensity;
-            e.specularSize = specularSize;
-            e.specularLevels = specularLevels;
-            e.specularSamples = specularSamples;
-            e.domeLights = domeLights;
-            e.domeMapSize = domeMapSize;
-            e.domeRefresh = domeRefresh;
-            e.domeBlur = domeBlur;
-            e.domeBlurDepthTolerance = domeBlurDepthTolerance;
-            if (lookup == "cube")
-                e.lookup = EnvironmentLighting::Lookup::Cube;
-            else if (lookup == "sphere_map")
-                e.lookup = EnvironmentLighting::Lookup::SphereMap;
-            else
-                throw InvalidArgument("Scene.set_environment: lookup must be 'cube' or 'sphere_map' "
-                                      "(got '" + lookup + "')");
-            e.sphereMapSize = sphereMapSize;
-            e.background = background;
-            e.backgroundBlur = backgroundBlur;
-            s.setEnvironment(e);
-        }, py::arg("environment"), py::arg("intensity") = 1.0f, py::arg("specular_size") = 64,
-           py::arg("specular_levels") = 6, py::arg("specular_samples") = 64,
-           py::arg("dome_lights") = 0, py::arg("dome_map_size") = 256, py::arg("dome_refresh") = 0,
-           py::arg("dome_blur") = 0.0f, py::arg("dome_blur_depth_tolerance") = 0.05f,
-           py::arg("lookup") = "cube", py::arg("sphere_map_size") = 128,
-           py::arg("background") = false, py::arg("background_blur") = 0.0f,
-           "Lights the scene with an environment (a weft.ibl.Environment, re-baked when its version\n"
-           "changes, or a weft.ibl.CubeMap, copied into a new one): SH9 irradiance for materials'\n"
-           "environment_diffuse, a GGX chain (level l: roughness l / (levels - 1)) for their\n"
-           "reflectivity. dome_lights (0, 8, ..., 64) shadow lights of Environment.shadow_dome\n"
-           "cast dome_map_size shadow maps; the diffuse loses the occluded ones' light (eq. 2.23);\n"
-           "while casters move, dome_refresh maps per frame are re-rendered (0: all).\n"
-           "dome_blur > 0 blurs the dome's shadows over that many pixels (bilateral: depths that\n"
-           "differ by more than dome_blur_depth_tolerance, relative, do not mix); they darken the\n"
-           "diffuse light only. lookup='sphere_map' is the seed's eye-space path: the environment\n"
-           "is read as eye space (a capture from the viewer's camera) and looked up in sphere maps\n"
-           "of sphere_map_size at normalize(d_eye + (0, 0, 1)). background=True draws the\n"
-           "environment behind the scene (and in the dynamic probe): sharp, or at background_blur\n"
-           "> 0 the glossy chain at that roughness (0..1). A background_image wins over it.")
+             "Replaces the light with this id (as returned by add_light).")
+        .def_property(
+            "ambient", [](const Scene& s) { return fromVec3(s.ambient()); },
+            [](Scene& s, py::handle v) { s.setAmbient(toVec3(v, "ambient")); })
+        .def_property(
+            "background", [](const Scene& s) { return fromVec3(s.background()); },
+            [](Scene& s, py::handle v) { s.setBackground(toVec3(v, "background")); })
+        .def(
+            "set_environment",
+            [](Scene& s, py::object environment, float intensity, int specularSize,
+               int specularLevels, int specularSamples, int domeLights, int domeMapSize,
+               int domeRefresh, float domeBlur, float domeBlurDepthTolerance,
+               const std::string& lookup, int sphereMapSize, bool background,
+               float backgroundBlur) {
+                EnvironmentLighting e;
+                if (py::isinstance<Environment>(environment))
+                    e.environment = environment.cast<std::shared_ptr<Environment>>();
+                else if (py::isinstance<CubeMap>(environment))
+                    e.environment =
+                        std::make_shared<Environment>(environment.cast<const CubeMap&>());
+                else
+                    throw InvalidArgument(
+                        "Scene.set_environment: expected a weft.ibl.Environment or a "
+                        "weft.ibl.CubeMap (radiance, world space)");
+                e.intensity = intensity;
+                e.specularSize = specularSize;
+                e.specularLevels = specularLevels;
+                e.specularSamples = specularSamples;
+                e.domeLights = domeLights;
+                e.domeMapSize = domeMapSize;
+                e.domeRefresh = domeRefresh;
+                e.domeBlur = domeBlur;
+                e.domeBlurDepthTolerance = domeBlurDepthTolerance;
+                if (lookup == "cube")
+                    e.lookup = EnvironmentLighting::Lookup::Cube;
+                else if (lookup == "sphere_map")
+                    e.lookup = EnvironmentLighting::Lookup::SphereMap;
+                else
+                    throw InvalidArgument(
+                        "Scene.set_environment: lookup must be 'cube' or 'sphere_map' "
+                        "(got '" +
+                        lookup + "')");
+                e.sphereMapSize = sphereMapSize;
+                e.background = background;
+                e.backgroundBlur = backgroundBlur;
+                s.setEnvironment(e);
+            },
+            py::arg("environment"), py::arg("intensity") = 1.0f, py::arg("specular_size") = 64,
+            py::arg("specular_levels") = 6, py::arg("specular_samples") = 64,
+            py::arg("dome_lights") = 0, py::arg("dome_map_size") = 256, py::arg("dome_refresh") = 0,
+            py::arg("dome_blur") = 0.0f, py::arg("dome_blur_depth_tolerance") = 0.05f,
+            py::arg("lookup") = "cube", py::arg("sphere_map_size") = 128,
+            py::arg("background") = false, py::arg("background_blur") = 0.0f,
+            "Lights the scene with an environment (a weft.ibl.Environment, re-baked when its version\n"
+            "changes, or a weft.ibl.CubeMap, copied into a new one): SH9 irradiance for materials'\n"
+            "environment_diffuse, a GGX chain (level l: roughness l / (levels - 1)) for their\n"
+            "reflectivity. dome_lights (0, 8, ..., 64) shadow lights of Environment.shadow_dome\n"
+            "cast dome_map_size shadow maps; the diffuse loses the occluded ones' light (eq. 2.23);\n"
+            "while casters move, dome_refresh maps per frame are re-rendered (0: all).\n"
+            "dome_blur > 0 blurs the dome's shadows over that many pixels (bilateral: depths that\n"
+            "differ by more than dome_blur_depth_tolerance, relative, do not mix); they darken the\n"
+            "diffuse light only. lookup='sphere_map' is the seed's eye-space path: the environment\n"
+            "is read as eye space (a capture from the viewer's camera) and looked up in sphere maps\n"
+            "of sphere_map_size at normalize(d_eye + (0, 0, 1)). background=True draws the\n"
+            "environment behind the scene (and in the dynamic probe): sharp, or at background_blur\n"
+            "> 0 the glossy chain at that roughness (0..1). A background_image wins over it.")
         .def("clear_environment", &Scene::clearEnvironment,
-            "Removes the environment (back to the constant ambient).")
-        .def_property("background_image",
-                      [](const Scene& s) { return std::const_pointer_cast<Texture>(s.backgroundImage()); },
-                      [](Scene& s, std::shared_ptr<Texture> t) { s.setBackgroundImage(t); },
-                      "A weft.Texture behind everything instead of the background colour, stretched\n"
-                      "over the output (a camera frame for AR with phantom materials); None clears it.")
-        .def_property_readonly("environment", [](const Scene& s) -> py::object {
-            if (!s.environment().environment) return py::none();
-            return py::cast(s.environment().environment);
-        }, "The scene's weft.ibl.Environment, or None.")
+             "Removes the environment (back to the constant ambient).")
+        .def_property(
+            "background_image",
+            [](const Scene& s) { return std::const_pointer_cast<Texture>(s.backgroundImage()); },
+            [](Scene& s, std::shared_ptr<Texture> t) { s.setBackgroundImage(t); },
+            "A weft.Texture behind everything instead of the background colour, stretched\n"
+            "over the output (a camera frame for AR with phantom materials); None clears it.")
+        .def_property_readonly(
+            "environment",
+            [](const Scene& s) -> py::object {
+                if (!s.environment().environment) return py::none();
+                return py::cast(s.environment().environment);
+            },
+            "The scene's weft.ibl.Environment, or None.")
         .def_property_readonly("environment_intensity",
                                [](const Scene& s) { return s.environment().intensity; })
         .def_property_readonly("lights", &Scene::lights)
-        .def_property_readonly("instance_count", [](const Scene& s) { return s.instances().size(); })
-        .def("bounds", [](const Scene& s) {
-            glm::vec3 lo, hi;
-            s.bounds(lo, hi);
-            return py::make_tuple(fromVec3(lo), fromVec3(hi));
-        },
+        .def_property_readonly("instance_count",
+                               [](const Scene& s) { return s.instances().size(); })
+        .def(
+            "bounds",
+            [](const Scene& s) {
+                glm::vec3 lo, hi;
+                s.bounds(lo, hi);
+                return py::make_tuple(fromVec3(lo), fromVec3(hi));
+            },
             "World-space axis-aligned bounds ((min), (max)) of every instance.")
         .def("__repr__", [](const Scene& s) {
             return "<weft.Scene " + std::to_string(s.instances().size()) + " meshes, " +
                    std::to_string(s.lights().size()) + " lights>";
         });
 
-    m.def("default_scene", [] {
-        auto scene = std::make_shared<Scene>();
-        Camera camera;
-        makeDefaultScene(*scene, camera);
-        return py::make_tuple(scene, camera);
-    }, "The demo's scene and camera: textured ground, sphere, box, a shadow-casting sun.");
+    m.def(
+        "default_scene",
+        [] {
+            auto scene = std::make_shared<Scene>();
+            Camera camera;
+            makeDefaultScene(*scene, camera);
+            return py::make_tuple(scene, camera);
+        },
+        "The demo's scene and camera: textured ground, sphere, box, a shadow-casting sun.");
 }
 
 } // namespace weft::py_bind

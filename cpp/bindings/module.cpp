@@ -47,8 +47,10 @@ weft::ImageU8 arrayToImage(py::handle obj) {
     py::array a = py::array::ensure(obj);
     if (!a) throw py::type_error("image must be a NumPy array");
     if (a.dtype().kind() != 'u' || a.itemsize() != 1)
-        throw weft::InvalidArgument("image must have dtype uint8, got " + std::string(py::str(a.dtype())));
-    if (a.ndim() != 2 && a.ndim() != 3) throw weft::InvalidArgument("image must be (H, W) or (H, W, C)");
+        throw weft::InvalidArgument("image must have dtype uint8, got " +
+                                    std::string(py::str(a.dtype())));
+    if (a.ndim() != 2 && a.ndim() != 3)
+        throw weft::InvalidArgument("image must be (H, W) or (H, W, C)");
     const int c = a.ndim() == 3 ? int(a.shape(2)) : 1;
     if (c < 1 || c > 4) throw weft::InvalidArgument("image must have 1 to 4 channels");
     weft::ImageU8 img(int(a.shape(1)), int(a.shape(0)), c);
@@ -68,8 +70,10 @@ weft::ImageF arrayToImageF(py::handle obj) {
     py::array a = py::array::ensure(obj);
     if (!a) throw py::type_error("image must be a NumPy array");
     if (a.dtype().kind() != 'f' && a.dtype().kind() != 'u' && a.dtype().kind() != 'i')
-        throw py::type_error("float image must be numeric, got dtype " + std::string(py::str(a.dtype())));
-    if (a.ndim() != 2 && a.ndim() != 3) throw weft::InvalidArgument("image must be (H, W) or (H, W, C)");
+        throw py::type_error("float image must be numeric, got dtype " +
+                             std::string(py::str(a.dtype())));
+    if (a.ndim() != 2 && a.ndim() != 3)
+        throw weft::InvalidArgument("image must be (H, W) or (H, W, C)");
     const int c = a.ndim() == 3 ? int(a.shape(2)) : 1;
     if (c < 1 || c > 4) throw weft::InvalidArgument("image must have 1 to 4 channels");
     if (a.shape(0) == 0 || a.shape(1) == 0) throw weft::InvalidArgument("image must not be empty");
@@ -107,7 +111,8 @@ PYBIND11_MODULE(_core, m) {
     // Messages may quote bytes of a corrupt file that are not UTF-8 (found by the loaders'
     // fuzzer): decoded with backslash escapes, never a UnicodeDecodeError in place of the error.
     static const auto raise = [](PyObject* type, const char* what) {
-        PyObject* text = PyUnicode_DecodeUTF8(what, Py_ssize_t(std::strlen(what)), "backslashreplace");
+        PyObject* text =
+            PyUnicode_DecodeUTF8(what, Py_ssize_t(std::strlen(what)), "backslashreplace");
         if (!text) return; // the decoder's own error stands
         PyErr_SetObject(type, text);
         Py_DECREF(text);
@@ -119,133 +124,160 @@ PYBIND11_MODULE(_core, m) {
             raise(gInvalidArgument, e.what());
         } catch (const weft::IoError& e) {
             raise(gIoError, e.what());
-        } catch (const weft::Error& e) {
-            raise(gError, e.what());
-        }
+        } catch (const weft::Error& e) { raise(gError, e.what()); }
     });
 
-    m.def("devices", [] {
-        py::list out;
-        for (const auto& d : weft::listDevices()) {
-            py::dict e;
-            e["index"] = d.index;
-            e["name"] = d.name;
-            e["type"] = d.type;
-            e["api_version"] = d.apiVersion;
-            e["driver"] = d.driver;
-            e["selected"] = d.selected;
-            out.append(e);
-        }
-        return out;
-    }, "Vulkan devices as dicts (index, name, type, api_version, driver, selected).\n"
-       "Selection prefers discrete > integrated > virtual > CPU; WEFT_DEVICE overrides it.");
+    m.def(
+        "devices",
+        [] {
+            py::list out;
+            for (const auto& d : weft::listDevices()) {
+                py::dict e;
+                e["index"] = d.index;
+                e["name"] = d.name;
+                e["type"] = d.type;
+                e["api_version"] = d.apiVersion;
+                e["driver"] = d.driver;
+                e["selected"] = d.selected;
+                out.append(e);
+            }
+            return out;
+        },
+        "Vulkan devices as dicts (index, name, type, api_version, driver, selected).\n"
+        "Selection prefers discrete > integrated > virtual > CPU; WEFT_DEVICE overrides it.");
     m.def("validation_enabled", &weft::validationEnabled,
           "True when WEFT_VALIDATION=1 enables the Vulkan validation layers.");
     m.def("validation_messages", &weft::validationMessages,
           "Validation warnings/errors collected since the last clear.");
     m.def("clear_validation_messages", &weft::clearValidationMessages,
-        "Forgets the validation messages collected so far.");
-    m.def("device_memory", [] {
-        const weft::DeviceMemoryStats s = weft::deviceMemoryStats();
-        py::dict d;
-        d["blocks"] = s.blocks;
-        d["reserved_bytes"] = s.reservedBytes;
-        d["used_bytes"] = s.usedBytes;
-        return d;
-    }, "Device memory weft's allocator holds (shared by all Renderers): blocks, reserved_bytes\n"
-       "(obtained from Vulkan), used_bytes (handed out); zeros when no Renderer exists.");
+          "Forgets the validation messages collected so far.");
+    m.def(
+        "device_memory",
+        [] {
+            const weft::DeviceMemoryStats s = weft::deviceMemoryStats();
+            py::dict d;
+            d["blocks"] = s.blocks;
+            d["reserved_bytes"] = s.reservedBytes;
+            d["used_bytes"] = s.usedBytes;
+            return d;
+        },
+        "Device memory weft's allocator holds (shared by all Renderers): blocks, reserved_bytes\n"
+        "(obtained from Vulkan), used_bytes (handed out); zeros when no Renderer exists.");
 
-    m.def("load_png", [](const std::string& path) { return imageToArray(weft::loadPng(path)); },
-          py::arg("path"), "Reads a PNG into a uint8 array (H, W, C).");
-    m.def("save_png", [](const std::string& path, py::handle image) {
-        weft::savePng(path, arrayToImage(image));
-    }, py::arg("path"), py::arg("image"), "Writes a uint8 array (H, W) or (H, W, 1-4) as PNG.");
+    m.def(
+        "load_png", [](const std::string& path) { return imageToArray(weft::loadPng(path)); },
+        py::arg("path"), "Reads a PNG into a uint8 array (H, W, C).");
+    m.def(
+        "save_png",
+        [](const std::string& path, py::handle image) { weft::savePng(path, arrayToImage(image)); },
+        py::arg("path"), py::arg("image"), "Writes a uint8 array (H, W) or (H, W, 1-4) as PNG.");
 
-    m.def("load_exr", [](const std::string& path) { return imageFToArray(weft::loadExr(path)); },
-          py::arg("path"), "Reads an OpenEXR file into a float32 array (H, W, C): R, G, B [, A] "
-          "or Y [, A].");
-    m.def("save_exr", [](const std::string& path, py::handle image) {
-        weft::saveExr(path, arrayToImageF(image));
-    }, py::arg("path"), py::arg("image"),
-       "Writes a float array (H, W) or (H, W, 1-4) as 32-bit float OpenEXR (ZIP compression).");
-    m.def("load_hdr", [](const std::string& path) { return imageFToArray(weft::loadHdr(path)); },
-          py::arg("path"), "Reads a Radiance RGBE .hdr file into a float32 array (H, W, 3).");
-    m.def("save_hdr", [](const std::string& path, py::handle image) {
-        weft::saveHdr(path, arrayToImageF(image));
-    }, py::arg("path"), py::arg("image"),
-       "Writes a float array (H, W), (H, W, 3) or (H, W, 4, alpha dropped) as Radiance RGBE "
-       "(run-length encoded). Values must be finite and >= 0.");
-    m.def("load_image_float", [](const std::string& path) {
-        return imageFToArray(weft::loadImageF(path));
-    }, py::arg("path"), "Reads .exr, .hdr or .png (values / 255) into a float32 (H, W, C) array.");
+    m.def(
+        "load_exr", [](const std::string& path) { return imageFToArray(weft::loadExr(path)); },
+        py::arg("path"),
+        "Reads an OpenEXR file into a float32 array (H, W, C): R, G, B [, A] "
+        "or Y [, A].");
+    m.def(
+        "save_exr",
+        [](const std::string& path, py::handle image) {
+            weft::saveExr(path, arrayToImageF(image));
+        },
+        py::arg("path"), py::arg("image"),
+        "Writes a float array (H, W) or (H, W, 1-4) as 32-bit float OpenEXR (ZIP compression).");
+    m.def(
+        "load_hdr", [](const std::string& path) { return imageFToArray(weft::loadHdr(path)); },
+        py::arg("path"), "Reads a Radiance RGBE .hdr file into a float32 array (H, W, 3).");
+    m.def(
+        "save_hdr",
+        [](const std::string& path, py::handle image) {
+            weft::saveHdr(path, arrayToImageF(image));
+        },
+        py::arg("path"), py::arg("image"),
+        "Writes a float array (H, W), (H, W, 3) or (H, W, 4, alpha dropped) as Radiance RGBE "
+        "(run-length encoded). Values must be finite and >= 0.");
+    m.def(
+        "load_image_float",
+        [](const std::string& path) { return imageFToArray(weft::loadImageF(path)); },
+        py::arg("path"), "Reads .exr, .hdr or .png (values / 255) into a float32 (H, W, C) array.");
 
     m.def("shader_hot_reload_available", &weft::shaderHotReloadAvailable,
           "True when weft was built with libshaderc (shader hot reload).");
-    m.def("set_shader_directory", [](const std::string& dir) { weft::setShaderDirectory(dir); },
-          py::arg("directory"),
-          "Development: watch a directory laid out like glsl/; shaders changed there are\n"
-          "recompiled (libshaderc) and replace the built-in ones at the next frame. '' stops.");
+    m.def(
+        "set_shader_directory", [](const std::string& dir) { weft::setShaderDirectory(dir); },
+        py::arg("directory"),
+        "Development: watch a directory laid out like glsl/; shaders changed there are\n"
+        "recompiled (libshaderc) and replace the built-in ones at the next frame. '' stops.");
     m.def("shader_directory", &weft::shaderDirectory,
-        "The directory watched for shader hot reload ('' when none; see "
-        "set_shader_directory).");
-    m.def("poll_shader_changes", [] {
-        py::gil_scoped_release release;
-        return weft::pollShaderChanges();
-    }, "Recompiles changed shaders now (renderers also do it every frame); returns how many.");
+          "The directory watched for shader hot reload ('' when none; see "
+          "set_shader_directory).");
+    m.def(
+        "poll_shader_changes",
+        [] {
+            py::gil_scoped_release release;
+            return weft::pollShaderChanges();
+        },
+        "Recompiles changed shaders now (renderers also do it every frame); returns how many.");
     m.def("shader_errors", &weft::shaderErrors,
           "Compile errors of reloaded shaders since the last clear (name: file:line: message).");
     m.def("clear_shader_errors", &weft::clearShaderErrors,
-        "Forgets the shader compile errors collected so far.");
+          "Forgets the shader compile errors collected so far.");
 
-    m.def("demo_scene", [](py::object hour) {
-        weft::app::DemoScene demo;
-        if (!hour.is_none()) demo.setHour(hour.cast<float>());
-        return py::make_tuple(std::make_shared<weft::Scene>(demo.scene()), demo.camera(),
-                              demo.clothPtr());
-    }, py::arg("hour") = py::none(),
-       "The demo's scene (terrain, sphere, furry ball, sun and moon under the analytic sky, and\n"
-       "the cloth in it) at `hour` (0..24, default 8.4), its camera and the cloth (step it to\n"
-       "animate the scene), as (scene, camera, cloth).");
+    m.def(
+        "demo_scene",
+        [](py::object hour) {
+            weft::app::DemoScene demo;
+            if (!hour.is_none()) demo.setHour(hour.cast<float>());
+            return py::make_tuple(std::make_shared<weft::Scene>(demo.scene()), demo.camera(),
+                                  demo.clothPtr());
+        },
+        py::arg("hour") = py::none(),
+        "The demo's scene (terrain, sphere, furry ball, sun and moon under the analytic sky, and\n"
+        "the cloth in it) at `hour` (0..24, default 8.4), its camera and the cloth (step it to\n"
+        "animate the scene), as (scene, camera, cloth).");
 
-    m.def("load_demo_script", [](const std::string& path) {
-        py::list out;
-        for (const weft::app::ScriptEvent& e : weft::app::loadScript(path))
-            out.append(py::make_tuple(e.frame, e.action, e.key, e.x, e.y));
-        return out;
-    }, py::arg("path"),
-       "The events of a demo --script file as (frame, action, key code, x, y) tuples (what\n"
-       "run_demo(script=...) plays); IoError names file:line of a malformed line.");
+    m.def(
+        "load_demo_script",
+        [](const std::string& path) {
+            py::list out;
+            for (const weft::app::ScriptEvent& e : weft::app::loadScript(path))
+                out.append(py::make_tuple(e.frame, e.action, e.key, e.x, e.y));
+            return out;
+        },
+        py::arg("path"),
+        "The events of a demo --script file as (frame, action, key code, x, y) tuples (what\n"
+        "run_demo(script=...) plays); IoError names file:line of a malformed line.");
 
-    m.def("run_demo", [](int width, int height, int frames, bool headless, bool vsync,
-                         const std::string& out, const std::string& screenshot,
-                         const std::string& statsJson, const std::string& script,
-                         const std::string& shaderDir, const std::string& environment,
-                         py::object hour) {
-        weft::DemoOptions o;
-        o.width = width;
-        o.height = height;
-        o.frames = frames;
-        o.headless = headless;
-        o.vsync = vsync;
-        o.out = out;
-        o.screenshot = screenshot;
-        o.statsJson = statsJson;
-        o.script = script;
-        o.shaderDir = shaderDir;
-        o.environment = environment;
-        if (!hour.is_none()) {
-            o.hour = hour.cast<float>();
-            if (!(o.hour >= 0.0f && o.hour <= 24.0f))
-                throw weft::InvalidArgument("hour (time of day) must be in [0, 24]");
-        }
-        py::gil_scoped_release release;
-        return weft::runDemo(o);
-    }, py::arg("width") = 1280, py::arg("height") = 720, py::arg("frames") = 0,
-       py::arg("headless") = false, py::arg("vsync") = true, py::arg("out") = "out/demo.png",
-       py::arg("screenshot") = "", py::arg("stats_json") = "", py::arg("script") = "",
-       py::arg("shader_dir") = "", py::arg("environment") = "", py::arg("hour") = py::none(),
-       "Runs the demo (the seed's cloth environment): a window when a display exists, else\n"
-       "headless to `out` (see `weft-demo --help` for frames, scripts and output folders).");
+    m.def(
+        "run_demo",
+        [](int width, int height, int frames, bool headless, bool vsync, const std::string& out,
+           const std::string& screenshot, const std::string& statsJson, const std::string& script,
+           const std::string& shaderDir, const std::string& environment, py::object hour) {
+            weft::DemoOptions o;
+            o.width = width;
+            o.height = height;
+            o.frames = frames;
+            o.headless = headless;
+            o.vsync = vsync;
+            o.out = out;
+            o.screenshot = screenshot;
+            o.statsJson = statsJson;
+            o.script = script;
+            o.shaderDir = shaderDir;
+            o.environment = environment;
+            if (!hour.is_none()) {
+                o.hour = hour.cast<float>();
+                if (!(o.hour >= 0.0f && o.hour <= 24.0f))
+                    throw weft::InvalidArgument("hour (time of day) must be in [0, 24]");
+            }
+            py::gil_scoped_release release;
+            return weft::runDemo(o);
+        },
+        py::arg("width") = 1280, py::arg("height") = 720, py::arg("frames") = 0,
+        py::arg("headless") = false, py::arg("vsync") = true, py::arg("out") = "out/demo.png",
+        py::arg("screenshot") = "", py::arg("stats_json") = "", py::arg("script") = "",
+        py::arg("shader_dir") = "", py::arg("environment") = "", py::arg("hour") = py::none(),
+        "Runs the demo (the seed's cloth environment): a window when a display exists, else\n"
+        "headless to `out` (see `weft-demo --help` for frames, scripts and output folders).");
 
     bindScene(m);
     bindModelIo(m);

@@ -26,7 +26,8 @@ int main() {
             std::fprintf(stderr, "frame has only %zu colours\n", colours.size());
             return 1;
         }
-        for (const auto& m : weft::validationMessages()) std::fprintf(stderr, "validation: %s\n", m.c_str());
+        for (const auto& m : weft::validationMessages())
+            std::fprintf(stderr, "validation: %s\n", m.c_str());
         if (!weft::validationMessages().empty()) return 1;
         std::printf("consumer: rendered %dx%d on %s with %zu colours, passes:", frame.color.width,
                     frame.color.height, renderer.deviceName().c_str(), colours.size());

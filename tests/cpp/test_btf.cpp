@@ -28,8 +28,8 @@ weft::BtfMaterialMaps lambertian(int w, int h) {
     m.height = h;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const glm::vec3 n = glm::normalize(glm::vec3(0.2f * std::sin(float(x)),
-                                                         0.15f * std::cos(float(y)), 1.0f));
+            const glm::vec3 n = glm::normalize(
+                glm::vec3(0.2f * std::sin(float(x)), 0.15f * std::cos(float(y)), 1.0f));
             for (int k = 0; k < 3; ++k) {
                 m.normal.push_back(n[k]);
                 m.albedo.push_back(0.3f + 0.1f * float(k) + 0.01f * float(x));

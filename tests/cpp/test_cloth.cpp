@@ -8,7 +8,6 @@
 
 #include <weft/Cloth.h>
 
-
 namespace {
 
 weft::ClothParams hanging(int n, int threads) {

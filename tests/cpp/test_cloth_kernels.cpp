@@ -11,9 +11,9 @@
 
 namespace {
 
-using weft::cloth::Particle;
 using weft::cloth::BatchJob;
 using weft::cloth::Isa;
+using weft::cloth::Particle;
 
 bool anyMoved(const std::vector<Particle>& p, const std::vector<Particle>& q) {
     for (size_t k = 0; k < p.size(); ++k)
@@ -44,7 +44,8 @@ RowCase randomRow(std::mt19937& rng, int nx, int dx, int count) {
         rc.lambda.push_back(pos(rng) * 1e-3f);
         rc.on.push_back(unit(rng) < 0.15f ? 0 : 1);
         if (unit(rng) < 0.1f) // coincident ends
-            rc.particles[size_t(rc.a[size_t(q)] + nx + dx)].x = rc.particles[size_t(rc.a[size_t(q)])].x;
+            rc.particles[size_t(rc.a[size_t(q)] + nx + dx)].x =
+                rc.particles[size_t(rc.a[size_t(q)])].x;
     }
     return rc;
 }
@@ -87,15 +88,17 @@ TEST(ClothKernels, SimdEqualsScalar) {
 
 TEST(ClothKernels, ProjectionSatisfiesTheConstraintAndKeepsPinnedParticles) {
     std::vector<Particle> ps(8);
-    for (int k = 0; k < 8; ++k) ps[size_t(k)] = {glm::vec3(float(k), 0.0f, 0.0f), k == 0 ? 0.0f : 1.0f};
+    for (int k = 0; k < 8; ++k)
+        ps[size_t(k)] = {glm::vec3(float(k), 0.0f, 0.0f), k == 0 ? 0.0f : 1.0f};
     // Four constraints (0,4) (1,5) (2,6) (3,7) of rest length 2: one SSE group.
     const std::vector<int> a = {0, 1, 2, 3};
     const std::vector<float> rest(4, 2.0f);
     const std::vector<uint8_t> on = {1, 1, 1, 0};
     std::vector<float> lambda(4, 0.0f);
-    weft::cloth::projectBatch(ps.data(), BatchJob{a.data(), 4, 4, rest.data(), on.data(),
-                                                  lambda.data(), 0.0f, glm::vec3(4, 0, 0)},
-                              weft::cloth::bestIsa());
+    weft::cloth::projectBatch(
+        ps.data(),
+        BatchJob{a.data(), 4, 4, rest.data(), on.data(), lambda.data(), 0.0f, glm::vec3(4, 0, 0)},
+        weft::cloth::bestIsa());
     EXPECT_EQ(ps[0].x, glm::vec3(0, 0, 0)); // pinned: the other end moves all the way
     EXPECT_FLOAT_EQ(ps[4].x.x, 2.0f);
     EXPECT_FLOAT_EQ(ps[1].x.x, 2.0f); // equal masses share the correction
@@ -124,13 +127,14 @@ TEST(ClothKernels, SimdTethersEqualScalar) {
         std::vector<float> length(size_t(slots * n));
         for (size_t t = 0; t < anchor.size(); ++t) {
             anchor[t] = anchors[size_t(rng() % anchors.size())];
-            length[t] = unit(rng) < 0.2f ? std::numeric_limits<float>::infinity() : 0.2f + unit(rng);
+            length[t] =
+                unit(rng) < 0.2f ? std::numeric_limits<float>::infinity() : 0.2f + unit(rng);
         }
         const int begin = trial % 3, end = n - trial % 2;
         auto project = [&](Isa isa) {
             std::vector<Particle> ps = start;
-            weft::cloth::projectTethers(ps.data(), {begin, end, slots, n, anchor.data(), length.data()},
-                                        isa);
+            weft::cloth::projectTethers(ps.data(),
+                                        {begin, end, slots, n, anchor.data(), length.data()}, isa);
             return ps;
         };
         const std::vector<Particle> scalar = project(Isa::Scalar);
@@ -162,15 +166,23 @@ TEST(ClothKernels, SimdIntegrationEqualsScalar) {
             pinned[size_t(k)] = r < 0.2f;
             hole[size_t(k)] = r > 0.1f && r < 0.3f;
             const bool grabbed = r > 0.9f;
-            const float w = pinned[size_t(k)] || hole[size_t(k)] || grabbed ? 0.0f : 1.0f + unit(rng);
+            const float w =
+                pinned[size_t(k)] || hole[size_t(k)] || grabbed ? 0.0f : 1.0f + unit(rng);
             x[size_t(k)] = {glm::vec3(pos(rng), pos(rng), pos(rng)), w};
             prev[size_t(k)] = {glm::vec3(pos(rng), pos(rng), pos(rng)), 0.0f};
-            normals[size_t(k)] = glm::vec4(glm::normalize(glm::vec3(pos(rng), pos(rng), 1.0f)), 0.0f);
+            normals[size_t(k)] =
+                glm::vec4(glm::normalize(glm::vec3(pos(rng), pos(rng), 1.0f)), 0.0f);
         }
-        const weft::cloth::IntegrateJob job{2, n - 1, pinned.data(), hole.data(),
-                                            glm::vec3(0.1f, -9.81f, 0.2f), 1.0f / 60.0f, 0.99f,
+        const weft::cloth::IntegrateJob job{2,
+                                            n - 1,
+                                            pinned.data(),
+                                            hole.data(),
+                                            glm::vec3(0.1f, -9.81f, 0.2f),
+                                            1.0f / 60.0f,
+                                            0.99f,
                                             windy ? normals.data() : nullptr,
-                                            glm::normalize(glm::vec3(1.0f, 0.2f, 0.5f)), 7.0f};
+                                            glm::normalize(glm::vec3(1.0f, 0.2f, 0.5f)),
+                                            7.0f};
         auto run = [&](Isa isa, std::vector<Particle>& px, std::vector<Particle>& pp) {
             px = x;
             pp = prev;

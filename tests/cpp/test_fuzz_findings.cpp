@@ -107,15 +107,16 @@ long maxRssKiB() {
 TEST(FuzzFindings, ExrAttributeLargerThanTheFileIsRefusedBeforeOpenExrReadsIt) {
     TempDir dir;
     for (int32_t size : {std::numeric_limits<int32_t>::max(), 1 << 20, -1}) {
-        const std::string path = dir.write("big.exr", exrWithAttribute(
-            dir, exrAttribute("junk", "opaque", size, "xx")));
+        const std::string path =
+            dir.write("big.exr", exrWithAttribute(dir, exrAttribute("junk", "opaque", size, "xx")));
         try {
             weft::loadExr(path);
             FAIL() << "attribute of " << size << " bytes accepted";
         } catch (const weft::IoError& e) {
             EXPECT_NE(std::string(e.what()).find("header attribute 'junk' (opaque) declares " +
                                                  std::to_string(size) + " bytes"),
-                      std::string::npos) << e.what();
+                      std::string::npos)
+                << e.what();
             EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
         }
     }
@@ -140,8 +141,8 @@ TEST(FuzzFindings, ExrWithExtraWellFormedAttributesStillLoads) {
 // and the walk follows it to the attributes after it (here, an oversized one it must see).
 TEST(FuzzFindings, ExrWalkFollowsAChannelListWhateverItsDeclaredSize) {
     TempDir dir;
-    const std::string channel = std::string("Z") + '\0' + le32(2) + std::string(4, '\0') +
-                                le32(1) + le32(1);
+    const std::string channel =
+        std::string("Z") + '\0' + le32(2) + std::string(4, '\0') + le32(1) + le32(1);
     const std::string extra = exrAttribute("layers", "chlist", 2, channel + '\0') +
                               exrAttribute("junk", "opaque", 1 << 30, "");
     const std::string path = dir.write("chlist.exr", exrWithAttribute(dir, extra));
@@ -150,7 +151,8 @@ TEST(FuzzFindings, ExrWalkFollowsAChannelListWhateverItsDeclaredSize) {
         FAIL() << "accepted";
     } catch (const weft::IoError& e) { // the walk's message, not OpenEXR's end of file
         EXPECT_NE(std::string(e.what()).find("'junk' (opaque) declares 1073741824 bytes"),
-                  std::string::npos) << e.what();
+                  std::string::npos)
+            << e.what();
     }
 }
 

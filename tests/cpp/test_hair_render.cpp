@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include <weft/Device.h>
 #include <weft/Debug.h>
+#include <weft/Device.h>
 #include <weft/Renderer.h>
 #include <weft/Scene.h>
 
@@ -72,9 +72,8 @@ TEST(HairScene, FrameRunsOnlyTheHairPassesTheSceneNeeds) {
     settings.hairDeepOpacity = false;
     r.setSettings(settings);
     r.render(scene, camera, weft::OutputLinear);
-    EXPECT_EQ(passNames(r), (std::vector<std::string>{"shadow[0]", "forward", "hair",
-                                                      "hair_fringe", "hair_oit", "hair_composite",
-                                                      "readback"}));
+    EXPECT_EQ(passNames(r), (std::vector<std::string>{"shadow[0]", "forward", "hair", "hair_fringe",
+                                                      "hair_oit", "hair_composite", "readback"}));
     settings.msaa = 1; // no anti-aliasing: one strand per pixel (the shadow map is reused)
     r.setSettings(settings);
     r.render(scene, camera, weft::OutputLinear);

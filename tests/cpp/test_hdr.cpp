@@ -1,6 +1,7 @@
 // Radiance .hdr through stb_image (compiled into weft, cpp/src/core/ImageHdr.cpp), here so that the
-// sanitizer lane runs stb's decoder under ASan/UBSan: round trips, every truncation, zero run-length
-// counts (this stb_image looped forever on them) and corrupted bytes give an image or IoError.
+// sanitizer lane runs stb's decoder under ASan/UBSan: round trips, every truncation, zero
+// run-length counts (this stb_image looped forever on them) and corrupted bytes give an image or
+// IoError.
 #include <weft/Error.h>
 #include <weft/Image.h>
 

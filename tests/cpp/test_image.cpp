@@ -18,7 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-
 void writeBytes(const std::string& path, const std::string& bytes) {
     std::ofstream out(path, std::ios::binary);
     out.write(bytes.data(), std::streamsize(bytes.size()));
@@ -290,8 +289,8 @@ TEST(ImageTest, HeaderClaimingAHugeImageThrowsIoErrorWithoutAllocatingIt) {
 TEST(ImageTest, PaletteWithTransparencyBecomesRgba) {
     TempDir dir;
     // 3x2 pixels, 2 bits per palette index; tRNS gives entries 0 and 1 an alpha.
-    const std::string palette = chunk("PLTE", bytes({10, 20, 30, 40, 50, 60, 70, 80, 90, 255,
-                                                     0, 0}));
+    const std::string palette =
+        chunk("PLTE", bytes({10, 20, 30, 40, 50, 60, 70, 80, 90, 255, 0, 0}));
     const std::string alpha = chunk("tRNS", bytes({0, 128}));
     // Row 0: indices 0 1 2 -> 00 01 10 00 = 0x18; row 1: 3 2 1 -> 11 10 01 00 = 0xE4.
     const std::string path = dir.file("palette.png");
@@ -300,9 +299,9 @@ TEST(ImageTest, PaletteWithTransparencyBecomesRgba) {
     ASSERT_EQ(image.channels, 4);
     ASSERT_EQ(image.width, 3);
     ASSERT_EQ(image.height, 2);
-    EXPECT_EQ(image.pixels, (std::vector<uint8_t>{10, 20, 30, 0,   40, 50,  60, 128,
-                                                  70, 80, 90, 255, 255, 0,  0,  255,
-                                                  70, 80, 90, 255, 40,  50, 60, 128}));
+    EXPECT_EQ(image.pixels,
+              (std::vector<uint8_t>{10,  20, 30, 0,   40, 50, 60, 128, 70, 80, 90, 255,
+                                    255, 0,  0,  255, 70, 80, 90, 255, 40, 50, 60, 128}));
 }
 
 TEST(ImageTest, PaletteWithoutTransparencyBecomesRgb) {
@@ -325,8 +324,8 @@ TEST(ImageTest, SixteenBitSamplesAreReducedToEightBits) {
     EXPECT_EQ(image.pixels, (std::vector<uint8_t>{0, 128, 255}));
 
     // 16-bit RGBA, one pixel.
-    writeBytes(path, makePng(1, 1, 16, 6, bytes({0, 0x11, 0x11, 0x22, 0x22, 0x33, 0x33, 0xFF,
-                                                 0xFF})));
+    writeBytes(path,
+               makePng(1, 1, 16, 6, bytes({0, 0x11, 0x11, 0x22, 0x22, 0x33, 0x33, 0xFF, 0xFF})));
     image = weft::loadPng(path);
     EXPECT_EQ(image.channels, 4);
     EXPECT_EQ(image.pixels, (std::vector<uint8_t>{0x11, 0x22, 0x33, 0xFF}));

@@ -92,9 +92,7 @@ weft::Mesh oneTriangle() {
 
 } // namespace
 
-TEST(MeshTest, ValidateAcceptsAConsistentMesh) {
-    EXPECT_NO_THROW(oneTriangle().validate());
-}
+TEST(MeshTest, ValidateAcceptsAConsistentMesh) { EXPECT_NO_THROW(oneTriangle().validate()); }
 
 TEST(MeshTest, ValidateRejectsBrokenMeshes) {
     const float nan = std::numeric_limits<float>::quiet_NaN();

@@ -16,14 +16,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-
 // The IoError message of loading `path`, or "" when it loads.
 std::string loadError(const std::string& path) {
     try {
         weft::loadObj(path);
-    } catch (const weft::IoError& e) {
-        return e.what();
-    }
+    } catch (const weft::IoError& e) { return e.what(); }
     return "";
 }
 
@@ -56,8 +53,7 @@ TEST(ObjTest, QuadWithAllAttributesBecomesTwoTriangles) {
     ASSERT_EQ(mesh.vertexCount(), 4u);
     ASSERT_EQ(mesh.triangleCount(), 2u);
     EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
-    EXPECT_EQ(mesh.positions,
-              (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
+    EXPECT_EQ(mesh.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
     for (const glm::vec3& n : mesh.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
     // OBJ's v = 0 is the bottom image row; weft's is the top row, so v is flipped.
     EXPECT_EQ(mesh.uvs, (std::vector<glm::vec2>{{0, 1}, {1, 1}, {1, 0}, {0, 0}}));

@@ -4,12 +4,12 @@
 #include <cmath>
 
 #include <weft/CubeMap.h>
+#include <weft/Debug.h>
 #include <weft/Device.h>
 #include <weft/Environment.h>
-#include <weft/Texture.h>
-#include <weft/Debug.h>
 #include <weft/Renderer.h>
 #include <weft/Scene.h>
+#include <weft/Texture.h>
 
 namespace {
 
@@ -55,7 +55,8 @@ TEST_F(RendererTest, DefaultSceneRunsAllPassesAndLooksLit) {
         for (int c = 0; c < 3; ++c) {
             const double x = std::clamp(double(f.linear[i + c]), 0.0, 1.0);
             const double s = x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055;
-            worst = std::max(worst, std::abs(int(std::lround(s * 255)) - int(f.color.pixels[i + c])));
+            worst =
+                std::max(worst, std::abs(int(std::lround(s * 255)) - int(f.color.pixels[i + c])));
         }
         EXPECT_EQ(f.color.pixels[i + 3], 255);
     }
@@ -120,8 +121,8 @@ TEST_F(RendererTest, PhantomOverBackgroundWithBlurredDomeRunsItsPasses) {
     weft::Material ground;
     ground.phantom = true;
     ground.environmentDiffuse = 1.0f;
-    scene.addMesh(std::make_shared<weft::Mesh>(weft::Mesh::plane(4.0f, 4.0f)), ground, glm::mat4(1.0f),
-                  false);
+    scene.addMesh(std::make_shared<weft::Mesh>(weft::Mesh::plane(4.0f, 4.0f)), ground,
+                  glm::mat4(1.0f), false);
     weft::Material ball;
     ball.environmentDiffuse = 1.0f;
     ball.reflectivity = glm::vec3(0.5f);

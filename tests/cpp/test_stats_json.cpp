@@ -31,13 +31,16 @@ TEST(StatsJson, EscapesEveryControlCharacterAndQuote) {
 
 TEST(StatsJson, FieldsInOrderAndUnmeasuredTimesAreNull) {
     const std::string json = weft::statsToJson(sample(), "dev");
-    EXPECT_EQ(json.rfind(R"({"device":"dev","frame_index":7,"cpu_ms":1.5,"gpu_ms":null,"passes":[)", 0),
-              0u) << json;
+    EXPECT_EQ(
+        json.rfind(R"({"device":"dev","frame_index":7,"cpu_ms":1.5,"gpu_ms":null,"passes":[)", 0),
+        0u)
+        << json;
     EXPECT_NE(json.find(R"("cpu_ms":0.25,"gpu_ms":null})"), std::string::npos) << json;
 }
 
 TEST(StatsJson, FramesAreAnArray) {
-    const std::string json = weft::statsToJson(std::vector<weft::FrameStats>{sample(), sample()}, "d");
+    const std::string json =
+        weft::statsToJson(std::vector<weft::FrameStats>{sample(), sample()}, "d");
     EXPECT_EQ(json.front(), '[');
     EXPECT_EQ(json.substr(json.size() - 3), "\n]\n");
     EXPECT_NE(json.find("},\n{\"device\""), std::string::npos) << json;

@@ -21,9 +21,12 @@ TEST(ThreadPool, EveryIndexExactlyOnce) {
         for (int n : {1, 5, 100, 5000, 100003}) {
             std::vector<std::atomic<int>> hits(static_cast<size_t>(n));
             for (auto& h : hits) h = 0;
-            pool.parallelFor(n, [&](int b, int e) {
-                for (int i = b; i < e; ++i) hits[size_t(i)]++;
-            }, 1);
+            pool.parallelFor(
+                n,
+                [&](int b, int e) {
+                    for (int i = b; i < e; ++i) hits[size_t(i)]++;
+                },
+                1);
             for (int i = 0; i < n; ++i) ASSERT_EQ(hits[size_t(i)].load(), 1) << threads << " " << n;
         }
     }
@@ -38,10 +41,14 @@ TEST(ThreadPool, ManyQuickJobsEachRunOnce) {
         for (int job = 0; job < 20000; ++job) {
             const int n = 1 + job % 64;
             for (int i = 0; i < n; ++i) hits[size_t(i)] = 0;
-            pool.parallelFor(n, [&](int b, int e) {
-                for (int i = b; i < e; ++i) hits[size_t(i)]++;
-            }, 1);
-            for (int i = 0; i < n; ++i) ASSERT_EQ(hits[size_t(i)].load(), 1) << threads << " " << job;
+            pool.parallelFor(
+                n,
+                [&](int b, int e) {
+                    for (int i = b; i < e; ++i) hits[size_t(i)]++;
+                },
+                1);
+            for (int i = 0; i < n; ++i)
+                ASSERT_EQ(hits[size_t(i)].load(), 1) << threads << " " << job;
         }
     }
 }
@@ -51,10 +58,13 @@ TEST(ThreadPool, ChunksSplitTheJobAsAsked) {
     for (int chunks : {1, 2, 3, 4, 9}) {
         std::mutex m;
         std::set<std::pair<int, int>> ranges;
-        pool.parallelFor(10, [&](int b, int e) {
-            std::lock_guard<std::mutex> lock(m);
-            ranges.insert({b, e});
-        }, 1, chunks);
+        pool.parallelFor(
+            10,
+            [&](int b, int e) {
+                std::lock_guard<std::mutex> lock(m);
+                ranges.insert({b, e});
+            },
+            1, chunks);
         const int expected = std::min(chunks, 4);
         ASSERT_EQ(int(ranges.size()), expected) << chunks;
         int k = 0;
@@ -70,12 +80,17 @@ TEST(ThreadPool, ExceptionOnAWorkerReachesTheCaller) {
     weft::ThreadPool pool(3);
     for (int round = 0; round < 50; ++round) {
         const int bad = round % 3; // the caller's chunk (0) or a worker's
-        EXPECT_THROW(pool.parallelFor(300, [&](int b, int) {
-            if (b / 100 == bad) throw std::runtime_error("chunk failed");
-        }, 1), std::runtime_error);
+        EXPECT_THROW(pool.parallelFor(
+                         300,
+                         [&](int b, int) {
+                             if (b / 100 == bad) throw std::runtime_error("chunk failed");
+                         },
+                         1),
+                     std::runtime_error);
         // the pool keeps working afterwards
         std::atomic<int> sum{0};
-        pool.parallelFor(300, [&](int b, int e) { sum += e - b; }, 1);
+        pool.parallelFor(
+            300, [&](int b, int e) { sum += e - b; }, 1);
         ASSERT_EQ(sum.load(), 300);
     }
 }
@@ -93,9 +108,12 @@ TEST(ThreadPool, DynamicTakesEveryItemOnceAndRethrows) {
             for (int i = 0; i < n; ++i) ASSERT_EQ(hits[size_t(i)].load(), 1) << n << " " << grain;
         }
     }
-    EXPECT_THROW(pool.parallelForDynamic(1000, 5, [&](int b, int) {
-        if (b >= 500) throw weft::InvalidArgument("item failed");
-    }), weft::InvalidArgument);
+    EXPECT_THROW(pool.parallelForDynamic(1000, 5,
+                                         [&](int b, int) {
+                                             if (b >= 500)
+                                                 throw weft::InvalidArgument("item failed");
+                                         }),
+                 weft::InvalidArgument);
 }
 
 TEST(EnginePool, SharedByEveryUserAndBounded) {
@@ -109,9 +127,8 @@ TEST(EnginePool, SharedByEveryUserAndBounded) {
     EXPECT_THROW(weft::checkThreads(-1), weft::InvalidArgument);
     // one chunk runs on the caller's thread
     const std::thread::id caller = std::this_thread::get_id();
-    weft::PoolShare(1).parallelFor(100000, [&](int, int) {
-        EXPECT_EQ(std::this_thread::get_id(), caller);
-    }, 1);
+    weft::PoolShare(1).parallelFor(
+        100000, [&](int, int) { EXPECT_EQ(std::this_thread::get_id(), caller); }, 1);
 }
 
 TEST(EnginePool, ConcurrentCallersEachGetEveryIndexOnce) {
@@ -124,9 +141,12 @@ TEST(EnginePool, ConcurrentCallersEachGetEveryIndexOnce) {
             std::vector<std::atomic<int>> hits(4096);
             for (int job = 0; job < 300; ++job) {
                 for (auto& h : hits) h = 0;
-                weft::enginePool().parallelFor(4096, [&](int b, int e) {
-                    for (int i = b; i < e; ++i) hits[size_t(i)]++;
-                }, 1);
+                weft::enginePool().parallelFor(
+                    4096,
+                    [&](int b, int e) {
+                        for (int i = b; i < e; ++i) hits[size_t(i)]++;
+                    },
+                    1);
                 for (auto& h : hits) failures += h.load() != 1;
             }
         });

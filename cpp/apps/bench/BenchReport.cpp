@@ -123,29 +123,46 @@ std::string reportJson(const BenchOptions& o, const DeviceReport& d, const Machi
                        const MachineReport& after, const std::vector<BenchRow>& rows,
                        const std::vector<std::string>& validation) {
     using Json = nlohmann::ordered_json; // fields in the order written; strings escaped
-    Json j = {{"tool", "weft-bench"}, {"weft_version", WEFT_VERSION}, {"date", m.date},
-              {"quick", o.quick}, {"timed_frames", o.frames}};
-    j["device"] = {{"name", d.name}, {"type", d.type}, {"driver", d.driver},
-                   {"api_version", d.apiVersion}, {"others", d.others}};
-    j["validation"] = {{"enabled", d.validation}, {"layer_available", d.validationAvailable},
+    Json j = {{"tool", "weft-bench"},
+              {"weft_version", WEFT_VERSION},
+              {"date", m.date},
+              {"quick", o.quick},
+              {"timed_frames", o.frames}};
+    j["device"] = {{"name", d.name},
+                   {"type", d.type},
+                   {"driver", d.driver},
+                   {"api_version", d.apiVersion},
+                   {"others", d.others}};
+    j["validation"] = {{"enabled", d.validation},
+                       {"layer_available", d.validationAvailable},
                        {"messages", validation}};
-    j["machine"] = {{"cpu", m.cpu}, {"cores", m.cores}, {"loadavg_before", m.loadAverage},
+    j["machine"] = {{"cpu", m.cpu},
+                    {"cores", m.cores},
+                    {"loadavg_before", m.loadAverage},
                     {"loadavg_after", after.loadAverage}};
     Json out = Json::array();
     for (const BenchRow& r : rows) {
         const bool seed = r.seedFps > 0;
         Json passes = Json::object();
         for (const auto& [name, ms] : r.passGpuMs) passes[name] = measured(ms);
-        out.push_back({{"set", r.set}, {"workload", r.workload}, {"config", r.config},
-                       {"width", r.width}, {"height", r.height}, {"vertices", r.vertices},
-                       {"frames", r.frames}, {"wall_ms", measured(r.wallMs)},
-                       {"fps", measured(fps(r.wallMs))}, {"gpu_ms", measured(r.gpuMs)},
-                       {"gpu_fps", measured(fps(r.gpuMs))},
-                       {"seed_fps", seed ? measured(r.seedFps, 0) : Json(nullptr)},
-                       {"ratio_wall", seed ? measured(fps(r.wallMs) / r.seedFps, 5) : Json(nullptr)},
-                       {"ratio_gpu", seed && r.gpuMs > 0 ? measured(fps(r.gpuMs) / r.seedFps, 5)
-                                                         : Json(nullptr)},
-                       {"seed_source", r.seedSource}, {"passes_gpu_ms", passes}});
+        out.push_back(
+            {{"set", r.set},
+             {"workload", r.workload},
+             {"config", r.config},
+             {"width", r.width},
+             {"height", r.height},
+             {"vertices", r.vertices},
+             {"frames", r.frames},
+             {"wall_ms", measured(r.wallMs)},
+             {"fps", measured(fps(r.wallMs))},
+             {"gpu_ms", measured(r.gpuMs)},
+             {"gpu_fps", measured(fps(r.gpuMs))},
+             {"seed_fps", seed ? measured(r.seedFps, 0) : Json(nullptr)},
+             {"ratio_wall", seed ? measured(fps(r.wallMs) / r.seedFps, 5) : Json(nullptr)},
+             {"ratio_gpu",
+              seed && r.gpuMs > 0 ? measured(fps(r.gpuMs) / r.seedFps, 5) : Json(nullptr)},
+             {"seed_source", r.seedSource},
+             {"passes_gpu_ms", passes}});
     }
     j["rows"] = out;
     // invalid UTF-8 in a device or CPU name is replaced, not thrown
@@ -164,11 +181,13 @@ std::string reportMarkdown(const BenchOptions& o, const DeviceReport& d, const M
         for (const std::string& s : d.others) md << " " << s << ";";
     }
     md << "\n- validation layers: "
-       << (d.validation ? "on, " + std::to_string(validation.size()) + " message(s)"
-                        : d.validationAvailable ? "off" : "off (VK_LAYER_KHRONOS_validation not installed)")
+       << (d.validation            ? "on, " + std::to_string(validation.size()) + " message(s)"
+           : d.validationAvailable ? "off"
+                                   : "off (VK_LAYER_KHRONOS_validation not installed)")
        << "\n- machine: " << m.cpu << ", " << m.cores << " hardware threads; load average "
        << m.loadAverage << " before, " << after.loadAverage << " after\n";
-    md << "- " << o.frames << " timed frame(s) per row after one warm-up, medians; wall = "
+    md << "- " << o.frames
+       << " timed frame(s) per row after one warm-up, medians; wall = "
           "`Renderer::render` with the colour read back; GPU = the sum of the frame's pass "
           "timestamps (on lavapipe it misses work done outside them); ratio = weft fps / seed fps "
           "(target on a GPU: >= 3); the seed rows render as the seeds did: no MSAA, no bounce light, "
@@ -177,7 +196,8 @@ std::string reportMarkdown(const BenchOptions& o, const DeviceReport& d, const M
         bool any = false;
         for (const BenchRow& r : rows) any = any || r.set == set;
         if (!any) return;
-        md << "\n## " << title << "\n\n| workload | config | size | wall ms | fps | GPU ms | GPU fps |";
+        md << "\n## " << title
+           << "\n\n| workload | config | size | wall ms | fps | GPU ms | GPU fps |";
         if (seed) md << " seed fps | ratio (wall) | ratio (GPU) |";
         md << " heaviest passes, GPU ms |\n|---|---|---|---|---|---|---|";
         if (seed) md << "---|---|---|";
@@ -190,7 +210,8 @@ std::string reportMarkdown(const BenchOptions& o, const DeviceReport& d, const M
             if (seed)
                 md << " " << (r.seedFps > 0 ? num(r.seedFps, 0) : "-") << " | "
                    << (r.seedFps > 0 ? num(fps(r.wallMs) / r.seedFps, 4) : "-") << " | "
-                   << (r.seedFps > 0 && r.gpuMs > 0 ? num(fps(r.gpuMs) / r.seedFps, 4) : "-") << " |";
+                   << (r.seedFps > 0 && r.gpuMs > 0 ? num(fps(r.gpuMs) / r.seedFps, 4) : "-")
+                   << " |";
             md << " " << topPasses(r, 4) << " |\n";
         }
     };

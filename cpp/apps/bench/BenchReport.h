@@ -14,8 +14,9 @@ struct MachineReport {
 /// The CPU model, hardware threads, /proc/loadavg and the UTC time now.
 MachineReport machineReport();
 
-std::string reportJson(const BenchOptions& o, const DeviceReport& device, const MachineReport& before,
-                       const MachineReport& after, const std::vector<BenchRow>& rows,
+std::string reportJson(const BenchOptions& o, const DeviceReport& device,
+                       const MachineReport& before, const MachineReport& after,
+                       const std::vector<BenchRow>& rows,
                        const std::vector<std::string>& validation);
 std::string reportMarkdown(const BenchOptions& o, const DeviceReport& device,
                            const MachineReport& before, const MachineReport& after,

@@ -55,10 +55,12 @@ void measure(BenchRow& row, Renderer& renderer, const Scene& scene, const Camera
         const auto t0 = Clock::now();
         const Frame frame = renderer.render(scene, camera);
         wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-        if (k == frames - 1 && !gImageDir.empty()) { // after the clock: PNG encoding is not the frame
+        if (k == frames - 1 &&
+            !gImageDir.empty()) { // after the clock: PNG encoding is not the frame
             char name[32];
             std::snprintf(name, sizeof name, "%02d_", gImageCount++);
-            std::string file = name + row.set + "_" + std::to_string(row.vertices) + "_" + row.config;
+            std::string file =
+                name + row.set + "_" + std::to_string(row.vertices) + "_" + row.config;
             for (char& c : file)
                 if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '+') c = '-';
             savePng(gImageDir + "/" + file + ".png", frame.color);
@@ -68,7 +70,8 @@ void measure(BenchRow& row, Renderer& renderer, const Scene& scene, const Camera
         std::map<std::string, double> byName;
         for (const PassStats& p : s.passes) {
             if (p.gpuMs < 0) continue;
-            if (std::find(row.passOrder.begin(), row.passOrder.end(), p.name) == row.passOrder.end())
+            if (std::find(row.passOrder.begin(), row.passOrder.end(), p.name) ==
+                row.passOrder.end())
                 row.passOrder.push_back(p.name);
             byName[p.name] += p.gpuMs;
         }
@@ -145,8 +148,7 @@ std::vector<StrandItem> strandItems(const BenchOptions& o) {
             return generateFur(Mesh::uvSphere(0.5f, segments, rings), p);
         };
     };
-    if (o.quick)
-        return {{"hair", hair(500, 8000), {0, 0, 0}}, {"fur", fur(32, 16, 2), {0, 0, 0}}};
+    if (o.quick) return {{"hair", hair(500, 8000), {0, 0, 0}}, {"fur", fur(32, 16, 2), {0, 0, 0}}};
     std::vector<StrandItem> items = {
         {"hair", hair(10000, 160000), {1221, 295, 146}},
         {"hair", hair(10000, 687532), {1141, 262, 96}},
@@ -229,7 +231,9 @@ uint32_t buildDomeScene(Scene& scene, Camera& camera, long long& vertices) {
         m->environmentDiffuse = 1.0f;
         m->reflectivity = glm::vec3(0.04f);
     }
-    auto at = [](float x, float y, float z) { return glm::translate(glm::mat4(1.0f), glm::vec3(x, y, z)); };
+    auto at = [](float x, float y, float z) {
+        return glm::translate(glm::mat4(1.0f), glm::vec3(x, y, z));
+    };
     auto add = [&](Mesh mesh, const Material& m, const glm::mat4& t, bool casts) {
         vertices += (long long)mesh.vertexCount();
         return scene.addMesh(std::make_shared<Mesh>(std::move(mesh)), m, t, casts);
@@ -238,8 +242,10 @@ uint32_t buildDomeScene(Scene& scene, Camera& camera, long long& vertices) {
     const uint32_t moving = add(Mesh::uvSphere(0.75f, 192, 96), red, at(-0.9f, 0.75f, 0.0f), true);
     add(Mesh::uvSphere(0.4f, 128, 64), green, at(1.2f, 0.4f, -0.6f), true);
     for (int i = 0; i < 4; ++i)
-        add(Mesh::uvSphere(0.25f, 64, 40), i % 2 ? red : green, at(-1.6f + 0.9f * float(i), 0.25f, 1.4f), true);
-    add(Mesh::box(glm::vec3(0.8f)), green, glm::rotate(at(0.9f, 0.4f, 0.6f), 0.6f, glm::vec3(0, 1, 0)), true);
+        add(Mesh::uvSphere(0.25f, 64, 40), i % 2 ? red : green,
+            at(-1.6f + 0.9f * float(i), 0.25f, 1.4f), true);
+    add(Mesh::box(glm::vec3(0.8f)), green,
+        glm::rotate(at(0.9f, 0.4f, 0.6f), 0.6f, glm::vec3(0, 1, 0)), true);
     scene.setAmbient(glm::vec3(0.0f));
     camera = Camera{};
     camera.position = glm::vec3(0.5f, 2.6f, 5.2f);
@@ -260,8 +266,12 @@ void domeSet(const BenchOptions& o, std::vector<BenchRow>& rows) {
     for (auto [w, h] : sizes) {
         Renderer renderer(static_cast<uint32_t>(w), static_cast<uint32_t>(h), seedSettings());
         for (int n : counts) {
-            const double seed = w == 640 ? (n == 0 ? 41 : n == 16 ? 28 : 14)
-                                         : (n == 0 ? 41 : n == 16 ? 25 : 12);
+            const double seed = w == 640 ? (n == 0    ? 41
+                                            : n == 16 ? 28
+                                                      : 14)
+                                         : (n == 0    ? 41
+                                            : n == 16 ? 25
+                                                      : 12);
             for (bool rerender : {false, true}) {
                 Scene scene;
                 Camera camera;
@@ -271,12 +281,14 @@ void domeSet(const BenchOptions& o, std::vector<BenchRow>& rows) {
                 e.environment = environment;
                 e.domeLights = n;
                 scene.setEnvironment(e);
-                const glm::mat4 base = glm::translate(glm::mat4(1.0f), glm::vec3(-0.9f, 0.75f, 0.0f));
+                const glm::mat4 base =
+                    glm::translate(glm::mat4(1.0f), glm::vec3(-0.9f, 0.75f, 0.0f));
                 BenchRow row;
                 row.set = "dome";
                 row.vertices = vertices;
                 row.workload = thousands(vertices) + "-vertex scene";
-                row.config = std::to_string(n) + " dome lights, maps " + (rerender ? "re-rendered" : "reused");
+                row.config = std::to_string(n) + " dome lights, maps " +
+                             (rerender ? "re-rendered" : "reused");
                 if (!o.quick) {
                     row.seedFps = seed;
                     row.seedSource = "001 tab. 4.1, GeForce of 2006 (SPEC 4.7)";
@@ -284,7 +296,8 @@ void domeSet(const BenchOptions& o, std::vector<BenchRow>& rows) {
                 // Re-rendered: the sphere moves every frame, so every dome map is stale.
                 measure(row, renderer, scene, camera, o.frames, [&](int k) {
                     if (rerender)
-                        scene.setTransform(moving, glm::translate(base, glm::vec3(0.01f * float(k + 2), 0, 0)));
+                        scene.setTransform(
+                            moving, glm::translate(base, glm::vec3(0.01f * float(k + 2), 0, 0)));
                 });
                 rows.push_back(row);
             }
@@ -299,10 +312,14 @@ std::vector<BenchRow> runSets(const BenchOptions& o) {
     gImageDir = o.imageDir;
     if (!gImageDir.empty()) std::filesystem::create_directories(gImageDir);
     for (const std::string& set : o.sets) {
-        if (set == "demo") demoSet(o, rows);
-        else if (set == "hair") hairSet(o, rows);
-        else if (set == "dome") domeSet(o, rows);
-        else throw InvalidArgument("unknown benchmark set '" + set + "' (demo, hair, dome)");
+        if (set == "demo")
+            demoSet(o, rows);
+        else if (set == "hair")
+            hairSet(o, rows);
+        else if (set == "dome")
+            domeSet(o, rows);
+        else
+            throw InvalidArgument("unknown benchmark set '" + set + "' (demo, hair, dome)");
     }
     return rows;
 }

@@ -9,9 +9,9 @@
 namespace weft::bench {
 
 struct BenchOptions {
-    bool quick = false;   // small sizes, one timed frame: proves the set runs (CI)
-    int frames = 3;       // timed frames per row, after one warm-up frame
-    bool fur23m = false;  // the 22,977,900-point fur (1.3 GB of strand buffers)
+    bool quick = false;  // small sizes, one timed frame: proves the set runs (CI)
+    int frames = 3;      // timed frames per row, after one warm-up frame
+    bool fur23m = false; // the 22,977,900-point fur (1.3 GB of strand buffers)
     std::vector<std::string> sets{"demo", "hair", "dome"};
     std::string imageDir; // non-empty: save the last timed frame of every row as a PNG here
 };
@@ -23,11 +23,11 @@ struct BenchRow {
     int width = 0, height = 0;
     long long vertices = 0;
     int frames = 0;
-    double wallMs = 0.0;  // median wall time of render() per frame (colour read back)
-    double gpuMs = -1.0;  // median sum of the passes' GPU timestamps (negative: unmeasured)
+    double wallMs = 0.0; // median wall time of render() per frame (colour read back)
+    double gpuMs = -1.0; // median sum of the passes' GPU timestamps (negative: unmeasured)
     std::map<std::string, double> passGpuMs; // median per pass name (passes of one name summed)
     std::vector<std::string> passOrder;      // the names in the order they first ran
-    double seedFps = 0.0; // the seed's published fps for this workload (0: none)
+    double seedFps = 0.0;                    // the seed's published fps for this workload (0: none)
     std::string seedSource;
 };
 

@@ -20,7 +20,8 @@
 
 namespace {
 
-const char* kDescription = R"(Renders the benchmark set on one Vulkan device and writes bench.json and bench.md:
+const char* kDescription =
+    R"(Renders the benchmark set on one Vulkan device and writes bench.json and bench.md:
   demo  the seed-000 demo scene at 1280x720 and 1920x1080 (weft-demo's settings), per-pass GPU ms
   hair  seed 002: hair of 160,000 / 687,532 / 1,031,268 vertices and fur of 2,088,900 (and
         22,977,900 with --fur-23m) vertices at 800x800: B, B+S, B+S+T
@@ -75,21 +76,29 @@ int main(int argc, char** argv) {
     weft::apps::useHelpLayout(app, kFooter);
     app.add_flag("--quick", o.quick,
                  "small sizes, one timed frame: proves the set runs (seconds on lavapipe)");
-    CLI::Option* frames = app.add_option("--frames", o.frames,
-                   "timed frames per row after one warm-up frame (default 3; --quick: 1)")
-        ->option_text("N")->check(CLI::Range(1, 1000));
+    CLI::Option* frames =
+        app.add_option("--frames", o.frames,
+                       "timed frames per row after one warm-up frame (default 3; --quick: 1)")
+            ->option_text("N")
+            ->check(CLI::Range(1, 1000));
     app.add_option("--sets", o.sets, "comma-separated subset of demo,hair,dome (default all)")
-        ->option_text("LIST")->delimiter(',')->check(CLI::IsMember({"demo", "hair", "dome"}));
-    app.add_option("--out", out, "output folder for bench.json and bench.md (default out/bench/gpu)")
+        ->option_text("LIST")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"demo", "hair", "dome"}));
+    app.add_option("--out", out,
+                   "output folder for bench.json and bench.md (default out/bench/gpu)")
         ->option_text("DIR");
     app.add_flag("--images", images,
                  "also save the last frame of every row as OUT/images/NN_<row>.png");
     app.add_option("--device", deviceName,
                    "the Vulkan device: an index or a name substring (sets WEFT_DEVICE);\n"
                    "default: discrete, then integrated, then virtual, then CPU (lavapipe)")
-        ->option_text("X")->check(CLI::Validator([](std::string& v) -> std::string {
-            return v.empty() ? "needs an index or a name" : "";
-        }, ""));
+        ->option_text("X")
+        ->check(CLI::Validator(
+            [](std::string& v) -> std::string {
+                return v.empty() ? "needs an index or a name" : "";
+            },
+            ""));
     app.add_flag("--list-devices", listOnly,
                  "print the devices (tab-separated: device, index, type, name, Vulkan\n"
                  "version, driver, \"chosen\" or \"-\"), then \"validation\" and whether the\n"
@@ -132,7 +141,8 @@ int main(int argc, char** argv) {
                   << (device.validation ? ", validation on" : "") << std::endl;
         if (requireGpu && device.type == "cpu") {
             std::cerr << "weft-bench: error: --require-gpu but the chosen device is a CPU "
-                         "rasteriser (" << device.name << ")" << std::endl;
+                         "rasteriser ("
+                      << device.name << ")" << std::endl;
             return 4;
         }
         o.fur23m = fur23m < 0 ? (device.type != "cpu" && !o.quick) : fur23m == 1;
@@ -142,8 +152,10 @@ int main(int argc, char** argv) {
         const std::vector<std::string> messages = weft::validationMessages();
         std::filesystem::create_directories(out);
         const std::filesystem::path dir(out);
-        writeFile(dir / "bench.json", weft::bench::reportJson(o, device, before, after, rows, messages));
-        writeFile(dir / "bench.md", weft::bench::reportMarkdown(o, device, before, after, rows, messages));
+        writeFile(dir / "bench.json",
+                  weft::bench::reportJson(o, device, before, after, rows, messages));
+        writeFile(dir / "bench.md",
+                  weft::bench::reportMarkdown(o, device, before, after, rows, messages));
         std::cout << "weft-bench: " << rows.size() << " rows on " << device.name << " written to "
                   << std::filesystem::absolute(dir / "bench.md").string() << std::endl;
         for (const std::string& m : messages) std::cerr << "weft-bench: validation " << m << "\n";

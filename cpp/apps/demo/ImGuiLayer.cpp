@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
+#include <imgui.h>
 
 #include "render/FrameGraph.h"
 #include "render/FramePasses.h"
@@ -155,7 +155,9 @@ void ImGuiLayer::addPasses(render::FrameGraph& g, render::FramePassContext& f) {
     if (!mDraw || !data || data->CmdListsCount == 0 || f.ldr->desc().format != mFormat) return;
     const uint32_t w = f.targets.width, h = f.targets.height;
     const VkFramebuffer fb = framebuffer(f.ldr->view(), w, h);
-    g.addPass({"panel", {}, {{f.rLdr, render::Use::ColorWrite}},
+    g.addPass({"panel",
+               {},
+               {{f.rLdr, render::Use::ColorWrite}},
                [this, fb, w, h, data](VkCommandBuffer cmd) {
                    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
                    begin.renderPass = mRenderPass;

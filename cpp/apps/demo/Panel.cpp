@@ -10,8 +10,8 @@
 
 #include <weft/FrameStats.h>
 
-#include <weft/DemoScene.h>
 #include "app/DemoSettings.h"
+#include <weft/DemoScene.h>
 
 namespace weft::demo {
 namespace {
@@ -20,7 +20,8 @@ constexpr size_t kPlotFrames = 120;
 
 // A panel edit goes through the settings table, exactly as a script's "set" line, and is
 // logged as a key press is.
-void set(app::DemoScene& demo, app::DemoControls& controls, const char* name, const std::string& value) {
+void set(app::DemoScene& demo, app::DemoControls& controls, const char* name,
+         const std::string& value) {
     std::cout << "weft-demo: " << app::applyDemoSetting(demo, controls, name, value) << std::endl;
 }
 
@@ -37,7 +38,8 @@ void checkbox(app::DemoScene& demo, app::DemoControls& controls, const char* lab
 
 // A combo over `names`, the setting's values (shown as `labels` when given).
 void combo(app::DemoScene& demo, app::DemoControls& controls, const char* label, const char* name,
-           const std::vector<const char*>& names, int current, const std::vector<const char*>& labels = {}) {
+           const std::vector<const char*>& names, int current,
+           const std::vector<const char*>& labels = {}) {
     const std::vector<const char*>& shown = labels.empty() ? names : labels;
     if (ImGui::Combo(label, &current, shown.data(), int(shown.size())))
         set(demo, controls, name, names[size_t(current)]);
@@ -56,7 +58,8 @@ std::vector<PassGroup> groupPasses(const std::vector<PassStats>& passes, bool gp
     for (const PassStats& p : passes) {
         std::string kind = p.name.substr(0, p.name.find('['));
         while (kind.size() > 1 && kind.back() >= '0' && kind.back() <= '9') kind.pop_back();
-        auto it = std::find_if(groups.begin(), groups.end(), [&](const PassGroup& g) { return g.name == kind; });
+        auto it = std::find_if(groups.begin(), groups.end(),
+                               [&](const PassGroup& g) { return g.name == kind; });
         if (it == groups.end()) it = groups.insert(groups.end(), PassGroup{kind});
         ++it->count;
         it->ms += std::max(gpu ? p.gpuMs : p.cpuMs, 0.0);
@@ -90,8 +93,10 @@ void Panel::timings(const FrameStats& last, const app::DemoRates& rates) {
     const double frameMs = gpu ? last.gpuMs : last.cpuMs;
     mFrameMs.push_back(float(frameMs));
     if (mFrameMs.size() > kPlotFrames) mFrameMs.pop_front();
-    if (gpu) ImGui::Text("frame %.1f ms GPU, %.1f ms CPU", frameMs, last.cpuMs);
-    else ImGui::Text("frame %.1f ms CPU (no GPU timer)", frameMs);
+    if (gpu)
+        ImGui::Text("frame %.1f ms GPU, %.1f ms CPU", frameMs, last.cpuMs);
+    else
+        ImGui::Text("frame %.1f ms CPU (no GPU timer)", frameMs);
     const std::vector<float> plot(mFrameMs.begin(), mFrameMs.end());
     const float top = plot.empty() ? 1.0f : *std::max_element(plot.begin(), plot.end());
     ImGui::PlotLines("##frame", plot.data(), int(plot.size()), 0, "frame ms", 0.0f, top * 1.1f,
@@ -108,8 +113,10 @@ void Panel::timings(const FrameStats& last, const app::DemoRates& rates) {
     for (const PassGroup& g : groups) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
-        if (g.count > 1) ImGui::Text("%s (%d)", g.name.c_str(), g.count);
-        else ImGui::TextUnformatted(g.name.c_str());
+        if (g.count > 1)
+            ImGui::Text("%s (%d)", g.name.c_str(), g.count);
+        else
+            ImGui::TextUnformatted(g.name.c_str());
         ImGui::TableNextColumn();
         ImGui::Text("%.2f", g.ms);
         ImGui::TableNextColumn();
@@ -144,8 +151,8 @@ void Panel::update(app::DemoScene& demo, app::DemoControls& controls, const Fram
             const std::vector<const char*> tones(app::kToneMapNames, app::kToneMapNames + 4);
             combo(demo, controls, "tone map", "tone-map", tones, int(r.toneMap));
             const std::vector<const char*> msaa = {"1", "2", "4", "8"};
-            combo(demo, controls, "anti-aliasing", "msaa", msaa, indexOf(msaa, std::to_string(r.msaa)),
-                  {"off", "2x MSAA", "4x MSAA", "8x MSAA"});
+            combo(demo, controls, "anti-aliasing", "msaa", msaa,
+                  indexOf(msaa, std::to_string(r.msaa)), {"off", "2x MSAA", "4x MSAA", "8x MSAA"});
             const std::vector<const char*> ao = {"0", "8", "16", "32", "64"};
             combo(demo, controls, "ambient occlusion", "ao", ao,
                   indexOf(ao, std::to_string(r.ambientOcclusion)),
@@ -166,7 +173,8 @@ void Panel::update(app::DemoScene& demo, app::DemoControls& controls, const Fram
             }
             checkbox(demo, controls, "shadows", "shadows", demo.shadows());
             const std::vector<const char*> pcf = {"0", "1", "2", "3"};
-            combo(demo, controls, "PCF kernel", "pcf", pcf, demo.pcf(), {"1x1", "3x3", "5x5", "7x7"});
+            combo(demo, controls, "PCF kernel", "pcf", pcf, demo.pcf(),
+                  {"1x1", "3x3", "5x5", "7x7"});
         }
         if (ImGui::CollapsingHeader("cloth")) {
             float wind = demo.windStrength();
@@ -179,7 +187,8 @@ void Panel::update(app::DemoScene& demo, app::DemoControls& controls, const Fram
             checkbox(demo, controls, "fitted BTF material", "btf", demo.btf());
             checkbox(demo, controls, "holes", "holes", demo.holes());
             checkbox(demo, controls, "paused", "paused", demo.paused());
-            if (ImGui::Button("reset the cloth")) std::cout << "weft-demo: " << demo.key(GLFW_KEY_C) << std::endl;
+            if (ImGui::Button("reset the cloth"))
+                std::cout << "weft-demo: " << demo.key(GLFW_KEY_C) << std::endl;
         }
         if (ImGui::CollapsingHeader("hair and sphere")) {
             const std::vector<const char*> fur(app::kFurModelNames, app::kFurModelNames + 3);

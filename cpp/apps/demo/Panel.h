@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "app/DemoPanel.h"
 #include "ImGuiLayer.h"
+#include "app/DemoPanel.h"
 
 namespace weft::demo {
 

@@ -20,12 +20,14 @@
 
 namespace {
 
-const char* kDescription = R"(Shows the seed's interactive cloth environment: a terrain from a height map, a sphere, a
+const char* kDescription =
+    R"(Shows the seed's interactive cloth environment: a terrain from a height map, a sphere, a
 32x32 cloth held at one edge in the wind that collides with both, and a sun and a moon in a
 day-night cycle. A window when a display exists; otherwise renders offscreen to PNG files.
 )";
 
-const char* kControls = R"(controls (window): left-drag grabs and moves the cloth; arrows orbit the camera; 1/2 weaker/
+const char* kControls =
+    R"(controls (window): left-drag grabs and moves the cloth; arrows orbit the camera; 1/2 weaker/
 stronger wind, R turns the wind, L orbits the light, T starts/stops the day-night cycle,
 N normal mapping, B the cloth's fitted BTF material, E a reflective sphere (dynamic cube
 capture with Fresnel), K the fur's shading model (Kajiya-Kay, Marschner, Sadeghi), S shadows,
@@ -47,16 +49,20 @@ int main(int argc, char** argv) {
     bool hotReload = weft::shaderHotReloadAvailable();
     if (const char* env = std::getenv("WEFT_SHADER_DIR")) o.shaderDir = env;
 #ifdef WEFT_SOURCE_SHADER_DIR
-    else if (std::filesystem::is_directory(WEFT_SOURCE_SHADER_DIR)) o.shaderDir = WEFT_SOURCE_SHADER_DIR;
+    else if (std::filesystem::is_directory(WEFT_SOURCE_SHADER_DIR))
+        o.shaderDir = WEFT_SOURCE_SHADER_DIR;
 #endif
     CLI::App app(kDescription, "weft-demo");
     weft::apps::useHelpLayout(app, kControls);
-    app.add_option("--width", o.width, "image/window width in pixels (default 1280)")->option_text("N");
-    app.add_option("--height", o.height, "image/window height in pixels (default 720)")->option_text("N");
+    app.add_option("--width", o.width, "image/window width in pixels (default 1280)")
+        ->option_text("N");
+    app.add_option("--height", o.height, "image/window height in pixels (default 720)")
+        ->option_text("N");
     app.add_option("--frames", o.frames,
                    "stop after N frames, one fixed 60 Hz simulation step each (reproducible);\n"
                    "default: a window runs in real time until closed, headless renders one\n"
-                   "frame after the cloth settled for 1.5 s")->option_text("N");
+                   "frame after the cloth settled for 1.5 s")
+        ->option_text("N");
     app.add_flag("--headless", o.headless, "render offscreen even when a display exists");
     app.add_option("--out", o.out,
                    "headless output: a .png (default out/demo.png; with --frames the last\n"
@@ -71,32 +77,41 @@ int main(int argc, char** argv) {
         ->option_text("N");
     app.add_option("--ao", o.ambientOcclusion,
                    "ambient occlusion of the constant ambient (no --environment): dome\n"
-                   "lights, 0 (off) or a multiple of 8 up to 64 (default 8)")->option_text("N");
+                   "lights, 0 (off) or a multiple of 8 up to 64 (default 8)")
+        ->option_text("N");
     bool noBounce = false, noVsync = false, noHotReload = false;
     app.add_flag("--no-bounce", noBounce, "no bounce light from the ground onto the objects");
     app.add_option("--exposure", o.exposure,
-                   "exposure in stops: the image shows radiance x 2^EV (default 0)")->option_text("EV");
-    const std::map<std::string, weft::ToneMap> toneMaps = {
-        {"clamp", weft::ToneMap::Clamp}, {"aces", weft::ToneMap::Aces},
-        {"agx", weft::ToneMap::AgX}, {"neutral", weft::ToneMap::Neutral}};
+                   "exposure in stops: the image shows radiance x 2^EV (default 0)")
+        ->option_text("EV");
+    const std::map<std::string, weft::ToneMap> toneMaps = {{"clamp", weft::ToneMap::Clamp},
+                                                           {"aces", weft::ToneMap::Aces},
+                                                           {"agx", weft::ToneMap::AgX},
+                                                           {"neutral", weft::ToneMap::Neutral}};
     std::string toneMap;
     app.add_option("--tone-map", toneMap,
                    "clamp (the seed's look), aces, agx or neutral (default clamp)")
         ->option_text("OP")
-        ->check(CLI::Validator([&](std::string& v) -> std::string {
-            return toneMaps.count(v) ? "" : "must be clamp, aces, agx or neutral, got '" + v + "'";
-        }, ""));
+        ->check(CLI::Validator(
+            [&](std::string& v) -> std::string {
+                return toneMaps.count(v) ? ""
+                                         : "must be clamp, aces, agx or neutral, got '" + v + "'";
+            },
+            ""));
     app.add_option("--time", o.hour,
                    "time of day, 0..24 (6 sunrise, 12 noon, 18 sunset; default 8.4): the\n"
                    "analytic sky (Preetham 1999) and its sun, or the moon at night")
         ->option_text("HOURS")
-        ->check(CLI::Validator([](std::string& v) -> std::string {
-            float hours = -1.0f;
-            std::istringstream in(v);
-            // NaN fails both comparisons and is refused with the rest.
-            return in >> hours && in.eof() && hours >= 0.0f && hours <= 24.0f
-                       ? "" : "needs hours in [0, 24], got '" + v + "'";
-        }, ""));
+        ->check(CLI::Validator(
+            [](std::string& v) -> std::string {
+                float hours = -1.0f;
+                std::istringstream in(v);
+                // NaN fails both comparisons and is refused with the rest.
+                return in >> hours && in.eof() && hours >= 0.0f && hours <= 24.0f
+                           ? ""
+                           : "needs hours in [0, 24], got '" + v + "'";
+            },
+            ""));
     app.add_option("--script", o.script,
                    "scripted input, one event per line: \"<frame> key <K>\",\n"
                    "\"<frame> grab <x> <y>\", \"<frame> drag <x> <y>\", \"<frame> release\",\n"
@@ -106,7 +121,8 @@ int main(int argc, char** argv) {
     app.add_option("--screenshot", o.screenshot, "window: save the last presented frame to PATH")
         ->option_text("PATH");
     app.add_option("--stats", o.statsJson,
-                   "write the last frame's statistics (passes, CPU/GPU ms) as JSON")->option_text("PATH");
+                   "write the last frame's statistics (passes, CPU/GPU ms) as JSON")
+        ->option_text("PATH");
     app.add_flag("--no-vsync", noVsync, "present without waiting for vertical sync");
     app.add_option("--shader-dir", o.shaderDir,
                    "hot reload: watch PATH (laid out like glsl/); an edited shader is recompiled\n"
@@ -115,8 +131,9 @@ int main(int argc, char** argv) {
         ->option_text("PATH");
     app.add_flag("--no-hot-reload", noHotReload, "do not watch any shader directory");
     bool noPanel = false;
-    app.add_flag("--no-panel", noPanel, "window: no panel over the picture (it shows what a\n"
-                                        "headless render shows)");
+    app.add_flag("--no-panel", noPanel,
+                 "window: no panel over the picture (it shows what a\n"
+                 "headless render shows)");
     app.add_flag("--quiet", o.quiet, "no progress lines on stderr");
     weft::apps::addHelp(app);
 

@@ -11,7 +11,7 @@
 namespace weft {
 
 struct BtfLinearOptions {
-    bool robust = false;  ///< IRLS (Tukey biweight) and samples with n·l <= 0 dropped
+    bool robust = false; ///< IRLS (Tukey biweight) and samples with n·l <= 0 dropped
     int robustIterations = 4;
     float darkThreshold = 1e-4f; ///< channels with T below this are "dark" (no equations)
     int threads = 0;
@@ -47,7 +47,7 @@ struct BtfMaterialMaps {
     std::vector<float> ambient;  ///< a (H, W, 3)
     std::vector<float> specular; ///< k (H, W, 3); empty = no specular term
     float exponent = 1.0f;
-    std::vector<float> exponentMap; ///< per-texel exponent (H, W); empty = `exponent` everywhere
+    std::vector<float> exponentMap;  ///< per-texel exponent (H, W); empty = `exponent` everywhere
     bool flatSpecularNormal = false; ///< n_s = (0, 0, 1)
     bool clampDiffuse = false;
     void validate() const;
@@ -59,8 +59,7 @@ BtfMaterialMaps btfMaterialFromLinear(const BtfLinearFit& fit);
 /// Per-sample mean squared error over texels and channels (values as given, [0, 1] scale).
 /// When `reconstruction` is not null it receives the model's samples (same layout as samples).
 std::vector<double> btfSampleErrors(const BtfSamples& samples, const BtfMaterialMaps& maps,
-                                    std::vector<float>* reconstruction = nullptr,
-                                    int threads = 0);
+                                    std::vector<float>* reconstruction = nullptr, int threads = 0);
 
 struct BtfSpecularOptions {
     bool flatSpecularNormal = true; ///< eq. 4.30 (n_s = (0,0,1)); false: eq. 4.29
@@ -70,10 +69,10 @@ struct BtfSpecularOptions {
 };
 
 struct BtfSpecularFit {
-    BtfMaterialMaps maps;             ///< linear maps + specular map + best exponent
-    std::vector<double> curve;        ///< total squared error for exponents 1..maxExponent
-                                      ///< (eq. 4.30: every integer; eq. 4.29: NaN where skipped)
-    int specularSample = 0;           ///< the θ_l = 0 sample whose residual is the specular map
+    BtfMaterialMaps maps;      ///< linear maps + specular map + best exponent
+    std::vector<double> curve; ///< total squared error for exponents 1..maxExponent
+                               ///< (eq. 4.30: every integer; eq. 4.29: NaN where skipped)
+    int specularSample = 0;    ///< the θ_l = 0 sample whose residual is the specular map
 };
 
 /// Specular map from the residual of the θ_l = 0 sample (frontal view when present) and the

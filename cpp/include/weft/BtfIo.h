@@ -43,8 +43,8 @@ enum class BtfImageFormat { Jpeg, Png };
 
 struct BtfWriteOptions {
     BtfImageFormat format = BtfImageFormat::Jpeg;
-    int jpegQuality = 95;       ///< 1..100
-    bool zip = false;           ///< write `path` as a zip archive instead of a folder
+    int jpegQuality = 95;           ///< 1..100
+    bool zip = false;               ///< write `path` as a zip archive instead of a folder
     BtfGamma gamma = BtfGamma::Raw; ///< Linear: values are encoded with 1/2.2 before quantising
     std::string prefix; ///< empty: `NNNNN tl.. pl.. tv.. pv..`; else `PREFIX_NNNNN_tl.._...`
 };

@@ -40,9 +40,10 @@ struct BtfNonlinearOptions {
 };
 
 struct BtfNonlinearFit {
-    BtfMaterialMaps maps; ///< clamped diffuse, per-texel exponent; ρ = max(m, 1e-3 b, 1e-6), a = b/ρ
+    BtfMaterialMaps
+        maps; ///< clamped diffuse, per-texel exponent; ρ = max(m, 1e-3 b, 1e-6), a = b/ρ
     double meanIterations = 0;
-    std::string solver;   ///< "builtin" or "ceres"
+    std::string solver;          ///< "builtin" or "ceres"
     double shadowedFraction = 0; ///< samples left out as cast shadows / all samples
     double noise = 0;            ///< the noise level the visibility pass used (0 without it)
 };
@@ -78,9 +79,9 @@ namespace weft {
 /// view only, C_x and C_y have no effect (v_x = v_y = 0) and keep their start values (-1).
 struct BtfLafortuneFit {
     int width = 0, height = 0, lobes = 1;
-    std::vector<float> normal;  ///< (H, W, 3) unit
-    std::vector<float> diffuse; ///< m (H, W, 3)
-    std::vector<float> ambient; ///< b (H, W, 3), additive
+    std::vector<float> normal;     ///< (H, W, 3) unit
+    std::vector<float> diffuse;    ///< m (H, W, 3)
+    std::vector<float> ambient;    ///< b (H, W, 3), additive
     std::vector<float> lobeAlbedo; ///< ρ (H, W, lobes, 3)
     std::vector<float> lobeShape;  ///< (C_x, C_y, C_z, e) (H, W, lobes, 4)
     double meanIterations = 0;

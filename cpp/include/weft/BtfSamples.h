@@ -42,11 +42,11 @@ struct BtfJpegCells {
         int hSampling = 1, vSampling = 1;   ///< sampling factors (luma 2 x 2 for 4:2:0)
         size_t offset = 0;                  ///< first coefficient within a sample
     };
-    bool ycbcr = false;                 ///< 3 components Y, Cb, Cr; false: 1 grey component
-    std::vector<Component> components;  ///< the same for every sample
+    bool ycbcr = false;                ///< 3 components Y, Cb, Cr; false: 1 grey component
+    std::vector<Component> components; ///< the same for every sample
     size_t coefficientsPerSample = 0;
-    std::vector<int16_t> coefficients;  ///< [sample][component][blockRow][blockCol][64]
-    std::vector<uint16_t> quant;        ///< [sample][component][64]
+    std::vector<int16_t> coefficients; ///< [sample][component][blockRow][blockCol][64]
+    std::vector<uint16_t> quant;       ///< [sample][component][64]
 };
 
 class BtfSamples {

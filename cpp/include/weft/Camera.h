@@ -1,7 +1,7 @@
 #pragma once
 // Perspective camera. Matrices follow Vulkan's clip space: +Y down in NDC, depth in [0, 1].
-#include <weft/Error.h>
 #include <glm/glm.hpp>
+#include <weft/Error.h>
 
 namespace weft {
 

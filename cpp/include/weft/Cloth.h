@@ -23,46 +23,46 @@ enum class ConstraintFamily : uint8_t { Stretch = 0, Shear = 1, Bend = 2 };
 /// float32 positions, inverse masses or accelerations lose the precision the solver needs (or
 /// overflow), so values there are rejected with InvalidArgument instead of turning into NaN.
 namespace cloth_limits {
-constexpr float kMinSize = 1e-3f, kMaxSize = 1e3f;          // cloth side (m)
-constexpr float kMaxCoordinate = 1e7f;                      // |origin|, collider, grab, ray (m)
-constexpr float kMinMass = 1e-6f, kMaxMass = 1e6f;          // total mass (kg)
-constexpr float kMaxAcceleration = 1e4f;                    // |gravity|, |wind strength| (m/s^2)
-constexpr float kMaxCompliance = 1e6f;                      // XPBD compliance (m/N)
-constexpr float kMaxThickness = 1.0f;                       // collider / self thickness (m)
+constexpr float kMinSize = 1e-3f, kMaxSize = 1e3f; // cloth side (m)
+constexpr float kMaxCoordinate = 1e7f;             // |origin|, collider, grab, ray (m)
+constexpr float kMinMass = 1e-6f, kMaxMass = 1e6f; // total mass (kg)
+constexpr float kMaxAcceleration = 1e4f;           // |gravity|, |wind strength| (m/s^2)
+constexpr float kMaxCompliance = 1e6f;             // XPBD compliance (m/N)
+constexpr float kMaxThickness = 1.0f;              // collider / self thickness (m)
 constexpr float kMaxTearStrain = 100.0f;
-constexpr float kMaxSleepSpeed = 100.0f;                    // sleep threshold (m/s)
+constexpr float kMaxSleepSpeed = 100.0f; // sleep threshold (m/s)
 /// advance(): at most this many steps per call (its max_steps); backlog beyond is dropped.
 constexpr int kMaxCatchUpSteps = 1000;
 } // namespace cloth_limits
 
 struct ClothParams {
-    int nx = 32, ny = 32;                // particles along u and v
-    glm::vec2 size{1.0f, 1.0f};          // metres along u and v
+    int nx = 32, ny = 32;       // particles along u and v
+    glm::vec2 size{1.0f, 1.0f}; // metres along u and v
     // The solver works in a frame centred on origin (positions relative to it, rest lengths
     // in double), so a cloth far from the world origin behaves like one near it.
     glm::vec3 origin{-0.5f, 1.0f, -0.5f}; // position of particle (0, 0)
-    glm::vec3 axisU{1.0f, 0.0f, 0.0f};   // grid direction of i (unit)
-    glm::vec3 axisV{0.0f, 0.0f, 1.0f};   // grid direction of j (unit)
-    float mass = 1.0f;                   // total kg, spread evenly over the particles
-    int bendDistance = 2;                // k: outer diagonal (bend) neighbours at grid distance k
-    bool extraAxial = false;             // also 4 axis-aligned neighbours at distance k
-    float damping = 0.99f;               // Verlet velocity factor per 1/60 s (1 = none)
+    glm::vec3 axisU{1.0f, 0.0f, 0.0f};    // grid direction of i (unit)
+    glm::vec3 axisV{0.0f, 0.0f, 1.0f};    // grid direction of j (unit)
+    float mass = 1.0f;                    // total kg, spread evenly over the particles
+    int bendDistance = 2;                 // k: outer diagonal (bend) neighbours at grid distance k
+    bool extraAxial = false;              // also 4 axis-aligned neighbours at distance k
+    float damping = 0.99f;                // Verlet velocity factor per 1/60 s (1 = none)
     glm::vec3 gravity{0.0f, -9.81f, 0.0f};
-    int iterations = 1;                  // relaxation sweeps per substep
-    int substeps = 1;                    // sub-steps per step ("small steps")
-    float complianceStretch = 0.0f;      // XPBD compliance (m/N); 0 = inextensible (the seed)
+    int iterations = 1;             // relaxation sweeps per substep
+    int substeps = 1;               // sub-steps per step ("small steps")
+    float complianceStretch = 0.0f; // XPBD compliance (m/N); 0 = inextensible (the seed)
     float complianceShear = 0.0f;
     float complianceBend = 0.0f;
-    bool tethers = false;                // long-range attachments to pinned particles
-    float thickness = 0.005f;            // collision distance to colliders (m)
+    bool tethers = false;     // long-range attachments to pinned particles
+    float thickness = 0.005f; // collision distance to colliders (m)
     bool selfCollision = false;
-    float selfThickness = 0.0f;          // particle-particle distance; 0 = 0.9 x grid spacing
+    float selfThickness = 0.0f; // particle-particle distance; 0 = 0.9 x grid spacing
     // Tearing: a face (grid triangle) tears when it is stretched beyond 1 + tearStrain (crack
     // tips first); a constraint lives while the faces it runs through do. 0 = never.
     float tearStrain = 0.0f;
-    float sleepThreshold = 0.0f;         // sleep below this mean speed (m/s); 0 = never sleep
-    int sleepSteps = 30;                 // ... for this many consecutive steps
-    int threads = 0;                     // at most this many of the engine pool's threads; 0 = all
+    float sleepThreshold = 0.0f; // sleep below this mean speed (m/s); 0 = never sleep
+    int sleepSteps = 30;         // ... for this many consecutive steps
+    int threads = 0;             // at most this many of the engine pool's threads; 0 = all
 
     /// Throws InvalidArgument for impossible values (sizes, NaN, counts, axes) and values
     /// outside the ranges of cloth_limits.
@@ -75,7 +75,9 @@ struct Wind {
 
     /// Direction finite and non-zero, |strength| <= cloth_limits::kMaxAcceleration.
     void validate() const;
-    bool operator==(const Wind& o) const { return direction == o.direction && strength == o.strength; }
+    bool operator==(const Wind& o) const {
+        return direction == o.direction && strength == o.strength;
+    }
 };
 
 /// A collider the cloth is projected out of (SPEC §2.2). Kinds and their fields:

@@ -16,12 +16,12 @@ namespace weft {
 /// lights six perspective views (+X, -X, +Y, -Y, +Z, -Z; a receiver uses the view of its
 /// direction from the light's largest component).
 struct ShadowInfo {
-    bool active = false;           // the light cast shadows in the last frame
-    int layer = -1;                // first shadow-map layer
-    uint32_t size = 0;             // texels per side
-    glm::mat4 viewProj{1.0f};      // world -> light clip space (x, y in [-1,1], depth [0,1])
-    std::vector<glm::mat4> views;  // viewProj of every view (1 or 6)
-    bool perspective = false;      // depth compared as distance: near * far / (far - d (far - near))
+    bool active = false;          // the light cast shadows in the last frame
+    int layer = -1;               // first shadow-map layer
+    uint32_t size = 0;            // texels per side
+    glm::mat4 viewProj{1.0f};     // world -> light clip space (x, y in [-1,1], depth [0,1])
+    std::vector<glm::mat4> views; // viewProj of every view (1 or 6)
+    bool perspective = false;     // depth compared as distance: near * far / (far - d (far - near))
     float zNear = 0.0f, zFar = 1.0f;
     /// Receiver offset along the normal: world units (orthographic) or world units per metre of
     /// distance to the light (perspective).

@@ -9,9 +9,9 @@ namespace weft::app {
 /// At frame `frame`, press a key, grab / drag / release at a pixel, or change a setting.
 struct ScriptEvent {
     int frame = 0;
-    std::string action; ///< key, grab, drag, release, set
-    int key = 0;        ///< GLFW key code (action "key")
-    double x = 0, y = 0; ///< pixel (grab, drag), finite and within +-kMaxScriptPixel
+    std::string action;      ///< key, grab, drag, release, set
+    int key = 0;             ///< GLFW key code (action "key")
+    double x = 0, y = 0;     ///< pixel (grab, drag), finite and within +-kMaxScriptPixel
     std::string name, value; ///< set: one of DemoSettings.h's settings and its value (checked)
 };
 

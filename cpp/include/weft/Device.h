@@ -1,14 +1,14 @@
 #pragma once
 // Vulkan devices weft can use, and the validation-layer messages it collected.
-#include <weft/Error.h>
 #include <cstdint>
 #include <string>
 #include <vector>
+#include <weft/Error.h>
 
 namespace weft {
 
 struct DeviceInfo {
-    uint32_t index = 0;     // position in Vulkan's enumeration (what WEFT_DEVICE=<n> means)
+    uint32_t index = 0; // position in Vulkan's enumeration (what WEFT_DEVICE=<n> means)
     std::string name;
     std::string type;       // "discrete", "integrated", "virtual", "cpu" or "other"
     std::string apiVersion; // e.g. "1.3.239"

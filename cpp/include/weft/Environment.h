@@ -14,9 +14,9 @@
 namespace weft {
 
 struct EnvironmentStats {
-    uint64_t version = 0;   ///< content version (1 after construction, +1 per setRadiance)
-    int filterRuns = 0;     ///< computations done (SH projections, maps, chains)
-    int cacheHits = 0;      ///< requests answered from the cache
+    uint64_t version = 0;        ///< content version (1 after construction, +1 per setRadiance)
+    int filterRuns = 0;          ///< computations done (SH projections, maps, chains)
+    int cacheHits = 0;           ///< requests answered from the cache
     bool lastRefiltered = false; ///< whether the latest request computed anything
 };
 

@@ -34,9 +34,9 @@ struct HairMaterial {
     glm::vec3 intensity{1.0f, 1.0f, 1.0f};
     float ttAzimuthalWidth = 0.174533f; // 10 degrees
     float glintIntensity = 0.5f;
-    float glintWidth = 0.0872665f;      // 5 degrees
-    float glintAngleMin = 0.523599f;    // 30 degrees
-    float glintAngleMax = 0.785398f;    // 45 degrees
+    float glintWidth = 0.0872665f;   // 5 degrees
+    float glintAngleMin = 0.523599f; // 30 degrees
+    float glintAngleMax = 0.785398f; // 45 degrees
 
     /// Throws InvalidArgument for non-finite values, negative colours/intensities/absorption,
     /// shininess outside (0, 10000], |shift| > pi/4, widths outside (0, pi/2], eta outside

@@ -11,11 +11,11 @@
 namespace weft {
 
 struct HairStrands {
-    std::vector<glm::vec3> points;    // every point of every strand, root to tip
-    std::vector<uint16_t> segments;   // per strand; empty: every strand has defaultSegments
-    std::vector<float> thickness;     // per point; empty: defaultThickness
-    std::vector<float> transparency;  // per point; empty: defaultTransparency
-    std::vector<glm::vec3> colors;    // per point, linear RGB; empty: defaultColor
+    std::vector<glm::vec3> points;   // every point of every strand, root to tip
+    std::vector<uint16_t> segments;  // per strand; empty: every strand has defaultSegments
+    std::vector<float> thickness;    // per point; empty: defaultThickness
+    std::vector<float> transparency; // per point; empty: defaultTransparency
+    std::vector<glm::vec3> colors;   // per point, linear RGB; empty: defaultColor
     uint32_t defaultSegments = 0;
     float defaultThickness = 1.0f;
     float defaultTransparency = 0.0f;

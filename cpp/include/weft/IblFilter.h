@@ -34,8 +34,8 @@ CubeMap irradianceFromSh(const Sh9& sh, int size);
 CubeMap irradianceExact(const CubeMap& radiance, int size, int sourceSize = 64);
 /// The seed's 2D filter: cube -> sphere map (wrap 1, sphereSize^2), `passes` separable box blurs
 /// of radius `radius` texels, -> cube of `size`, times pi.
-CubeMap irradianceBoxBlur(const CubeMap& radiance, int size, int sphereSize = 64,
-                          int radius = 12, int passes = 2);
+CubeMap irradianceBoxBlur(const CubeMap& radiance, int size, int sphereSize = 64, int radius = 12,
+                          int passes = 2);
 /// The seed's 3-axis rotational ("cylindrical") blur: the map is averaged over `steps` rotations
 /// in [-halfAngle, halfAngle] about X, then Z, then Y, at `size`, times pi.
 CubeMap irradianceRotationalBlur(const CubeMap& radiance, int size, float halfAngle = 1.0f,

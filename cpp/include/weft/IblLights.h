@@ -20,10 +20,10 @@ struct EnvLight {
 };
 
 struct LightExtractionParams {
-    int downsample = 32;          ///< face size of the max-filtered luminance grid
-    float threshold = 0.0f;       ///< absolute luminance threshold; <= 0: automatic
+    int downsample = 32;            ///< face size of the max-filtered luminance grid
+    float threshold = 0.0f;         ///< absolute luminance threshold; <= 0: automatic
     float relativeThreshold = 8.0f; ///< automatic threshold = this x mean luminance
-    int maxLights = 16;           ///< strongest lights kept
+    int maxLights = 16;             ///< strongest lights kept
 };
 
 /// Rec. 709 luminance.

@@ -7,12 +7,12 @@
 namespace weft {
 
 struct Material {
-    glm::vec3 ka{1.0f};         // ambient coefficient K_A
-    glm::vec3 kd{1.0f};         // diffuse coefficient K_D
-    glm::vec3 ks{0.0f};         // specular coefficient K_S
-    float shininess = 32.0f;    // Blinn-Phong exponent n, > 0
-    glm::vec3 baseColor{1.0f};  // multiplies the texture: T = baseColor * texture(uv)
-    TexturePtr texture;         // base-colour texture (sRGB), none = white
+    glm::vec3 ka{1.0f};        // ambient coefficient K_A
+    glm::vec3 kd{1.0f};        // diffuse coefficient K_D
+    glm::vec3 ks{0.0f};        // specular coefficient K_S
+    float shininess = 32.0f;   // Blinn-Phong exponent n, > 0
+    glm::vec3 baseColor{1.0f}; // multiplies the texture: T = baseColor * texture(uv)
+    TexturePtr texture;        // base-colour texture (sRGB), none = white
     /// Per-texel exponent (a fitted BTF's exponent map, SPEC §3.5): when > 0, the specular
     /// map's alpha a holds the exponent log-encoded, e = shininess (shininessMax / shininess)^a
     /// (8 bits spread the ratio's logarithm evenly: constant relative precision, which is what

@@ -27,9 +27,9 @@ struct MeshPart {
 ///
 /// Materials (pbrMetallicRoughness mapped onto Blinn-Phong): base_color = baseColorFactor.rgb,
 /// texture = baseColorTexture (sRGB); kd = 1 - metallic; ks = F0 = mix(0.04, base colour,
-/// metallic), also the environment reflectivity (environment_diffuse = 1); shininess = 2 / alpha^2 - 2 with
-/// alpha = roughness^2 (the Blinn-Phong exponent matching a Beckmann/GGX lobe of that width,
-/// Walter et al. 2007), clamped to [1, 4096]; normalTexture -> normal_map with its scale;
+/// metallic), also the environment reflectivity (environment_diffuse = 1); shininess = 2 / alpha^2
+/// - 2 with alpha = roughness^2 (the Blinn-Phong exponent matching a Beckmann/GGX lobe of that
+/// width, Walter et al. 2007), clamped to [1, 4096]; normalTexture -> normal_map with its scale;
 /// alphaMode MASK -> alpha_cutoff; doubleSided -> two_sided; KHR_texture_transform on the base
 /// colour texture is applied to the UVs. Not mapped: metallicRoughness, occlusion and emissive
 /// textures, emissive factors, BLEND (drawn opaque).

@@ -2,11 +2,11 @@
 // The Vulkan renderer: draws a Scene from a Camera offscreen (read back to memory) or into a
 // Window. Every Renderer in a process shares one Vulkan device. Different Renderers may be used
 // from different threads at the same time; one Renderer is used by one thread at a time.
-#include <weft/Error.h>
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
+#include <weft/Error.h>
 
 #include <glm/glm.hpp>
 
@@ -46,15 +46,15 @@ enum class ToneMap {
 };
 
 struct RenderSettings {
-    uint32_t shadowMapSize = 2048;  // texels per side of each shadow map
-    int pcfRadius = 1;              // PCF kernel (2r+1)^2 taps, r in [0, 7]
-    float biasConstant = 0.0005f;   // shadow depth bias in light NDC depth units ...
-    float biasSlope = 0.0015f;      // ... plus this times tan(angle between n and l) ...
-    float biasMax = 0.01f;          // ... clamped to this
-    float normalOffset = 1.5f;      // receiver offset along n, in shadow-map texels
+    uint32_t shadowMapSize = 2048; // texels per side of each shadow map
+    int pcfRadius = 1;             // PCF kernel (2r+1)^2 taps, r in [0, 7]
+    float biasConstant = 0.0005f;  // shadow depth bias in light NDC depth units ...
+    float biasSlope = 0.0015f;     // ... plus this times tan(angle between n and l) ...
+    float biasMax = 0.01f;         // ... clamped to this
+    float normalOffset = 1.5f;     // receiver offset along n, in shadow-map texels
     /// Keep the shadow maps of the last frame when no shadow view and no shadow caster changed.
     bool reuseShadowMaps = true;
-    uint32_t probeSize = 64;        // texels per face of the dynamic reflection capture
+    uint32_t probeSize = 64; // texels per face of the dynamic reflection capture
     /// One bounce of diffuse light from the receivers (instances that cast no shadow: grounds,
     /// walls) onto the shadow casters, and the sky and ambient they hide from them (per-caster
     /// SH9 captures, render/BounceProbes.h).

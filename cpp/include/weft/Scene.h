@@ -1,19 +1,19 @@
 #pragma once
 // What the renderer draws: mesh instances with materials and transforms, lights, ambient.
-#include <weft/Error.h>
 #include <cstdint>
 #include <memory>
 #include <vector>
+#include <weft/Error.h>
 
 #include <glm/glm.hpp>
 
+#include <weft/Camera.h>
 #include <weft/DeformableMesh.h>
 #include <weft/Environment.h>
 #include <weft/HairMaterial.h>
 #include <weft/HairStrands.h>
 #include <weft/Light.h>
 #include <weft/Material.h>
-#include <weft/Camera.h>
 #include <weft/Mesh.h>
 
 namespace weft {
@@ -21,7 +21,7 @@ namespace weft {
 using MeshPtr = std::shared_ptr<const Mesh>;
 
 struct MeshInstance {
-    MeshPtr mesh;                                   // null for a deformable instance
+    MeshPtr mesh;                                     // null for a deformable instance
     std::shared_ptr<const DeformableMesh> deformable; // e.g. a Cloth: drawn as it is now (world)
     Material material;
     glm::mat4 transform{1.0f}; // object -> world (identity for cloth)
@@ -102,7 +102,7 @@ public:
     const std::vector<MeshInstance>& instances() const { return mInstances; }
     const std::vector<Light>& lights() const { return mLights; }
 
-    void setAmbient(const glm::vec3& ambient);      // I_A
+    void setAmbient(const glm::vec3& ambient);       // I_A
     void setBackground(const glm::vec3& background); // linear colour behind everything
     /// An image behind everything instead of the colour (a camera frame for AR compositing with
     /// phantom materials), stretched over the output; null clears it.

@@ -1,7 +1,7 @@
 #pragma once
 // The dome of shadow lights (SPEC §4.5, seed eq. 2.21-2.23): N cells around fixed directions
-// over the upper hemisphere (+Y), each with an intensity taken from the environment so that the lights together
-// reproduce the environment's irradiance from above the horizon.
+// over the upper hemisphere (+Y), each with an intensity taken from the environment so that the
+// lights together reproduce the environment's irradiance from above the horizon.
 //
 // Layouts: Fibonacci (default; point k at height y = 1 - (k + 0.5) / N, azimuth k x the golden
 // angle: equal-area, nearly uniform cells) or Rings (the seed's rings of 8: N / 8 equal-area

@@ -81,7 +81,7 @@ private:
     glm::vec3 mToSun{0.0f, 1.0f, 0.0f};
     glm::vec3 mModelSun{0.0f, 1.0f, 0.0f}; // the sun the Perez model sees (clamped to the horizon)
     float mThetaS = 0.0f;
-    float mTwilight = 1.0f; // dimming below the horizon
+    float mTwilight = 1.0f;   // dimming below the horizon
     float mCoeffs[3][5] = {}; // A..E of Y, x, y
     float mNorm[3] = {};      // value / F(0, theta_s) at the zenith: Y_z, x_z, y_z over F
     glm::vec3 mZenith{0.0f};

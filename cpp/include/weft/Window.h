@@ -1,10 +1,10 @@
 #pragma once
 // A GLFW window with a Vulkan swapchain. Creating one without a display throws Error.
-#include <weft/Error.h>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
+#include <weft/Error.h>
 
 namespace weft {
 

@@ -2,8 +2,8 @@
 
 #include <cctype>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -30,8 +30,8 @@ namespace weft {
 namespace {
 
 using app::DemoControls;
-using app::ScriptEvent;
 using app::loadScript;
+using app::ScriptEvent;
 using Clock = std::chrono::steady_clock;
 
 // Progress lines on stderr (results stay on stdout), each with the seconds since the run began,
@@ -153,9 +153,10 @@ int runHeadless(const DemoOptions& o, app::DemoScene& demo, const Progress& prog
     double lastSaid = progress.seconds();
     for (int f = 0; f < frames; ++f) {
         // The first frame builds the pipelines and takes the captures: seconds on a CPU device.
-        if (f == 0) progress.say("rendering " + std::string(frames > 1 ? "the first frame" : "the frame") +
-                                 " (" + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                                 ", pipelines and captures)...");
+        if (f == 0)
+            progress.say("rendering " + std::string(frames > 1 ? "the first frame" : "the frame") +
+                         " (" + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                         ", pipelines and captures)...");
         applyScript(demo, controls, script, next, f, o.width, o.height);
         if (o.frames > 0) demo.update(1.0f / 60.0f);
         applyControls(demo, controls, renderer);
@@ -179,7 +180,8 @@ int runHeadless(const DemoOptions& o, app::DemoScene& demo, const Progress& prog
     }
     if (sequence) {
         std::ofstream stats(std::filesystem::path(o.out) / "stats.json");
-        if (!stats) throw IoError("cannot write " + (std::filesystem::path(o.out) / "stats.json").string());
+        if (!stats)
+            throw IoError("cannot write " + (std::filesystem::path(o.out) / "stats.json").string());
         stats << statsToJson(history, renderer.deviceName());
     }
     writeStats(o.statsJson, renderer.stats(), renderer.deviceName());
@@ -207,7 +209,7 @@ int runWindow(const DemoOptions& o, app::DemoScene& demo, app::DemoPanel* panel,
     Renderer renderer(uint32_t(o.width), uint32_t(o.height), controls.render);
     std::cout << "weft-demo: " << app::DemoScene::controls() << std::endl;
     window.onKey([&](int key, int action) {
-        if (action == 0) return; // release
+        if (action == 0) return;                                       // release
         if (panel && controls.panel && panel->wantsKeyboard()) return; // typing into the panel
         if (key == GLFW_KEY_F1 && panel) {
             controls.panel = !controls.panel;
@@ -221,8 +223,10 @@ int runWindow(const DemoOptions& o, app::DemoScene& demo, app::DemoPanel* panel,
     window.onMouseButton([&](int button, int action, double x, double y) {
         if (button != GLFW_MOUSE_BUTTON_LEFT) return;
         // A press on the panel is the panel's; a release always ends a drag of the cloth.
-        if (action == 1 && !(panel && controls.panel && panel->wantsMouse())) demo.grab(x, y, fbw, fbh);
-        else if (action != 1) demo.release();
+        if (action == 1 && !(panel && controls.panel && panel->wantsMouse()))
+            demo.grab(x, y, fbw, fbh);
+        else if (action != 1)
+            demo.release();
     });
     window.onCursor([&](double x, double y) { demo.drag(x, y, fbw, fbh); });
     if (panel) panel->attach(window, renderer);
@@ -245,8 +249,8 @@ int runWindow(const DemoOptions& o, app::DemoScene& demo, app::DemoPanel* panel,
         stepsSinceTitle += demo.update(o.frames > 0 ? 1.0f / 60.0f : dt);
         applyControls(demo, controls, renderer);
         const bool last = o.frames > 0 && frame + 1 >= o.frames;
-        ImageU8 image = renderer.present(window, demo.scene(), demo.camera(),
-                                         last && !o.screenshot.empty());
+        ImageU8 image =
+            renderer.present(window, demo.scene(), demo.camera(), last && !o.screenshot.empty());
         if (last) shot = std::move(image);
         if (frame == 0) progress.say("first frame shown");
         ++frame;

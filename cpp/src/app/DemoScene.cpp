@@ -1,5 +1,5 @@
-#include <weft/DemoScene.h>
 #include "app/DemoSkyDome.h"
+#include <weft/DemoScene.h>
 
 #include <algorithm>
 #include <chrono>
@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include <GLFW/glfw3.h>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <weft/BtfRenderMaterial.h>
 #include <weft/BtfSynth.h>
 #include <weft/Environment.h>
@@ -15,8 +17,6 @@
 #include <weft/IblConvert.h>
 #include <weft/Sky.h>
 #include <weft/SunLight.h>
-#include <glm/gtc/constants.hpp>
-#include <glm/gtc/matrix_transform.hpp>
 
 namespace weft::app {
 
@@ -33,7 +33,7 @@ constexpr float kSphereRadius = 0.6f;
 constexpr float kTurbidity = 3.0f;
 constexpr float kSkyScale = 1.0f / 32.0f;
 const glm::vec3 kNightSky = glm::vec3(0.012f, 0.018f, 0.04f) / kSkyScale;
-constexpr int kSkyCubeSize = 32;          // diffuse light only needs the sky's low frequencies
+constexpr int kSkyCubeSize = 32; // diffuse light only needs the sky's low frequencies
 const float kSkyRegenCos = std::cos(glm::radians(1.0f)); // regenerate after the sun moved 1 deg
 
 float smoothstep(float e0, float e1, float x) {
@@ -44,7 +44,8 @@ float smoothstep(float e0, float e1, float x) {
 // Rolling hills that flatten towards the middle, where the sphere and the cloth are.
 float terrainHeight(float x, float z) {
     const float hills = 0.45f * std::sin(0.45f * x + 0.3f) * std::cos(0.35f * z) +
-                        0.25f * std::sin(0.9f * x - 0.7f * z) + 0.08f * std::cos(1.7f * x + 1.1f * z);
+                        0.25f * std::sin(0.9f * x - 0.7f * z) +
+                        0.08f * std::cos(1.7f * x + 1.1f * z);
     return hills * smoothstep(2.0f, 5.0f, std::sqrt(x * x + z * z));
 }
 
@@ -58,8 +59,10 @@ TexturePtr grassTexture(int size) {
     };
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
-            const float n = 0.5f * hash(x, y) + 0.3f * hash(x / 4, y / 4) + 0.2f * hash(x / 16, y / 16);
-            const glm::vec3 c = glm::mix(glm::vec3(0.18f, 0.32f, 0.10f), glm::vec3(0.42f, 0.55f, 0.22f), n);
+            const float n =
+                0.5f * hash(x, y) + 0.3f * hash(x / 4, y / 4) + 0.2f * hash(x / 16, y / 16);
+            const glm::vec3 c =
+                glm::mix(glm::vec3(0.18f, 0.32f, 0.10f), glm::vec3(0.42f, 0.55f, 0.22f), n);
             uint8_t* p = img.at(x, y);
             for (int k = 0; k < 3; ++k) p[k] = uint8_t(std::lround(255.0f * c[k]));
             p[3] = 255;
@@ -76,7 +79,8 @@ TexturePtr weaveTexture(int size, int threads) {
             const bool warp = ((x / cell) + (y / cell)) % 2 == 0;
             const float f = float(warp ? x % cell : y % cell) / float(cell);
             const float shade = 0.75f + 0.25f * std::sin(glm::pi<float>() * f);
-            const glm::vec3 c = (warp ? glm::vec3(0.72f, 0.16f, 0.12f) : glm::vec3(0.85f, 0.72f, 0.45f)) * shade;
+            const glm::vec3 c =
+                (warp ? glm::vec3(0.72f, 0.16f, 0.12f) : glm::vec3(0.85f, 0.72f, 0.45f)) * shade;
             uint8_t* p = img.at(x, y);
             for (int k = 0; k < 3; ++k) p[k] = uint8_t(std::lround(255.0f * c[k]));
             p[3] = 255;
@@ -115,14 +119,17 @@ Material fittedWeaveBtf(int size, int threads) {
             const float f = (float(warp ? x % cell : y % cell) + 0.5f) / float(cell);
             height[size_t(y * size + x)] = 2.0f * std::sin(glm::pi<float>() * f);
         }
-    auto h = [&](int x, int y) { return height[size_t(((y + size) % size) * size + (x + size) % size)]; };
+    auto h = [&](int x, int y) {
+        return height[size_t(((y + size) % size) * size + (x + size) % size)];
+    };
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
             const bool warp = ((x / cell) + (y / cell)) % 2 == 0;
             // normals: x right, y up (rows grow down), from the height field in texel units
             const glm::vec3 n = glm::normalize(glm::vec3(-0.5f * (h(x + 1, y) - h(x - 1, y)),
                                                          0.5f * (h(x, y + 1) - h(x, y - 1)), 1.0f));
-            const glm::vec3 a = warp ? glm::vec3(0.55f, 0.12f, 0.1f) : glm::vec3(0.75f, 0.62f, 0.35f);
+            const glm::vec3 a =
+                warp ? glm::vec3(0.55f, 0.12f, 0.1f) : glm::vec3(0.75f, 0.62f, 0.35f);
             for (int c = 0; c < 3; ++c) {
                 truth.normal.push_back(n[c]);
                 truth.albedo.push_back(a[c]);
@@ -149,8 +156,9 @@ DemoScene::DemoScene() {
     sphere.ks = glm::vec3(0.6f);
     sphere.shininess = 64.0f;
     mSphereMaterial = sphere;
-    mSphereId = mScene.addMesh(std::make_shared<Mesh>(Mesh::uvSphere(kSphereRadius - 0.01f, 48, 24)), sphere,
-                   glm::translate(glm::mat4(1.0f), kSphereCenter));
+    mSphereId =
+        mScene.addMesh(std::make_shared<Mesh>(Mesh::uvSphere(kSphereRadius - 0.01f, 48, 24)),
+                       sphere, glm::translate(glm::mat4(1.0f), kSphereCenter));
 
     // A furry ball next to the cloth (SPEC §5.1: fur grown from a mesh, seed listing 1).
     const auto ballMesh = std::make_shared<Mesh>(Mesh::uvSphere(0.28f, 24, 12));
@@ -171,7 +179,8 @@ DemoScene::DemoScene() {
     mFurMaterial.specular = glm::vec3(0.15f);
     HairStrands strands = generateFur(*ballMesh, fur);
     strands.defaultTransparency = 0.25f; // drawn through weighted blended OIT (SPEC §5.4)
-    mFurId = mScene.addHair(std::make_shared<HairStrands>(std::move(strands)), mFurMaterial, ballAt);
+    mFurId =
+        mScene.addHair(std::make_shared<HairStrands>(std::move(strands)), mFurMaterial, ballAt);
 
     ClothParams p;
     p.nx = p.ny = kClothN;
@@ -200,11 +209,13 @@ DemoScene::DemoScene() {
     ground.size = glm::vec2(kTerrainSize);
     for (int j = 0; j <= kTerrainCells; ++j)
         for (int i = 0; i <= kTerrainCells; ++i)
-            ground.heights.push_back(terrainHeight(ground.origin.x + kTerrainSize * float(i) / kTerrainCells,
-                                                   ground.origin.z + kTerrainSize * float(j) / kTerrainCells));
+            ground.heights.push_back(
+                terrainHeight(ground.origin.x + kTerrainSize * float(i) / kTerrainCells,
+                              ground.origin.z + kTerrainSize * float(j) / kTerrainCells));
     ground.friction = 0.5f;
     mCloth->addCollider(ground);
-    mCloth->setWind(Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
+    mCloth->setWind(
+        Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
 
     mWeaveNormals = weaveNormals(256, 16);
     mClothMaterial.texture = weaveTexture(256, 16);
@@ -241,9 +252,10 @@ void DemoScene::buildTerrain() {
     ground.ks = glm::vec3(0.03f);
     ground.shininess = 8.0f;
     mTerrainMaterial = ground;
-    mTerrainId = mScene.addMesh(std::make_shared<Mesh>(Mesh::heightField(heights, kTerrainCells + 1, kTerrainCells + 1,
-                                                            origin, glm::vec2(kTerrainSize), 12.0f)),
-                   ground);
+    mTerrainId = mScene.addMesh(
+        std::make_shared<Mesh>(Mesh::heightField(heights, kTerrainCells + 1, kTerrainCells + 1,
+                                                 origin, glm::vec2(kTerrainSize), 12.0f)),
+        ground);
 }
 
 void DemoScene::lightWith(const std::string& path) {
@@ -288,8 +300,9 @@ void DemoScene::updateSky() {
     // The sun circles in a tilted plane; the moon is opposite. Whichever is up casts shadows.
     const float angle = glm::two_pi<float>() * (mTimeOfDay - 0.25f);
     const float height = std::sin(angle);
-    const glm::vec3 toSun = glm::normalize(glm::vec3(std::cos(angle) * std::cos(mSunAzimuth), 0.9f * height + 0.05f,
-                                                     std::cos(angle) * std::sin(mSunAzimuth)));
+    const glm::vec3 toSun =
+        glm::normalize(glm::vec3(std::cos(angle) * std::cos(mSunAzimuth), 0.9f * height + 0.05f,
+                                 std::cos(angle) * std::sin(mSunAzimuth)));
     const float day = smoothstep(-0.05f, 0.25f, height);
     if (mEnvironmentLit) {
         DirectionalLight off;
@@ -319,7 +332,8 @@ void DemoScene::updateSky() {
             return model.radiance(glm::vec3(d.x, std::max(d.y, 0.0f), d.z));
         });
         mSunLight = sunLight(sky);
-        mSkyMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        mSkyMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                     .count();
         mSkySun = toSun;
         if (!mSky) {
             mSky = std::make_shared<Environment>(std::move(cube));
@@ -370,18 +384,22 @@ std::string DemoScene::key(int k) {
     case GLFW_KEY_1:
     case GLFW_KEY_2:
         mWindStrength = std::clamp(mWindStrength + (k == GLFW_KEY_2 ? 1.0f : -1.0f), 0.0f, 30.0f);
-        mCloth->setWind(Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
+        mCloth->setWind(
+            Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
         what << "wind strength " << mWindStrength;
         break;
     case GLFW_KEY_R:
         mWindAngle += glm::radians(30.0f);
-        mCloth->setWind(Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
-        what << "wind direction " << std::lround(glm::degrees(std::fmod(mWindAngle, glm::two_pi<float>()))) << " deg";
+        mCloth->setWind(
+            Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
+        what << "wind direction "
+             << std::lround(glm::degrees(std::fmod(mWindAngle, glm::two_pi<float>()))) << " deg";
         break;
     case GLFW_KEY_L:
         mSunAzimuth += glm::radians(15.0f);
         updateSky();
-        what << "light azimuth " << std::lround(glm::degrees(std::fmod(mSunAzimuth, glm::two_pi<float>()))) << " deg";
+        what << "light azimuth "
+             << std::lround(glm::degrees(std::fmod(mSunAzimuth, glm::two_pi<float>()))) << " deg";
         break;
     case GLFW_KEY_T:
         mDayNight = !mDayNight;
@@ -402,12 +420,14 @@ std::string DemoScene::key(int k) {
             m.baseColor = glm::vec3(0.15f);
         }
         mScene.setMaterial(mSphereId, m);
-        what << "reflective sphere " << (mReflections ? "on (dynamic cube capture, Fresnel)" : "off");
+        what << "reflective sphere "
+             << (mReflections ? "on (dynamic cube capture, Fresnel)" : "off");
         break;
     }
     case GLFW_KEY_K: {
         static const char* const names[] = {"Kajiya-Kay", "Marschner", "Sadeghi"};
-        static const HairModel models[] = {HairModel::KajiyaKay, HairModel::Marschner, HairModel::Sadeghi};
+        static const HairModel models[] = {HairModel::KajiyaKay, HairModel::Marschner,
+                                           HairModel::Sadeghi};
         mFurModel = (mFurModel + 1) % 3;
         mFurMaterial.model = models[mFurModel];
         mScene.setHairMaterial(mFurId, mFurMaterial);
@@ -416,7 +436,8 @@ std::string DemoScene::key(int k) {
     }
     case GLFW_KEY_B:
         mBtf = !mBtf;
-        if (mBtf && !mBtfMaterial) mBtfMaterial = std::make_unique<Material>(fittedWeaveBtf(256, 16));
+        if (mBtf && !mBtfMaterial)
+            mBtfMaterial = std::make_unique<Material>(fittedWeaveBtf(256, 16));
         mScene.setMaterial(mClothId, mBtf ? *mBtfMaterial : mClothMaterial);
         what << "BTF material " << (mBtf ? "on (fitted from a synthetic woven BTF)" : "off");
         break;
@@ -449,8 +470,7 @@ std::string DemoScene::key(int k) {
         mCloth->reset();
         what << "cloth reset";
         break;
-    default:
-        break;
+    default: break;
     }
     return what.str();
 }
@@ -470,7 +490,8 @@ bool DemoScene::grab(double x, double y, int w, int h) {
     if (k < 0) return false;
     const float* p = mCloth->particleData() + 4 * k;
     const glm::vec3 pos(p[0], p[1], p[2]);
-    mGrabDepth = glm::dot(pos - mCamera.position, glm::normalize(mCamera.target - mCamera.position));
+    mGrabDepth =
+        glm::dot(pos - mCamera.position, glm::normalize(mCamera.target - mCamera.position));
     mGrabbed = k;
     mCloth->grab({k}, {pos});
     return true;
@@ -502,7 +523,8 @@ void DemoScene::setWind(float strength, float directionDegrees) {
         throw InvalidArgument("wind strength must be in [0, 30] and its direction finite");
     mWindStrength = strength;
     mWindAngle = glm::radians(std::fmod(directionDegrees, 360.0f));
-    mCloth->setWind(Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
+    mCloth->setWind(
+        Wind{glm::vec3(std::cos(mWindAngle), 0.0f, std::sin(mWindAngle)), mWindStrength});
 }
 
 float DemoScene::lightAzimuth() const {
@@ -524,11 +546,15 @@ const char* DemoScene::controls() {
 
 std::string DemoScene::status() const {
     std::ostringstream s;
-    s << "wind " << mWindStrength << " @ " << std::lround(glm::degrees(std::fmod(mWindAngle, glm::two_pi<float>())))
-      << " deg, time " << std::lround(24.0f * mTimeOfDay) << "h" << (mDayNight ? " (cycling)" : "")
-      << ", PCF " << 2 * mPcf + 1 << (mBtf ? ", BTF" : mNormalMap ? ", normal map" : "")
-      << (mHoles ? ", holes" : "")
-      << (mShadows ? "" : ", no shadows") << (mPaused ? ", paused" : "");
+    s << "wind " << mWindStrength << " @ "
+      << std::lround(glm::degrees(std::fmod(mWindAngle, glm::two_pi<float>()))) << " deg, time "
+      << std::lround(24.0f * mTimeOfDay) << "h" << (mDayNight ? " (cycling)" : "") << ", PCF "
+      << 2 * mPcf + 1
+      << (mBtf         ? ", BTF"
+          : mNormalMap ? ", normal map"
+                       : "")
+      << (mHoles ? ", holes" : "") << (mShadows ? "" : ", no shadows")
+      << (mPaused ? ", paused" : "");
     if (mSky) s << ", analytic sky " << std::fixed << std::setprecision(2) << mSkyMs << " ms";
     return s.str();
 }

@@ -22,7 +22,8 @@ int scriptKeyCode(const std::string& name, const std::string& where) {
     std::string upper = name;
     for (char& c : upper) c = char(std::toupper((unsigned char)c));
     if (auto it = named.find(upper); it != named.end()) return it->second;
-    if (upper.size() == 1 && ((upper[0] >= 'A' && upper[0] <= 'Z') || (upper[0] >= '0' && upper[0] <= '9')))
+    if (upper.size() == 1 &&
+        ((upper[0] >= 'A' && upper[0] <= 'Z') || (upper[0] >= '0' && upper[0] <= '9')))
         return upper[0]; // GLFW codes of letters and digits are their ASCII codes
     throw InvalidArgument(where + ": unknown key '" + name + "'");
 }

@@ -63,18 +63,22 @@ void parseAngle(const std::string& n, const std::string& v, DemoSettingValue& ou
 const std::vector<Entry>& entries() {
     using Id = DemoSettingId;
     static const std::vector<Entry> table = {
-        {Id::Exposure, {"exposure", "EV in [-10, 10]"},
+        {Id::Exposure,
+         {"exposure", "EV in [-10, 10]"},
          [](auto& n, auto& v, DemoSettingValue& out) { out.number = number(n, v, -10.0f, 10.0f); }},
-        {Id::ToneMap, {"tone-map", "clamp|aces|agx|neutral"},
+        {Id::ToneMap,
+         {"tone-map", "clamp|aces|agx|neutral"},
          [](auto& n, auto& v, DemoSettingValue& out) {
              out.index = choice(n, v, kToneMapNames, 4, "clamp, aces, agx or neutral");
          }},
-        {Id::Msaa, {"msaa", "1|2|4|8"},
+        {Id::Msaa,
+         {"msaa", "1|2|4|8"},
          [](auto& n, auto& v, DemoSettingValue& out) {
              static const char* const counts[] = {"1", "2", "4", "8"};
              out.index = choice(n, v, counts, 4, "1, 2, 4 or 8");
          }},
-        {Id::Ao, {"ao", "0|8|16|...|64 dome lights"},
+        {Id::Ao,
+         {"ao", "0|8|16|...|64 dome lights"},
          [](auto& n, auto& v, DemoSettingValue& out) {
              const float lights = number(n, v, 0.0f, 64.0f);
              if (lights != std::floor(lights) || int(lights) % 8 != 0)
@@ -82,23 +86,27 @@ const std::vector<Entry>& entries() {
              out.number = lights;
          }},
         {Id::Bounce, {"bounce", "on|off"}, parseOnOff},
-        {Id::Hour, {"hour", "hours in [0, 24]"},
+        {Id::Hour,
+         {"hour", "hours in [0, 24]"},
          [](auto& n, auto& v, DemoSettingValue& out) { out.number = number(n, v, 0.0f, 24.0f); }},
         {Id::DayNight, {"day-night", "on|off"}, parseOnOff},
         {Id::LightAzimuth, {"light-azimuth", "degrees"}, parseAngle},
         {Id::Shadows, {"shadows", "on|off"}, parseOnOff},
-        {Id::Pcf, {"pcf", "radius 0..3"},
+        {Id::Pcf,
+         {"pcf", "radius 0..3"},
          [](auto& n, auto& v, DemoSettingValue& out) {
              static const char* const radii[] = {"0", "1", "2", "3"};
              out.index = choice(n, v, radii, 4, "0, 1, 2 or 3");
          }},
         {Id::HairTransparency, {"hair-transparency", "on|off"}, parseOnOff},
         {Id::HairShadows, {"hair-shadows", "on|off"}, parseOnOff},
-        {Id::Fur, {"fur", "kajiya-kay|marschner|sadeghi"},
+        {Id::Fur,
+         {"fur", "kajiya-kay|marschner|sadeghi"},
          [](auto& n, auto& v, DemoSettingValue& out) {
              out.index = choice(n, v, kFurModelNames, 3, "kajiya-kay, marschner or sadeghi");
          }},
-        {Id::Wind, {"wind", "strength in [0, 30]"},
+        {Id::Wind,
+         {"wind", "strength in [0, 30]"},
          [](auto& n, auto& v, DemoSettingValue& out) { out.number = number(n, v, 0.0f, 30.0f); }},
         {Id::WindDirection, {"wind-direction", "degrees"}, parseAngle},
         {Id::Paused, {"paused", "on|off"}, parseOnOff},
@@ -115,7 +123,8 @@ const Entry& find(const std::string& name) {
     for (const Entry& e : entries())
         if (name == e.setting.name) return e;
     std::string known;
-    for (const Entry& e : entries()) known += std::string(known.empty() ? "" : ", ") + e.setting.name;
+    for (const Entry& e : entries())
+        known += std::string(known.empty() ? "" : ", ") + e.setting.name;
     throw InvalidArgument("unknown setting '" + name + "' (" + known + ")");
 }
 

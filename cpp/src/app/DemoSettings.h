@@ -31,9 +31,27 @@ const std::vector<DemoSetting>& demoSettings();
 
 /// The settings, in the panel's order (the same as demoSettings()).
 enum class DemoSettingId {
-    Exposure, ToneMap, Msaa, Ao, Bounce, Hour, DayNight, LightAzimuth, Shadows, Pcf,
-    HairTransparency, HairShadows, Fur, Wind, WindDirection, Paused, NormalMap, Btf, Holes,
-    Reflective, Panel
+    Exposure,
+    ToneMap,
+    Msaa,
+    Ao,
+    Bounce,
+    Hour,
+    DayNight,
+    LightAzimuth,
+    Shadows,
+    Pcf,
+    HairTransparency,
+    HairShadows,
+    Fur,
+    Wind,
+    WindDirection,
+    Paused,
+    NormalMap,
+    Btf,
+    Holes,
+    Reflective,
+    Panel
 };
 
 /// A setting's value as parsed: `number` for numbers (exposure, ao, hour, angles, wind),

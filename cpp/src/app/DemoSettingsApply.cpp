@@ -61,8 +61,7 @@ std::string applyDemoSetting(DemoScene& d, DemoControls& c, const std::string& n
     case DemoSettingId::LightAzimuth:
         d.setLightAzimuth(p.number);
         return "light azimuth " + v + " deg";
-    case DemoSettingId::Shadows:
-        return toggle(d, p.on, d.shadows(), GLFW_KEY_S, "shadows");
+    case DemoSettingId::Shadows: return toggle(d, p.on, d.shadows(), GLFW_KEY_S, "shadows");
     case DemoSettingId::Pcf: {
         std::string what;
         while (d.pcf() != p.index) what = d.key(GLFW_KEY_P); // P cycles 0..3
@@ -79,25 +78,18 @@ std::string applyDemoSetting(DemoScene& d, DemoControls& c, const std::string& n
         while (d.furModel() != p.index) what = d.key(GLFW_KEY_K); // K cycles the three
         return what;
     }
-    case DemoSettingId::Wind:
-        d.setWind(p.number, d.windDirection());
-        return "wind strength " + v;
+    case DemoSettingId::Wind: d.setWind(p.number, d.windDirection()); return "wind strength " + v;
     case DemoSettingId::WindDirection:
         d.setWind(d.windStrength(), p.number);
         return "wind direction " + v + " deg";
-    case DemoSettingId::Paused:
-        return toggle(d, p.on, d.paused(), GLFW_KEY_SPACE, "pause");
+    case DemoSettingId::Paused: return toggle(d, p.on, d.paused(), GLFW_KEY_SPACE, "pause");
     case DemoSettingId::NormalMap:
         return toggle(d, p.on, d.normalMap(), GLFW_KEY_N, "normal mapping");
-    case DemoSettingId::Btf:
-        return toggle(d, p.on, d.btf(), GLFW_KEY_B, "BTF material");
-    case DemoSettingId::Holes:
-        return toggle(d, p.on, d.holes(), GLFW_KEY_H, "holes");
+    case DemoSettingId::Btf: return toggle(d, p.on, d.btf(), GLFW_KEY_B, "BTF material");
+    case DemoSettingId::Holes: return toggle(d, p.on, d.holes(), GLFW_KEY_H, "holes");
     case DemoSettingId::Reflective:
         return toggle(d, p.on, d.reflections(), GLFW_KEY_E, "reflective sphere");
-    case DemoSettingId::Panel:
-        c.panel = p.on;
-        return "panel " + onOffText(p.on);
+    case DemoSettingId::Panel: c.panel = p.on; return "panel " + onOffText(p.on);
     }
     throw Error("demo setting '" + name + "' has no way to be applied");
 }

@@ -14,13 +14,10 @@ Json toJson(const FrameStats& stats, const std::string& device) {
     Json passes = Json::array();
     for (const PassStats& p : stats.passes)
         passes.push_back({{"name", p.name}, {"cpu_ms", ms(p.cpuMs)}, {"gpu_ms", ms(p.gpuMs)}});
-    return {{"device", device},
-            {"frame_index", stats.frameIndex},
-            {"cpu_ms", ms(stats.cpuMs)},
-            {"gpu_ms", ms(stats.gpuMs)},
-            {"passes", std::move(passes)},
-            {"culled", stats.culled},
-            {"reused", stats.reused}};
+    return {
+        {"device", device},          {"frame_index", stats.frameIndex}, {"cpu_ms", ms(stats.cpuMs)},
+        {"gpu_ms", ms(stats.gpuMs)}, {"passes", std::move(passes)},     {"culled", stats.culled},
+        {"reused", stats.reused}};
 }
 
 // Names come from the device driver and from pass names; a byte sequence that is not UTF-8

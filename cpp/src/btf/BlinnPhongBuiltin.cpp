@@ -62,7 +62,6 @@ glm::dvec3 BlinnPhongTexel::normal(double u, double v) const {
     return glm::normalize(n0 + u * t1 + v * t2);
 }
 
-
 BlinnPhongGeometry::BlinnPhongGeometry(const std::vector<glm::vec3>& lights,
                                        const std::vector<glm::vec3>& halves) {
     count = int(lights.size());
@@ -89,13 +88,13 @@ namespace {
 // O(samples). Per sample d, g, log(n·h) are kept for the derivative pass.
 struct Evaluation {
     BlinnPhongResult result;
-    double b[3][3] = {};          // Φᵀ p_c per channel
-    double gram[3][3] = {};       // ΦᵀΦ
-    double inv[3][3][3] = {};     // per channel: (Φ_FᵀΦ_F)⁻¹ on the free coefficients F, else 0
+    double b[3][3] = {};      // Φᵀ p_c per channel
+    double gram[3][3] = {};   // ΦᵀΦ
+    double inv[3][3][3] = {}; // per channel: (Φ_FᵀΦ_F)⁻¹ on the free coefficients F, else 0
     double sdd[2][2] = {}, sdg[2][3] = {}, sgg[3][3] = {};
     double pd[3][2] = {}, pg[3][3] = {}; // Φᵀ ∂d, Φᵀ ∂g
     double rd[3][2] = {}, rg[3][3] = {}; // r_cᵀ ∂d, r_cᵀ ∂g
-    std::vector<float> d, g, lg; // per padded sample
+    std::vector<float> d, g, lg;         // per padded sample
     glm::dvec3 nrm{0, 0, 1}, dn[2];
     double e = 1.0;
 };
@@ -180,8 +179,7 @@ double nnls3(SubsetInverses& subsets, const double b[3], double squares, double 
         if (!feasible) continue;
         bool kkt = true;
         for (int i = 0; i < 3; ++i)
-            if (!(mask & (1 << i)) &&
-                g[i][0] * y[0] + g[i][1] * y[1] + g[i][2] * y[2] - b[i] < 0.0)
+            if (!(mask & (1 << i)) && g[i][0] * y[0] + g[i][1] * y[1] + g[i][2] * y[2] - b[i] < 0.0)
                 kkt = false;
         if (squares - gain < best || bestMask == 0 || kkt) {
             best = squares - gain;
@@ -212,9 +210,10 @@ void evaluateCost(const BlinnPhongTexel& tx, const double theta[3], Evaluation& 
     ev.dn[0] = (tx.t1 - ev.nrm * glm::dot(ev.nrm, tx.t1)) / len;
     ev.dn[1] = (tx.t2 - ev.nrm * glm::dot(ev.nrm, tx.t2)) / len;
     ev.e = std::exp(theta[2]);
-    CostInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)}, tx.weights,
-                 {float(ev.nrm.x), float(ev.nrm.y), float(ev.nrm.z)}, float(ev.e),
-                 ev.d.data(), ev.g.data(), ev.lg.data()};
+    CostInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)},
+                 tx.weights,  {float(ev.nrm.x), float(ev.nrm.y), float(ev.nrm.z)},
+                 float(ev.e), ev.d.data(),
+                 ev.g.data(), ev.lg.data()};
     CostSums sums;
     blinnPhongCost(in, sums);
     if (!tx.specular) { // no highlight column: the NNLS keeps k = 0 (its Gram entry is 0)
@@ -242,12 +241,17 @@ void evaluateCost(const BlinnPhongTexel& tx, const double theta[3], Evaluation& 
 
 // The derivative sums at the point of the last evaluateCost.
 void evaluateDerivatives(const BlinnPhongTexel& tx, Evaluation& ev) {
-    DerivInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)}, tx.weights,
-                  ev.d.data(), ev.g.data(), ev.lg.data(),
+    DerivInput in{tx.geometry,
+                  {plane(tx, 0), plane(tx, 1), plane(tx, 2)},
+                  tx.weights,
+                  ev.d.data(),
+                  ev.g.data(),
+                  ev.lg.data(),
                   {float(ev.nrm.x), float(ev.nrm.y), float(ev.nrm.z)},
                   {{float(ev.dn[0].x), float(ev.dn[0].y), float(ev.dn[0].z)},
                    {float(ev.dn[1].x), float(ev.dn[1].y), float(ev.dn[1].z)}},
-                  float(ev.e), {}};
+                  float(ev.e),
+                  {}};
     for (int c = 0; c < 3; ++c)
         for (int i = 0; i < 3; ++i) in.x[c][i] = float(ev.result.coef[c][i]);
     DerivSums s;
@@ -286,9 +290,14 @@ void blinnPhongTerms(const BlinnPhongTexel& tx, const double theta[3], std::vect
     fg.resize(np);
     flg.resize(np);
     const glm::dvec3 n = tx.normal(theta[0], theta[1]);
-    CostInput in{&geo, {plane(tx, 0), plane(tx, 1), plane(tx, 2)}, geo.ones.data(),
-                 {float(n.x), float(n.y), float(n.z)}, float(std::exp(theta[2])),
-                 fd.data(), fg.data(), flg.data()};
+    CostInput in{&geo,
+                 {plane(tx, 0), plane(tx, 1), plane(tx, 2)},
+                 geo.ones.data(),
+                 {float(n.x), float(n.y), float(n.z)},
+                 float(std::exp(theta[2])),
+                 fd.data(),
+                 fg.data(),
+                 flg.data()};
     CostSums unused;
     blinnPhongCost(in, unused);
     d.assign(fd.begin(), fd.begin() + geo.count);
@@ -386,8 +395,8 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
             if (trial.result.cost < cur.result.cost) {
                 const double gain = cur.result.cost - trial.result.cost;
                 const double taken = next[2] - cur.result.theta[2]; // after the projection
-                const double stepSize = std::sqrt(step[0] * step[0] + step[1] * step[1] +
-                                                  taken * taken);
+                const double stepSize =
+                    std::sqrt(step[0] * step[0] + step[1] * step[1] + taken * taken);
                 accepted = true;
                 ++done;
                 std::swap(cur, trial);

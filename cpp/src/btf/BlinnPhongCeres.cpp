@@ -59,11 +59,14 @@ BlinnPhongResult blinnPhongCeres(const BlinnPhongTexel& tx, const BlinnPhongResu
     ceres::Problem problem;
     for (size_t s = 0; s < tx.lights->size(); ++s) {
         if (tx.weights && !(tx.weights[s] > 0.0f)) continue; // left out (cast shadow)
-        auto* cost = new SampleResidual{glm::dvec3((*tx.lights)[s]), glm::dvec3((*tx.halves)[s]),
-                                        tx.n0, tx.t1, tx.t2,
-                                        {tx.values[s * 3], tx.values[s * 3 + 1],
-                                         tx.values[s * 3 + 2]},
-                                        tx.geometry && tx.geometry->flatSpecular};
+        auto* cost =
+            new SampleResidual{glm::dvec3((*tx.lights)[s]),
+                               glm::dvec3((*tx.halves)[s]),
+                               tx.n0,
+                               tx.t1,
+                               tx.t2,
+                               {tx.values[s * 3], tx.values[s * 3 + 1], tx.values[s * 3 + 2]},
+                               tx.geometry && tx.geometry->flatSpecular};
         problem.AddResidualBlock(
             new ceres::AutoDiffCostFunction<SampleResidual, 3, 2, 3, 3, 3, 1>(cost), nullptr, uv, m,
             b, k, &eta);

@@ -9,7 +9,6 @@ namespace weft {
 
 namespace {
 
-
 // The per-sample work runs on the padded structure-of-arrays samples W floats at a time (GCC
 // vector extensions), with polynomial log/exp instead of libm calls: W = 4 (SSE, or any 16-byte
 // SIMD) everywhere, W = 8 in a copy compiled for AVX2 + FMA and chosen at run time on x86-64.
@@ -50,7 +49,7 @@ template <class F, class I> WEFT_INLINE F logv(F x) {
     I ex = ((bits >> 23) & 0xff) - 126;
     F m = F((bits & 0x007fffff) | 0x3f000000); // [0.5, 1)
     const I small = m < splat<F>(0.707106781186547524f);
-    ex = ex + small;                            // small is -1 where true
+    ex = ex + small; // small is -1 where true
     m = m + select(small, m) - 1.0f;
     const F z = m * m;
     F y = splat<F>(7.0376836292e-2f);
@@ -107,15 +106,15 @@ template <int W> WEFT_INLINE void costKernel(const CostInput& in, CostSums& out)
     const bool flat = geo.flatSpecular;
     for (int s = 0; s < np; s += W) {
         const F w = load<F>(in.w + s);
-        const F nl = nx * load<F>(&geo.l[0][s]) + ny * load<F>(&geo.l[1][s]) +
-                     nz * load<F>(&geo.l[2][s]);
+        const F nl =
+            nx * load<F>(&geo.l[0][s]) + ny * load<F>(&geo.l[1][s]) + nz * load<F>(&geo.l[2][s]);
         const F nh = flat ? load<F>(&geo.h[2][s])
                           : nx * load<F>(&geo.h[0][s]) + ny * load<F>(&geo.h[1][s]) +
                                 nz * load<F>(&geo.h[2][s]);
         const I lpos = nl > 0.0f;
         const I hpos = nh > 0.0f;
-        const F lg = flat ? load<F>(&geo.logHz[s])
-                          : select(hpos, logv<F, I>(hpos ? nh : splat<F>(1.0f)));
+        const F lg =
+            flat ? load<F>(&geo.logHz[s]) : select(hpos, logv<F, I>(hpos ? nh : splat<F>(1.0f)));
         store(in.d + s, select(lpos, nl) * w);
         store(in.lg + s, lg);
         store(in.g + s, select(hpos & lpos, expv<F, I>(ef * lg)) * w);
@@ -224,8 +223,10 @@ template <int W> WEFT_INLINE void logKernel(const float* x, float* out, int n) {
 
 void costGeneric(const CostInput& in, CostSums& out) { costKernel<4>(in, out); }
 void derivGeneric(const DerivInput& in, DerivSums& out) {
-    if (in.geo->flatSpecular) derivKernel<4, true>(in, out);
-    else derivKernel<4, false>(in, out);
+    if (in.geo->flatSpecular)
+        derivKernel<4, true>(in, out);
+    else
+        derivKernel<4, false>(in, out);
 }
 void logGeneric(const float* x, float* out, int n) { logKernel<4>(x, out, n); }
 void (*chooseCost())(const CostInput&, CostSums&);
@@ -237,8 +238,10 @@ __attribute__((target("avx2,fma"))) void costAvx2(const CostInput& in, CostSums&
     costKernel<8>(in, out);
 }
 __attribute__((target("avx2,fma"))) void derivAvx2(const DerivInput& in, DerivSums& out) {
-    if (in.geo->flatSpecular) derivKernel<8, true>(in, out);
-    else derivKernel<8, false>(in, out);
+    if (in.geo->flatSpecular)
+        derivKernel<8, true>(in, out);
+    else
+        derivKernel<8, false>(in, out);
 }
 __attribute__((target("avx2,fma"))) void logAvx2(const float* x, float* out, int n) {
     logKernel<8>(x, out, n);
@@ -265,8 +268,8 @@ bool forceGeneric() {
 }
 
 void (*const costFn)(const CostInput&, CostSums&) = forceGeneric() ? costGeneric : chooseCost();
-void (*const derivFn)(const DerivInput&, DerivSums&) =
-    forceGeneric() ? derivGeneric : chooseDeriv();
+void (*const derivFn)(const DerivInput&, DerivSums&) = forceGeneric() ? derivGeneric
+                                                                      : chooseDeriv();
 void (*const logFn)(const float*, float*, int) = forceGeneric() ? logGeneric : chooseLog();
 
 } // namespace

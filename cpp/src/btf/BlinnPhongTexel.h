@@ -19,18 +19,18 @@ struct BlinnPhongGeometry {
     int count = 0, padded = 0;
     std::vector<float> l[3], h[3]; ///< [axis][sample]
     std::vector<float> ones;       ///< 1 for each real sample, 0 for padding: all samples used
-    std::vector<float> logHz;      ///< log h_z (0 where h_z <= 0): n_s = (0,0,1) needs no log per fit
-    bool flatSpecular = false;     ///< n_s = (0, 0, 1)
+    std::vector<float> logHz;  ///< log h_z (0 where h_z <= 0): n_s = (0,0,1) needs no log per fit
+    bool flatSpecular = false; ///< n_s = (0, 0, 1)
     BlinnPhongGeometry(const std::vector<glm::vec3>& lights, const std::vector<glm::vec3>& halves);
 };
 
 struct BlinnPhongTexel {
-    const std::vector<glm::vec3>* lights = nullptr; ///< l_s
-    const std::vector<glm::vec3>* halves = nullptr; ///< h_s
-    std::vector<float> values;                      ///< p, [sample][channel]
-    double squares[3] = {0, 0, 0};                  ///< Σ_s p_sc² (set with the values)
+    const std::vector<glm::vec3>* lights = nullptr;   ///< l_s
+    const std::vector<glm::vec3>* halves = nullptr;   ///< h_s
+    std::vector<float> values;                        ///< p, [sample][channel]
+    double squares[3] = {0, 0, 0};                    ///< Σ_s p_sc² (set with the values)
     glm::dvec3 n0{0, 0, 1}, t1{1, 0, 0}, t2{0, 1, 0}; ///< n = normalise(n0 + u t1 + v t2)
-    double start[2] = {0, 0};                          ///< (u, v) of the seed normal
+    double start[2] = {0, 0};                         ///< (u, v) of the seed normal
     // For the built-in solver: the values as [channel][padded sample] (zero padding), Σ_s w_s p_sc.
     const BlinnPhongGeometry* geometry = nullptr;
     const float* planes = nullptr;

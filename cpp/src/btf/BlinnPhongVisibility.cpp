@@ -42,9 +42,9 @@ int classifyBlinnPhongShadows(const BlinnPhongTexel& tx, const BlinnPhongResult&
     static thread_local std::vector<double> lit, diffuse, seen;
     const double base = blinnPhongParts(tx, r, planes, lit, diffuse, seen);
     std::fill(weights.begin(), weights.end(), 0.0f);
-    return classifyCastShadows(size_t(tx.geometry->count), lit.data(), diffuse.data(),
-                               seen.data(), base, tx.geometry->l[2].data(), tx.weights, 12,
-                               weights.data(), misfit, sigmaCap);
+    return classifyCastShadows(size_t(tx.geometry->count), lit.data(), diffuse.data(), seen.data(),
+                               base, tx.geometry->l[2].data(), tx.weights, 12, weights.data(),
+                               misfit, sigmaCap);
 }
 
 namespace {
@@ -141,7 +141,8 @@ double seedEta(const BtfMaterialMaps& seed, size_t t, double etaMin, double etaM
 void texelPlanes(const BtfSamples& samples, size_t t, size_t padded, bool luma, float* out) {
     const int count = samples.count();
     for (int c = 0; c < 3; ++c)
-        for (int s = 0; s < count; ++s) out[size_t(c) * padded + size_t(s)] = samples.plane(s, c)[t];
+        for (int s = 0; s < count; ++s)
+            out[size_t(c) * padded + size_t(s)] = samples.plane(s, c)[t];
     if (luma)
         for (int s = 0; s < count; ++s) {
             const float y = 0.299f * out[size_t(s)] + 0.587f * out[padded + size_t(s)] +
@@ -173,14 +174,13 @@ double blinnPhongDataNoise(const BtfSamples& samples, const BlinnPhongGeometry& 
             const size_t t = size_t(i) * texels / size_t(n);
             texelPlanes(samples, t, np, options.luminanceNormals, planes.data());
             tx.setPlanes(planes.data());
-            tx.setSeedNormal(glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1],
-                                       seed.normal[t * 3 + 2]));
+            tx.setSeedNormal(
+                glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1], seed.normal[t * 3 + 2]));
             const BlinnPhongResult r = blinnPhongBuiltin(tx, seedEta(seed, t, etaMin, etaMax),
                                                          etaMin, etaMax, options.maxIterations);
             blinnPhongParts(tx, r, planes.data(), lit, diffuse, seen);
-            sigma[size_t(i)] = steepResidualSigma(size_t(geometry.count), lit.data(),
-                                                  seen.data(), geometry.l[2].data(),
-                                                  geometry.ones.data());
+            sigma[size_t(i)] = steepResidualSigma(size_t(geometry.count), lit.data(), seen.data(),
+                                                  geometry.l[2].data(), geometry.ones.data());
         }
     });
     std::nth_element(sigma.begin(), sigma.begin() + long(sigma.size() / 2), sigma.end());

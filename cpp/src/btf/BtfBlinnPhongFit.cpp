@@ -8,9 +8,9 @@
 #include <string>
 
 #include "btf/BlinnPhongTexel.h"
+#include "btf/BlinnPhongVisibility.h"
 #include "btf/BtfModel.h"
 #include "btf/BtfParallel.h"
-#include "btf/BlinnPhongVisibility.h"
 
 namespace weft {
 
@@ -45,8 +45,7 @@ bool btfHaveCeres() {
 }
 
 float btfResolvableExponent(const BtfSamples& samples, double fraction) {
-    if (!(fraction > 0.0 && fraction < 1.0))
-        throw InvalidArgument("fraction must lie in (0, 1)");
+    if (!(fraction > 0.0 && fraction < 1.0)) throw InvalidArgument("fraction must lie in (0, 1)");
     const int count = samples.count();
     std::vector<glm::dvec3> h(static_cast<size_t>(count));
     for (int s = 0; s < count; ++s)
@@ -79,12 +78,10 @@ struct FitSetup {
         : geometry(check(samples, seed, options, lights, halves, etaMin, etaMax), halves) {
         geometry.flatSpecular = options.flatSpecularNormal;
     }
-    static const std::vector<glm::vec3>& check(const BtfSamples& samples,
-                                               const BtfMaterialMaps& seed,
-                                               const BtfNonlinearOptions& options,
-                                               std::vector<glm::vec3>& lights,
-                                               std::vector<glm::vec3>& halves, double& etaMin,
-                                               double& etaMax) {
+    static const std::vector<glm::vec3>&
+    check(const BtfSamples& samples, const BtfMaterialMaps& seed,
+          const BtfNonlinearOptions& options, std::vector<glm::vec3>& lights,
+          std::vector<glm::vec3>& halves, double& etaMin, double& etaMax) {
         seed.validate();
         samples.requireFinite();
         if (seed.width != samples.width() || seed.height != samples.height())
@@ -101,7 +98,7 @@ struct FitSetup {
             throw InvalidArgument("maxIterations must be 1..1000");
         if (!(options.noise >= 0.0) || !std::isfinite(options.noise))
             throw InvalidArgument("noise must be finite and >= 0 (0: estimated)");
-        checkBtfThreads(options.threads);
+        checkThreads(options.threads);
         etaMin = std::log(double(options.minExponent));
         etaMax = std::log(double(maxExponent));
         const int count = samples.count();
@@ -154,10 +151,10 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
     maps.flatSpecularNormal = options.flatSpecularNormal;
     std::vector<double> iterations(texels, 0.0), shadowed(texels, 0.0);
 
-    out.noise = !options.visibility ? 0.0
-                : options.noise > 0.0   ? options.noise
-                                        : blinnPhongDataNoise(samples, geometry, lights, halves,
-                                                              seed, options, etaMin, etaMax);
+    out.noise = !options.visibility   ? 0.0
+                : options.noise > 0.0 ? options.noise
+                                      : blinnPhongDataNoise(samples, geometry, lights, halves, seed,
+                                                            options, etaMin, etaMax);
     const double sigmaCap = options.visibility ? kNoiseSigmas * out.noise : HUGE_VAL;
     const int blocks = int((texels + 63) / 64);
     btfParallelForDynamic(blocks, options.threads, 1, [&](int b0, int b1) {
@@ -187,8 +184,8 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                     // JPEG's luma (BT.601) in all three channels: the normal and exponent are
                     // fitted to it, the colours projected from the RGB values at the end
                     for (size_t s = 0; s < np; ++s) {
-                        const float y = 0.299f * rgb[s] + 0.587f * rgb[np + s] +
-                                        0.114f * rgb[2 * np + s];
+                        const float y =
+                            0.299f * rgb[s] + 0.587f * rgb[np + s] + 0.114f * rgb[2 * np + s];
                         luma[s] = luma[np + s] = luma[2 * np + s] = y;
                     }
                     planes = luma.data();
@@ -199,12 +196,13 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                         for (int c = 0; c < 3; ++c)
                             tx.values[size_t(s) * 3 + size_t(c)] =
                                 planes[size_t(c) * np + size_t(s)];
-                tx.setSeedNormal(glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1],
-                                           seed.normal[t * 3 + 2]));
+                tx.setSeedNormal(
+                    glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1], seed.normal[t * 3 + 2]));
                 const double eta0 = seedEta(seed, t, etaMin, etaMax);
                 auto solve = [&](const double start[3]) {
-                    if (!ceres) return blinnPhongBuiltin(tx, start[2], etaMin, etaMax,
-                                                         options.maxIterations);
+                    if (!ceres)
+                        return blinnPhongBuiltin(tx, start[2], etaMin, etaMax,
+                                                 options.maxIterations);
                     return blinnPhongCeres(tx, blinnPhongProject(tx, start), etaMin, etaMax,
                                            options.maxIterations);
                 };
@@ -238,8 +236,8 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                         r = solve(r.theta);
                         iters += r.iterations;
                         left = classifyBlinnPhongShadows(tx, r, planes, next, misfit, sigmaCap);
-                        settled = misfit <= 2 && std::equal(next.begin(), next.end(),
-                                                            weights.begin());
+                        settled =
+                            misfit <= 2 && std::equal(next.begin(), next.end(), weights.begin());
                     }
                     if (!settled) {
                         // Visibility first from Lambert + ambient, from the steep lights: a

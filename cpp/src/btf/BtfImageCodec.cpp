@@ -91,8 +91,7 @@ DecodedImage decodeJpeg(const std::vector<uint8_t>& bytes, const std::string& na
     const size_t rowBytes = size_t(img.width) * size_t(img.channels);
     img.pixels.resize(rowBytes * size_t(img.height));
     if (!jpegReadRows(d, img.pixels.data(), rowBytes))
-        throw IoError("cannot read JPEG '" + name + "' (truncated or corrupt): " +
-                      d.error.message);
+        throw IoError("cannot read JPEG '" + name + "' (truncated or corrupt): " + d.error.message);
     if (d.error.mgr.num_warnings > 0)
         throw IoError("JPEG '" + name + "' is truncated or corrupt (libjpeg warnings)");
     return img;
@@ -130,13 +129,11 @@ JpegCoefficientImage readJpegCoefficients(const std::vector<uint8_t>& bytes,
     JpegDecoder d;
     jvirt_barray_ptr* arrays = nullptr;
     if (!jpegReadCoefficients(d, bytes.data(), bytes.size(), &arrays) || !arrays)
-        throw IoError("cannot read JPEG '" + name + "' coefficients (corrupt): " +
-                      d.error.message);
+        throw IoError("cannot read JPEG '" + name + "' coefficients (corrupt): " + d.error.message);
     JpegCoefficientImage out;
     const bool grey = d.info.num_components == 1 && d.info.jpeg_color_space == JCS_GRAYSCALE;
     const bool ycc = d.info.num_components == 3 && d.info.jpeg_color_space == JCS_YCbCr;
-    if ((!grey && !ycc) || int(d.info.image_width) != width ||
-        int(d.info.image_height) != height)
+    if ((!grey && !ycc) || int(d.info.image_width) != width || int(d.info.image_height) != height)
         return out;
     size_t blocks = 0;
     for (int c = 0; c < d.info.num_components; ++c) {
@@ -154,8 +151,8 @@ JpegCoefficientImage readJpegCoefficients(const std::vector<uint8_t>& bytes,
     out.ycbcr = ycc;
     out.coefficients.resize(blocks * 64);
     if (!jpegCopyBlocks(d, arrays, out.coefficients.data()))
-        throw IoError("cannot read JPEG '" + name + "' coefficients (truncated or corrupt): " +
-                      d.error.message);
+        throw IoError("cannot read JPEG '" + name +
+                      "' coefficients (truncated or corrupt): " + d.error.message);
     return out;
 }
 

@@ -33,8 +33,8 @@ struct JpegCoefficientImage {
 
 struct DecodedImage {
     int width = 0, height = 0, channels = 0; ///< channels 1 (grey) or 3 (RGB)
-    std::vector<uint8_t> pixels;    ///< 8-bit values, interleaved (empty for 16-bit PNG)
-    std::vector<uint16_t> pixels16; ///< 16-bit PNG values as stored, interleaved
+    std::vector<uint8_t> pixels;             ///< 8-bit values, interleaved (empty for 16-bit PNG)
+    std::vector<uint16_t> pixels16;          ///< 16-bit PNG values as stored, interleaved
     /// JPEG only and only when asked for: the stored coefficients; empty (no components) when
     /// the JPEG is neither grey nor YCbCr (then nothing is known of its cells)
     JpegCoefficientImage coefficients;

@@ -2,9 +2,9 @@
 // linear in (m, b, ρ_1.., per channel) and nonlinear in θ = (u, v, C_x1, C_y1, η_1, ...), where
 // n = normalise(u, v, 1) and e_j = exp(η_j). The physical space is kept by construction:
 // n_z > 0, C_z = 1, η_j in [0, log 4096] (projected steps) and m, b, ρ_j >= 0 (non-negative
-// least squares per channel; the projection of Kaufman's Jacobian uses the free coefficients). Every θ_k moves one basis function only,
-// so Kaufman's JᵀJ and the gradient come from channel-independent sample sums as in the
-// Blinn-Phong solver.
+// least squares per channel; the projection of Kaufman's Jacobian uses the free coefficients).
+// Every θ_k moves one basis function only, so Kaufman's JᵀJ and the gradient come from
+// channel-independent sample sums as in the Blinn-Phong solver.
 #include <weft/BtfNonlinear.h>
 #include <weft/Error.h>
 
@@ -61,7 +61,7 @@ struct CholeskyN {
 struct Texel {
     const BtfSamples* samples = nullptr;
     const std::vector<glm::vec3>* views = nullptr;
-    BlinnPhongTexel base; // values, squares, normal frame
+    BlinnPhongTexel base;           // values, squares, normal frame
     const float* weights = nullptr; ///< per sample: 1 used, 0 left out (cast shadow); null: all
     bool fixedNormal = false;       ///< keep (u, v) at the seed's normal
     int lobes = 1;
@@ -250,8 +250,7 @@ int solveTexel(const Texel& tx, double* theta, int maxIterations, double etaMax,
                 ++done;
                 std::swap(cur, trial);
                 lambda = std::max(lambda / 3.0, 1e-9);
-                if (gain <= 1e-6 * cur.cost + 1e-20 || std::sqrt(size) < 1e-6)
-                    it = maxIterations;
+                if (gain <= 1e-6 * cur.cost + 1e-20 || std::sqrt(size) < 1e-6) it = maxIterations;
             } else {
                 lambda *= 4.0;
             }
@@ -311,8 +310,7 @@ void evaluateFit(const BtfLafortuneFit& fit, size_t t, glm::vec3 l, glm::vec3 v,
 } // namespace
 
 BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps& seed, int lobes,
-                                int maxIterations, int threads, bool visibility,
-                                bool fixedNormal) {
+                                int maxIterations, int threads, bool visibility, bool fixedNormal) {
     seed.validate();
     samples.requireFinite();
     if (seed.width != samples.width() || seed.height != samples.height())
@@ -352,15 +350,15 @@ BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps
                 for (int c = 0; c < 3; ++c)
                     tx.base.values[size_t(s) * 3 + size_t(c)] = samples.plane(s, c)[t];
             tx.base.updateSquares();
-            tx.base.setSeedNormal(glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1],
-                                            seed.normal[t * 3 + 2]));
+            tx.base.setSeedNormal(
+                glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1], seed.normal[t * 3 + 2]));
             const float e0 = seed.exponentMap.empty() ? seed.exponent : seed.exponentMap[t];
             double theta[kMaxTheta] = {tx.base.start[0], tx.base.start[1]};
             for (int j = 0; j < lobes; ++j) {
                 theta[2 + 3 * j] = -1.0; // mirror direction about +z
                 theta[3 + 3 * j] = -1.0;
-                theta[4 + 3 * j] = j == 0 ? std::log(std::min(std::max(double(e0), 1.0), 4096.0))
-                                          : std::log(4.0);
+                theta[4 + 3 * j] =
+                    j == 0 ? std::log(std::min(std::max(double(e0), 1.0), 4096.0)) : std::log(4.0);
             }
             tx.weights = nullptr;
             iterations[t] = solveTexel(tx, theta, maxIterations, etaMax, ev);
@@ -402,8 +400,8 @@ BtfLafortuneFit fitBtfLafortune(const BtfSamples& samples, const BtfMaterialMaps
     double sum = 0.0;
     for (int v : iterations) sum += v;
     fit.meanIterations = sum / double(texels);
-    for (const std::vector<float>* map : {&fit.normal, &fit.diffuse, &fit.ambient,
-                                          &fit.lobeAlbedo, &fit.lobeShape})
+    for (const std::vector<float>* map :
+         {&fit.normal, &fit.diffuse, &fit.ambient, &fit.lobeAlbedo, &fit.lobeShape})
         for (float v : *map)
             if (!std::isfinite(v))
                 throw InvalidArgument("the Lafortune fit produced non-finite values; are the "

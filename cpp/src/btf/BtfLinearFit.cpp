@@ -21,8 +21,8 @@
 #include <cfloat>
 #include <cmath>
 
-#include "btf/BtfParallel.h"
 #include "btf/BtfFiniteCheck.h"
+#include "btf/BtfParallel.h"
 #include "btf/Cholesky3.h"
 
 namespace weft {
@@ -43,8 +43,9 @@ struct LightFrame {
 LightFrame lightFrame(const BtfSamples& samples) {
     LightFrame f;
     const int n = samples.count();
-    if (n < 4) throw InvalidArgument("the linear BTF fit needs at least 4 samples, got " +
-                                     std::to_string(n));
+    if (n < 4)
+        throw InvalidArgument("the linear BTF fit needs at least 4 samples, got " +
+                              std::to_string(n));
     for (int s = 0; s < n; ++s) f.mean += glm::dvec3(samples.light(s));
     f.mean /= double(n);
     double c[3][3] = {};
@@ -89,8 +90,8 @@ NextRows nextRows(const float* values, size_t texels, int samples, int c, int s,
     }
     next.len = len;
     for (int k = 0; k < 4; ++k) // fewer than four rows left: repeat the last one
-        next.row[k] = values + (size_t(std::min(s + k, samples - 1)) * 3 + size_t(c)) * texels +
-                      begin;
+        next.row[k] =
+            values + (size_t(std::min(s + k, samples - 1)) * 3 + size_t(c)) * texels + begin;
     return next;
 }
 
@@ -208,18 +209,18 @@ bool solveBlock(const float (*__restrict acc)[4][kBlock], int len, int samples,
         out[5][i] = a2;
         // Σ t² leaves float's range for samples beyond ~1e19 (or below ~1e-19 with a zero dark
         // threshold), where double still has room.
-        const bool finite = (tt >= FLT_MIN) & (tt <= FLT_MAX) &
-                            (std::fabs(nx) <= FLT_MAX) & (std::fabs(ny) <= FLT_MAX) &
-                            (std::fabs(nz) <= FLT_MAX) & (std::fabs(a0) <= FLT_MAX) &
-                            (std::fabs(a1) <= FLT_MAX) & (std::fabs(a2) <= FLT_MAX);
+        const bool finite = (tt >= FLT_MIN) & (tt <= FLT_MAX) & (std::fabs(nx) <= FLT_MAX) &
+                            (std::fabs(ny) <= FLT_MAX) & (std::fabs(nz) <= FLT_MAX) &
+                            (std::fabs(a0) <= FLT_MAX) & (std::fabs(a1) <= FLT_MAX) &
+                            (std::fabs(a2) <= FLT_MAX);
         scalar[i] = (lit & finite) ? 0 : 1;
     }
     return true;
 }
 
 struct TexelSums {
-    double p[3];     // Σ_s p_sc
-    double q[3][3];  // Σ_s p_sc l~_s
+    double p[3];    // Σ_s p_sc
+    double q[3][3]; // Σ_s p_sc l~_s
 };
 
 void solveTexel(const TexelSums& sums, const float t[3], int n, const LightFrame& frame,
@@ -276,8 +277,8 @@ void robustTexel(const BtfSamples& samples, size_t texel, const float t[3], int 
     for (int it = 0; it < iterations; ++it) {
         for (int s = 0; s < n; ++s) {
             const glm::vec3 l = samples.light(s);
-            const double nl = double(normal[0]) * l.x + double(normal[1]) * l.y +
-                              double(normal[2]) * l.z;
+            const double nl =
+                double(normal[0]) * l.x + double(normal[1]) * l.y + double(normal[2]) * l.z;
             double e2 = 0.0;
             for (int c = 0; c < 3; ++c) {
                 const double r = t[c] * (nl + ambient[c]) - samples.plane(s, c)[texel];
@@ -329,7 +330,7 @@ void robustTexel(const BtfSamples& samples, size_t texel, const float t[3], int 
 
 BtfLinearFit solve(const BtfSamples& samples, const std::vector<float>* texture,
                    const BtfLinearOptions& options) {
-    checkBtfThreads(options.threads);
+    checkThreads(options.threads);
     if (!(options.darkThreshold >= 0.0f) || !std::isfinite(options.darkThreshold))
         throw InvalidArgument("darkThreshold must be finite and >= 0");
     if (options.robustIterations < 1 || options.robustIterations > 100)

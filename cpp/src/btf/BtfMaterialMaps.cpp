@@ -103,8 +103,8 @@ std::vector<double> btfSampleErrors(const BtfSamples& samples, const BtfMaterial
     btfParallelFor(count, threads, [&](int s0, int s1) {
         std::vector<float> scratch(reconstruction ? 0 : texels * 3);
         for (int s = s0; s < s1; ++s) {
-            float* base = reconstruction ? reconstruction->data() + size_t(s) * 3 * texels
-                                         : scratch.data();
+            float* base =
+                reconstruction ? reconstruction->data() + size_t(s) * 3 * texels : scratch.data();
             float* const out[3] = {base, base + texels, base + 2 * texels};
             btfEvaluateSample(maps, samples.light(s), samples.view(s), nullptr, 0, texels, out);
             double sum = 0.0;

@@ -8,16 +8,10 @@
 
 namespace weft {
 
-/// Largest `threads` a BTF function accepts; beyond it a request is a mistake, not a machine.
-constexpr int kMaxBtfThreads = kMaxPoolThreads;
-
-/// Throws InvalidArgument unless 0 <= threads <= kMaxBtfThreads.
-inline void checkBtfThreads(int threads) { checkThreads(threads); }
-
 /// Splits [0, n) into one contiguous chunk per thread (chunks depend only on n and the number of
 /// threads that `threads` allows). Throws InvalidArgument for an invalid `threads`.
 inline void btfParallelFor(int n, int threads, const std::function<void(int, int)>& body) {
-    checkBtfThreads(threads);
+    checkThreads(threads);
     PoolShare(threads).parallelFor(n, body, 1);
 }
 
@@ -26,7 +20,7 @@ inline void btfParallelFor(int n, int threads, const std::function<void(int, int
 /// worker does not get its core, where fixed halves leave one thread waiting for the other.
 inline void btfParallelForDynamic(int n, int threads, int grain,
                                   const std::function<void(int, int)>& body) {
-    checkBtfThreads(threads);
+    checkThreads(threads);
     PoolShare(threads).parallelForDynamic(n, grain, body);
 }
 

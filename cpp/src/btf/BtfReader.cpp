@@ -64,9 +64,8 @@ bool isExr(const std::string& name) { return lower(fs::path(name).extension().st
 // OpenEXR reads files; a zip entry goes through a private temporary file.
 ImageF loadExrBytes(const std::vector<uint8_t>& bytes, const std::string& name) {
     static std::atomic<unsigned> counter{0};
-    const fs::path tmp = fs::temp_directory_path() /
-                         ("weft-btf-" + std::to_string(::getpid()) + "-" +
-                          std::to_string(counter++) + ".exr");
+    const fs::path tmp = fs::temp_directory_path() / ("weft-btf-" + std::to_string(::getpid()) +
+                                                      "-" + std::to_string(counter++) + ".exr");
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
@@ -105,8 +104,7 @@ struct Decoded {
     int height() const { return isExr ? exr.height : image.height; }
 };
 
-Decoded decodeEntry(const Entry& e, const ZipReader* zip, std::mutex& zipMutex,
-                    bool jpegCells) {
+Decoded decodeEntry(const Entry& e, const ZipReader* zip, std::mutex& zipMutex, bool jpegCells) {
     Decoded d;
     d.isExr = isExr(e.name);
     if (d.isExr && !zip) {
@@ -119,15 +117,15 @@ Decoded decodeEntry(const Entry& e, const ZipReader* zip, std::mutex& zipMutex,
         } else {
             bytes = readFile(e.name);
         }
-        if (d.isExr) d.exr = loadExrBytes(bytes, e.name);
-        else d.image = decodeBtfImage(bytes, e.name, jpegCells);
+        if (d.isExr)
+            d.exr = loadExrBytes(bytes, e.name);
+        else
+            d.image = decodeBtfImage(bytes, e.name, jpegCells);
     }
     if (d.isExr) {
         try {
             d.exr.requireFinite("EXR '" + e.name + "'");
-        } catch (const InvalidArgument& err) {
-            throw IoError(err.what());
-        }
+        } catch (const InvalidArgument& err) { throw IoError(err.what()); }
     }
     return d;
 }
@@ -156,13 +154,11 @@ public:
         for (int k = 0; k < 256; ++k) mLut8[k] = convert(k, 255);
     }
 
-    void put(const Decoded& d, const Entry& entry, const Entry& first, BtfSamples& samples,
-             int s) {
+    void put(const Decoded& d, const Entry& entry, const Entry& first, BtfSamples& samples, int s) {
         if (d.width() != samples.width() || d.height() != samples.height())
-            throw IoError("BTF image '" + entry.name + "' is " + std::to_string(d.width()) +
-                          "x" + std::to_string(d.height()) + ", but '" + first.name + "' is " +
-                          std::to_string(samples.width()) + "x" +
-                          std::to_string(samples.height()));
+            throw IoError("BTF image '" + entry.name + "' is " + std::to_string(d.width()) + "x" +
+                          std::to_string(d.height()) + ", but '" + first.name + "' is " +
+                          std::to_string(samples.width()) + "x" + std::to_string(samples.height()));
         const size_t texels = samples.texels();
         if (d.isExr) {
             for (int c = 0; c < 3; ++c)
@@ -262,9 +258,7 @@ public:
                       cells.quant.begin() + std::ptrdiff_t(size_t(s) * nq + c * 64));
     }
 
-    std::shared_ptr<const BtfJpegCells> result() const {
-        return mValid.load() ? mCells : nullptr;
-    }
+    std::shared_ptr<const BtfJpegCells> result() const { return mValid.load() ? mCells : nullptr; }
 
 private:
     std::shared_ptr<BtfJpegCells> mCells;
@@ -311,7 +305,7 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
     for (const glm::vec2& v : options.views)
         if (!std::isfinite(v.x) || !std::isfinite(v.y) || v.x < 0 || v.x >= 90)
             throw InvalidArgument("view angles must be finite with θ_v in [0, 90) degrees");
-    checkBtfThreads(options.threads);
+    checkThreads(options.threads);
 
     std::unique_ptr<ZipReader> zip;
     std::vector<Entry> entries;
@@ -333,8 +327,7 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
             Entry e;
             e.name = zip->names()[i];
             e.source = i;
-            if (isImageName(e.name) && !isMacMetadata(e.name) &&
-                parseBtfFileName(e.name, e.angles))
+            if (isImageName(e.name) && !isMacMetadata(e.name) && parseBtfFileName(e.name, e.angles))
                 entries.push_back(e);
         }
     } else {
@@ -352,9 +345,8 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
                 known = known || sameDirection(v.x, v.y, e.angles.thetaView, e.angles.phiView);
             if (!known) views.emplace_back(e.angles.thetaView, e.angles.phiView);
         }
-        std::sort(views.begin(), views.end(), [](glm::vec2 a, glm::vec2 b) {
-            return a.x != b.x ? a.x < b.x : a.y < b.y;
-        });
+        std::sort(views.begin(), views.end(),
+                  [](glm::vec2 a, glm::vec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
     }
     const auto& lights = btfStandardDirections();
     std::vector<const Entry*> chosen(views.size() * lights.size(), nullptr);
@@ -410,9 +402,7 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
     SampleStore store(options.gamma);
     std::mutex zipMutex;
     const bool wantCells = options.jpegCells && options.gamma == BtfGamma::Raw;
-    auto decode = [&](size_t i) {
-        return decodeEntry(*chosen[i], zip.get(), zipMutex, wantCells);
-    };
+    auto decode = [&](size_t i) { return decodeEntry(*chosen[i], zip.get(), zipMutex, wantCells); };
     BtfSamples samples;
     std::unique_ptr<CellStore> cells;
     {
@@ -436,8 +426,10 @@ BtfSamples loadBtf(const std::string& path, const BtfLoadOptions& options) {
                 Decoded d = decode(i);
                 store.put(d, *chosen[i], *chosen[0], samples, int(i));
                 if (cells) {
-                    if (d.isExr) cells->put(JpegCoefficientImage{}, int(i));
-                    else cells->put(d.image.coefficients, int(i));
+                    if (d.isExr)
+                        cells->put(JpegCoefficientImage{}, int(i));
+                    else
+                        cells->put(d.image.coefficients, int(i));
                 }
             } catch (...) {
                 std::lock_guard<std::mutex> lock(errorMutex);

@@ -39,8 +39,8 @@ inline double steepResidualSigma(size_t count, const double* lit, const double* 
 /// misses every sample by more than the noise, and a σ measured on it would hide the shadows
 /// that pulled it.
 inline int classifyCastShadows(size_t count, const double* lit, const double* diffuse,
-                               const double* seen, double base, const float* lz,
-                               const float* used, int minUsed, float* weights, int& misfit,
+                               const double* seen, double base, const float* lz, const float* used,
+                               int minUsed, float* weights, int& misfit,
                                double sigmaCap = HUGE_VAL) {
     const double sigma = std::min(steepResidualSigma(count, lit, seen, lz, used), sigmaCap);
     int left = 0;

@@ -44,10 +44,10 @@ std::vector<int> logCandidates(int maxExponent, int count) {
 }
 
 struct Residuals {
-    double total = 0.0;         // Σ r²
-    std::vector<float> alpha;   // α_st, [sample][texel]
-    std::vector<float> beta;    // β_t
-    std::vector<float> logDot;  // log max(n·h, 0) per [sample][texel] (fitted-normal variant)
+    double total = 0.0;        // Σ r²
+    std::vector<float> alpha;  // α_st, [sample][texel]
+    std::vector<float> beta;   // β_t
+    std::vector<float> logDot; // log max(n·h, 0) per [sample][texel] (fitted-normal variant)
 };
 
 // One pass over the samples, texel block by texel block (the block's maps stay in cache while
@@ -179,8 +179,8 @@ BtfSpecularFit fitBtfSpecular(const BtfSamples& samples, const BtfLinearFit& fit
     }
     std::vector<double> a; // A_s = Σ_t α_st
     const bool storeAlpha = !options.flatSpecularNormal || options.perTexel;
-    const Residuals r = residuals(samples, out.maps, !options.flatSpecularNormal, storeAlpha, a,
-                                  options.threads);
+    const Residuals r =
+        residuals(samples, out.maps, !options.flatSpecularNormal, storeAlpha, a, options.threads);
     requireFiniteFit(out.maps.specular, "specular fit", "specular map", samples);
     bool finite = std::isfinite(r.total);
     for (double v : a) finite = finite && std::isfinite(v);
@@ -219,8 +219,10 @@ BtfSpecularFit fitBtfSpecular(const BtfSamples& samples, const BtfLinearFit& fit
         int lo = grid[best > 0 ? best - 1 : 0], hi = grid[std::min(best + 1, grid.size() - 1)];
         while (hi - lo > 2) {
             const int m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-            if (eval(m1) <= eval(m2)) hi = m2;
-            else lo = m1;
+            if (eval(m1) <= eval(m2))
+                hi = m2;
+            else
+                lo = m1;
         }
         for (int e = lo; e <= hi; ++e) eval(e);
     }

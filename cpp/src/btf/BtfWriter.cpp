@@ -74,8 +74,7 @@ void writeBtf(const std::string& path, const BtfSamples& samples, const BtfWrite
             }
             encoded[size_t(s)] =
                 options.format == BtfImageFormat::Jpeg
-                    ? encodeJpeg(rgb.data(), samples.width(), samples.height(),
-                                 options.jpegQuality)
+                    ? encodeJpeg(rgb.data(), samples.width(), samples.height(), options.jpegQuality)
                     : encodePng(rgb.data(), samples.width(), samples.height());
         }
     });
@@ -89,8 +88,9 @@ void writeBtf(const std::string& path, const BtfSamples& samples, const BtfWrite
         const fs::path file = fs::path(path) / names[size_t(s)];
         std::error_code ec;
         fs::create_directories(file.parent_path(), ec);
-        if (ec) throw IoError("cannot create folder '" + file.parent_path().string() + "': " +
-                              ec.message());
+        if (ec)
+            throw IoError("cannot create folder '" + file.parent_path().string() +
+                          "': " + ec.message());
         std::ofstream out(file, std::ios::binary | std::ios::trunc);
         out.write(reinterpret_cast<const char*>(encoded[size_t(s)].data()),
                   std::streamsize(encoded[size_t(s)].size()));

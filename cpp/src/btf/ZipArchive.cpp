@@ -35,8 +35,9 @@ ZipReader::ZipReader(const std::string& path) : mPath(path) {
     if (count < 0 || uint64_t(count) > kMaxZipEntries) {
         zip_discard(mArchive);
         mArchive = nullptr;
-        throw IoError("zip '" + path + "' lists " + std::to_string(count) + " entries, more than the " +
-                      std::to_string(kMaxZipEntries) + " a BTF zip may have");
+        throw IoError("zip '" + path + "' lists " + std::to_string(count) +
+                      " entries, more than the " + std::to_string(kMaxZipEntries) +
+                      " a BTF zip may have");
     }
     for (zip_int64_t i = 0; i < count; ++i) {
         const char* name = zip_get_name(mArchive, zip_uint64_t(i), 0);
@@ -67,7 +68,7 @@ uint64_t ZipReader::checkedSize(size_t index, uint64_t limit) const {
         const bool method = (st.valid & ZIP_STAT_COMP_METHOD) != 0;
         if (method && st.comp_method == ZIP_CM_STORE && st.size != st.comp_size)
             throw IoError(where + " is stored uncompressed but declares two different sizes "
-                          "(corrupt)");
+                                  "(corrupt)");
         // Deflate cannot do better than about 1032:1.
         if (method && st.comp_method == ZIP_CM_DEFLATE && st.size > 1100 * st.comp_size + 4096)
             throw IoError(where + " declares " + std::to_string(st.size) + " bytes from " +
@@ -86,8 +87,8 @@ std::vector<uint8_t> ZipReader::read(size_t index, uint64_t limit) const {
     const uint64_t size = checkedSize(index, limit);
     zip_file_t* file = zip_fopen_index(mArchive, mIndex[index], 0);
     if (!file)
-        throw IoError("cannot open '" + name + "' in zip '" + mPath + "': " +
-                      zip_strerror(mArchive));
+        throw IoError("cannot open '" + name + "' in zip '" + mPath +
+                      "': " + zip_strerror(mArchive));
     std::vector<uint8_t> data;
     try {
         data.resize(static_cast<size_t>(size));
@@ -137,11 +138,11 @@ void ZipWriter::add(const std::string& name, const std::vector<uint8_t>& data, b
     const zip_int64_t index = zip_file_add(mArchive, name.c_str(), source, ZIP_FL_ENC_UTF_8);
     if (index < 0) {
         zip_source_free(source);
-        throw IoError("cannot add '" + name + "' to zip '" + mPath + "': " +
-                      zip_strerror(mArchive));
+        throw IoError("cannot add '" + name + "' to zip '" + mPath +
+                      "': " + zip_strerror(mArchive));
     }
-    zip_set_file_compression(mArchive, zip_uint64_t(index),
-                             deflate ? ZIP_CM_DEFLATE : ZIP_CM_STORE, 0);
+    zip_set_file_compression(mArchive, zip_uint64_t(index), deflate ? ZIP_CM_DEFLATE : ZIP_CM_STORE,
+                             0);
 }
 
 void ZipWriter::close() {

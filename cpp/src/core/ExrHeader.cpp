@@ -20,7 +20,7 @@ namespace {
 
 constexpr unsigned char kMagic[4] = {0x76, 0x2f, 0x31, 0x01};
 constexpr uint32_t kMultiPart = 0x1000;
-constexpr size_t kMaxNameBytes = 256; // 255 characters and the NUL
+constexpr size_t kMaxNameBytes = 256;  // 255 characters and the NUL
 constexpr uint64_t kChannelBytes = 16; // pixel type, pLinear + 3 reserved, x and y sampling
 
 // Bytes OpenEXR reads for the value of a fixed-size attribute type; 0 for the others.
@@ -28,12 +28,30 @@ uint64_t fixedValueBytes(const std::string& type) {
     static const struct {
         const char* type;
         uint64_t bytes;
-    } table[] = {{"box2i", 16},   {"box2f", 16},   {"chromaticities", 32}, {"compression", 1},
-                 {"deepImageState", 1}, {"double", 8}, {"envmap", 1},  {"float", 4},
-                 {"int", 4},      {"keycode", 28}, {"lineOrder", 1},       {"m33f", 36},
-                 {"m33d", 72},    {"m44f", 64},    {"m44d", 128},          {"rational", 8},
-                 {"tiledesc", 9}, {"timecode", 8}, {"v2i", 8},             {"v2f", 8},
-                 {"v2d", 16},     {"v3i", 12},     {"v3f", 12},            {"v3d", 24}};
+    } table[] = {{"box2i", 16},
+                 {"box2f", 16},
+                 {"chromaticities", 32},
+                 {"compression", 1},
+                 {"deepImageState", 1},
+                 {"double", 8},
+                 {"envmap", 1},
+                 {"float", 4},
+                 {"int", 4},
+                 {"keycode", 28},
+                 {"lineOrder", 1},
+                 {"m33f", 36},
+                 {"m33d", 72},
+                 {"m44f", 64},
+                 {"m44d", 128},
+                 {"rational", 8},
+                 {"tiledesc", 9},
+                 {"timecode", 8},
+                 {"v2i", 8},
+                 {"v2f", 8},
+                 {"v2d", 16},
+                 {"v3i", 12},
+                 {"v3f", 12},
+                 {"v3d", 24}};
     for (const auto& entry : table)
         if (type == entry.type) return entry.bytes;
     return 0;

@@ -7,7 +7,7 @@ namespace weft {
 
 /// What checkExrHeaderSizes saw of the first part's header.
 struct ExrHeaderFacts {
-    bool haveDataWindow = false; ///< a box2i "dataWindow" attribute was read
+    bool haveDataWindow = false;   ///< a box2i "dataWindow" attribute was read
     int64_t width = 0, height = 0; ///< of the data window (max - min + 1; may be <= 0)
 };
 

@@ -17,7 +17,8 @@ uint64_t checkInputFile(const std::string& path, const std::string& what, uint64
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);
     if (ec || !fs::exists(st))
-        throw IoError("cannot open " + name + ": " + (ec ? ec.message() : std::string("no such file")));
+        throw IoError("cannot open " + name + ": " +
+                      (ec ? ec.message() : std::string("no such file")));
     if (fs::is_directory(st)) throw IoError("cannot open " + name + ": it is a directory");
     if (!fs::is_regular_file(st))
         throw IoError("cannot open " + name + ": not a regular file (a device, pipe or socket)");

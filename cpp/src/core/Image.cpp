@@ -9,12 +9,12 @@
 
 #include <png.h>
 
+#include "core/FileRead.h"
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
 #include <memory>
-#include "core/FileRead.h"
 
 namespace weft {
 
@@ -190,9 +190,7 @@ std::string quoted(const std::string& path) { return "'" + path + "'"; }
 ImageU8 loadPng(const std::string& path) {
     checkInputFile(path, "PNG");
     FilePtr file(std::fopen(path.c_str(), "rb"));
-    if (!file) {
-        throw IoError("cannot open PNG " + quoted(path) + ": " + std::strerror(errno));
-    }
+    if (!file) { throw IoError("cannot open PNG " + quoted(path) + ": " + std::strerror(errno)); }
     ReadContext ctx;
     ctx.file = file.get();
     if (std::fseek(ctx.file, 0, SEEK_END) == 0) {
@@ -213,8 +211,8 @@ ImageU8 loadPng(const std::string& path) {
         throw IoError("cannot read PNG " + quoted(path) + ": libpng initialisation failed");
     }
     if (!readPngGuarded(reader.png, reader.info, ctx)) {
-        throw IoError("cannot read PNG " + quoted(path) + " (truncated or corrupt): " +
-                      error.message);
+        throw IoError("cannot read PNG " + quoted(path) +
+                      " (truncated or corrupt): " + error.message);
     }
     return std::move(ctx.image);
 }
@@ -222,9 +220,7 @@ ImageU8 loadPng(const std::string& path) {
 void savePng(const std::string& path, const ImageU8& image) {
     image.validate();
     FilePtr file(std::fopen(path.c_str(), "wb"));
-    if (!file) {
-        throw IoError("cannot create PNG " + quoted(path) + ": " + std::strerror(errno));
-    }
+    if (!file) { throw IoError("cannot create PNG " + quoted(path) + ": " + std::strerror(errno)); }
 
     PngErrorState error;
     bool written = false;

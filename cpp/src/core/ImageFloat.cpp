@@ -12,19 +12,20 @@
 #include <OpenEXR/ImfPixelType.h>
 #include <OpenEXR/ImfThreading.h>
 
+#include "core/ExrHeader.h"
+#include "core/FileRead.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include "core/ExrHeader.h"
-#include "core/FileRead.h"
 
 namespace weft {
 
 ImageF::ImageF(int w, int h, int c) : width(w), height(h), channels(c) {
     if (w <= 0 || h <= 0 || c < 1 || c > 4 || w > 65536 || h > 65536)
         throw InvalidArgument("float image must be 1..65536 pixels per side with 1-4 channels "
-                              "(got " + std::to_string(w) + "x" + std::to_string(h) + "x" +
+                              "(got " +
+                              std::to_string(w) + "x" + std::to_string(h) + "x" +
                               std::to_string(c) + ")");
     pixels.assign(size_t(w) * size_t(h) * size_t(c), 0.0f);
 }
@@ -37,8 +38,8 @@ void ImageF::validate() const {
     const size_t expected = size_t(width) * size_t(height) * size_t(channels);
     if (pixels.size() != expected)
         throw InvalidArgument("float image of " + std::to_string(width) + "x" +
-                              std::to_string(height) + "x" + std::to_string(channels) +
-                              " needs " + std::to_string(expected) + " values, has " +
+                              std::to_string(height) + "x" + std::to_string(channels) + " needs " +
+                              std::to_string(expected) + " values, has " +
                               std::to_string(pixels.size()));
 }
 
@@ -58,7 +59,8 @@ std::string lowerExtension(const std::string& path) {
     const size_t slash = path.find_last_of("/\\");
     if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
     std::string ext = path.substr(dot + 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
 }
 
@@ -121,9 +123,7 @@ void checkExrDecodedSize(const std::string& path, uint64_t values, Imf::Compress
 ImageF loadExr(const std::string& path) {
     exrSingleThreaded();
     uint64_t fileSize = 0;
-    {
-        fileSize = checkInputFile(path, "EXR");
-    }
+    { fileSize = checkInputFile(path, "EXR"); }
     auto impossibleWindow = [](int64_t w, int64_t h) {
         return w <= 0 || h <= 0 || w > 65536 || h > 65536;
     };
@@ -146,8 +146,10 @@ ImageF loadExr(const std::string& path) {
         if (!rgb && !grey)
             throw IoError("EXR " + quoted(path) + " has neither R, G, B nor Y channels");
         std::vector<const char*> names;
-        if (rgb) names = {"R", "G", "B"};
-        else names = {"Y"};
+        if (rgb)
+            names = {"R", "G", "B"};
+        else
+            names = {"Y"};
         if (alpha) names.push_back("A");
         const uint64_t values = uint64_t(w64) * uint64_t(h64) * names.size();
         checkExrDecodedSize(path, values, file.header().compression(), fileSize);
@@ -185,9 +187,7 @@ ImageF loadExr(const std::string& path) {
         ImageF img(static_cast<int>(w64), static_cast<int>(h64), static_cast<int>(channels));
         readRows(img.pixels.data(), dw.min.y, dw.max.y);
         return img;
-    } catch (const Error&) {
-        throw;
-    } catch (const std::exception& e) {
+    } catch (const Error&) { throw; } catch (const std::exception& e) {
         throw IoError("cannot read EXR " + quoted(path) + " (truncated or corrupt): " + e.what());
     }
 }

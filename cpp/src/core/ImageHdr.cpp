@@ -57,7 +57,11 @@ public:
     }
     const stbi_io_callbacks* callbacks() const { return &mCallbacks; }
     /// Back to the start; with `pad`, padding past the end (only once the header is known whole).
-    void rewind(bool pad) { mPos = 0; mPastEnd = false; mPad = pad; }
+    void rewind(bool pad) {
+        mPos = 0;
+        mPastEnd = false;
+        mPad = pad;
+    }
     bool pastEnd() const { return mPastEnd; }
 
 private:
@@ -106,12 +110,16 @@ std::string hdrFailure(const char* reason) {
         said = "the header has no FORMAT=32-bit_rle_rgbe line (the only format read)";
     else if (r == "unsupported data layout")
         said = "the resolution line is not '-Y <height> +X <width>'";
-    else if (r == "too large") said = "the size is larger than 65536 pixels a side";
-    else if (r == "corrupt") said = "a run-length scanline overflows the image width";
+    else if (r == "too large")
+        said = "the size is larger than 65536 pixels a side";
+    else if (r == "corrupt")
+        said = "a run-length scanline overflows the image width";
     else if (r == "invalid decoded scanline length")
         said = "a run-length scanline's width does not match the image width";
-    else if (r == "outofmem") said = "out of memory";
-    else said = "not a Radiance file stb_image reads";
+    else if (r == "outofmem")
+        said = "out of memory";
+    else
+        said = "not a Radiance file stb_image reads";
     return said + " (stb_image: " + r + ")";
 }
 
@@ -127,8 +135,8 @@ ImageF loadHdr(const std::string& path) {
     if (!stbi_info_from_callbacks(source.callbacks(), &source, &width, &height, &channels)) {
         // The header is not one stb_image reads; decoding it again says why, before any pixel.
         source.rewind(false);
-        float* data = stbi_loadf_from_callbacks(source.callbacks(), &source, &width, &height,
-                                                &channels, 3);
+        float* data =
+            stbi_loadf_from_callbacks(source.callbacks(), &source, &width, &height, &channels, 3);
         stbi_image_free(data);
         fail(hdrFailure(data ? "unknown" : stbi_failure_reason()));
     }
@@ -154,7 +162,8 @@ ImageF loadHdr(const std::string& path) {
 void saveHdr(const std::string& path, const ImageF& image) {
     image.validate();
     if (image.channels == 2)
-        throw InvalidArgument("saveHdr: a grey+alpha image has no RGBE form; pass 1, 3 or 4 channels");
+        throw InvalidArgument(
+            "saveHdr: a grey+alpha image has no RGBE form; pass 1, 3 or 4 channels");
     // RGBE's largest exponent byte, 255, holds values below 2^127; larger ones would wrap.
     const float largest = std::ldexp(1.0f, 127);
     for (float v : image.pixels)

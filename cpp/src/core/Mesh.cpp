@@ -198,23 +198,27 @@ Mesh Mesh::heightField(const std::vector<float>& heights, int rows, int cols,
     checkSize("heightField", "uv scale", uvScale);
     if (!isFinite(origin)) throw InvalidArgument("heightField: origin must be finite");
     if (heights.size() != size_t(rows) * size_t(cols))
-        throw InvalidArgument("heightField: expected rows * cols = " +
-                              std::to_string(size_t(rows) * size_t(cols)) + " heights, got " +
-                              std::to_string(heights.size()));
+        throw InvalidArgument(
+            "heightField: expected rows * cols = " + std::to_string(size_t(rows) * size_t(cols)) +
+            " heights, got " + std::to_string(heights.size()));
     for (float h : heights)
         if (!std::isfinite(h)) throw InvalidArgument("heightField: heights must be finite");
     Mesh m;
     const float dx = size.x / float(cols - 1), dz = size.y / float(rows - 1);
     auto h = [&](int i, int j) {
-        return heights[size_t(std::clamp(j, 0, rows - 1)) * size_t(cols) + size_t(std::clamp(i, 0, cols - 1))];
+        return heights[size_t(std::clamp(j, 0, rows - 1)) * size_t(cols) +
+                       size_t(std::clamp(i, 0, cols - 1))];
     };
     for (int j = 0; j < rows; ++j) {
         for (int i = 0; i < cols; ++i) {
             m.positions.push_back(origin + glm::vec3(float(i) * dx, h(i, j), float(j) * dz));
-            const float dhdx = (h(i + 1, j) - h(i - 1, j)) / (float(std::min(i + 1, cols - 1) - std::max(i - 1, 0)) * dx);
-            const float dhdz = (h(i, j + 1) - h(i, j - 1)) / (float(std::min(j + 1, rows - 1) - std::max(j - 1, 0)) * dz);
+            const float dhdx = (h(i + 1, j) - h(i - 1, j)) /
+                               (float(std::min(i + 1, cols - 1) - std::max(i - 1, 0)) * dx);
+            const float dhdz = (h(i, j + 1) - h(i, j - 1)) /
+                               (float(std::min(j + 1, rows - 1) - std::max(j - 1, 0)) * dz);
             m.normals.push_back(glm::normalize(glm::vec3(-dhdx, 1.0f, -dhdz)));
-            m.uvs.push_back(glm::vec2(float(i) / float(cols - 1), float(j) / float(rows - 1)) * uvScale);
+            m.uvs.push_back(glm::vec2(float(i) / float(cols - 1), float(j) / float(rows - 1)) *
+                            uvScale);
         }
     }
     for (int j = 0; j + 1 < rows; ++j) {

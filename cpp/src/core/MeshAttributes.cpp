@@ -59,8 +59,7 @@ std::vector<glm::vec2> computePlanarUvs(const std::vector<glm::vec3>& positions)
     // Axes by decreasing extent; ties keep X before Z before Y so that a flat XZ patch maps
     // like Mesh::plane (u along +X, v along +Z).
     std::array<int, 3> axes = {0, 2, 1};
-    std::stable_sort(axes.begin(), axes.end(),
-                     [&](int a, int b) { return extent[a] > extent[b]; });
+    std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return extent[a] > extent[b]; });
     const int uAxis = axes[0], vAxis = axes[1];
     const float scale = extent[uAxis] > 0.0f ? 1.0f / extent[uAxis] : 1.0f;
     std::vector<glm::vec2> uvs(positions.size());

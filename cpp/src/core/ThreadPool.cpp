@@ -3,9 +3,9 @@
 #include <weft/Error.h>
 
 #include <algorithm>
+#include <chrono>
 #include <string>
 #include <system_error>
-#include <chrono>
 
 #include <unistd.h>
 
@@ -98,8 +98,10 @@ void ThreadPool::workerLoop(int index) {
         const auto spinUntil = Clock::now() + std::chrono::microseconds(200);
         int spins = 0;
         while (mGeneration.load(std::memory_order_acquire) == seen && !mStop.load()) {
-            if (++spins < kSpinsBeforeYield) WEFT_PAUSE();
-            else std::this_thread::yield();
+            if (++spins < kSpinsBeforeYield)
+                WEFT_PAUSE();
+            else
+                std::this_thread::yield();
             if ((spins & 63) == 0 && Clock::now() > spinUntil) {
                 std::unique_lock<std::mutex> lock(mMutex);
                 mSleeping.fetch_add(1);
@@ -141,8 +143,10 @@ void ThreadPool::parallelFor(int n, const std::function<void(int, int)>& body, i
     // Only chunks a worker has started are left: wait for them, yielding the core after a
     // short spin in case that worker shares it.
     for (int spins = 1; mDone.load(std::memory_order_acquire) != mSize; ++spins) {
-        if (spins < kSpinsBeforeYield) WEFT_PAUSE();
-        else std::this_thread::yield();
+        if (spins < kSpinsBeforeYield)
+            WEFT_PAUSE();
+        else
+            std::this_thread::yield();
     }
     if (mFailed.load(std::memory_order_relaxed)) {
         std::exception_ptr error;
@@ -165,19 +169,22 @@ void ThreadPool::parallelForDynamic(int n, int grain, const std::function<void(i
     }
     std::atomic<int> next{0};
     std::atomic<bool> failed{false};
-    parallelFor(participants, [&](int p0, int p1) {
-        for (int p = p0; p < p1; ++p) {
-            for (int b; !failed.load(std::memory_order_relaxed) &&
-                        (b = next.fetch_add(grain, std::memory_order_relaxed)) < n;) {
-                try {
-                    body(b, std::min(n, b + grain));
-                } catch (...) {
-                    failed = true; // the others stop taking items; parallelFor rethrows
-                    throw;
+    parallelFor(
+        participants,
+        [&](int p0, int p1) {
+            for (int p = p0; p < p1; ++p) {
+                for (int b; !failed.load(std::memory_order_relaxed) &&
+                            (b = next.fetch_add(grain, std::memory_order_relaxed)) < n;) {
+                    try {
+                        body(b, std::min(n, b + grain));
+                    } catch (...) {
+                        failed = true; // the others stop taking items; parallelFor rethrows
+                        throw;
+                    }
                 }
             }
-        }
-    }, 1, participants);
+        },
+        1, participants);
 }
 
 ThreadPool& enginePool() {

@@ -34,7 +34,8 @@ glm::vec3 sampleTexture(const ImageU8& img, glm::vec2 uv) {
             if (iy < 0) iy += img.height;
             const uint8_t* p = img.at(ix, iy);
             glm::vec3 c;
-            for (int k = 0; k < 3; ++k) c[k] = srgbToLinear(float(p[img.channels >= 3 ? k : 0]) / 255.0f);
+            for (int k = 0; k < 3; ++k)
+                c[k] = srgbToLinear(float(p[img.channels >= 3 ? k : 0]) / 255.0f);
             out += c * ((dx ? tx : 1.0f - tx) * (dy ? ty : 1.0f - ty));
         }
     return out;
@@ -58,10 +59,13 @@ template <typename Grow> void forEachSubTriangle(int level, Grow&& grow) {
 
 void FurParams::validate() const {
     if (level < 1 || level > 1024) throw InvalidArgument("fur: level must be in [1, 1024]");
-    if (!(std::isfinite(density) && density >= 0.0f)) throw InvalidArgument("fur: density must be finite and >= 0");
-    if (segments < 1 || segments > 65535) throw InvalidArgument("fur: segments must be in [1, 65535]");
+    if (!(std::isfinite(density) && density >= 0.0f))
+        throw InvalidArgument("fur: density must be finite and >= 0");
+    if (segments < 1 || segments > 65535)
+        throw InvalidArgument("fur: segments must be in [1, 65535]");
     if (!(std::isfinite(length) && length > 0.0f)) throw InvalidArgument("fur: length must be > 0");
-    if (!(lengthJitter >= 0.0f && lengthJitter < 1.0f)) throw InvalidArgument("fur: length jitter must be in [0, 1)");
+    if (!(lengthJitter >= 0.0f && lengthJitter < 1.0f))
+        throw InvalidArgument("fur: length jitter must be in [0, 1)");
     if (!(directionJitter >= 0.0f && directionJitter <= glm::pi<float>()))
         throw InvalidArgument("fur: direction jitter must be in [0, pi]");
     for (int i = 0; i < 3; ++i)
@@ -71,8 +75,9 @@ void FurParams::validate() const {
 HairStrands generateFur(const Mesh& mesh, const FurParams& params, const ImageU8* texture) {
     mesh.validate();
     params.validate();
-    if (texture && (texture->width < 1 || texture->height < 1 || texture->channels < 1 ||
-                    texture->pixels.size() != size_t(texture->width) * texture->height * texture->channels))
+    if (texture &&
+        (texture->width < 1 || texture->height < 1 || texture->channels < 1 ||
+         texture->pixels.size() != size_t(texture->width) * texture->height * texture->channels))
         throw InvalidArgument("fur: invalid colour texture");
     const size_t triangles = mesh.triangleCount();
     std::vector<uint64_t> first(triangles + 1, 0);
@@ -83,7 +88,8 @@ HairStrands generateFur(const Mesh& mesh, const FurParams& params, const ImageU8
             const glm::vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
             const glm::vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
             const double area = 0.5 * double(glm::length(glm::cross(b - a, c - a)));
-            levels[t] = int(std::clamp(std::lround(std::sqrt(area * double(params.density))), 1l, 1024l));
+            levels[t] =
+                int(std::clamp(std::lround(std::sqrt(area * double(params.density))), 1l, 1024l));
         }
         first[t + 1] = first[t] + uint64_t(levels[t]) * uint64_t(levels[t]);
     }
@@ -99,44 +105,59 @@ HairStrands generateFur(const Mesh& mesh, const FurParams& params, const ImageU8
     if (texture) h.colors.resize(h.points.size());
     const float segmentLength = params.length / float(params.segments);
 
-    PoolShare(params.threads).parallelFor(int(triangles), [&](int begin, int end) {
-        for (int t = begin; t < end; ++t) {
-            const uint32_t i0 = mesh.indices[3 * size_t(t)], i1 = mesh.indices[3 * size_t(t) + 1],
-                           i2 = mesh.indices[3 * size_t(t) + 2];
-            const glm::vec3 face = glm::cross(mesh.positions[i1] - mesh.positions[i0],
-                                              mesh.positions[i2] - mesh.positions[i0]);
-            const int level = levels[size_t(t)];
-            forEachSubTriangle(level, [&](int local, const glm::vec2& b) {
-                const uint64_t strand = first[size_t(t)] + uint64_t(local);
-                const uint32_t id = uint32_t(strand);
-                const float b0 = 1.0f - b.x - b.y;
-                const glm::vec3 root = b0 * mesh.positions[i0] + b.x * mesh.positions[i1] + b.y * mesh.positions[i2];
-                glm::vec3 n = b0 * mesh.normals[i0] + b.x * mesh.normals[i1] + b.y * mesh.normals[i2];
-                if (glm::dot(n, n) < 1e-12f) n = face;
-                n = glm::dot(n, n) < 1e-30f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::normalize(n);
-                glm::vec3 dir = n;
-                if (params.directionJitter > 0.0f) {
-                    glm::vec3 e1, e2;
-                    hair::orthonormalBasis(n, e1, e2);
-                    const float tilt = params.directionJitter * hair::random01(params.seed, id, 0);
-                    const float spin = glm::two_pi<float>() * hair::random01(params.seed, id, 1);
-                    dir = std::cos(tilt) * n + std::sin(tilt) * (std::cos(spin) * e1 + std::sin(spin) * e2);
+    PoolShare(params.threads)
+        .parallelFor(
+            int(triangles),
+            [&](int begin, int end) {
+                for (int t = begin; t < end; ++t) {
+                    const uint32_t i0 = mesh.indices[3 * size_t(t)],
+                                   i1 = mesh.indices[3 * size_t(t) + 1],
+                                   i2 = mesh.indices[3 * size_t(t) + 2];
+                    const glm::vec3 face = glm::cross(mesh.positions[i1] - mesh.positions[i0],
+                                                      mesh.positions[i2] - mesh.positions[i0]);
+                    const int level = levels[size_t(t)];
+                    forEachSubTriangle(level, [&](int local, const glm::vec2& b) {
+                        const uint64_t strand = first[size_t(t)] + uint64_t(local);
+                        const uint32_t id = uint32_t(strand);
+                        const float b0 = 1.0f - b.x - b.y;
+                        const glm::vec3 root = b0 * mesh.positions[i0] + b.x * mesh.positions[i1] +
+                                               b.y * mesh.positions[i2];
+                        glm::vec3 n =
+                            b0 * mesh.normals[i0] + b.x * mesh.normals[i1] + b.y * mesh.normals[i2];
+                        if (glm::dot(n, n) < 1e-12f) n = face;
+                        n = glm::dot(n, n) < 1e-30f ? glm::vec3(0.0f, 1.0f, 0.0f)
+                                                    : glm::normalize(n);
+                        glm::vec3 dir = n;
+                        if (params.directionJitter > 0.0f) {
+                            glm::vec3 e1, e2;
+                            hair::orthonormalBasis(n, e1, e2);
+                            const float tilt =
+                                params.directionJitter * hair::random01(params.seed, id, 0);
+                            const float spin =
+                                glm::two_pi<float>() * hair::random01(params.seed, id, 1);
+                            dir = std::cos(tilt) * n +
+                                  std::sin(tilt) * (std::cos(spin) * e1 + std::sin(spin) * e2);
+                        }
+                        const float len =
+                            segmentLength *
+                            (1.0f + params.lengthJitter *
+                                        (2.0f * hair::random01(params.seed, id, 2) - 1.0f));
+                        glm::vec3* out = h.points.data() + strand * perStrand;
+                        out[0] = root;
+                        for (int k = 0; k < params.segments; ++k) { // 002 listing 1, lines 25-34
+                            out[k + 1] = out[k] + dir * len;
+                            dir += params.down * len;
+                        }
+                        if (texture) {
+                            const glm::vec2 uv =
+                                b0 * mesh.uvs[i0] + b.x * mesh.uvs[i1] + b.y * mesh.uvs[i2];
+                            std::fill_n(h.colors.data() + strand * perStrand, perStrand,
+                                        sampleTexture(*texture, uv));
+                        }
+                    });
                 }
-                const float len = segmentLength *
-                    (1.0f + params.lengthJitter * (2.0f * hair::random01(params.seed, id, 2) - 1.0f));
-                glm::vec3* out = h.points.data() + strand * perStrand;
-                out[0] = root;
-                for (int k = 0; k < params.segments; ++k) { // 002 listing 1, lines 25-34
-                    out[k + 1] = out[k] + dir * len;
-                    dir += params.down * len;
-                }
-                if (texture) {
-                    const glm::vec2 uv = b0 * mesh.uvs[i0] + b.x * mesh.uvs[i1] + b.y * mesh.uvs[i2];
-                    std::fill_n(h.colors.data() + strand * perStrand, perStrand, sampleTexture(*texture, uv));
-                }
-            });
-        }
-    }, 16);
+            },
+            16);
     return h;
 }
 

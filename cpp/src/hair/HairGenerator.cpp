@@ -47,10 +47,13 @@ void HairStyle::validate() const {
         throw InvalidArgument("hair style: wave frequency must be finite and >= 0");
     if (!(std::isfinite(curlRadius) && curlRadius >= 0.0f))
         throw InvalidArgument("hair style: curl radius must be finite and >= 0");
-    if (!(droop >= 0.0f && droop <= 1.0f)) throw InvalidArgument("hair style: droop must be in [0, 1]");
+    if (!(droop >= 0.0f && droop <= 1.0f))
+        throw InvalidArgument("hair style: droop must be in [0, 1]");
     for (int i = 0; i < 3; ++i) {
-        if (!std::isfinite(scalpCenter[i])) throw InvalidArgument("hair style: scalp centre must be finite");
-        if (!finitePositive(scalpRadii[i])) throw InvalidArgument("hair style: scalp radii must be > 0");
+        if (!std::isfinite(scalpCenter[i]))
+            throw InvalidArgument("hair style: scalp centre must be finite");
+        if (!finitePositive(scalpRadii[i]))
+            throw InvalidArgument("hair style: scalp radii must be > 0");
     }
     if (!(scalpCutoff >= -1.0f && scalpCutoff < 1.0f))
         throw InvalidArgument("hair style: scalp cutoff must be in [-1, 1)");
@@ -67,46 +70,57 @@ HairStrands generateHair(const HairStyle& style) {
     h.points.resize(size_t(style.points));
     h.info = "weft generated hair";
 
-    PoolShare(style.threads).parallelFor(int(n), [&](int begin, int end) {
-        for (int s = begin; s < end; ++s) {
-            const uint32_t id = uint32_t(s);
-            // Root: uniform in height over the cap and in azimuth, scaled onto the ellipsoid.
-            const float y = style.scalpCutoff + (1.0f - style.scalpCutoff) * hair::random01(style.seed, id, 0);
-            const float azimuth = glm::two_pi<float>() * hair::random01(style.seed, id, 1);
-            const float ring = std::sqrt(std::max(0.0f, 1.0f - y * y));
-            const glm::vec3 unit(ring * std::cos(azimuth), y, ring * std::sin(azimuth));
-            const glm::vec3 root = style.scalpCenter + unit * style.scalpRadii;
-            const glm::vec3 normal = glm::normalize(unit / style.scalpRadii);
-            const float length =
-                style.length * (1.0f + style.lengthJitter * (2.0f * hair::random01(style.seed, id, 2) - 1.0f));
-            const glm::vec3 axis = droopAxis(normal);
-            // The angle the direction turns through by the tip: droop * angle(normal, -Y).
-            const float bend = style.droop * std::acos(glm::clamp(-normal.y, -1.0f, 1.0f));
-            const float phase = glm::two_pi<float>() * hair::random01(style.seed, id, 3);
+    PoolShare(style.threads)
+        .parallelFor(
+            int(n),
+            [&](int begin, int end) {
+                for (int s = begin; s < end; ++s) {
+                    const uint32_t id = uint32_t(s);
+                    // Root: uniform in height over the cap and in azimuth, scaled onto the
+                    // ellipsoid.
+                    const float y = style.scalpCutoff +
+                                    (1.0f - style.scalpCutoff) * hair::random01(style.seed, id, 0);
+                    const float azimuth = glm::two_pi<float>() * hair::random01(style.seed, id, 1);
+                    const float ring = std::sqrt(std::max(0.0f, 1.0f - y * y));
+                    const glm::vec3 unit(ring * std::cos(azimuth), y, ring * std::sin(azimuth));
+                    const glm::vec3 root = style.scalpCenter + unit * style.scalpRadii;
+                    const glm::vec3 normal = glm::normalize(unit / style.scalpRadii);
+                    const float length =
+                        style.length *
+                        (1.0f +
+                         style.lengthJitter * (2.0f * hair::random01(style.seed, id, 2) - 1.0f));
+                    const glm::vec3 axis = droopAxis(normal);
+                    // The angle the direction turns through by the tip: droop * angle(normal, -Y).
+                    const float bend = style.droop * std::acos(glm::clamp(-normal.y, -1.0f, 1.0f));
+                    const float phase = glm::two_pi<float>() * hair::random01(style.seed, id, 3);
 
-            const uint64_t first = offsets[size_t(s)], count = offsets[size_t(s) + 1] - first;
-            const float ds = length / float(count - 1);
-            glm::vec3 centre = root;
-            for (uint64_t k = 0; k < count; ++k) {
-                const float arc = ds * float(k);
-                if (k > 0) { // midpoint rule along the turning direction
-                    const float mid = (arc - 0.5f * ds) / length;
-                    centre += ds * turn(normal, axis, bend * mid);
+                    const uint64_t first = offsets[size_t(s)],
+                                   count = offsets[size_t(s) + 1] - first;
+                    const float ds = length / float(count - 1);
+                    glm::vec3 centre = root;
+                    for (uint64_t k = 0; k < count; ++k) {
+                        const float arc = ds * float(k);
+                        if (k > 0) { // midpoint rule along the turning direction
+                            const float mid = (arc - 0.5f * ds) / length;
+                            centre += ds * turn(normal, axis, bend * mid);
+                        }
+                        const glm::vec3 dir = turn(normal, axis, bend * arc / length);
+                        const glm::vec3 side = glm::cross(dir, axis);
+                        glm::vec3 offset(0.0f);
+                        const float w = glm::two_pi<float>() * style.waveFrequency * arc;
+                        if (style.kind == HairStyleKind::Wavy) {
+                            offset = style.waveAmplitude * (std::sin(w + phase) - std::sin(phase)) *
+                                     side;
+                        } else if (style.kind == HairStyleKind::Curly) {
+                            offset =
+                                style.curlRadius * ((std::cos(w + phase) - std::cos(phase)) * axis +
+                                                    (std::sin(w + phase) - std::sin(phase)) * side);
+                        }
+                        h.points[size_t(first + k)] = centre + offset;
+                    }
                 }
-                const glm::vec3 dir = turn(normal, axis, bend * arc / length);
-                const glm::vec3 side = glm::cross(dir, axis);
-                glm::vec3 offset(0.0f);
-                const float w = glm::two_pi<float>() * style.waveFrequency * arc;
-                if (style.kind == HairStyleKind::Wavy) {
-                    offset = style.waveAmplitude * (std::sin(w + phase) - std::sin(phase)) * side;
-                } else if (style.kind == HairStyleKind::Curly) {
-                    offset = style.curlRadius * ((std::cos(w + phase) - std::cos(phase)) * axis +
-                                                 (std::sin(w + phase) - std::sin(phase)) * side);
-                }
-                h.points[size_t(first + k)] = centre + offset;
-            }
-        }
-    }, 64);
+            },
+            64);
     return h;
 }
 

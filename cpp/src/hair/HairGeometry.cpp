@@ -47,7 +47,8 @@ std::vector<glm::vec3> strandRibbons(const HairStrands& strands, const glm::vec3
         const glm::vec3 up = std::abs(t.y) < 0.999f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
         const glm::vec3 fallback = glm::normalize(glm::cross(t, up));
         const glm::vec3 side = normalizedOr(glm::cross(t, eye - p[i]), fallback);
-        const float thickness = strands.thickness.empty() ? strands.defaultThickness : strands.thickness[i];
+        const float thickness =
+            strands.thickness.empty() ? strands.defaultThickness : strands.thickness[i];
         const glm::vec3 half = side * (0.5f * widthScale * thickness);
         out[2 * i] = p[i] - half;
         out[2 * i + 1] = p[i] + half;

@@ -5,8 +5,8 @@
 #include <fstream>
 #include <iterator>
 
-#include <weft/Error.h>
 #include "core/FileRead.h"
+#include <weft/Error.h>
 
 namespace weft {
 

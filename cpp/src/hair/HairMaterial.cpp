@@ -14,7 +14,8 @@ namespace {
 void requireColor(const glm::vec3& c, const char* what) {
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(c[i]) || c[i] < 0.0f)
-            throw InvalidArgument(std::string("hair material: ") + what + " must be finite and >= 0");
+            throw InvalidArgument(std::string("hair material: ") + what +
+                                  " must be finite and >= 0");
 }
 
 void requireRange(float v, float lo, float hi, bool openLow, const char* what) {

@@ -8,9 +8,9 @@
 namespace weft {
 
 struct CubeTexels {
-    std::vector<float> x, y, z;    // unit directions of the texel centres
-    std::vector<float> dw;         // exact solid angles
-    std::vector<float> r, g, b;    // radiance x solid angle
+    std::vector<float> x, y, z; // unit directions of the texel centres
+    std::vector<float> dw;      // exact solid angles
+    std::vector<float> r, g, b; // radiance x solid angle
     size_t size() const { return x.size(); }
 };
 

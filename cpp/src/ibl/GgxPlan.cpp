@@ -73,8 +73,8 @@ std::vector<GgxPoint> points(const std::vector<Cluster>& level, int size) {
                 const Cluster& c = level[(size_t(f) * size + j) * size + i];
                 if (c.power.x <= 0.0 && c.power.y <= 0.0 && c.power.z <= 0.0) continue;
                 const double len = glm::length(c.moment);
-                const glm::vec3 dir = len > 0.0 ? glm::vec3(c.moment / len)
-                                                : cubeTexelDirection(f, i, j, size);
+                const glm::vec3 dir =
+                    len > 0.0 ? glm::vec3(c.moment / len) : cubeTexelDirection(f, i, j, size);
                 out.push_back({dir, glm::vec3(c.power)});
             }
     return out;
@@ -150,8 +150,7 @@ GgxPlan ggxPlan(const CubeMap& radiance, int size, int levels, int samples) {
                 }
                 full[t] = {glm::dvec3(c[0], c[1], c[2]) * (double(keep) * w),
                            d * (double(lum[t] * keep) * w)};
-                if (keep < 1.0f)
-                    extra[t] = {removed * w, d * (double(lum[t] - clampLum) * w)};
+                if (keep < 1.0f) extra[t] = {removed * w, d * (double(lum[t] - clampLum) * w)};
             }
     clamped.buildMips();
     plan.clamped = std::move(clamped);

@@ -31,7 +31,7 @@ struct GgxPoint {
 
 struct GgxLevelPlan {
     float alpha = 0.0f;
-    float invNorm = 0.0f;          // 1 / W(alpha)
+    float invNorm = 0.0f;           // 1 / W(alpha)
     std::vector<GgxSample> samples; // filtered importance samples of `clamped` (may be empty)
     std::vector<GgxPoint> points;   // summed exactly
 };

@@ -99,11 +99,14 @@ CaptureCube sphereToCube(RgbView sphere, const glm::mat4& worldToSphere, float w
     const glm::mat3 r = rotationPart(worldToSphere, "world_to_sphere");
     CaptureCube out{CubeMap(size), {}};
     const glm::vec3 eye(0.0f, 0.0f, wrap);
-    fillCube(out.cube, supersample, [&](const glm::vec3& d) {
-        glm::vec3 h = glm::normalize(eye + glm::normalize(r * d));
-        if (h.z < 0.0f) h = glm::normalize(glm::vec3(h.x, h.y, 0.0f));
-        return sampleDisc(sphere, h.x, h.y);
-    }, [&](const glm::vec3& d) { return wrap + glm::normalize(r * d).z > 1e-4f; }, &out.valid);
+    fillCube(
+        out.cube, supersample,
+        [&](const glm::vec3& d) {
+            glm::vec3 h = glm::normalize(eye + glm::normalize(r * d));
+            if (h.z < 0.0f) h = glm::normalize(glm::vec3(h.x, h.y, 0.0f));
+            return sampleDisc(sphere, h.x, h.y);
+        },
+        [&](const glm::vec3& d) { return wrap + glm::normalize(r * d).z > 1e-4f; }, &out.valid);
     return out;
 }
 
@@ -116,16 +119,20 @@ CaptureCube fisheyeToCube(RgbView fisheye, const glm::mat4& worldToCamera, float
     const glm::mat3 r = rotationPart(worldToCamera, "world_to_camera");
     CaptureCube out{CubeMap(size), {}};
     const float half = 0.5f * fov;
-    fillCube(out.cube, supersample, [&](const glm::vec3& d) {
-        const glm::vec3 v = glm::normalize(r * d);
-        const float theta = std::acos(std::clamp(v.z, -1.0f, 1.0f));
-        const float len = std::sqrt(v.x * v.x + v.y * v.y);
-        const float rad = std::min(theta / half, 1.0f);
-        const float cx = len > 0.0f ? v.x / len : 0.0f, cy = len > 0.0f ? v.y / len : 0.0f;
-        return sampleDisc(fisheye, rad * cx, rad * cy);
-    }, [&](const glm::vec3& d) {
-        return std::acos(std::clamp(glm::normalize(r * d).z, -1.0f, 1.0f)) <= half;
-    }, &out.valid);
+    fillCube(
+        out.cube, supersample,
+        [&](const glm::vec3& d) {
+            const glm::vec3 v = glm::normalize(r * d);
+            const float theta = std::acos(std::clamp(v.z, -1.0f, 1.0f));
+            const float len = std::sqrt(v.x * v.x + v.y * v.y);
+            const float rad = std::min(theta / half, 1.0f);
+            const float cx = len > 0.0f ? v.x / len : 0.0f, cy = len > 0.0f ? v.y / len : 0.0f;
+            return sampleDisc(fisheye, rad * cx, rad * cy);
+        },
+        [&](const glm::vec3& d) {
+            return std::acos(std::clamp(glm::normalize(r * d).z, -1.0f, 1.0f)) <= half;
+        },
+        &out.valid);
     return out;
 }
 
@@ -133,12 +140,15 @@ CubeMap equirectToCube(RgbView equirect, int size, int supersample) {
     requireRgb(equirect, "equirectangular image");
     requireSupersample(supersample);
     CubeMap cube(size);
-    fillCube(cube, supersample, [&](const glm::vec3& d) {
-        const float u = 0.5f + std::atan2(d.x, -d.z) / (2.0f * kPi);
-        const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
-        return bilinear(equirect, u * float(equirect.width) - 0.5f,
-                        v * float(equirect.height) - 0.5f, true);
-    }, [](const glm::vec3&) { return true; }, nullptr);
+    fillCube(
+        cube, supersample,
+        [&](const glm::vec3& d) {
+            const float u = 0.5f + std::atan2(d.x, -d.z) / (2.0f * kPi);
+            const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+            return bilinear(equirect, u * float(equirect.width) - 0.5f,
+                            v * float(equirect.height) - 0.5f, true);
+        },
+        [](const glm::vec3&) { return true; }, nullptr);
     return cube;
 }
 
@@ -185,8 +195,9 @@ std::vector<float> cubeToSphere(const CubeMap& cube, int size, const glm::mat4& 
                     y /= std::sqrt(r2);
                 }
                 const glm::vec3 h(x, y, std::sqrt(std::max(0.0f, 1.0f - x * x - y * y)));
-                const float t = wrap * h.z + std::sqrt(std::max(0.0f, wrap * wrap * h.z * h.z -
-                                                                          wrap * wrap + 1.0f));
+                const float t =
+                    wrap * h.z +
+                    std::sqrt(std::max(0.0f, wrap * wrap * h.z * h.z - wrap * wrap + 1.0f));
                 glm::vec3 v = t * h - glm::vec3(0.0f, 0.0f, wrap);
                 if (glm::dot(v, v) < 1e-12f) v = glm::vec3(0.0f, 0.0f, -1.0f);
                 const glm::vec3 c = cube.sample(inv * v, level);
@@ -247,8 +258,8 @@ void fillUnseen(CubeMap& cube, const std::vector<uint8_t>& valid) {
         for (int f = 0; f < 6; ++f) {
             const float w = weight.back()[size_t(f)];
             for (int k = 0; k < 3; ++k)
-                coarse.data()[f * 3 + k] = w > 0.0f ? colour.back()[size_t(f) * 3 + k] / w
-                                                    : float(sum[k] / wsum);
+                coarse.data()[f * 3 + k] =
+                    w > 0.0f ? colour.back()[size_t(f) * 3 + k] / w : float(sum[k] / wsum);
         }
     }
     // Pull: blend each level's own average with the seamless upsampled coarser level.
@@ -262,8 +273,9 @@ void fillUnseen(CubeMap& cube, const std::vector<uint8_t>& valid) {
                     const float w = std::min(1.0f, weight[size_t(level)][t]);
                     const glm::vec3 up = coarse.sample(cubeTexelDirection(f, i, j, s));
                     for (int k = 0; k < 3; ++k) {
-                        const float own = w > 0.0f ? colour[size_t(level)][t * 3 + k] /
-                                                         weight[size_t(level)][t] : 0.0f;
+                        const float own =
+                            w > 0.0f ? colour[size_t(level)][t * 3 + k] / weight[size_t(level)][t]
+                                     : 0.0f;
                         fine.data()[t * 3 + k] = w * own + (1.0f - w) * up[k];
                     }
                 }
@@ -274,8 +286,9 @@ void fillUnseen(CubeMap& cube, const std::vector<uint8_t>& valid) {
 }
 
 CubeMap loadEnvironmentCube(const std::string& path, int size) {
-    if (size < 1) throw InvalidArgument("environment cube size must be positive, got " +
-                                        std::to_string(size));
+    if (size < 1)
+        throw InvalidArgument("environment cube size must be positive, got " +
+                              std::to_string(size));
     const ImageF image = loadImageF(path);
     if (image.channels < 3)
         throw InvalidArgument("environment image '" + path + "' needs RGB, it has " +
@@ -288,11 +301,12 @@ CubeMap loadEnvironmentCube(const std::string& path, int size) {
         for (size_t c = 0; c < 3; ++c) {
             const float v = image.pixels[t * size_t(image.channels) + c];
             if (!(v >= 0.0f && v <= kMaxEnvironmentRadiance))
-                throw InvalidArgument(
-                    "environment image '" + path + "': radiance must be finite and in [0, 1e30], "
-                    "got " + std::to_string(v) + " at pixel (" +
-                    std::to_string(t % size_t(image.width)) + ", " +
-                    std::to_string(t / size_t(image.width)) + ")");
+                throw InvalidArgument("environment image '" + path +
+                                      "': radiance must be finite and in [0, 1e30], "
+                                      "got " +
+                                      std::to_string(v) + " at pixel (" +
+                                      std::to_string(t % size_t(image.width)) + ", " +
+                                      std::to_string(t / size_t(image.width)) + ")");
             rgb.pixels[t * 3 + c] = v;
         }
     if (image.width == 2 * image.height) return equirectToCube(rgbView(rgb), size);
@@ -301,9 +315,10 @@ CubeMap loadEnvironmentCube(const std::string& path, int size) {
         fillUnseen(capture.cube, capture.valid);
         return std::move(capture.cube);
     }
-    throw InvalidArgument("environment image '" + path + "' must be equirectangular (2:1) or "
-                          "a sphere map (square), got " + std::to_string(image.width) + "x" +
-                          std::to_string(image.height));
+    throw InvalidArgument("environment image '" + path +
+                          "' must be equirectangular (2:1) or "
+                          "a sphere map (square), got " +
+                          std::to_string(image.width) + "x" + std::to_string(image.height));
 }
 
 } // namespace weft

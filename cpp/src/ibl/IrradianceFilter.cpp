@@ -121,8 +121,8 @@ Sh9 projectSh9(const CubeMap& radiance) {
 }
 
 glm::vec3 shIrradiance(const Sh9& sh, const glm::vec3& n) {
-    static const float band[9] = {kPi,        2 * kPi / 3, 2 * kPi / 3, 2 * kPi / 3, kPi / 4,
-                                  kPi / 4,    kPi / 4,     kPi / 4,     kPi / 4};
+    static const float band[9] = {kPi,     2 * kPi / 3, 2 * kPi / 3, 2 * kPi / 3, kPi / 4,
+                                  kPi / 4, kPi / 4,     kPi / 4,     kPi / 4};
     const auto y = sh9Basis(glm::normalize(n));
     glm::vec3 e(0.0f);
     for (int k = 0; k < 9; ++k) e += band[k] * y[size_t(k)] * sh.coeffs[size_t(k)];

@@ -66,21 +66,26 @@ ShadowDome::ShadowDome(const CubeMap& radiance, int count, DomeLayout layout, in
     requireAffordable(6.0 * sourceSize * sourceSize * count, "dome intensities");
     const CubeTexels t = cubeTexels(reducedCube(radiance, sourceSize));
     std::vector<int> owner(t.size(), -1);
-    iblParallelFor(int(t.size()), [&](int begin, int end) {
-        for (int k = begin; k < end; ++k) {
-            if (t.y[size_t(k)] <= 0.0f) continue;
-            float best = -2.0f;
-            for (int i = 0; i < count; ++i) {
-                const glm::vec3& d = dirs[size_t(i)];
-                const float c = d.x * t.x[size_t(k)] + d.y * t.y[size_t(k)] + d.z * t.z[size_t(k)];
-                if (c > best) {
-                    best = c;
-                    owner[size_t(k)] = i;
+    iblParallelFor(
+        int(t.size()),
+        [&](int begin, int end) {
+            for (int k = begin; k < end; ++k) {
+                if (t.y[size_t(k)] <= 0.0f) continue;
+                float best = -2.0f;
+                for (int i = 0; i < count; ++i) {
+                    const glm::vec3& d = dirs[size_t(i)];
+                    const float c =
+                        d.x * t.x[size_t(k)] + d.y * t.y[size_t(k)] + d.z * t.z[size_t(k)];
+                    if (c > best) {
+                        best = c;
+                        owner[size_t(k)] = i;
+                    }
                 }
             }
-        }
-    }, 1024);
-    std::vector<glm::dvec3> sum(size_t(count), glm::dvec3(0.0)), moment(size_t(count), glm::dvec3(0.0));
+        },
+        1024);
+    std::vector<glm::dvec3> sum(size_t(count), glm::dvec3(0.0)),
+        moment(size_t(count), glm::dvec3(0.0));
     std::vector<glm::dvec3> spreadMoment(size_t(count), glm::dvec3(0.0));
     std::vector<double> omega(size_t(count), 0.0), power(size_t(count), 0.0),
         spreadPower(size_t(count), 0.0);

@@ -22,7 +22,8 @@ public:
     /// Linear Rec. 709 RGB radiance (kcd/m^2 luminance) of a point of the disc in unit direction
     /// `dir`; 0 at or below the horizon.
     glm::vec3 operator()(const glm::vec3& dir) const;
-    /// Relative optical air mass (Kasten 1966) along a direction of zenith angle cosine `cosZenith`.
+    /// Relative optical air mass (Kasten 1966) along a direction of zenith angle cosine
+    /// `cosZenith`.
     static double airMass(double cosZenith);
 
 private:

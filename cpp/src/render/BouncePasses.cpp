@@ -10,14 +10,16 @@ namespace weft::render {
 
 // The casters' radiance as proxy spheres (bounce_radiance.frag) from the SH9 `rSh` into `out`
 // (resource `rOut`), drawn with frame set `set` (whose own binding of `out` it does not read).
-static void addRadiancePass(FrameGraph& g, FramePassContext& f, const char* name, int rSh,
-                            int rOut, vk::Image& out, VkDescriptorSet set) {
-    g.addPass({name, {{rSh, Use::Sampled}, {f.rShadow, Use::Sampled}}, {{rOut, Use::ColorWrite}},
+static void addRadiancePass(FrameGraph& g, FramePassContext& f, const char* name, int rSh, int rOut,
+                            vk::Image& out, VkDescriptorSet set) {
+    g.addPass({name,
+               {{rSh, Use::Sampled}, {f.rShadow, Use::Sampled}},
+               {{rOut, Use::ColorWrite}},
                [&f, &out, set](VkCommandBuffer cmd) {
                    drawFullscreen(f, cmd, out.view(), BounceProbes::kRadianceColumns,
                                   f.bounce.count(), VK_ATTACHMENT_LOAD_OP_DONT_CARE,
-                                  f.pipes.bounceRadiance.get(), f.pipes.sceneLayout, set,
-                                  nullptr, 0);
+                                  f.pipes.bounceRadiance.get(), f.pipes.sceneLayout, set, nullptr,
+                                  0);
                }});
 }
 
@@ -54,16 +56,18 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
             const uint32_t set = round * perRound + i;
             g.addPass({"bounce" + std::to_string(round) + "[" + std::to_string(i / 6) + "][" +
                            std::to_string(i % 6) + "]",
-                       reads, {{rFaces, Use::ColorWrite}, {rDepth, Use::DepthWrite}},
+                       reads,
+                       {{rFaces, Use::ColorWrite}, {rDepth, Use::DepthWrite}},
                        [&f, i, set](VkCommandBuffer cmd) {
                            // the receivers alone, over alpha 0: the sky they leave uncovered
-                           drawCaptureFace(f, cmd, f.bounce.faces().layerView(i),
-                                           f.bounce.depth().view(), BounceProbes::kFaceSize,
-                                           f.sets.bounceFaces[set], glm::vec4(0.0f), false,
-                                           [](const Draw& d, int) { return !d.castShadows; }, 0);
+                           drawCaptureFace(
+                               f, cmd, f.bounce.faces().layerView(i), f.bounce.depth().view(),
+                               BounceProbes::kFaceSize, f.sets.bounceFaces[set], glm::vec4(0.0f),
+                               false, [](const Draw& d, int) { return !d.castShadows; }, 0);
                        }});
         }
-        g.addPass({last ? "bounce_sh" : "bounce_sh_first", {{rFaces, Use::Sampled}},
+        g.addPass({last ? "bounce_sh" : "bounce_sh_first",
+                   {{rFaces, Use::Sampled}},
                    {{last ? f.rBounceSh : rFirst, Use::ColorWrite}},
                    [&f, push, last](VkCommandBuffer cmd) { // one fragment per coefficient, probe
                        vk::Image& out = last ? f.bounce.sh() : f.bounce.shFirst();

@@ -28,10 +28,10 @@ namespace weft::render {
 class BounceProbes {
 public:
     static constexpr uint32_t kMaxProbes = gpu::MAX_BOUNCE_CASTERS; // casters beyond get none
-    static constexpr uint32_t kFaceSize = 16;  // texels per face: SH9 needs no more
-    static constexpr uint32_t kShColumns = 27; // three sets of nine coefficients
+    static constexpr uint32_t kFaceSize = 16;       // texels per face: SH9 needs no more
+    static constexpr uint32_t kShColumns = 27;      // three sets of nine coefficients
     static constexpr uint32_t kRadianceColumns = 9; // a caster's radiance, SH9 (see radiance())
-    static constexpr uint32_t kRounds = 2;     // captures per probe and face (see above)
+    static constexpr uint32_t kRounds = 2;          // captures per probe and face (see above)
     static constexpr VkFormat kShFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
     explicit BounceProbes(vk::Context& ctx) : mCtx(ctx) {}
@@ -46,7 +46,7 @@ public:
     const glm::vec3& position(uint32_t probe) const { return mPositions[probe]; }
     vk::Image& faces() { return mFaces; } // layer 6 probe + face, kHdrFormat
     vk::Image& depth() { return mDepth; }
-    vk::Image& sh() { return mSh; }       // row: probe, column: 9 set + coefficient
+    vk::Image& sh() { return mSh; }           // row: probe, column: 9 set + coefficient
     vk::Image& shFirst() { return mShFirst; } // the first round's (what the second one reads)
     /// Row: probe, column: coefficient k of the radiance the caster sends out as the proxy
     /// sphere of caster_bounce.glsl (bounce_radiance.frag, every frame with probes).

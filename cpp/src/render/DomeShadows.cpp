@@ -46,8 +46,8 @@ std::vector<int> DomeShadows::prepare(const Scene& scene, const RenderSettings& 
         g.direction = glm::vec4(l.direction, settings.normalOffset * f.texelWorld);
         // the light's soft-shadow filter (environment.glsl) spreads over tan of its angular
         // radius per unit of receiver-blocker distance; capped at 60 degrees
-        g.intensity = glm::vec4(l.intensity / 3.14159265f,
-                                std::tan(std::min(l.angularRadius, 1.0471976f)));
+        g.intensity =
+            glm::vec4(l.intensity / 3.14159265f, std::tan(std::min(l.angularRadius, 1.0471976f)));
         lights.push_back(g);
         const size_t at = frustumKey.size();
         frustumKey.resize(at + sizeof(glm::mat4) / 8);
@@ -56,8 +56,8 @@ std::vector<int> DomeShadows::prepare(const Scene& scene, const RenderSettings& 
     mLights = std::move(lights);
     const uint32_t n = uint32_t(mLights.size());
     std::vector<int> render;
-    if (!mMaps || mMaps.desc().layers != n || mMaps.desc().width != size || frustumKey != mFrustumKey ||
-        !settings.reuseShadowMaps) {
+    if (!mMaps || mMaps.desc().layers != n || mMaps.desc().width != size ||
+        frustumKey != mFrustumKey || !settings.reuseShadowMaps) {
         if (!mMaps || mMaps.desc().layers != n || mMaps.desc().width != size) {
             vk::ImageDesc d;
             d.width = d.height = size;

@@ -67,7 +67,8 @@ vk::Image blackImage(vk::Context& ctx, const vk::ImageDesc& desc) {
 } // namespace
 
 EnvironmentGpu::EnvironmentGpu(vk::Context& ctx)
-    : mCtx(ctx), mBlack(blackImage(ctx, cubeDesc(1, 1))), mBlack2d(blackImage(ctx, imageDesc(1, 1))) {}
+    : mCtx(ctx), mBlack(blackImage(ctx, cubeDesc(1, 1))),
+      mBlack2d(blackImage(ctx, imageDesc(1, 1))) {}
 
 bool EnvironmentGpu::prepare(const EnvironmentLighting& env, double& bakeMs) {
     bakeMs = 0.0;
@@ -84,18 +85,20 @@ bool EnvironmentGpu::prepare(const EnvironmentLighting& env, double& bakeMs) {
         uploaded = true;
     }
     const bool sphere = env.lookup == EnvironmentLighting::Lookup::SphereMap;
-    const Key key{env.environment, env.environment->version(), env.specularSize,
-                  env.specularLevels, env.specularSamples, sphere ? env.sphereMapSize : 0};
+    const Key key{env.environment,    env.environment->version(), env.specularSize,
+                  env.specularLevels, env.specularSamples,        sphere ? env.sphereMapSize : 0};
     if (mCube && key.same(mKey)) {
         if (uploaded)
-            bakeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            bakeMs =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                    .count();
         return uploaded;
     }
     // Environment caches both by content version, so a chain another user already asked for
     // (or a renderer before this one) is not filtered again.
     const Sh9 sh = env.environment->irradianceSh();
-    const float a[9] = {1.0f, 2.0f / 3.0f, 2.0f / 3.0f, 2.0f / 3.0f, 0.25f, 0.25f, 0.25f, 0.25f,
-                        0.25f}; // A_l / pi
+    const float a[9] = {1.0f,  2.0f / 3.0f, 2.0f / 3.0f, 2.0f / 3.0f, 0.25f,
+                        0.25f, 0.25f,       0.25f,       0.25f}; // A_l / pi
     for (int k = 0; k < 9; ++k) mSh[size_t(k)] = glm::vec4(a[k] * sh.coeffs[size_t(k)], 0.0f);
     const CubeMap chain =
         env.environment->specularChain(env.specularSize, env.specularLevels, env.specularSamples);
@@ -107,7 +110,8 @@ bool EnvironmentGpu::prepare(const EnvironmentLighting& env, double& bakeMs) {
         mSphereGlossy = vk::Image();
     }
     mKey = key;
-    bakeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    bakeMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return true;
 }
 
@@ -137,8 +141,9 @@ void EnvironmentGpu::uploadImage(vk::Image& image, const std::vector<uint16_t>& 
     mCtx.immediate([&](VkCommandBuffer cmd) {
         vk::transition(mCtx, cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                        VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        vkCmdCopyBufferToImage(cmd, staging.get(), image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               uint32_t(regions.size()), regions.data());
+        vkCmdCopyBufferToImage(cmd, staging.get(), image.get(),
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(regions.size()),
+                               regions.data());
         toShaderRead(mCtx, cmd, image);
     });
 }
@@ -184,9 +189,10 @@ void EnvironmentGpu::fillFrame(const EnvironmentLighting& env, GpuFrame& frame) 
     frame.environment = glm::vec4(env.intensity, float(mCube.desc().mipLevels - 1), 0.0f, 0.0f);
     // The background: the sharp radiance (level < 0) or the chain at the blur's roughness.
     if (env.background && env.lookup == EnvironmentLighting::Lookup::Cube)
-        frame.sky = glm::vec4(1.0f, env.backgroundBlur > 0.0f
-                                        ? env.backgroundBlur * float(mCube.desc().mipLevels - 1)
-                                        : -1.0f,
+        frame.sky = glm::vec4(1.0f,
+                              env.backgroundBlur > 0.0f
+                                  ? env.backgroundBlur * float(mCube.desc().mipLevels - 1)
+                                  : -1.0f,
                               0.0f, 0.0f);
     if (mSphereGlossy) {
         frame.options.x = 1.0f;

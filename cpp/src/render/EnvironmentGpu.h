@@ -28,8 +28,12 @@ public:
     VkImageView view(const EnvironmentLighting& env) const;
     VkImageView black() const { return mBlack.view(); }
     /// The eye-space sphere maps (irradiance E / pi, glossy chain), or a black 2D image.
-    VkImageView sphereIrradiance() const { return mSphereIrradiance ? mSphereIrradiance.view() : mBlack2d.view(); }
-    VkImageView sphereGlossy() const { return mSphereGlossy ? mSphereGlossy.view() : mBlack2d.view(); }
+    VkImageView sphereIrradiance() const {
+        return mSphereIrradiance ? mSphereIrradiance.view() : mBlack2d.view();
+    }
+    VkImageView sphereGlossy() const {
+        return mSphereGlossy ? mSphereGlossy.view() : mBlack2d.view();
+    }
     /// The radiance itself with its mips (uploaded while the environment is the background), or
     /// the black cube.
     VkImageView radianceView() const { return mRadiance ? mRadiance.view() : mBlack.view(); }
@@ -54,7 +58,7 @@ private:
     vk::Context& mCtx;
     vk::Image mBlack, mBlack2d, mCube, mSphereIrradiance, mSphereGlossy, mRadiance;
     Key mKey;
-    Key mRadianceKey; // what mRadiance holds (size, levels, samples unused)
+    Key mRadianceKey;               // what mRadiance holds (size, levels, samples unused)
     std::array<glm::vec4, 9> mSh{}; // A_l L_lm / pi
 };
 

@@ -47,11 +47,12 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
     // The background image (AR: the camera frame) or the environment under everything the
     // forward pass draws.
     if (f.background)
-        g.addPass({"background", {}, {{rColour, Use::ColorWrite}}, [&f, &colour](VkCommandBuffer cmd) {
-                       drawFullscreen(f, cmd, colour.view(), VK_ATTACHMENT_LOAD_OP_DONT_CARE,
-                                      f.pipes.backgroundFor(f.samples), f.pipes.sceneLayout,
-                                      f.sets.frame, nullptr, 0);
-                   }});
+        g.addPass(
+            {"background", {}, {{rColour, Use::ColorWrite}}, [&f, &colour](VkCommandBuffer cmd) {
+                 drawFullscreen(f, cmd, colour.view(), VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+                                f.pipes.backgroundFor(f.samples), f.pipes.sceneLayout, f.sets.frame,
+                                nullptr, 0);
+             }});
 
     std::vector<ResourceUse> writes = {{f.rHdr, Use::ColorWrite}, {f.rDepth, Use::DepthWrite}};
     if (ms) {
@@ -73,63 +74,64 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
     if (f.rBounceRadiance >= 0) reads.push_back({f.rBounceRadiance, Use::Sampled});
     if (f.background) reads.push_back({rColour, Use::ColorWrite}); // drawn over, loaded
 
-    g.addPass({"forward", reads, writes, [&f, ms](VkCommandBuffer cmd) {
-                   RenderTargets& t = f.targets;
-                   std::vector<VkRenderingAttachmentInfo> colors;
-                   auto color = [&](VkImageView view, const glm::vec4& clear) {
-                       colors.push_back(clearedColor(view, clear));
-                   };
-                   color(ms ? t.hdrMs.view() : t.hdr.view(), glm::vec4(f.scene.background(), 1.0f));
-                   if (f.background) colors.back().loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-                   if (ms)
-                       resolveInto(colors.back(), t.hdr.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                                   VK_RESOLVE_MODE_AVERAGE_BIT);
-                   if (f.debug) { // background: not covered, not shadowed (never multisampled)
-                       color(t.position.view(), glm::vec4(0.0f));
-                       color(t.normal.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-                       color(t.surface.view(), glm::vec4(0.0f));
-                       color(t.albedo.view(), glm::vec4(0.0f));
-                   }
-                   if (f.domeBlur) { // no surface: no light to darken, visibility 1
-                       color(ms ? t.domeMs.view() : t.dome.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-                       if (ms)
-                           resolveInto(colors.back(), t.dome.view(),
-                                       VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                                       VK_RESOLVE_MODE_AVERAGE_BIT);
-                   }
-                   // kept when hair tests against it or the dome blur reads it
-                   VkRenderingAttachmentInfo depth =
-                       clearedDepth(ms ? t.depthMs.view() : t.depth.view(), f.hasHair || f.domeBlur);
-                   if (ms)
-                       resolveInto(depth, t.depth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                                   VK_RESOLVE_MODE_SAMPLE_ZERO_BIT);
-                   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                   info.renderArea = {{0, 0}, {t.width, t.height}};
-                   info.layerCount = 1;
-                   info.colorAttachmentCount = uint32_t(colors.size());
-                   info.pColorAttachments = colors.data();
-                   info.pDepthAttachment = &depth;
-                   f.ctx.fn().cmdBeginRendering(cmd, &info);
-                   setViewport(cmd, t.width, t.height);
-                   VkPipeline bound = VK_NULL_HANDLE;
-                   const uint32_t features = frameFeatures(f.data);
-                   for (const Draw& d : f.data.draws) {
-                       if (d.mesh->indexCount == 0) continue; // e.g. a cloth torn to pieces
-                       const VkPipeline p = f.pipes.forwardFor(f.debug, f.domeBlur, d.mirrored,
-                                                               d.twoSided, f.samples, features);
-                       if (p != bound) {
-                           vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
-                           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                                   f.pipes.sceneLayout, 0, 1, &f.sets.frame, 0, nullptr);
-                       }
-                       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.sceneLayout,
-                                               1, 1, &d.material, 0, nullptr);
-                       vkCmdPushConstants(cmd, f.pipes.sceneLayout, vk::kGraphicsStages, 0,
-                                          sizeof(uint32_t), &d.instance);
-                       drawMesh(cmd, *d.mesh);
-                   }
-                   f.ctx.fn().cmdEndRendering(cmd);
-               }});
+    g.addPass(
+        {"forward", reads, writes, [&f, ms](VkCommandBuffer cmd) {
+             RenderTargets& t = f.targets;
+             std::vector<VkRenderingAttachmentInfo> colors;
+             auto color = [&](VkImageView view, const glm::vec4& clear) {
+                 colors.push_back(clearedColor(view, clear));
+             };
+             color(ms ? t.hdrMs.view() : t.hdr.view(), glm::vec4(f.scene.background(), 1.0f));
+             if (f.background) colors.back().loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+             if (ms)
+                 resolveInto(colors.back(), t.hdr.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                             VK_RESOLVE_MODE_AVERAGE_BIT);
+             if (f.debug) { // background: not covered, not shadowed (never multisampled)
+                 color(t.position.view(), glm::vec4(0.0f));
+                 color(t.normal.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+                 color(t.surface.view(), glm::vec4(0.0f));
+                 color(t.albedo.view(), glm::vec4(0.0f));
+             }
+             if (f.domeBlur) { // no surface: no light to darken, visibility 1
+                 color(ms ? t.domeMs.view() : t.dome.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+                 if (ms)
+                     resolveInto(colors.back(), t.dome.view(),
+                                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                 VK_RESOLVE_MODE_AVERAGE_BIT);
+             }
+             // kept when hair tests against it or the dome blur reads it
+             VkRenderingAttachmentInfo depth =
+                 clearedDepth(ms ? t.depthMs.view() : t.depth.view(), f.hasHair || f.domeBlur);
+             if (ms)
+                 resolveInto(depth, t.depth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                             VK_RESOLVE_MODE_SAMPLE_ZERO_BIT);
+             VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+             info.renderArea = {{0, 0}, {t.width, t.height}};
+             info.layerCount = 1;
+             info.colorAttachmentCount = uint32_t(colors.size());
+             info.pColorAttachments = colors.data();
+             info.pDepthAttachment = &depth;
+             f.ctx.fn().cmdBeginRendering(cmd, &info);
+             setViewport(cmd, t.width, t.height);
+             VkPipeline bound = VK_NULL_HANDLE;
+             const uint32_t features = frameFeatures(f.data);
+             for (const Draw& d : f.data.draws) {
+                 if (d.mesh->indexCount == 0) continue; // e.g. a cloth torn to pieces
+                 const VkPipeline p = f.pipes.forwardFor(f.debug, f.domeBlur, d.mirrored,
+                                                         d.twoSided, f.samples, features);
+                 if (p != bound) {
+                     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
+                     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                             f.pipes.sceneLayout, 0, 1, &f.sets.frame, 0, nullptr);
+                 }
+                 vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.sceneLayout,
+                                         1, 1, &d.material, 0, nullptr);
+                 vkCmdPushConstants(cmd, f.pipes.sceneLayout, vk::kGraphicsStages, 0,
+                                    sizeof(uint32_t), &d.instance);
+                 drawMesh(cmd, *d.mesh);
+             }
+             f.ctx.fn().cmdEndRendering(cmd);
+         }});
 }
 
 } // namespace weft::render

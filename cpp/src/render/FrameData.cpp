@@ -46,9 +46,9 @@ struct LightBuilder {
         for (int i = 0; i < count; ++i) {
             f.shadowViews.push_back({index, first + i, views[i]});
             info.views.push_back(views[i].viewProj);
-            f.shadowLayers.push_back({views[i].viewProj,
-                                      glm::vec4(info.normalOffsetWorld, views[i].perspective ? 1 : 0,
-                                                views[i].zNear, views[i].zFar)});
+            f.shadowLayers.push_back(
+                {views[i].viewProj, glm::vec4(info.normalOffsetWorld, views[i].perspective ? 1 : 0,
+                                              views[i].zNear, views[i].zFar)});
         }
         return first;
     }
@@ -56,7 +56,8 @@ struct LightBuilder {
     GpuLight operator()(int index, const DirectionalLight& l) {
         int layer = -1;
         if (l.castShadows) {
-            const ShadowFrustum view = fitDirectionalShadow(l.toLight(), lo, hi, settings.shadowMapSize);
+            const ShadowFrustum view =
+                fitDirectionalShadow(l.toLight(), lo, hi, settings.shadowMapSize);
             layer = addViews(index, &view, 1);
         }
         GpuLight g{};
@@ -88,8 +89,9 @@ struct LightBuilder {
         if (l.castShadows) {
             glm::vec3 right, up;
             spotBasis(axis, right, up);
-            const ShadowFrustum view = fitPerspectiveShadow(l.position, axis, up, 2.0f * l.outerAngle,
-                                                            l.shadowNear, lo, hi, settings.shadowMapSize);
+            const ShadowFrustum view =
+                fitPerspectiveShadow(l.position, axis, up, 2.0f * l.outerAngle, l.shadowNear, lo,
+                                     hi, settings.shadowMapSize);
             layer = addViews(index, &view, 1);
         }
         GpuLight g{};
@@ -97,7 +99,8 @@ struct LightBuilder {
         g.direction = glm::vec4(axis, float(cookieSlot(l.cookie, f.cookies)));
         g.radiance = glm::vec4(l.radiance(), float(layer));
         g.attenuation = attenuationOf(l.attenuation);
-        g.cone = glm::vec4(std::cos(l.innerAngle), std::cos(l.outerAngle), std::tan(l.outerAngle), 0);
+        g.cone =
+            glm::vec4(std::cos(l.innerAngle), std::cos(l.outerAngle), std::tan(l.outerAngle), 0);
         return g;
     }
 };
@@ -150,8 +153,8 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
     f.shadowInfos.assign(scene.lights().size(), ShadowInfo{});
     int debugLight = -1;
     for (size_t i = 0; i < scene.lights().size(); ++i) {
-        f.lights.push_back(std::visit([&](const auto& l) { return builder(int(i), l); },
-                                      scene.lights()[i]));
+        f.lights.push_back(
+            std::visit([&](const auto& l) { return builder(int(i), l); }, scene.lights()[i]));
         if (debugLight < 0 && f.shadowInfos[i].active) debugLight = int(i);
     }
 

@@ -35,10 +35,10 @@ struct FrameData {
     std::vector<GpuInstance> instances;
     std::vector<Draw> draws;
     std::vector<GpuLight> lights;
-    std::vector<ShadowView> shadowViews;   // at most kMaxShadowLayers
+    std::vector<ShadowView> shadowViews; // at most kMaxShadowLayers
     std::vector<GpuShadowLayer> shadowLayers;
-    std::vector<ShadowInfo> shadowInfos;   // one per scene light
-    std::vector<TexturePtr> cookies;       // by cookie slot, at most kMaxCookies
+    std::vector<ShadowInfo> shadowInfos; // one per scene light
+    std::vector<TexturePtr> cookies;     // by cookie slot, at most kMaxCookies
     GpuFrame frame{};
     int meshUploads = 0;
     uint64_t uploadBytes = 0;

@@ -11,7 +11,8 @@ using render::Use;
 namespace {
 
 // Grows a host-visible buffer to hold `bytes`.
-void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
+void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes,
+                  VkBufferUsageFlags usage) {
     bytes = std::max<VkDeviceSize>(bytes, 256);
     if (buffer && buffer.size() >= bytes) return;
     buffer = vk::Buffer(&ctx, bytes * 3 / 2, usage, vk::MemoryUsage::Upload);
@@ -71,8 +72,7 @@ void Renderer::Impl::uploadFrame(FrameSlot& slot, const render::FrameData& data,
         slot.probeUbo.write(faces.data(), faces.size());
     }
     if (captureBounce) {
-        const uint32_t perRound = 6 * bounce.count(),
-                       n = perRound * render::BounceProbes::kRounds;
+        const uint32_t perRound = 6 * bounce.count(), n = perRound * render::BounceProbes::kRounds;
         ensureBuffer(c, slot.bounceUbo, n * faceStride, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
         std::vector<uint8_t> faces(n * faceStride, 0);
         for (uint32_t i = 0; i < n; ++i) {
@@ -145,8 +145,9 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
     // the bounce captures' SH9 `bounceView` and the casters' radiance `radianceView`, and with
     // `withFaces` (the frame's own set) the captures' faces (the captures see a dummy there:
     // they are being drawn).
-    auto writeFrameSet = [&](VkDescriptorSet set, VkDescriptorBufferInfo uboInfo, VkImageView probeView,
-                             VkImageView bounceView, bool withFaces, VkImageView radianceView) {
+    auto writeFrameSet = [&](VkDescriptorSet set, VkDescriptorBufferInfo uboInfo,
+                             VkImageView probeView, VkImageView bounceView, bool withFaces,
+                             VkImageView radianceView) {
         VkDescriptorBufferInfo instInfo{slot.instances.get(), 0, VK_WHOLE_SIZE};
         VkDescriptorBufferInfo lightInfo{slot.lights.get(), 0, VK_WHOLE_SIZE};
         VkDescriptorImageInfo shadowInfo{pipes.nearestSampler, shadowImage.view(),
@@ -155,8 +156,9 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
         VkDescriptorImageInfo cookieInfos[render::kMaxCookies];
         for (int i = 0; i < render::kMaxCookies; ++i) // unused slots hold white
             cookieInfos[i] = {pipes.cookieSampler,
-                              cache->textureView(size_t(i) < data.cookies.size() ? data.cookies[size_t(i)]
-                                                                                  : TexturePtr()),
+                              cache->textureView(size_t(i) < data.cookies.size()
+                                                     ? data.cookies[size_t(i)]
+                                                     : TexturePtr()),
                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         VkDescriptorImageInfo environmentInfo{pipes.environmentSampler,
                                               environment.view(scene.environment()),
@@ -180,7 +182,7 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         const VkDescriptorImageInfo facesInfo =
             withFaces ? VkDescriptorImageInfo{pipes.environmentSampler, bounce.faces().view(),
-                                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}
+                                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}
                       : VkDescriptorImageInfo{pipes.nearestSampler, dummyShadow.view(),
                                               render::useState(Use::Sampled, true).layout};
         VkDescriptorImageInfo radianceSh{pipes.nearestSampler, radianceView,
@@ -195,16 +197,23 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
         constexpr VkDescriptorType ubo = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                    ssbo = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                    image = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        const Entry entries[] = {
-            {ubo, &uboInfo, nullptr, 1},          {ssbo, &instInfo, nullptr, 1},
-            {ssbo, &lightInfo, nullptr, 1},       {image, nullptr, &shadowInfo, 1},
-            {ssbo, &layerInfo, nullptr, 1},       {image, nullptr, cookieInfos, render::kMaxCookies},
-            {image, nullptr, &environmentInfo, 1}, {ssbo, &domeInfo, nullptr, 1},
-            {image, nullptr, &domeMapInfo, 1},    {image, nullptr, &probeInfo, 1},
-            {image, nullptr, &backgroundInfo, 1}, {image, nullptr, &sphereInfos[0], 1},
-            {image, nullptr, &sphereInfos[1], 1}, {image, nullptr, &radianceInfo, 1},
-            {image, nullptr, &bounceInfo, 1},     {image, nullptr, &facesInfo, 1},
-            {image, nullptr, &radianceSh, 1}};
+        const Entry entries[] = {{ubo, &uboInfo, nullptr, 1},
+                                 {ssbo, &instInfo, nullptr, 1},
+                                 {ssbo, &lightInfo, nullptr, 1},
+                                 {image, nullptr, &shadowInfo, 1},
+                                 {ssbo, &layerInfo, nullptr, 1},
+                                 {image, nullptr, cookieInfos, render::kMaxCookies},
+                                 {image, nullptr, &environmentInfo, 1},
+                                 {ssbo, &domeInfo, nullptr, 1},
+                                 {image, nullptr, &domeMapInfo, 1},
+                                 {image, nullptr, &probeInfo, 1},
+                                 {image, nullptr, &backgroundInfo, 1},
+                                 {image, nullptr, &sphereInfos[0], 1},
+                                 {image, nullptr, &sphereInfos[1], 1},
+                                 {image, nullptr, &radianceInfo, 1},
+                                 {image, nullptr, &bounceInfo, 1},
+                                 {image, nullptr, &facesInfo, 1},
+                                 {image, nullptr, &radianceSh, 1}};
         constexpr uint32_t kBindings = sizeof(entries) / sizeof(entries[0]);
         VkWriteDescriptorSet writes[kBindings];
         for (uint32_t i = 0; i < kBindings; ++i) {
@@ -266,7 +275,8 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
         const VkImageLayout colorRead = render::useState(Use::Sampled, false).layout;
         VkDescriptorImageInfo infos[4] = {
             {pipes.nearestSampler, targets.dome.view(), colorRead},
-            {pipes.nearestSampler, targets.depth.layerView(0), render::useState(Use::Sampled, true).layout},
+            {pipes.nearestSampler, targets.depth.layerView(0),
+             render::useState(Use::Sampled, true).layout},
             {pipes.nearestSampler, targets.dome.view(), colorRead},
             {pipes.nearestSampler, targets.domeRows.view(), colorRead}};
         VkWriteDescriptorSet w[4];

@@ -139,10 +139,9 @@ std::vector<double> Timestamps::read(uint32_t count) {
     if (!supported() || count == 0) return ms;
     count = std::min(count, mUsed);
     std::vector<uint64_t> ticks(2 * size_t(count) * 2, 0); // value + availability per query
-    VkResult r = vkGetQueryPoolResults(mCtx.device(), mPool, 0, 2 * count,
-                                       ticks.size() * sizeof(uint64_t), ticks.data(),
-                                       2 * sizeof(uint64_t),
-                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
+    VkResult r = vkGetQueryPoolResults(
+        mCtx.device(), mPool, 0, 2 * count, ticks.size() * sizeof(uint64_t), ticks.data(),
+        2 * sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
     if (r != VK_SUCCESS && r != VK_NOT_READY) VK_CHECK(r);
     for (uint32_t i = 0; i < count; ++i) {
         const uint64_t b = ticks[4 * i], bAvail = ticks[4 * i + 1];

@@ -34,23 +34,23 @@ struct FramePassContext {
     DomeShadows& dome;
     ReflectionProbe& probe;
     BounceProbes& bounce;
-    HairPasses* hair;         // null without hair
-    vk::Image& shadowMaps;    // the scene lights' maps (a dummy layer when there are none)
+    HairPasses* hair;      // null without hair
+    vk::Image& shadowMaps; // the scene lights' maps (a dummy layer when there are none)
     const std::vector<ShadowInfo>& shadowInfos;
     const Scene& scene;
     const Camera& camera;
     const FrameData& data;
     const FrameSets& sets;
-    vk::Image* ldr;      // the output image (offscreen or the swapchain's)
-    uint32_t outputs;    // FrameOutput bits
-    bool present;        // the output goes to a swapchain
-    bool debug;          // debug outputs (rendered without MSAA: one surface per pixel)
+    vk::Image* ldr;   // the output image (offscreen or the swapchain's)
+    uint32_t outputs; // FrameOutput bits
+    bool present;     // the output goes to a swapchain
+    bool debug;       // debug outputs (rendered without MSAA: one surface per pixel)
     bool hasHair;
-    bool domeBlur;       // the dome's diffuse light goes through the blur passes
-    bool background;     // a background image or the environment is drawn behind the scene
-    bool captureProbe;   // the dynamic reflection probe is captured this frame
-    bool captureBounce;  // the bounce captures are taken (and projected) this frame
-    bool reuseShadows;   // the scene lights' shadow maps hold this frame's views
+    bool domeBlur;            // the dome's diffuse light goes through the blur passes
+    bool background;          // a background image or the environment is drawn behind the scene
+    bool captureProbe;        // the dynamic reflection probe is captured this frame
+    bool captureBounce;       // the bounce captures are taken (and projected) this frame
+    bool reuseShadows;        // the scene lights' shadow maps hold this frame's views
     std::vector<int> domeDue; // dome layers rendered this frame (the rest are reused)
     uint32_t samples = 1;     // MSAA samples of the forward pass
     FrameOverlay* overlay = nullptr; // drawn after tone mapping (present() frames only)
@@ -82,8 +82,9 @@ void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView 
                     VkDescriptorSet set, const void* push, uint32_t pushBytes);
 /// The same into a target of w x h.
 void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target, uint32_t w,
-                    uint32_t h, VkAttachmentLoadOp load, VkPipeline pipeline, VkPipelineLayout layout,
-                    VkDescriptorSet set, const void* push, uint32_t pushBytes);
+                    uint32_t h, VkAttachmentLoadOp load, VkPipeline pipeline,
+                    VkPipelineLayout layout, VkDescriptorSet set, const void* push,
+                    uint32_t pushBytes);
 
 // The modules, in the order recordFrame calls them.
 void addShadowPasses(FrameGraph& g, FramePassContext& f);   // scene lights' shadow maps

@@ -1,7 +1,7 @@
 // One frame of a Renderer: its data (uploaded, and its descriptor sets written, by
 // FrameDescriptors.cpp) and the frame graph the pass modules build (render/FramePasses.h:
-// shadow views, dome maps, reflection capture, bounce captures, forward shading, dome blur, hair, output,
-// readback or present), recorded into the frame slot's command buffer.
+// shadow views, dome maps, reflection capture, bounce captures, forward shading, dome blur, hair,
+// output, readback or present), recorded into the frame slot's command buffer.
 #include "render/FramePasses.h"
 #include "render/RendererImpl.h"
 
@@ -40,7 +40,8 @@ std::vector<uint64_t> casterKey(const render::FrameData& data, const Scene& scen
 }
 
 // The light views plus the casters: equal keys mean the scene lights' maps can be reused.
-std::vector<uint64_t> shadowKey(const render::FrameData& data, const std::vector<uint64_t>& casters) {
+std::vector<uint64_t> shadowKey(const render::FrameData& data,
+                                const std::vector<uint64_t>& casters) {
     std::vector<uint64_t> key;
     for (const render::ShadowView& v : data.shadowViews) {
         const size_t at = key.size();
@@ -77,12 +78,13 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     data.frame.options.w = scene.backgroundImage() != nullptr ? 1.0f : 0.0f;
     // Something behind the scene: the background image, or the environment (EnvironmentGpu).
     const bool background = scene.backgroundImage() != nullptr || data.frame.sky.x > 0.5f;
-    data.frame.viewport = glm::vec4(1.0f / float(targets.width), 1.0f / float(targets.height), 0, 0);
+    data.frame.viewport =
+        glm::vec4(1.0f / float(targets.width), 1.0f / float(targets.height), 0, 0);
     const bool captureProbe = probe.prepare(scene, data, settings.probeSize);
     // Debug frames keep one bounce: their colour is the colour render() draws.
     const bool captureBounce = bounce.prepare(scene, data, settings);
-    const bool reuseShadows = settings.reuseShadowMaps && !data.shadowViews.empty() &&
-                              key == shadowSignature;
+    const bool reuseShadows =
+        settings.reuseShadowMaps && !data.shadowViews.empty() && key == shadowSignature;
     shadowSignature = std::move(key);
     const bool hasHair = !scene.hairs().empty();
     if (hasHair) {
@@ -95,14 +97,35 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     if (samples > 1) targets.ensureMultisampled(c, samples, domeBlur);
 
     uploadFrame(slot, data, captureProbe, captureBounce);
-    const render::FrameSets sets = bindFrame(slot, scene, data, captureProbe, captureBounce, domeBlur);
+    const render::FrameSets sets =
+        bindFrame(slot, scene, data, captureProbe, captureBounce, domeBlur);
 
-    render::FramePassContext f{c, settings, pipes, targets, dome, probe, bounce,
+    render::FramePassContext f{c,
+                               settings,
+                               pipes,
+                               targets,
+                               dome,
+                               probe,
+                               bounce,
                                hasHair ? hair.get() : nullptr,
-                               data.shadowViews.empty() ? dummyShadow : shadowMaps, shadowInfos,
-                               scene, camera, data, sets, ldr, outputs, present, debug, hasHair,
-                               domeBlur, background, captureProbe, captureBounce, reuseShadows,
-                               std::move(domeDue), samples};
+                               data.shadowViews.empty() ? dummyShadow : shadowMaps,
+                               shadowInfos,
+                               scene,
+                               camera,
+                               data,
+                               sets,
+                               ldr,
+                               outputs,
+                               present,
+                               debug,
+                               hasHair,
+                               domeBlur,
+                               background,
+                               captureProbe,
+                               captureBounce,
+                               reuseShadows,
+                               std::move(domeDue),
+                               samples};
     if (scene.environment().environment && !environmentBaked) f.reused.push_back("environment");
     if (present) f.overlay = overlay;
 

@@ -64,8 +64,10 @@ const MeshGpu& GpuCache::deformable(const std::shared_ptr<const DeformableMesh>&
     const VkDeviceSize vbytes = vertices.size() * sizeof(float);
     const VkDeviceSize ibytes = std::max<size_t>(mesh.indices.size(), 1) * sizeof(uint32_t);
     MeshGpu gpu;
-    gpu.vertices = vk::Buffer(&mCtx, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vk::MemoryUsage::Upload);
-    gpu.indices = vk::Buffer(&mCtx, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, vk::MemoryUsage::Upload);
+    gpu.vertices =
+        vk::Buffer(&mCtx, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vk::MemoryUsage::Upload);
+    gpu.indices =
+        vk::Buffer(&mCtx, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, vk::MemoryUsage::Upload);
     gpu.vertices.write(vertices.data(), vbytes);
     if (!mesh.indices.empty()) gpu.indices.write(mesh.indices.data(), mesh.indices.size() * 4);
     gpu.indexCount = uint32_t(mesh.indices.size());
@@ -79,8 +81,7 @@ const MeshGpu& GpuCache::deformable(const std::shared_ptr<const DeformableMesh>&
 
 const MeshGpu& GpuCache::mesh(const MeshPtr& mesh) {
     auto it = mMeshes.find(mesh.get());
-    if (it != mMeshes.end() && !it->second.source.expired() &&
-        it->second.source.lock() == mesh)
+    if (it != mMeshes.end() && !it->second.source.expired() && it->second.source.lock() == mesh)
         return it->second;
     const std::vector<float> vertices = packVertices(*mesh);
     MeshGpu gpu;
@@ -142,7 +143,8 @@ TextureGpu GpuCache::makeTexture(const ImageU8& rgba, bool srgb, bool mipmaps) {
     const VkFormat format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
     VkFormatProperties fp;
     vkGetPhysicalDeviceFormatProperties(mCtx.physicalDevice(), format, &fp);
-    const VkFormatFeatureFlags blit = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
+    const VkFormatFeatureFlags blit = VK_FORMAT_FEATURE_BLIT_SRC_BIT |
+                                      VK_FORMAT_FEATURE_BLIT_DST_BIT |
                                       VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     uint32_t levels = 1;
     if (mipmaps && (fp.optimalTilingFeatures & blit) == blit)
@@ -183,8 +185,8 @@ TextureGpu GpuCache::makeTexture(const ImageU8& rgba, bool srgb, bool mipmaps) {
     mCtx.immediate([&](VkCommandBuffer cmd) {
         for (uint32_t m = 0; m < levels; ++m)
             barrier(cmd, m, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                    VK_ACCESS_2_TRANSFER_WRITE_BIT);
+                    VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                    VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {desc.width, desc.height, 1};

@@ -1,9 +1,9 @@
 #pragma once
 // GPU copies of scene meshes and textures, uploaded once and kept while their CPU objects live.
-#include <cstdint>
-#include <memory>
 #include <array>
+#include <cstdint>
 #include <map>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -38,7 +38,7 @@ struct DeformableGpu {
 
 /// The descriptor set (set 1) of a material's textures: base colour, normal map, specular map.
 struct MaterialSetGpu {
-    static constexpr int kTextures = 4; // base colour, normal, specular, ambient
+    static constexpr int kTextures = 4;              // base colour, normal, specular, ambient
     std::weak_ptr<const Texture> sources[kTextures]; // empty where the material has none
     bool used[kTextures] = {false, false, false, false};
     VkDescriptorSet set = VK_NULL_HANDLE;
@@ -61,7 +61,9 @@ public:
     /// specular map (none: white), ambient map (none: white, unused).
     VkDescriptorSet materialSet(const Material& material);
     /// The image view of a texture (uploaded on first use); null gives white.
-    VkImageView textureView(const TexturePtr& texture) { return entry(texture, mWhite).image.view(); }
+    VkImageView textureView(const TexturePtr& texture) {
+        return entry(texture, mWhite).image.view();
+    }
     /// Drops GPU copies whose CPU objects are gone (deferred until the GPU is done).
     void evictExpired();
 
@@ -82,7 +84,8 @@ private:
     std::unordered_map<const Mesh*, MeshGpu> mMeshes;
     std::unordered_map<const DeformableMesh*, DeformableGpu> mDeformables;
     std::unordered_map<uint64_t, TextureGpu> mTextures;
-    std::map<std::array<uint64_t, MaterialSetGpu::kTextures>, MaterialSetGpu> mMaterialSets; // by texture ids
+    std::map<std::array<uint64_t, MaterialSetGpu::kTextures>, MaterialSetGpu>
+        mMaterialSets; // by texture ids
     TextureGpu mWhite, mFlatNormal;
 };
 

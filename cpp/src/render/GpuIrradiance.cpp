@@ -34,8 +34,7 @@ struct IrradiancePush {
 
 } // namespace
 
-CubeMap irradianceExactGpu(const CubeMap& radiance, int size, int sourceSize,
-                           double* dispatchMs) {
+CubeMap irradianceExactGpu(const CubeMap& radiance, int size, int sourceSize, double* dispatchMs) {
     requireExactIrradianceArguments(radiance, size, sourceSize);
     // The very table the CPU version sums, interleaved as two vec4 per texel: (w, dw), (L dw, 0).
     const CubeMap source = reducedCube(radiance, sourceSize);
@@ -66,8 +65,7 @@ CubeMap irradianceExactGpu(const CubeMap& radiance, int size, int sourceSize,
     vk::Buffer dst(&ctx, dstBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::Readback);
     src.write(texels.data(), srcBytes);
     const vk::StorageCompute compute = vk::createStorageCompute(
-        ctx, "ibl/irradiance_exact.comp", {{&src, kWindowBytes}, {&dst}},
-        sizeof(IrradiancePush));
+        ctx, "ibl/irradiance_exact.comp", {{&src, kWindowBytes}, {&dst}}, sizeof(IrradiancePush));
 
     // At most 6 * 1024^2 / 512 = 12288 groups: within the 65535 every device allows in x.
     const uint32_t groups = uint32_t((out.floatCount() / 3 + kPerGroup - 1) / kPerGroup);

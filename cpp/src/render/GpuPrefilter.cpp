@@ -177,17 +177,25 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
     for (int m = 1; m < levels; ++m) {
         const GgxLevelPlan& p = plan.level[size_t(m)];
         const int s = out.levelSize(m);
-        PrefilterPush push{s, dstOffset, int32_t(table.size()), 0,
+        PrefilterPush push{s,
+                           dstOffset,
+                           int32_t(table.size()),
+                           0,
                            int32_t(srcTexels + 2 * int64_t(pointTable.size())),
-                           int32_t(p.points.size()), p.alpha * p.alpha, p.invNorm};
+                           int32_t(p.points.size()),
+                           p.alpha * p.alpha,
+                           p.invNorm};
         dstOffset += int32_t(out.floatCount(m));
         for (const LodLookup& k : lookups[size_t(m)])
-            table.push_back({{k.h.x, k.h.y, k.h.z}, k.blend,
-                             int32_t(padded.offsets[size_t(k.l0)]), chain.levelSize(k.l0),
-                             int32_t(padded.offsets[size_t(k.l1)]), chain.levelSize(k.l1)});
+            table.push_back({{k.h.x, k.h.y, k.h.z},
+                             k.blend,
+                             int32_t(padded.offsets[size_t(k.l0)]),
+                             chain.levelSize(k.l0),
+                             int32_t(padded.offsets[size_t(k.l1)]),
+                             chain.levelSize(k.l1)});
         for (const GgxPoint& q : p.points)
-            pointTable.push_back({{q.dir.x, q.dir.y, q.dir.z, 0.0f},
-                                  {q.power.x, q.power.y, q.power.z, 0.0f}});
+            pointTable.push_back(
+                {{q.dir.x, q.dir.y, q.dir.z, 0.0f}, {q.power.x, q.power.y, q.power.z, 0.0f}});
         push.count = int32_t(table.size()) - push.first;
         pushes.push_back(push);
     }
@@ -218,11 +226,12 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
     vk::Buffer mirror(&ctx, mirrorBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::Upload);
     mirror.write(plan.mirror.data(), mirrorBytes);
 
-    const vk::ComputeProgram& program = vk::cachedComputeProgram(
-        ctx, "ibl/prefilter_ggx.comp",
-        {{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-         {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
-        sizeof(PrefilterPush));
+    const vk::ComputeProgram& program =
+        vk::cachedComputeProgram(ctx, "ibl/prefilter_ggx.comp",
+                                 {{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+                                  {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                  {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                                 sizeof(PrefilterPush));
     const VkPipelineLayout layout = program.layout;
     const VkPipeline pipeline = program.pipeline;
     const VkDescriptorSetLayout setLayout = program.setLayout;
@@ -234,7 +243,8 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
     VK_CHECK(vkCreateBufferView(ctx.device(), &viewInfo, nullptr, &viewHandle));
     const vk::Handle<VkBufferView> view(&ctx, viewHandle, vkDestroyBufferView);
     vk::DescriptorPool pool;
-    const VkDescriptorSet set = bindBuffers(ctx, pool, setLayout, view, {&src, &dst, &sampleBuffer});
+    const VkDescriptorSet set =
+        bindBuffers(ctx, pool, setLayout, view, {&src, &dst, &sampleBuffer});
 
     const auto start = std::chrono::steady_clock::now();
     ctx.immediate([&](VkCommandBuffer cmd) {

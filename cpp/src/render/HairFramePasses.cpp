@@ -10,12 +10,18 @@ namespace weft::render {
 void addHairPasses(FrameGraph& g, FramePassContext& f) {
     if (!f.hair) return;
     RenderTargets& t = f.targets;
-    f.hair->addPasses(g, {f.rShadow, f.rDepth, f.rHdr, f.debug ? f.rDebug : nullptr, &t.hdr, &t.depth,
-                          {&t.position, &t.normal, &t.surface, &t.albedo}, f.sets.frame,
-                          [&f](VkCommandBuffer cmd, VkImageView view, uint32_t size,
-                               const glm::mat4& viewProj) {
-                              drawCasters(f, cmd, view, size, viewProj, false);
-                          }});
+    f.hair->addPasses(
+        g, {f.rShadow,
+            f.rDepth,
+            f.rHdr,
+            f.debug ? f.rDebug : nullptr,
+            &t.hdr,
+            &t.depth,
+            {&t.position, &t.normal, &t.surface, &t.albedo},
+            f.sets.frame,
+            [&f](VkCommandBuffer cmd, VkImageView view, uint32_t size, const glm::mat4& viewProj) {
+                drawCasters(f, cmd, view, size, viewProj, false);
+            }});
 }
 
 } // namespace weft::render

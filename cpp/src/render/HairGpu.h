@@ -12,9 +12,9 @@ namespace weft::render {
 
 struct HairGpu {
     std::weak_ptr<const HairStrands> source;
-    vk::Buffer vertices;      // GpuHairVertex per point (storage buffer)
-    vk::Buffer lines;         // 2 indices per segment; an index is 2 * point + side
-    vk::Buffer ribbons;       // 6 indices per segment (two triangles), made on first use
+    vk::Buffer vertices; // GpuHairVertex per point (storage buffer)
+    vk::Buffer lines;    // 2 indices per segment; an index is 2 * point + side
+    vk::Buffer ribbons;  // 6 indices per segment (two triangles), made on first use
     uint32_t lineIndexCount = 0;
     uint32_t ribbonIndexCount = 0;
     bool transparent = false; // some point has transparency > 0

@@ -1,8 +1,8 @@
 #pragma once
 // The hair passes' GPU structs, defined once for C++ and GLSL in glsl/common/hair_gpu_types.h,
 // under the renderer's names.
-#include "render/HairShadingGpu.h"
 #include "hair_gpu_types.h"
+#include "render/HairShadingGpu.h"
 
 namespace weft::render {
 

@@ -41,8 +41,8 @@ HairPasses::HairPasses(vk::Context& ctx, const ScenePipelines& scene)
     // 1x1 arrays (an array view per DOM slot) bound where nothing was rendered: as the DOM
     // opacity when no light has a DOM (cleared), as the meshes' depth when no mesh casts (far).
     auto cleared = [&](float value) {
-        vk::Image image = makeImage(ctx, 1, 1, kMaxHairDoms, kDomOpacityFormat,
-                                    VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+        vk::Image image =
+            makeImage(ctx, 1, 1, kMaxHairDoms, kDomOpacityFormat, VK_IMAGE_USAGE_TRANSFER_DST_BIT);
         ctx.immediate([&](VkCommandBuffer cmd) {
             vk::transition(ctx, cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                            VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -149,8 +149,8 @@ void HairPasses::ensureImages(const RenderSettings& settings, uint32_t width, ui
         mDomMeshDepth = makeImage(mCtx, mDomSize, mDomSize, kMaxHairDoms, kDepthFormat,
                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
     }
-    if (mSampleDepths && (!mSamples || mSamples.desc().width != width ||
-                          mSamples.desc().height != height)) {
+    if (mSampleDepths &&
+        (!mSamples || mSamples.desc().width != width || mSamples.desc().height != height)) {
         vk::ImageDesc d;
         d.width = width;
         d.height = height;
@@ -162,8 +162,8 @@ void HairPasses::ensureImages(const RenderSettings& settings, uint32_t width, ui
     if ((mOit || mAntialias) && (!mAccum || mWidth != width || mHeight != height)) {
         mWidth = width;
         mHeight = height;
-        mAccum = makeImage(mCtx, width, height, 1, kOitAccumFormat,
-                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+        mAccum =
+            makeImage(mCtx, width, height, 1, kOitAccumFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
         mWeight = makeImage(mCtx, width, height, 1, kOitWeightFormat,
                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
     }
@@ -241,8 +241,8 @@ void HairPasses::writeSets(Slot& slot) {
     write(mZ0Set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[4];
     write(mOpacitySet, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[1];
     write(mOpacitySet, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)->pImageInfo = &images[4];
-    const VkDescriptorImageInfo samples{
-        VK_NULL_HANDLE, mSamples ? mSamples.view() : VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
+    const VkDescriptorImageInfo samples{VK_NULL_HANDLE, mSamples ? mSamples.view() : VK_NULL_HANDLE,
+                                        VK_IMAGE_LAYOUT_GENERAL};
     if (mSampleDepths)
         write(mOpacitySet, 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)->pImageInfo = &samples;
     if (mAccum) {
@@ -271,13 +271,13 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
         instances.push_back({h.transform, hair::packHairShading(h.material)});
     }
     mOit = anyTransparent;
-    mSampleDepths = mAntialias && mPipes.sampleMasks &&
-                    std::any_of(mDraws.begin(), mDraws.end(),
-                                [](const HairDraw& d) { return !d.transparent; });
+    mSampleDepths =
+        mAntialias && mPipes.sampleMasks &&
+        std::any_of(mDraws.begin(), mDraws.end(), [](const HairDraw& d) { return !d.transparent; });
     fitDoms(scene, settings);
-    mMeshesShadowHair = !mDoms.empty() &&
-                        std::any_of(scene.instances().begin(), scene.instances().end(),
-                                    [](const MeshInstance& m) { return m.castShadows; });
+    mMeshesShadowHair =
+        !mDoms.empty() && std::any_of(scene.instances().begin(), scene.instances().end(),
+                                      [](const MeshInstance& m) { return m.castShadows; });
     ensureImages(settings, width, height);
 
     GpuHairFrame f{};
@@ -357,7 +357,9 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
         if (mMeshesShadowHair) {
             const int rMeshes = g.addResource("hair_dom_meshes", &mDomMeshDepth);
             shadingReads.push_back({rMeshes, Use::Sampled});
-            g.addPass({"hair_dom_meshes", {}, {{rMeshes, Use::DepthWrite}},
+            g.addPass({"hair_dom_meshes",
+                       {},
+                       {{rMeshes, Use::DepthWrite}},
                        [this, t](VkCommandBuffer cmd) {
                            for (size_t s = 0; s < mDoms.size(); ++s)
                                t.meshDepth(cmd, mDomMeshDepth.layerView(uint32_t(s)), mDomSize,
@@ -381,12 +383,14 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                            mCtx.fn().cmdEndRendering(cmd);
                        }
                    }});
-        g.addPass({"hair_dom_opacity", {{rZ0, Use::Sampled}}, {{rOpacity, Use::ColorWrite}},
+        g.addPass({"hair_dom_opacity",
+                   {{rZ0, Use::Sampled}},
+                   {{rOpacity, Use::ColorWrite}},
                    [this](VkCommandBuffer cmd) {
                        for (size_t s = 0; s < mDoms.size(); ++s) {
-                           VkRenderingAttachmentInfo color = attachment(
-                               mDomOpacity.layerView(uint32_t(s)),
-                               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true);
+                           VkRenderingAttachmentInfo color =
+                               attachment(mDomOpacity.layerView(uint32_t(s)),
+                                          VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true);
                            color.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
                            VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
                            info.renderArea = {{0, 0}, {mDomSize, mDomSize}};
@@ -404,40 +408,40 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                        for (const Dom& d : mDoms) mLastDoms[size_t(d.light)] = d.info;
                    }});
     }
-    const bool anyOpaque = std::any_of(mDraws.begin(), mDraws.end(),
-                                       [](const HairDraw& d) { return !d.transparent; });
+    const bool anyOpaque =
+        std::any_of(mDraws.begin(), mDraws.end(), [](const HairDraw& d) { return !d.transparent; });
     if (anyOpaque) {
         std::vector<ResourceUse> writes = {{t.hdr, Use::ColorWrite}, {t.depth, Use::DepthWrite}};
         if (t.debug)
             for (int i = 0; i < 4; ++i) writes.push_back({t.debug[i], Use::ColorWrite});
         const bool debug = t.debug != nullptr;
-        g.addPass({"hair", shadingReads, writes,
-                   [this, t, debug, ribbons, aa](VkCommandBuffer cmd) {
-                       std::vector<VkRenderingAttachmentInfo> colors = {attachment(
-                           t.hdrImage->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false)};
-                       if (debug)
-                           for (vk::Image* im : t.debugImages)
-                               colors.push_back(attachment(
-                                   im->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false));
-                       VkRenderingAttachmentInfo depth = attachment(
-                           t.depthImage->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false);
-                       VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                       const vk::ImageDesc& desc = t.hdrImage->desc();
-                       info.renderArea = {{0, 0}, {desc.width, desc.height}};
-                       info.layerCount = 1;
-                       info.colorAttachmentCount = uint32_t(colors.size());
-                       info.pColorAttachments = colors.data();
-                       info.pDepthAttachment = &depth;
-                       mCtx.fn().cmdBeginRendering(cmd, &info);
-                       setViewport(cmd, desc.width, desc.height);
-                       // anti-aliased: only the pixels strands cover entirely (hair_fringe adds
-                       // the rest)
-                       const VkPipeline pipeline = aa      ? mPipes.aaCore.get()
-                                                   : debug ? mPipes.debug[ribbons].get()
-                                                           : mPipes.opaque[ribbons].get();
-                       drawCamera(cmd, t, pipeline, mOpacitySet, false, aa || mRibbons);
-                       mCtx.fn().cmdEndRendering(cmd);
-                   }});
+        g.addPass(
+            {"hair", shadingReads, writes, [this, t, debug, ribbons, aa](VkCommandBuffer cmd) {
+                 std::vector<VkRenderingAttachmentInfo> colors = {attachment(
+                     t.hdrImage->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false)};
+                 if (debug)
+                     for (vk::Image* im : t.debugImages)
+                         colors.push_back(attachment(
+                             im->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false));
+                 VkRenderingAttachmentInfo depth = attachment(
+                     t.depthImage->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false);
+                 VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                 const vk::ImageDesc& desc = t.hdrImage->desc();
+                 info.renderArea = {{0, 0}, {desc.width, desc.height}};
+                 info.layerCount = 1;
+                 info.colorAttachmentCount = uint32_t(colors.size());
+                 info.pColorAttachments = colors.data();
+                 info.pDepthAttachment = &depth;
+                 mCtx.fn().cmdBeginRendering(cmd, &info);
+                 setViewport(cmd, desc.width, desc.height);
+                 // anti-aliased: only the pixels strands cover entirely (hair_fringe adds
+                 // the rest)
+                 const VkPipeline pipeline = aa      ? mPipes.aaCore.get()
+                                             : debug ? mPipes.debug[ribbons].get()
+                                                     : mPipes.opaque[ribbons].get();
+                 drawCamera(cmd, t, pipeline, mOpacitySet, false, aa || mRibbons);
+                 mCtx.fn().cmdEndRendering(cmd);
+             }});
     }
     const bool fringe = aa && anyOpaque;
     if (!fringe && !mOit) return;
@@ -465,37 +469,36 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
     const std::vector<ResourceUse> accumulates = {
         {rAccum, Use::ColorWrite}, {rWeight, Use::ColorWrite}, {t.depth, Use::DepthWrite}};
     if (fringe)
-        g.addPass({"hair_fringe", shadingReads, accumulates,
-                   [this, t, beginAccumulation](VkCommandBuffer cmd) {
-                       if (!mPipes.sampleMasks) { // coverage as independent alphas
-                           beginAccumulation(cmd, true);
-                           drawCamera(cmd, t, mPipes.aaFringe[0], mOpacitySet, false, true);
-                           mCtx.fn().cmdEndRendering(cmd);
-                           return;
-                       }
-                       // no depth at any sample point (all ones), no point covered, sums 0
-                       vk::transition(mCtx, cmd, mSamples, VK_IMAGE_LAYOUT_GENERAL,
-                                      VK_PIPELINE_STAGE_2_CLEAR_BIT,
-                                      VK_ACCESS_2_TRANSFER_WRITE_BIT);
-                       VkClearColorValue clear{};
-                       for (uint32_t layer = 0; layer < mSamples.desc().layers; ++layer) {
-                           clear.uint32[0] = layer < kHairAaDepthSamples ? ~0u : 0u;
-                           const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1,
-                                                               layer, 1};
-                           vkCmdClearColorImage(cmd, mSamples.get(), VK_IMAGE_LAYOUT_GENERAL,
-                                                &clear, 1, &range);
-                       }
-                       // pass 0 writes the nearest depths, pass 1 reads them once all are in
-                       for (int i = 0; i < 2; ++i) {
-                           vk::transition(mCtx, cmd, mSamples, VK_IMAGE_LAYOUT_GENERAL,
-                                          VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                                          VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
-                                              VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-                           beginAccumulation(cmd, i == 0);
-                           drawCamera(cmd, t, mPipes.aaFringe[i], mOpacitySet, false, true);
-                           mCtx.fn().cmdEndRendering(cmd);
-                       }
-                   }});
+        g.addPass(
+            {"hair_fringe", shadingReads, accumulates,
+             [this, t, beginAccumulation](VkCommandBuffer cmd) {
+                 if (!mPipes.sampleMasks) { // coverage as independent alphas
+                     beginAccumulation(cmd, true);
+                     drawCamera(cmd, t, mPipes.aaFringe[0], mOpacitySet, false, true);
+                     mCtx.fn().cmdEndRendering(cmd);
+                     return;
+                 }
+                 // no depth at any sample point (all ones), no point covered, sums 0
+                 vk::transition(mCtx, cmd, mSamples, VK_IMAGE_LAYOUT_GENERAL,
+                                VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+                 VkClearColorValue clear{};
+                 for (uint32_t layer = 0; layer < mSamples.desc().layers; ++layer) {
+                     clear.uint32[0] = layer < kHairAaDepthSamples ? ~0u : 0u;
+                     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
+                     vkCmdClearColorImage(cmd, mSamples.get(), VK_IMAGE_LAYOUT_GENERAL, &clear, 1,
+                                          &range);
+                 }
+                 // pass 0 writes the nearest depths, pass 1 reads them once all are in
+                 for (int i = 0; i < 2; ++i) {
+                     vk::transition(mCtx, cmd, mSamples, VK_IMAGE_LAYOUT_GENERAL,
+                                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                     beginAccumulation(cmd, i == 0);
+                     drawCamera(cmd, t, mPipes.aaFringe[i], mOpacitySet, false, true);
+                     mCtx.fn().cmdEndRendering(cmd);
+                 }
+             }});
     if (mOit)
         g.addPass({"hair_oit", shadingReads, accumulates,
                    [this, t, ribbons, aa, fringe, beginAccumulation](VkCommandBuffer cmd) {
@@ -504,8 +507,10 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                                   mOpacitySet, true, aa || mRibbons);
                        mCtx.fn().cmdEndRendering(cmd);
                    }});
-    g.addPass({"hair_composite", {{rAccum, Use::Sampled}, {rWeight, Use::Sampled}},
-               {{t.hdr, Use::ColorWrite}}, [this, t](VkCommandBuffer cmd) {
+    g.addPass({"hair_composite",
+               {{rAccum, Use::Sampled}, {rWeight, Use::Sampled}},
+               {{t.hdr, Use::ColorWrite}},
+               [this, t](VkCommandBuffer cmd) {
                    VkRenderingAttachmentInfo color = attachment(
                        t.hdrImage->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
                    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};

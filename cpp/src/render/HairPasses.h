@@ -100,8 +100,8 @@ private:
     VkDescriptorSet mZ0Set = VK_NULL_HANDLE, mOpacitySet = VK_NULL_HANDLE;
     VkDescriptorSet mOitSet = VK_NULL_HANDLE;
     bool mRibbons = false, mOit = false;
-    bool mAntialias = false; // strips with coverage (MSAA frames; debug frames never)
-    bool mSampleDepths = false; // ... and opaque strands with sample depths: mSamples is used
+    bool mAntialias = false;        // strips with coverage (MSAA frames; debug frames never)
+    bool mSampleDepths = false;     // ... and opaque strands with sample depths: mSamples is used
     bool mMeshesShadowHair = false; // DOMs and mesh casters this frame: the hair_dom_meshes pass
     uint32_t mWidth = 0, mHeight = 0, mDomSize = 0;
 };

@@ -42,8 +42,8 @@ struct HairPipelines {
     /// The device has atomics in fragment shaders: a strand's share of a partly covered pixel is
     /// what it shows of it at sample points (hair_oit_main.glsl); without, independent alphas.
     bool sampleMasks = false;
-    vk::Pipeline lightDepth;  // lines into a depth target (shadow maps, DOM pass 1)
-    vk::Pipeline domOpacity;  // DOM pass 2
+    vk::Pipeline lightDepth; // lines into a depth target (shadow maps, DOM pass 1)
+    vk::Pipeline domOpacity; // DOM pass 2
     vk::Pipeline composite;
 };
 

@@ -62,7 +62,8 @@ std::vector<glm::vec3> evaluateHairShading(const HairMaterial& material,
         *ctx, "hair/shade_eval.comp", {{&paramBuf}, {&inBuf}, {&outBuf}}, sizeof(uint32_t));
     const uint32_t count = uint32_t(n);
     vk::runStorageCompute(*ctx, compute, [&](VkCommandBuffer cmd) {
-        vkCmdPushConstants(cmd, compute.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(count), &count);
+        vkCmdPushConstants(cmd, compute.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(count),
+                           &count);
         vkCmdDispatch(cmd, (count + kGroupSize - 1) / kGroupSize, 1, 1);
     });
 

@@ -21,9 +21,11 @@ void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView 
 }
 
 void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target, uint32_t w,
-                    uint32_t h, VkAttachmentLoadOp load, VkPipeline pipeline, VkPipelineLayout layout,
-                    VkDescriptorSet set, const void* push, uint32_t pushBytes) {
-    VkRenderingAttachmentInfo a = attachment(target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
+                    uint32_t h, VkAttachmentLoadOp load, VkPipeline pipeline,
+                    VkPipelineLayout layout, VkDescriptorSet set, const void* push,
+                    uint32_t pushBytes) {
+    VkRenderingAttachmentInfo a =
+        attachment(target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
     a.loadOp = load;
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, {w, h}};
@@ -42,8 +44,11 @@ void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView 
 void addOutputPasses(FrameGraph& g, FramePassContext& f) {
     RenderTargets& t = f.targets;
     const VkPipeline pipeline = f.pipes.outputPipeline(f.ldr->desc().format);
-    const OutputPush push{glm::vec4(std::exp2(f.settings.exposure), float(f.settings.toneMap), 0, 0)};
-    g.addPass({"output", {{f.rHdr, Use::Sampled}}, {{f.rLdr, Use::ColorWrite}},
+    const OutputPush push{
+        glm::vec4(std::exp2(f.settings.exposure), float(f.settings.toneMap), 0, 0)};
+    g.addPass({"output",
+               {{f.rHdr, Use::Sampled}},
+               {{f.rLdr, Use::ColorWrite}},
                [&f, pipeline, push](VkCommandBuffer cmd) {
                    drawFullscreen(f, cmd, f.ldr->view(), VK_ATTACHMENT_LOAD_OP_DONT_CARE, pipeline,
                                   f.pipes.outputLayout, f.sets.output, &push, sizeof(push));
@@ -61,14 +66,18 @@ void addOutputPasses(FrameGraph& g, FramePassContext& f) {
     if (!copies.empty()) {
         std::vector<ResourceUse> reads;
         for (auto& [r, im] : copies) reads.push_back({r, Use::TransferRead});
-        g.addPass({"readback", reads, {}, [&f, copies](VkCommandBuffer cmd) {
+        g.addPass({"readback",
+                   reads,
+                   {},
+                   [&f, copies](VkCommandBuffer cmd) {
                        for (auto& [r, im] : copies) {
                            vk::Buffer& dst = f.targets.readbackFor(f.ctx, im);
                            VkBufferImageCopy region{};
                            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
                            region.imageExtent = {f.targets.width, f.targets.height, 1};
-                           vkCmdCopyImageToBuffer(cmd, im->get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                                                  dst.get(), 1, &region);
+                           vkCmdCopyImageToBuffer(cmd, im->get(),
+                                                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst.get(),
+                                                  1, &region);
                        }
                    },
                    true});

@@ -58,17 +58,18 @@ void addProbePasses(FrameGraph& g, FramePassContext& f) {
     std::vector<ResourceUse> reads = {{f.rShadow, Use::Sampled}};
     if (f.rDomeMaps >= 0) reads.push_back({f.rDomeMaps, Use::Sampled});
     for (uint32_t face = 0; face < 6; ++face) {
-        g.addPass({"probe[" + std::to_string(face) + "]", reads,
+        g.addPass({"probe[" + std::to_string(face) + "]",
+                   reads,
                    {{f.rProbe, Use::ColorWrite}, {probeDepth, Use::DepthWrite}},
                    [&f, face](VkCommandBuffer cmd) {
                        ReflectionProbe& probe = f.probe;
                        // everything but the probe's own instance
-                       drawCaptureFace(f, cmd, probe.cube().layerView(face), probe.depth().view(),
-                                       probe.cube().desc().width, f.sets.faces[face],
-                                       glm::vec4(f.scene.background(), 1.0f),
-                                       f.data.frame.sky.x > 0.5f,
-                                       [](const Draw& d, int skip) { return int(d.instance) != skip; },
-                                       probe.instance());
+                       drawCaptureFace(
+                           f, cmd, probe.cube().layerView(face), probe.depth().view(),
+                           probe.cube().desc().width, f.sets.faces[face],
+                           glm::vec4(f.scene.background(), 1.0f), f.data.frame.sky.x > 0.5f,
+                           [](const Draw& d, int skip) { return int(d.instance) != skip; },
+                           probe.instance());
                    }});
     }
 }

@@ -1,6 +1,5 @@
 #include "render/ReflectionProbe.h"
 
-
 #include "render/RenderTargets.h"
 
 namespace weft::render {

@@ -11,9 +11,11 @@ void RenderSettings::validate() const {
         throw InvalidArgument("shadow_map_size must be in [16, 16384] (got " +
                               std::to_string(shadowMapSize) + ")");
     if (probeSize < 4 || probeSize > 2048)
-        throw InvalidArgument("probe_size must be in [4, 2048] (got " + std::to_string(probeSize) + ")");
+        throw InvalidArgument("probe_size must be in [4, 2048] (got " + std::to_string(probeSize) +
+                              ")");
     if (pcfRadius < 0 || pcfRadius > 7)
-        throw InvalidArgument("pcf_radius must be in [0, 7] (got " + std::to_string(pcfRadius) + ")");
+        throw InvalidArgument("pcf_radius must be in [0, 7] (got " + std::to_string(pcfRadius) +
+                              ")");
     for (float v : {biasConstant, biasSlope, biasMax, normalOffset})
         if (!(std::isfinite(v) && v >= 0.0f))
             throw InvalidArgument("shadow bias and normal offset must be finite and >= 0");
@@ -27,14 +29,16 @@ void RenderSettings::validate() const {
     const int w = int(hairOitWeight);
     if (w < 7 || w > 10) throw InvalidArgument("hair OIT weight must be eq. 7, 8, 9 or 10");
     if (msaa != 1 && msaa != 2 && msaa != 4 && msaa != 8)
-        throw InvalidArgument("msaa must be 1, 2, 4 or 8 samples (got " + std::to_string(msaa) + ")");
+        throw InvalidArgument("msaa must be 1, 2, 4 or 8 samples (got " + std::to_string(msaa) +
+                              ")");
     if (!(std::isfinite(exposure) && std::fabs(exposure) <= 64.0f))
         throw InvalidArgument("exposure must be finite, in [-64, 64] stops");
     if (int(toneMap) < 0 || int(toneMap) > 3)
         throw InvalidArgument("tone map must be clamp, aces, agx or neutral");
     if (ambientOcclusion > 64 || ambientOcclusion % 8 != 0)
         throw InvalidArgument("ambient_occlusion must be 0 or a multiple of 8 up to 64 dome lights "
-                              "(got " + std::to_string(ambientOcclusion) + ")");
+                              "(got " +
+                              std::to_string(ambientOcclusion) + ")");
     if (!(std::isfinite(ambientOcclusionBlur) && ambientOcclusionBlur >= 0.0f &&
           ambientOcclusionBlur <= 64.0f))
         throw InvalidArgument("ambient_occlusion_blur must be in [0, 64] pixels");

@@ -23,8 +23,9 @@ void RenderTargets::ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug)
         height = h;
         mReadback.clear();
         hdr = makeTarget(ctx, w, h, kHdrFormat, color | VK_IMAGE_USAGE_SAMPLED_BIT);
-        depth = makeTarget(ctx, w, h, kDepthFormat,
-                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+        depth =
+            makeTarget(ctx, w, h, kDepthFormat,
+                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
         ldr = makeTarget(ctx, w, h, kLdrFormat, color);
         position = vk::Image();
         normal = vk::Image();
@@ -45,7 +46,8 @@ void RenderTargets::ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug)
 }
 
 void RenderTargets::ensureDome(vk::Context& ctx) {
-    constexpr VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    constexpr VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     if (!dome) dome = makeTarget(ctx, width, height, kDomeFormat, usage);
     if (!domeRows) domeRows = makeTarget(ctx, width, height, kDomeBlurFormat, usage);
 }
@@ -58,12 +60,14 @@ void RenderTargets::ensureMultisampled(vk::Context& ctx, uint32_t count, bool wi
         domeMs = vk::Image();
     }
     if (!hdrMs) {
-        hdrMs = makeTarget(ctx, width, height, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, count);
+        hdrMs =
+            makeTarget(ctx, width, height, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, count);
         depthMs = makeTarget(ctx, width, height, kDepthFormat,
                              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, count);
     }
     if (withDome && !domeMs)
-        domeMs = makeTarget(ctx, width, height, kDomeFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, count);
+        domeMs =
+            makeTarget(ctx, width, height, kDomeFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, count);
 }
 
 vk::Buffer& RenderTargets::readbackFor(vk::Context& ctx, const vk::Image* image) {

@@ -18,7 +18,7 @@ constexpr VkFormat kDomeBlurFormat = VK_FORMAT_R32G32_SFLOAT;   // row-blurred v
 
 struct RenderTargets {
     uint32_t width = 0, height = 0;
-    vk::Image hdr;      // linear radiance
+    vk::Image hdr; // linear radiance
     vk::Image depth;
     vk::Image ldr;      // sRGB 8-bit (offscreen output)
     vk::Image position; // debug outputs, created on first request

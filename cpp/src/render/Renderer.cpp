@@ -8,13 +8,13 @@ namespace weft {
 using render::Draw;
 using render::FrameData;
 using render::FrameGraph;
-using render::ShadowView;
-using render::ResourceUse;
-using render::Use;
 using render::FrameSlot;
-using render::kFramesInFlight;
 using render::kFrameSets;
+using render::kFramesInFlight;
 using render::kMaxPasses;
+using render::ResourceUse;
+using render::ShadowView;
+using render::Use;
 
 void Renderer::Impl::createSlots() {
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -114,7 +114,6 @@ void Renderer::Impl::finishStats(FrameSlot& slot) {
     stats = slot.stats;
 }
 
-
 // ---- public API -------------------------------------------------------------------------------
 
 Renderer::Renderer(uint32_t width, uint32_t height, const RenderSettings& settings) {
@@ -147,7 +146,8 @@ void Renderer::resize(uint32_t width, uint32_t height) {
                               "x" + std::to_string(height) + ")");
     const auto limit = mImpl->ctx->properties().limits.maxImageDimension2D;
     if (width > limit || height > limit)
-        throw InvalidArgument("render target size exceeds the device limit " + std::to_string(limit));
+        throw InvalidArgument("render target size exceeds the device limit " +
+                              std::to_string(limit));
     mImpl->width = width;
     mImpl->height = height;
 }
@@ -211,8 +211,9 @@ ImageU8 Renderer::present(Window& window, const Scene& scene, const Camera& came
     image.stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
     image.access = VK_ACCESS_2_NONE;
     m.recordFrame(slot, scene, camera, capture ? uint32_t(OutputColor) : 0u, &image, true);
-    slot.serial = m.ctx->submit(slot.cmd, {slot.acquired}, {VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT},
-                                {n.renderDone[index]});
+    slot.serial =
+        m.ctx->submit(slot.cmd, {slot.acquired}, {VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT},
+                      {n.renderDone[index]});
     slot.statsPending = true;
     ++m.frameCounter;
     n.present(index);
@@ -224,7 +225,8 @@ ImageU8 Renderer::present(Window& window, const Scene& scene, const Camera& came
         std::memcpy(shot.pixels.data(), m.targets.readbackFor(*m.ctx, &image).mapped(),
                     shot.pixels.size());
         if (n.format == VK_FORMAT_B8G8R8A8_SRGB || n.format == VK_FORMAT_B8G8R8A8_UNORM)
-            for (size_t i = 0; i < shot.pixels.size(); i += 4) std::swap(shot.pixels[i], shot.pixels[i + 2]);
+            for (size_t i = 0; i < shot.pixels.size(); i += 4)
+                std::swap(shot.pixels[i], shot.pixels[i + 2]);
     }
     m.stats.cpuMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     return shot;

@@ -37,7 +37,8 @@ std::vector<float> reflectionProbe(Renderer& renderer, uint32_t* sizeOut) {
     const uint32_t size = cube.desc().width;
     const size_t values = size_t(6) * size * size * 4;
     const VkDeviceSize bytes = VkDeviceSize(6) * size * size * vk::formatBytes(cube.desc().format);
-    vk::Buffer buffer(m.ctx.get(), bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback);
+    vk::Buffer buffer(m.ctx.get(), bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      vk::MemoryUsage::Readback);
     m.ctx->immediate([&](VkCommandBuffer cmd) {
         const render::UseState s = render::useState(Use::TransferRead, false);
         vk::transition(*m.ctx, cmd, cube, s.layout, s.stage, s.access);
@@ -53,7 +54,9 @@ std::vector<float> reflectionProbe(Renderer& renderer, uint32_t* sizeOut) {
 
 std::vector<float> shadowMap(Renderer& renderer, int lightIndex, uint32_t* sizeOut, int view) {
     const ShadowInfo info = shadowInfo(renderer, lightIndex);
-    if (!info.active) throw InvalidArgument("light " + std::to_string(lightIndex) + " cast no shadow in the last frame");
+    if (!info.active)
+        throw InvalidArgument("light " + std::to_string(lightIndex) +
+                              " cast no shadow in the last frame");
     if (view < 0 || size_t(view) >= info.views.size())
         throw InvalidArgument("light " + std::to_string(lightIndex) + " has " +
                               std::to_string(info.views.size()) + " shadow view(s), not view " +

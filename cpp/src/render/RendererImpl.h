@@ -17,11 +17,11 @@
 #include "render/FrameData.h"
 #include "render/FrameGraph.h"
 #include "render/FrameOverlay.h"
-#include "render/ReflectionProbe.h"
 #include "render/GpuCache.h"
 #include "render/GpuTypes.h"
 #include "render/HairPasses.h"
 #include "render/PassSetup.h"
+#include "render/ReflectionProbe.h"
 #include "render/RenderTargets.h"
 #include "render/ScenePipelines.h"
 #include "render/ShadowFit.h"
@@ -63,7 +63,6 @@ struct FrameSlot {
     bool statsPending = false;
 };
 
-
 } // namespace render
 
 struct Renderer::Impl {
@@ -94,7 +93,8 @@ struct Renderer::Impl {
     render::FrameOverlay* overlay = nullptr; // drawn over present() frames (FrameOverlay.h)
 
     Impl(uint32_t w, uint32_t h, const RenderSettings& s) : settings(s), width(w), height(h) {
-        cache = std::make_unique<render::GpuCache>(*ctx, pipes.materialSetLayout, pipes.textureSampler);
+        cache =
+            std::make_unique<render::GpuCache>(*ctx, pipes.materialSetLayout, pipes.textureSampler);
         createSlots();
         createDummyShadow();
     }
@@ -121,7 +121,8 @@ struct Renderer::Impl {
     /// The largest sample count <= `wanted` the device renders colour and depth with.
     uint32_t supportedSamples(uint32_t wanted) const {
         const VkPhysicalDeviceLimits& l = ctx->properties().limits;
-        const VkSampleCountFlags ok = l.framebufferColorSampleCounts & l.framebufferDepthSampleCounts;
+        const VkSampleCountFlags ok =
+            l.framebufferColorSampleCounts & l.framebufferDepthSampleCounts;
         while (wanted > 1 && !(ok & wanted)) wanted /= 2;
         return wanted;
     }

@@ -35,30 +35,31 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     VK_CHECK(vkCreateSampler(c.device(), &s, nullptr, &sampler));
     environmentSampler = vk::Sampler(&c, sampler, vkDestroySampler);
 
-    frameSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                                             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                             {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                             {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                             {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                              uint32_t(kMaxCookies)},
-                                             {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                             {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {14, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                             {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    frameSetLayout = vk::createSetLayout(
+        c, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+            {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(kMaxCookies)},
+            {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {14, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     outputSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
-    sceneLayout = vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));
+    sceneLayout =
+        vk::createPipelineLayout(c, {frameSetLayout, materialSetLayout}, sizeof(uint32_t));
     shadowLayout = vk::createPipelineLayout(c, {materialSetLayout}, sizeof(ShadowPush));
     outputLayout = vk::createPipelineLayout(c, {outputSetLayout}, sizeof(OutputPush));
     domeBlurSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},

@@ -19,17 +19,17 @@ struct ShadowPush {
 struct ScenePipelines {
     explicit ScenePipelines(vk::Context& ctx);
 
-    vk::Sampler textureSampler; // trilinear, repeat
-    vk::Sampler nearestSampler; // texel fetches (shadow maps, hdr)
-    vk::Sampler cookieSampler;  // bilinear, clamp to edge, level 0 (spot-light cookies)
+    vk::Sampler textureSampler;     // trilinear, repeat
+    vk::Sampler nearestSampler;     // texel fetches (shadow maps, hdr)
+    vk::Sampler cookieSampler;      // bilinear, clamp to edge, level 0 (spot-light cookies)
     vk::Sampler environmentSampler; // trilinear over the whole chain (environment cube)
     vk::DescriptorSetLayout frameSetLayout, materialSetLayout, outputSetLayout, domeBlurSetLayout,
         bounceShSetLayout;
     vk::PipelineLayout sceneLayout, shadowLayout, outputLayout, domeBlurLayout, bounceShLayout;
     vk::Pipeline shadow, shadowAlpha;
-    vk::Pipeline domeBlurRows; // the dome blur's row pass
-    vk::Pipeline domeBlur;     // its column pass, adding the dome-shadowed diffuse light
-    vk::Pipeline bounceSh;     // the bounce captures projected onto SH9 (BounceProbes.h)
+    vk::Pipeline domeBlurRows;   // the dome blur's row pass
+    vk::Pipeline domeBlur;       // its column pass, adding the dome-shadowed diffuse light
+    vk::Pipeline bounceSh;       // the bounce captures projected onto SH9 (BounceProbes.h)
     vk::Pipeline bounceRadiance; // the casters' radiance in SH9, from the frame set
 
     /// Forward shading for an output set (`debug` outputs, `dome` output for the blur pass) and
@@ -55,7 +55,7 @@ private:
     std::unordered_map<int, vk::Pipeline> mOutput; // by format
     // [debug][dome][facing][samples 1, 2, 4, 8][features]
     vk::Pipeline mForward[2][2][3][4][gpu::FEATURE_ALL + 1];
-    vk::Pipeline mBackground[2][4];                // [with depth][samples]
+    vk::Pipeline mBackground[2][4]; // [with depth][samples]
 };
 
 } // namespace weft::render

@@ -54,13 +54,13 @@ ShadowFrustum fitPerspectiveShadow(const glm::vec3& position, const glm::vec3& a
 
 void pointShadowFaces(const glm::vec3& position, float zNear, const glm::vec3& lo,
                       const glm::vec3& hi, unsigned size, ShadowFrustum faces[6]) {
-    static const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
-                                      {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    static const glm::vec3 axes[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                      {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
     static const glm::vec3 ups[6] = {{0, 1, 0}, {0, 1, 0}, {0, 0, -1},
                                      {0, 0, 1}, {0, 1, 0}, {0, 1, 0}};
     for (int i = 0; i < 6; ++i)
-        faces[i] = fitPerspectiveShadow(position, axes[i], ups[i], glm::half_pi<float>(), zNear,
-                                        lo, hi, size);
+        faces[i] = fitPerspectiveShadow(position, axes[i], ups[i], glm::half_pi<float>(), zNear, lo,
+                                        hi, size);
 }
 
 } // namespace weft::render

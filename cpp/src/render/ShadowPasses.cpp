@@ -28,15 +28,16 @@ void drawCasters(const FramePassContext& f, VkCommandBuffer cmd, VkImageView vie
     VkPipeline bound = VK_NULL_HANDLE;
     for (const Draw& d : f.data.draws) {
         if (!d.castShadows || d.mesh->indexCount == 0) continue;
-        const VkPipeline p = d.alphaCutoff > 0.0f ? f.pipes.shadowAlpha.get() : f.pipes.shadow.get();
+        const VkPipeline p =
+            d.alphaCutoff > 0.0f ? f.pipes.shadowAlpha.get() : f.pipes.shadow.get();
         if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
         if (d.alphaCutoff > 0.0f)
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.shadowLayout, 0, 1,
-                                    &d.material, 0, nullptr);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.shadowLayout, 0,
+                                    1, &d.material, 0, nullptr);
         const ShadowPush push{viewProj * d.model, d.alphaCutoff};
         vkCmdPushConstants(cmd, f.pipes.shadowLayout,
-                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
-                           &push);
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(push), &push);
         drawMesh(cmd, *d.mesh);
     }
     if (f.hair && withHair) f.hair->drawDepth(cmd, viewProj);

@@ -11,8 +11,8 @@ namespace weft {
 
 namespace {
 
-constexpr float kMinExponent = 1e-3f; // Material.shininess must be > 0 (pow(0, 0) is undefined)
-constexpr float kTinyAlbedo = 1e-30f; // stands for a drawn albedo of 0 under an ambient term
+constexpr float kMinExponent = 1e-3f;    // Material.shininess must be > 0 (pow(0, 0) is undefined)
+constexpr float kTinyAlbedo = 1e-30f;    // stands for a drawn albedo of 0 under an ambient term
 constexpr float kMinNormalScale = 1e-3f; // flat maps: 8-bit 0.5 decodes to 0.0039 s, not 0
 
 uint8_t quantise(float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
@@ -184,9 +184,10 @@ BtfMaterialMaps btfDrawnMaps(const BtfMaterialMaps& maps) {
         }
         if (!d.exponentMap.empty()) {
             const float alpha = decode(e.specular[t * 4 + 3]);
-            d.exponentMap[t] = e.exponentInAlpha
-                                   ? std::min(e.shininess * std::exp2(alpha * log2Ratio), e.shininessMax)
-                                   : e.shininess;
+            d.exponentMap[t] =
+                e.exponentInAlpha
+                    ? std::min(e.shininess * std::exp2(alpha * log2Ratio), e.shininessMax)
+                    : e.shininess;
         }
     }
     d.validate();

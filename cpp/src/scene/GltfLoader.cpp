@@ -53,10 +53,13 @@ bool imageSize(const unsigned char* bytes, size_t size, uint32_t& width, uint32_
     while (at + 4 <= size) {
         if (bytes[at] != 0xFF) return false;
         const unsigned marker = bytes[at + 1];
-        if (marker == 0xFF) { ++at; continue; } // fill byte
+        if (marker == 0xFF) {
+            ++at;
+            continue;
+        } // fill byte
         const size_t length = bigEndian16(bytes + at + 2);
-        const bool startOfFrame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 &&
-                                  marker != 0xC8 && marker != 0xCC;
+        const bool startOfFrame =
+            marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
         if (startOfFrame) {
             if (at + 9 > size) return false;
             height = bigEndian16(bytes + at + 5);
@@ -85,8 +88,8 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
                     " a side\n";
         return false;
     }
-    return tinygltf::LoadImageData(image, index, err, warn, requestedWidth, requestedHeight,
-                                   bytes, size, nullptr);
+    return tinygltf::LoadImageData(image, index, err, warn, requestedWidth, requestedHeight, bytes,
+                                   size, nullptr);
 }
 
 // External buffers and images go through weft's checked reader (regular files, size cap).
@@ -127,6 +130,7 @@ private:
         size_t count() const { return mCount; }
         float get(size_t i, int c) const;
         uint32_t index(size_t i) const;
+
     private:
         const unsigned char* mData = nullptr;
         size_t mCount = 0, mStride = 0, mComponentSize = 0;
@@ -190,21 +194,31 @@ GltfConverter::Reader::Reader(const GltfConverter& owner, int accessorIndex, int
 float GltfConverter::Reader::get(size_t i, int c) const {
     const unsigned char* p = mData + i * mStride + size_t(c) * mComponentSize;
     switch (mComponentType) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); return v; }
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float v;
+        std::memcpy(&v, p, 4);
+        return v;
+    }
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return mNormalized ? p[0] / 255.0f : p[0];
     case TINYGLTF_COMPONENT_TYPE_BYTE: {
         const float v = float(int8_t(p[0]));
         return mNormalized ? std::max(v / 127.0f, -1.0f) : v;
     }
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        uint16_t v; std::memcpy(&v, p, 2);
+        uint16_t v;
+        std::memcpy(&v, p, 2);
         return mNormalized ? v / 65535.0f : float(v);
     }
     case TINYGLTF_COMPONENT_TYPE_SHORT: {
-        int16_t v; std::memcpy(&v, p, 2);
+        int16_t v;
+        std::memcpy(&v, p, 2);
         return mNormalized ? std::max(v / 32767.0f, -1.0f) : float(v);
     }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return float(v); }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        uint32_t v;
+        std::memcpy(&v, p, 4);
+        return float(v);
+    }
     default: return std::numeric_limits<float>::quiet_NaN(); // rejected by validate()
     }
 }
@@ -213,8 +227,16 @@ uint32_t GltfConverter::Reader::index(size_t i) const {
     const unsigned char* p = mData + i * mStride;
     switch (mComponentType) {
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return v; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t v;
+        std::memcpy(&v, p, 2);
+        return v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        uint32_t v;
+        std::memcpy(&v, p, 4);
+        return v;
+    }
     default: return std::numeric_limits<uint32_t>::max(); // out of range below
     }
 }
@@ -222,7 +244,8 @@ uint32_t GltfConverter::Reader::index(size_t i) const {
 glm::dmat4 localTransform(const tinygltf::Node& node) {
     if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data()); // column-major
     glm::dmat4 m(1.0);
-    if (node.translation.size() == 3) m = glm::translate(m, glm::make_vec3(node.translation.data()));
+    if (node.translation.size() == 3)
+        m = glm::translate(m, glm::make_vec3(node.translation.data()));
     if (node.rotation.size() == 4) {
         const std::vector<double>& q = node.rotation; // glTF stores x, y, z, w
         m *= glm::mat4_cast(glm::normalize(glm::dquat(q[3], q[0], q[1], q[2])));
@@ -290,7 +313,8 @@ std::vector<uint32_t> GltfConverter::triangles(const tinygltf::Primitive& primit
         for (size_t i = 0; i + 2 < n; ++i)
             out.insert(out.end(), {list[i], list[i + 1 + i % 2], list[i + 2 - i % 2]});
     } else if (primitive.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-        for (size_t i = 0; i + 2 < n; ++i) out.insert(out.end(), {list[i + 1], list[i + 2], list[0]});
+        for (size_t i = 0; i + 2 < n; ++i)
+            out.insert(out.end(), {list[i + 1], list[i + 2], list[0]});
     } else {
         out.assign(list.begin(), list.end() - n % 3); // a trailing partial triangle is dropped
     }
@@ -320,8 +344,8 @@ void GltfConverter::addPrimitive(const tinygltf::Mesh& gmesh, const tinygltf::Pr
     Mesh& mesh = part.mesh;
     mesh.positions.resize(count);
     for (size_t i = 0; i < count; ++i)
-        mesh.positions[i] = glm::vec3(world * glm::dvec4(positions.get(i, 0), positions.get(i, 1),
-                                                         positions.get(i, 2), 1.0));
+        mesh.positions[i] = glm::vec3(
+            world * glm::dvec4(positions.get(i, 0), positions.get(i, 1), positions.get(i, 2), 1.0));
     const auto normal = primitive.attributes.find("NORMAL");
     if (normal != primitive.attributes.end()) {
         const Reader normals(*this, normal->second, 3, "NORMAL");
@@ -329,18 +353,19 @@ void GltfConverter::addPrimitive(const tinygltf::Mesh& gmesh, const tinygltf::Pr
         const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(world)));
         mesh.normals.resize(count);
         for (size_t i = 0; i < count; ++i) {
-            const glm::dvec3 n = normalMatrix * glm::dvec3(normals.get(i, 0), normals.get(i, 1),
-                                                           normals.get(i, 2));
+            const glm::dvec3 n =
+                normalMatrix * glm::dvec3(normals.get(i, 0), normals.get(i, 1), normals.get(i, 2));
             const double length = glm::length(n);
             // A zero normal in the file has no direction; +Y keeps the mesh valid.
-            mesh.normals[i] = length > 0.0 && std::isfinite(length) ? glm::vec3(n / length)
-                                                                    : glm::vec3(0, 1, 0);
+            mesh.normals[i] =
+                length > 0.0 && std::isfinite(length) ? glm::vec3(n / length) : glm::vec3(0, 1, 0);
         }
     }
     // The UV set the base-colour texture reads (KHR_texture_transform may override it).
-    const tinygltf::Material* gm = primitive.material >= 0 &&
-                                   size_t(primitive.material) < mModel.materials.size()
-                                       ? &mModel.materials[primitive.material] : nullptr;
+    const tinygltf::Material* gm =
+        primitive.material >= 0 && size_t(primitive.material) < mModel.materials.size()
+            ? &mModel.materials[primitive.material]
+            : nullptr;
     int texCoord = gm ? gm->pbrMetallicRoughness.baseColorTexture.texCoord : 0;
     const tinygltf::Value* transform = nullptr;
     if (gm) {
@@ -372,8 +397,8 @@ void GltfConverter::addPrimitive(const tinygltf::Mesh& gmesh, const tinygltf::Pr
             const double c = std::cos(rotation), s = std::sin(rotation);
             for (glm::vec2& t : mesh.uvs) {
                 const glm::dvec2 scaled = glm::dvec2(t) * scale;
-                t = glm::vec2(offset + glm::dvec2(c * scaled.x + s * scaled.y,
-                                                  -s * scaled.x + c * scaled.y));
+                t = glm::vec2(
+                    offset + glm::dvec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y));
             }
         }
     } else {
@@ -386,7 +411,8 @@ void GltfConverter::addPrimitive(const tinygltf::Mesh& gmesh, const tinygltf::Pr
         fail("more than " + std::to_string(kMaxTotalIndices / 3) + " triangles in all");
     mTotalIndices += mesh.indices.size();
     if (glm::determinant(glm::dmat3(world)) < 0.0) // a mirror turns the front face inside
-        for (size_t i = 0; i < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+        for (size_t i = 0; i < mesh.indices.size(); i += 3)
+            std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
     if (mesh.normals.empty()) {
         // glTF spec 3.7.2.1: without normals, flat shading. One vertex per corner.
         if (mesh.indices.size() > kMaxTotalVertices - mTotalVertices)
@@ -406,9 +432,7 @@ void GltfConverter::addPrimitive(const tinygltf::Mesh& gmesh, const tinygltf::Pr
     try {
         mesh.validate();
         part.material.validate();
-    } catch (const InvalidArgument& e) {
-        fail(std::string("mesh '") + name + "': " + e.what());
-    }
+    } catch (const InvalidArgument& e) { fail(std::string("mesh '") + name + "': " + e.what()); }
     mParts.push_back(std::move(part));
 }
 
@@ -420,7 +444,8 @@ TexturePtr GltfConverter::texture(int index, bool srgb) {
         fail("texture " + std::to_string(index) + " does not exist");
     const int source = mModel.textures[index].source;
     if (source < 0 || size_t(source) >= mModel.images.size())
-        fail("texture " + std::to_string(index) + " has no image (extensions such as KTX2 or "
+        fail("texture " + std::to_string(index) +
+             " has no image (extensions such as KTX2 or "
              "WebP images are not supported)");
     const tinygltf::Image& gi = mModel.images[source];
     if (gi.width <= 0 || gi.height <= 0 || gi.component < 1 || gi.component > 4 ||
@@ -501,7 +526,8 @@ std::vector<MeshPart> loadGltf(const std::string& path) {
                                                         unsigned(bytes.size()), baseDir);
     if (!ok) {
         while (!error.empty() && error.back() == '\n') error.pop_back();
-        throw IoError("glTF file '" + path + "': " + (error.empty() ? "could not be parsed" : error));
+        throw IoError("glTF file '" + path +
+                      "': " + (error.empty() ? "could not be parsed" : error));
     }
     return GltfConverter(path, model).convert();
 }

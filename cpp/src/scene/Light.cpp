@@ -1,6 +1,6 @@
 // Lights: their checks, attenuation and the helpers the renderer uses on any light kind.
-#include <weft/Light.h>
 #include <weft/Error.h>
+#include <weft/Light.h>
 
 #include <cmath>
 #include <string>
@@ -40,7 +40,8 @@ namespace {
 void validateEmitter(const glm::vec3& color, float intensity, const char* what) {
     requireNonNegative(color, what);
     requireFinite(intensity, what);
-    if (intensity < 0) throw InvalidArgument(std::string(what) + ": intensity must not be negative");
+    if (intensity < 0)
+        throw InvalidArgument(std::string(what) + ": intensity must not be negative");
 }
 } // namespace
 
@@ -54,7 +55,8 @@ void PointLight::validate() const {
 void SpotLight::validate() const {
     requireFinite(position, "SpotLight.position");
     requireFinite(direction, "SpotLight.direction");
-    if (glm::length(direction) < 1e-12f) throw InvalidArgument("SpotLight.direction must not be zero");
+    if (glm::length(direction) < 1e-12f)
+        throw InvalidArgument("SpotLight.direction must not be zero");
     validateEmitter(color, intensity, "SpotLight");
     attenuation.validate();
     requirePositive(shadowNear, "SpotLight.shadow_near");
@@ -62,8 +64,8 @@ void SpotLight::validate() const {
     requireFinite(outerAngle, "SpotLight.outer_angle");
     if (!(innerAngle >= 0.0f && innerAngle < outerAngle && outerAngle < 1.5607964f))
         throw InvalidArgument("SpotLight angles must satisfy 0 <= inner_angle < outer_angle < "
-                              "pi/2 - 0.01 (got " + std::to_string(innerAngle) + ", " +
-                              std::to_string(outerAngle) + ")");
+                              "pi/2 - 0.01 (got " +
+                              std::to_string(innerAngle) + ", " + std::to_string(outerAngle) + ")");
 }
 
 void validateLight(const Light& light) {

@@ -79,8 +79,7 @@ std::string trimmedRight(std::string s) {
 class ObjReader {
 public:
     explicit ObjReader(const std::string& path)
-        : mPath(path), mBytes(readInputFile(path, "OBJ file")), mBuffer(mBytes),
-          mStream(&mBuffer) {
+        : mPath(path), mBytes(readInputFile(path, "OBJ file")), mBuffer(mBytes), mStream(&mBuffer) {
         mMaterialOf.emplace("", 0);
     }
 
@@ -159,8 +158,7 @@ bool ObjReader::MtlFiles::operator()(const std::string& name,
                                      std::map<std::string, int>* byName, std::string* warn,
                                      std::string* err) {
     const size_t line = mOwner.mBuffer.offset();
-    const std::string path =
-        (std::filesystem::path(mOwner.mPath).parent_path() / name).string();
+    const std::string path = (std::filesystem::path(mOwner.mPath).parent_path() / name).string();
     std::vector<uint8_t> bytes;
     try {
         bytes = readInputFile(path, "MTL file");
@@ -264,11 +262,9 @@ void ObjReader::read(bool withMaterials) {
     callbacks.mtllib_cb = onMaterials;
     MtlFiles mtlFiles(*this);
     std::string warnings, errors;
-    const bool ok = tinyobj::LoadObjWithCallback(mStream, callbacks, this,
-                                                 withMaterials ? &mtlFiles : nullptr, &warnings,
-                                                 &errors);
-    if (!ok || !errors.empty())
-        throw IoError("OBJ file '" + mPath + "': " + trimmedRight(errors));
+    const bool ok = tinyobj::LoadObjWithCallback(
+        mStream, callbacks, this, withMaterials ? &mtlFiles : nullptr, &warnings, &errors);
+    if (!ok || !errors.empty()) throw IoError("OBJ file '" + mPath + "': " + trimmedRight(errors));
     for (const auto& [offset, message] : mLibraryFailures)
         if (!mLibrariesLoaded.count(offset)) failAt(offset, message);
 }
@@ -277,8 +273,9 @@ std::map<std::string, std::pair<const tinyobj::material_t*, std::string>>
 ObjReader::materials() const {
     std::map<std::string, std::pair<const tinyobj::material_t*, std::string>> out;
     for (size_t i = 0; i < mMaterials.size(); ++i)
-        out.emplace(trimmedRight(mMaterials[i].name),
-                    std::make_pair(&mMaterials[i], i < mMaterialFile.size() ? mMaterialFile[i] : ""));
+        out.emplace(
+            trimmedRight(mMaterials[i].name),
+            std::make_pair(&mMaterials[i], i < mMaterialFile.size() ? mMaterialFile[i] : ""));
     return out;
 }
 
@@ -387,17 +384,14 @@ public:
         out.shininess = std::max(float(m.shininess), 1.0f); // Ns 0 is common; weft needs > 0
         const std::string texture = trimmedRight(m.diffuse_texname);
         if (!texture.empty()) {
-            const std::string file =
-                (std::filesystem::path(mtl).parent_path() / texture).string();
+            const std::string file = (std::filesystem::path(mtl).parent_path() / texture).string();
             const auto cached = mTextures.find(file);
             if (cached != mTextures.end()) {
                 out.texture = cached->second;
             } else {
                 try {
                     out.texture = std::make_shared<Texture>(loadPng(file), true);
-                } catch (const Error& e) {
-                    fail(std::string("map_Kd: ") + e.what());
-                }
+                } catch (const Error& e) { fail(std::string("map_Kd: ") + e.what()); }
                 mTextures.emplace(file, out.texture);
             }
         }

@@ -11,8 +11,8 @@ namespace weft {
 namespace {
 void checkId(uint32_t id, size_t count, const char* what) {
     if (id >= count)
-        throw InvalidArgument(std::string(what) + " id " + std::to_string(id) + " does not exist (" +
-                              std::to_string(count) + " in the scene)");
+        throw InvalidArgument(std::string(what) + " id " + std::to_string(id) +
+                              " does not exist (" + std::to_string(count) + " in the scene)");
 }
 } // namespace
 
@@ -40,7 +40,8 @@ uint32_t Scene::addCloth(std::shared_ptr<const DeformableMesh> cloth, const Mate
 
 void Scene::setTransform(uint32_t id, const glm::mat4& transform) {
     checkId(id, mInstances.size(), "mesh");
-    if (mInstances[id].deformable) throw InvalidArgument("a cloth's particles are in world space; it has no transform");
+    if (mInstances[id].deformable)
+        throw InvalidArgument("a cloth's particles are in world space; it has no transform");
     requireInvertible(transform, "mesh transform");
     mInstances[id].transform = transform;
     ++mVersion;
@@ -95,8 +96,9 @@ void EnvironmentLighting::validate() const {
     int maxLevels = 1;
     while ((specularSize >> maxLevels) >= 1 && maxLevels < 16) ++maxLevels;
     if (specularLevels < 2 || specularLevels > maxLevels)
-        throw InvalidArgument("environment specular_levels must be in [2, " + std::to_string(maxLevels) +
-                              "] for specular_size " + std::to_string(specularSize));
+        throw InvalidArgument("environment specular_levels must be in [2, " +
+                              std::to_string(maxLevels) + "] for specular_size " +
+                              std::to_string(specularSize));
     if (specularSamples < 1 || specularSamples > 4096)
         throw InvalidArgument("environment specular_samples must be in [1, 4096]");
     if (domeLights < 0 || domeLights > 64 || domeLights % 8 != 0)
@@ -138,7 +140,8 @@ namespace {
 void addBox(glm::vec3& lo, glm::vec3& hi, const glm::vec3& olo, const glm::vec3& ohi,
             const glm::mat4& transform) {
     for (int i = 0; i < 8; ++i) {
-        const glm::vec3 c((i & 1) ? ohi.x : olo.x, (i & 2) ? ohi.y : olo.y, (i & 4) ? ohi.z : olo.z);
+        const glm::vec3 c((i & 1) ? ohi.x : olo.x, (i & 2) ? ohi.y : olo.y,
+                          (i & 4) ? ohi.z : olo.z);
         const glm::vec3 w = glm::vec3(transform * glm::vec4(c, 1.0f));
         lo = glm::min(lo, w);
         hi = glm::max(hi, w);
@@ -148,8 +151,9 @@ void addBox(glm::vec3& lo, glm::vec3& hi, const glm::vec3& olo, const glm::vec3&
 
 void Scene::instanceBounds(size_t index, glm::vec3& lo, glm::vec3& hi) const {
     if (index >= mInstances.size())
-        throw InvalidArgument("instance " + std::to_string(index) + " out of range (the scene has " +
-                              std::to_string(mInstances.size()) + ")");
+        throw InvalidArgument("instance " + std::to_string(index) +
+                              " out of range (the scene has " + std::to_string(mInstances.size()) +
+                              ")");
     const MeshInstance& inst = mInstances[index];
     lo = glm::vec3(1e30f);
     hi = glm::vec3(-1e30f);

@@ -39,9 +39,7 @@ Allocator::~Allocator() {
 uint32_t Allocator::findType(uint32_t typeBits, MemoryUsage usage) const {
     VkMemoryPropertyFlags required = 0, preferred = 0;
     switch (usage) {
-    case MemoryUsage::GpuOnly:
-        preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-        break;
+    case MemoryUsage::GpuOnly: preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT; break;
     case MemoryUsage::Upload:
         required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
         break;
@@ -101,7 +99,8 @@ Allocation Allocator::allocate(const VkMemoryRequirements& req, MemoryUsage usag
     if (r != VK_SUCCESS)
         throw Error("out of GPU memory allocating " + std::to_string(size >> 20) + " MiB (" +
                     resultName(r) + ")");
-    if (hostVisible) VK_CHECK(vkMapMemory(mDevice, block.memory, 0, VK_WHOLE_SIZE, 0, &block.mapped));
+    if (hostVisible)
+        VK_CHECK(vkMapMemory(mDevice, block.memory, 0, VK_WHOLE_SIZE, 0, &block.mapped));
     block.ranges = std::make_unique<RangeAllocator>(size);
     auto offset = block.ranges->allocate(req.size, req.alignment);
     int index = -1;

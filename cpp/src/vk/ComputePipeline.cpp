@@ -21,16 +21,18 @@ Pipeline createComputePipeline(Context& ctx, const char* shader, VkPipelineLayou
     return Pipeline(&ctx, pipeline, vkDestroyPipeline);
 }
 
-DescriptorSetLayout createComputeSetLayout(
-    Context& ctx, const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings) {
+DescriptorSetLayout
+createComputeSetLayout(Context& ctx,
+                       const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings) {
     std::vector<SetBinding> b;
     for (auto [binding, type] : bindings) b.push_back({binding, type});
     return createSetLayout(ctx, b, 0, VK_SHADER_STAGE_COMPUTE_BIT);
 }
 
-const ComputeProgram& cachedComputeProgram(
-    Context& ctx, const char* shader,
-    const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings, uint32_t pushConstantBytes) {
+const ComputeProgram&
+cachedComputeProgram(Context& ctx, const char* shader,
+                     const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings,
+                     uint32_t pushConstantBytes) {
     std::string key = std::string("compute:") + shader + ":" + std::to_string(pushConstantBytes) +
                       ":" + std::to_string(shaderGeneration());
     for (auto [binding, type] : bindings)
@@ -45,7 +47,8 @@ const ComputeProgram& cachedComputeProgram(
     return *static_cast<const ComputeProgram*>(program.get());
 }
 
-PipelineLayout createComputePipelineLayout(Context& ctx, const std::vector<VkDescriptorSetLayout>& sets,
+PipelineLayout createComputePipelineLayout(Context& ctx,
+                                           const std::vector<VkDescriptorSetLayout>& sets,
                                            uint32_t pushConstantBytes) {
     return createPipelineLayout(ctx, sets, pushConstantBytes, VK_SHADER_STAGE_COMPUTE_BIT);
 }

@@ -17,8 +17,8 @@ VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBits
                                              const VkDebugUtilsMessengerCallbackDataEXT* data,
                                              void*) {
     if (severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) return VK_FALSE;
-    std::string text = (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error: "
-                                                                                   : "warning: ");
+    std::string text =
+        (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error: " : "warning: ");
     text += data && data->pMessage ? data->pMessage : "(no message)";
     recordValidationMessage(text);
     return VK_FALSE;
@@ -56,16 +56,11 @@ bool deviceHasExtension(VkPhysicalDevice pd, const char* name) {
 
 int typeRank(VkPhysicalDeviceType t) {
     switch (t) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
-        return 0;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
-        return 1;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
-        return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU:
-        return 3;
-    default:
-        return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+    default: return 4;
     }
 }
 
@@ -75,9 +70,8 @@ bool usable(VkPhysicalDevice pd) {
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(pd, &p);
     if (p.apiVersion < VK_API_VERSION_1_2) return false;
-    if (p.apiVersion < VK_API_VERSION_1_3 &&
-        !(deviceHasExtension(pd, "VK_KHR_dynamic_rendering") &&
-          deviceHasExtension(pd, "VK_KHR_synchronization2")))
+    if (p.apiVersion < VK_API_VERSION_1_3 && !(deviceHasExtension(pd, "VK_KHR_dynamic_rendering") &&
+                                               deviceHasExtension(pd, "VK_KHR_synchronization2")))
         return false;
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
@@ -95,7 +89,8 @@ std::string lower(std::string s) {
 
 // Index (into `devices`) of the device to use: WEFT_DEVICE wins, else the best-ranked type.
 size_t chooseDevice(const std::vector<VkPhysicalDevice>& devices) {
-    if (devices.empty()) throw Error("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
+    if (devices.empty())
+        throw Error("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
     if (const char* want = std::getenv("WEFT_DEVICE"); want && *want) {
         std::string w = want;
         bool numeric = std::all_of(w.begin(), w.end(), [](char c) { return std::isdigit(c); });
@@ -104,7 +99,8 @@ size_t chooseDevice(const std::vector<VkPhysicalDevice>& devices) {
             if (i >= devices.size())
                 throw Error("WEFT_DEVICE=" + w + " but only " + std::to_string(devices.size()) +
                             " Vulkan device(s) exist");
-            if (!usable(devices[i])) throw Error("WEFT_DEVICE=" + w + " lacks Vulkan 1.2 + dynamic rendering");
+            if (!usable(devices[i]))
+                throw Error("WEFT_DEVICE=" + w + " lacks Vulkan 1.2 + dynamic rendering");
             return i;
         }
         for (size_t i = 0; i < devices.size(); ++i) {
@@ -126,7 +122,8 @@ size_t chooseDevice(const std::vector<VkPhysicalDevice>& devices) {
             best = i;
         }
     }
-    if (best == devices.size()) throw Error("no Vulkan device supports Vulkan 1.2 with dynamic rendering");
+    if (best == devices.size())
+        throw Error("no Vulkan device supports Vulkan 1.2 with dynamic rendering");
     return best;
 }
 
@@ -214,8 +211,7 @@ void Context::createInstance() {
     }
     // Surface extensions are enabled whenever present so a window can be opened later.
     for (const char* e : {"VK_KHR_surface", "VK_KHR_xcb_surface", "VK_KHR_xlib_surface",
-                          "VK_KHR_wayland_surface", "VK_KHR_win32_surface",
-                          "VK_EXT_metal_surface"})
+                          "VK_KHR_wayland_surface", "VK_KHR_win32_surface", "VK_EXT_metal_surface"})
         if (has(e)) extensions.push_back(e);
     bool portability = has("VK_KHR_portability_enumeration");
     if (portability) extensions.push_back("VK_KHR_portability_enumeration");

@@ -46,7 +46,8 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
     VkPipelineInputAssemblyStateCreateInfo assembly{
         VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     assembly.topology = d.topology;
-    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    VkPipelineViewportStateCreateInfo viewport{
+        VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
     viewport.viewportCount = 1;
     viewport.scissorCount = 1;
     VkPipelineRasterizationStateCreateInfo raster{
@@ -72,7 +73,8 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
     }
     if (blends.size() != d.colorFormats.size())
         throw Error("graphics pipeline: one blend state per colour attachment");
-    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    VkPipelineColorBlendStateCreateInfo blend{
+        VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     blend.attachmentCount = uint32_t(blends.size());
     blend.pAttachments = blends.data();
     const VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
@@ -104,7 +106,8 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
 }
 
 DescriptorSetLayout createSetLayout(Context& ctx, const std::vector<SetBinding>& bindings,
-                                    VkDescriptorSetLayoutCreateFlags flags, VkShaderStageFlags stages) {
+                                    VkDescriptorSetLayoutCreateFlags flags,
+                                    VkShaderStageFlags stages) {
     std::vector<VkDescriptorSetLayoutBinding> b;
     for (const SetBinding& s : bindings) b.push_back({s.binding, s.type, s.count, stages, nullptr});
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};

@@ -8,8 +8,8 @@
 namespace weft::vk {
 
 enum class VertexLayout {
-    None,          // no vertex buffer (full-screen triangle)
-    Position,      // vec3 position, stride of the full vertex
+    None,             // no vertex buffer (full-screen triangle)
+    Position,         // vec3 position, stride of the full vertex
     PositionUv,       // vec3 position (location 0), vec2 uv at offset 24 (location 2)
     PositionNormalUv, // + tangent (vec4 at offset 32) when the stride is at least 48
 };
@@ -42,7 +42,8 @@ struct SetBinding {
     uint32_t count = 1; // array size
 };
 
-constexpr VkShaderStageFlags kGraphicsStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+constexpr VkShaderStageFlags kGraphicsStages =
+    VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
 /// Descriptor set layout from {binding, type[, count]}, visible to `stages`.
 DescriptorSetLayout createSetLayout(Context& ctx, const std::vector<SetBinding>& bindings,

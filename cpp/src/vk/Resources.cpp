@@ -59,8 +59,9 @@ void Buffer::reset() {
 }
 
 bool isDepthFormat(VkFormat f) {
-    return f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D24_UNORM_S8_UINT ||
-           f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_X8_D24_UNORM_PACK32;
+    return f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D16_UNORM ||
+           f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT ||
+           f == VK_FORMAT_X8_D24_UNORM_PACK32;
 }
 
 uint32_t formatBytes(VkFormat f) {
@@ -70,14 +71,10 @@ uint32_t formatBytes(VkFormat f) {
     case VK_FORMAT_B8G8R8A8_UNORM:
     case VK_FORMAT_B8G8R8A8_SRGB:
     case VK_FORMAT_D32_SFLOAT:
-    case VK_FORMAT_R32_SFLOAT:
-        return 4;
-    case VK_FORMAT_R16G16B16A16_SFLOAT:
-        return 8;
-    case VK_FORMAT_R32G32B32A32_SFLOAT:
-        return 16;
-    default:
-        throw Error("formatBytes: unsupported format " + std::to_string(int(f)));
+    case VK_FORMAT_R32_SFLOAT: return 4;
+    case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+    default: throw Error("formatBytes: unsupported format " + std::to_string(int(f)));
     }
 }
 
@@ -134,7 +131,8 @@ Image::Image(Context* ctx, const ImageDesc& desc) : mCtx(ctx), mDesc(desc) {
             return view;
         };
         mView = makeView(desc.cube ? VK_IMAGE_VIEW_TYPE_CUBE
-                         : desc.layers > 1 || (desc.usage & VK_IMAGE_USAGE_SAMPLED_BIT && isDepthFormat(desc.format))
+                         : desc.layers > 1 || (desc.usage & VK_IMAGE_USAGE_SAMPLED_BIT &&
+                                               isDepthFormat(desc.format))
                              ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
                              : VK_IMAGE_VIEW_TYPE_2D,
                          0, desc.layers);
@@ -206,8 +204,8 @@ void Image::reset() {
 void transition(Context& ctx, VkCommandBuffer cmd, Image& image, VkImageLayout layout,
                 VkPipelineStageFlags2 stage, VkAccessFlags2 access) {
     VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.srcStageMask = image.stage == VK_PIPELINE_STAGE_2_NONE ? VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT
-                                                             : image.stage;
+    b.srcStageMask =
+        image.stage == VK_PIPELINE_STAGE_2_NONE ? VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT : image.stage;
     b.srcAccessMask = image.access;
     b.dstStageMask = stage;
     b.dstAccessMask = access;

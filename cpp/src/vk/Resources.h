@@ -15,7 +15,8 @@ template <typename T> class Handle {
 public:
     using Destroy = void (*)(VkDevice, T, const VkAllocationCallbacks*);
     Handle() = default;
-    Handle(Context* ctx, T handle, Destroy destroy) : mCtx(ctx), mHandle(handle), mDestroy(destroy) {}
+    Handle(Context* ctx, T handle, Destroy destroy)
+        : mCtx(ctx), mHandle(handle), mDestroy(destroy) {}
     ~Handle() { reset(); }
     Handle(Handle&& o) noexcept { *this = std::move(o); }
     Handle& operator=(Handle&& o) noexcept {

@@ -35,9 +35,9 @@ struct Stamp {
 
 struct ReloadState {
     std::mutex mutex;
-    fs::path root;                                       // empty: not watching
-    std::map<std::string, Stamp> stamps;                 // every file under root, by rel. path
-    std::map<std::string, std::vector<uint32_t>> spirv;  // reloaded shaders by name
+    fs::path root;                                      // empty: not watching
+    std::map<std::string, Stamp> stamps;                // every file under root, by rel. path
+    std::map<std::string, std::vector<uint32_t>> spirv; // reloaded shaders by name
     std::vector<std::string> errors;
     uint64_t generation = 0;
 };
@@ -48,7 +48,8 @@ ReloadState& state() {
 }
 
 bool isStage(const fs::path& p) {
-    static const std::set<std::string> stages = {".vert", ".frag", ".comp", ".geom", ".tesc", ".tese"};
+    static const std::set<std::string> stages = {".vert", ".frag", ".comp",
+                                                 ".geom", ".tesc", ".tese"};
     return stages.count(p.extension().string()) > 0;
 }
 
@@ -89,8 +90,8 @@ std::set<std::string> dependencies(const fs::path& root, const fs::path& file) {
 std::map<std::string, Stamp> scan(const fs::path& root) {
     std::map<std::string, Stamp> out;
     std::error_code ec;
-    for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator();
-         it.increment(ec)) {
+    for (auto it = fs::recursive_directory_iterator(root, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
         if (!it->is_regular_file(ec)) continue;
         Stamp s;
         s.time = it->last_write_time(ec);
@@ -133,7 +134,8 @@ std::string layoutMismatch(const std::string& name, const std::vector<uint32_t>&
     for (const auto& [set, binding] : descriptorBindings(words.data(), words.size()))
         if (!allowed.count({set, binding}))
             return "uses descriptor set " + std::to_string(set) + " binding " +
-                   std::to_string(binding) + ", which the built-in version does not; new "
+                   std::to_string(binding) +
+                   ", which the built-in version does not; new "
                    "descriptors need a rebuild of weft";
     return "";
 }
@@ -147,8 +149,8 @@ struct IncludeResult {
     std::string name, content;
 };
 
-shaderc_include_result* resolveCallback(void* user, const char* requested, int, const char* requesting,
-                                        size_t) {
+shaderc_include_result* resolveCallback(void* user, const char* requested, int,
+                                        const char* requesting, size_t) {
     auto* ctx = static_cast<IncludeContext*>(user);
     auto* r = new IncludeResult;
     const fs::path path = resolveInclude(ctx->root, ctx->root / requesting, requested);
@@ -170,23 +172,26 @@ void releaseCallback(void*, shaderc_include_result* result) {
 bool compile(const fs::path& root, const std::string& name, std::vector<uint32_t>& words,
              std::string& error) {
     static const std::map<std::string, shaderc_shader_kind> kinds = {
-        {".vert", shaderc_vertex_shader},         {".frag", shaderc_fragment_shader},
-        {".comp", shaderc_compute_shader},        {".geom", shaderc_geometry_shader},
-        {".tesc", shaderc_tess_control_shader},   {".tese", shaderc_tess_evaluation_shader}};
+        {".vert", shaderc_vertex_shader},       {".frag", shaderc_fragment_shader},
+        {".comp", shaderc_compute_shader},      {".geom", shaderc_geometry_shader},
+        {".tesc", shaderc_tess_control_shader}, {".tese", shaderc_tess_evaluation_shader}};
     const std::string source = readText(root / name);
     shaderc_compiler_t compiler = shaderc_compiler_initialize();
     shaderc_compile_options_t options = shaderc_compile_options_initialize();
-    shaderc_compile_options_set_target_env(options, shaderc_target_env_vulkan, shaderc_env_version_vulkan_1_2);
+    shaderc_compile_options_set_target_env(options, shaderc_target_env_vulkan,
+                                           shaderc_env_version_vulkan_1_2);
     shaderc_compile_options_set_optimization_level(options, shaderc_optimization_level_performance);
     IncludeContext ctx{root};
     shaderc_compile_options_set_include_callbacks(options, resolveCallback, releaseCallback, &ctx);
     shaderc_compilation_result_t result = shaderc_compile_into_spv(
         compiler, source.data(), source.size(), kinds.at(fs::path(name).extension().string()),
         name.c_str(), "main", options);
-    const bool ok = shaderc_result_get_compilation_status(result) == shaderc_compilation_status_success;
+    const bool ok =
+        shaderc_result_get_compilation_status(result) == shaderc_compilation_status_success;
     if (ok) {
         words.resize(shaderc_result_get_length(result) / sizeof(uint32_t));
-        std::memcpy(words.data(), shaderc_result_get_bytes(result), words.size() * sizeof(uint32_t));
+        std::memcpy(words.data(), shaderc_result_get_bytes(result),
+                    words.size() * sizeof(uint32_t));
     } else {
         error = shaderc_result_get_error_message(result);
     }
@@ -212,7 +217,8 @@ void setShaderDirectory(const std::string& directory) {
         return;
     }
     if (!shaderHotReloadAvailable())
-        throw Error("shader hot reload needs libshaderc, which this build of weft was made without");
+        throw Error(
+            "shader hot reload needs libshaderc, which this build of weft was made without");
     if (!fs::is_directory(directory))
         throw InvalidArgument("shader directory '" + directory + "' does not exist");
     s.root = fs::absolute(directory);
@@ -258,7 +264,8 @@ int pollShaderChanges() {
             ++compiled;
         } else if (known) {
             std::cerr << "weft: shader " << name << " failed to compile; the previous version "
-                      << "stays in use:\n" << error << std::flush;
+                      << "stays in use:\n"
+                      << error << std::flush;
             s.errors.push_back(name + ": " + error);
         }
     }

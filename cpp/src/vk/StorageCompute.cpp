@@ -69,8 +69,8 @@ void bindStorageCompute(VkCommandBuffer cmd, const StorageCompute& compute,
     std::vector<uint32_t> offsets = dynamicOffsets;
     offsets.resize(compute.dynamicCount, 0);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, compute.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, compute.layout, 0, 1,
-                            &compute.set, uint32_t(offsets.size()), offsets.data());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, compute.layout, 0, 1, &compute.set,
+                            uint32_t(offsets.size()), offsets.data());
 }
 
 double runStorageCompute(Context& ctx, const StorageCompute& compute,

@@ -20,7 +20,8 @@ struct StorageBinding {
 };
 
 struct StorageCompute {
-    VkPipelineLayout layout = VK_NULL_HANDLE; // of the context's cached program (cachedComputeProgram)
+    VkPipelineLayout layout =
+        VK_NULL_HANDLE; // of the context's cached program (cachedComputeProgram)
     VkPipeline pipeline = VK_NULL_HANDLE;
     DescriptorPool pool;
     VkDescriptorSet set = VK_NULL_HANDLE; // bindings[k] at binding k

@@ -7,8 +7,7 @@ namespace weft::vk {
 const char* resultName(VkResult result) {
     switch (result) {
 #define WEFT_CASE(x)                                                                               \
-    case x:                                                                                        \
-        return #x;
+    case x: return #x;
         WEFT_CASE(VK_SUCCESS)
         WEFT_CASE(VK_NOT_READY)
         WEFT_CASE(VK_TIMEOUT)
@@ -30,8 +29,7 @@ const char* resultName(VkResult result) {
         WEFT_CASE(VK_ERROR_OUT_OF_DATE_KHR)
         WEFT_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
 #undef WEFT_CASE
-    default:
-        return "VkResult(unknown)";
+    default: return "VkResult(unknown)";
     }
 }
 

@@ -14,7 +14,9 @@ std::mutex gGlfwMutex;
 int gGlfwUsers = 0;
 std::string gGlfwError;
 
-void glfwErrorCallback(int, const char* description) { gGlfwError = description ? description : ""; }
+void glfwErrorCallback(int, const char* description) {
+    gGlfwError = description ? description : "";
+}
 
 // GLFW is initialised while any window exists. Opening the display connection can fail
 // transiently (a busy X server refuses a connection now and then), so when a display is
@@ -85,7 +87,8 @@ Window::Window(int width, int height, const std::string& title, bool vsync)
     });
     try {
         n.ctx = vk::Context::shared();
-        if (!n.ctx->hasSwapchain()) throw Error("the Vulkan device cannot present (no VK_KHR_swapchain)");
+        if (!n.ctx->hasSwapchain())
+            throw Error("the Vulkan device cannot present (no VK_KHR_swapchain)");
         VK_CHECK(glfwCreateWindowSurface(n.ctx->instance(), n.window, nullptr, &n.surface));
         VkBool32 supported = VK_FALSE;
         VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(n.ctx->physicalDevice(), n.ctx->queueFamily(),
@@ -257,11 +260,15 @@ void Window::Native::present(uint32_t index) {
 bool Window::shouldClose() const { return glfwWindowShouldClose(mNative->window); }
 void Window::requestClose() { glfwSetWindowShouldClose(mNative->window, GLFW_TRUE); }
 void Window::pollEvents() { glfwPollEvents(); }
-void Window::setTitle(const std::string& title) { glfwSetWindowTitle(mNative->window, title.c_str()); }
+void Window::setTitle(const std::string& title) {
+    glfwSetWindowTitle(mNative->window, title.c_str());
+}
 void Window::framebufferSize(int& width, int& height) const {
     glfwGetFramebufferSize(mNative->window, &width, &height);
 }
-void Window::onKey(std::function<void(int, int)> callback) { mNative->keyCallback = std::move(callback); }
+void Window::onKey(std::function<void(int, int)> callback) {
+    mNative->keyCallback = std::move(callback);
+}
 void Window::onMouseButton(std::function<void(int, int, double, double)> callback) {
     mNative->mouseButtonCallback = std::move(callback);
 }

@@ -23,8 +23,8 @@ struct Window::Native {
     bool transferSrc = false; // swapchain images can be copied (screenshots)
     bool outOfDate = false;
     std::vector<VkImageView> views;
-    std::vector<vk::Image> images;          // non-owning wrappers with tracked state
-    std::vector<vk::Semaphore> renderDone;  // one per swapchain image
+    std::vector<vk::Image> images;         // non-owning wrappers with tracked state
+    std::vector<vk::Semaphore> renderDone; // one per swapchain image
     std::function<void(int, int)> keyCallback;
     std::function<void(int, int, double, double)> mouseButtonCallback;
     std::function<void(double, double)> cursorCallback;

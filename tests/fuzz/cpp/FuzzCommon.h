@@ -30,8 +30,7 @@ namespace weft::fuzz {
 
 /// Runs `load`; a weft::Error is an accepted answer, any other exception a finding. With
 /// WEFT_FUZZ_VERBOSE set in the environment, each answer is printed (to check seeds).
-template <class F>
-void expectResultOrWeftError(F&& load) {
+template <class F> void expectResultOrWeftError(F&& load) {
     static const bool verbose = std::getenv("WEFT_FUZZ_VERBOSE") != nullptr;
     try {
         load();
@@ -42,9 +41,7 @@ void expectResultOrWeftError(F&& load) {
     } catch (const std::exception& e) {
         finding(std::string("exception other than weft::Error: ") + typeid(e).name() + ": " +
                 e.what());
-    } catch (...) {
-        finding("exception that is not a std::exception");
-    }
+    } catch (...) { finding("exception that is not a std::exception"); }
 }
 
 /// A folder of this process for the files a target writes: on tmpfs (/dev/shm) when there is
@@ -53,8 +50,8 @@ inline const std::filesystem::path& scratchDir() {
     static const std::filesystem::path dir = [] {
         namespace fs = std::filesystem;
         std::error_code ec;
-        fs::path base = fs::is_directory("/dev/shm", ec) ? fs::path("/dev/shm")
-                                                         : fs::temp_directory_path();
+        fs::path base =
+            fs::is_directory("/dev/shm", ec) ? fs::path("/dev/shm") : fs::temp_directory_path();
         fs::path d = base / ("weft-fuzz-" + std::to_string(::getpid()));
         fs::remove_all(d, ec);
         fs::create_directories(d);

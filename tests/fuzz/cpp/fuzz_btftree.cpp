@@ -22,11 +22,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> gNames;               // the 81 frontal Bonn names, no extension
-std::vector<std::vector<uint8_t>> gImages;     // valid tiny images: JPEG, PNG, 16-bit PNG, EXR
+std::vector<std::string> gNames;           // the 81 frontal Bonn names, no extension
+std::vector<std::vector<uint8_t>> gImages; // valid tiny images: JPEG, PNG, 16-bit PNG, EXR
 const char* const kImageExtension[4] = {".jpg", ".png", ".png", ".exr"};
-const char* const kPrefixes[] = {"", "", "", "__MACOSX/", "sub/", "a/b/c/", "._", "__MACOSX/._",
-                                 "sub/._"};
+const char* const kPrefixes[] = {
+    "", "", "", "__MACOSX/", "sub/", "a/b/c/", "._", "__MACOSX/._", "sub/._"};
 const char* const kExtensions[] = {".jpg", ".jpg", ".png", ".exr", ".JPEG", ".txt", ""};
 
 std::vector<uint8_t> readAll(const fs::path& path) {
@@ -148,8 +148,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             char buf[80];
             int angles[4];
             for (int& a : angles) a = in.ConsumeIntegralInRange(0, 999);
-            std::snprintf(buf, sizeof buf, "x tl%d pl%d tv%d pv%d", angles[0], angles[1],
-                          angles[2], angles[3]);
+            std::snprintf(buf, sizeof buf, "x tl%d pl%d tv%d pv%d", angles[0], angles[1], angles[2],
+                          angles[3]);
             stem = buf;
             break;
         }

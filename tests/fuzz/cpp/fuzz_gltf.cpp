@@ -15,8 +15,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
     weft::savePng((weft::fuzz::scratchDir() / "t.png").string(), texture);
     // b.bin: a unit quad -- positions (4 vec3, offset 0), normals (4 vec3, 48), UVs (4 vec2,
     // 96), uint16 indices 0 1 2 0 2 3 (128) -- then zeros up to 1 KiB
-    const float quad[32] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1,
-                            0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 1, 1, 0, 1};
+    const float quad[32] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 0,
+                            0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 1, 1, 0, 1};
     const uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
     std::vector<uint8_t> buffer(1024, 0);
     std::memcpy(buffer.data(), quad, sizeof quad);

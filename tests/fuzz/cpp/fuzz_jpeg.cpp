@@ -1,8 +1,8 @@
 // libFuzzer target: the input is an image file as the BTF reader decodes it
 // (weft::decodeBtfImage: JPEG or PNG by signature, with the JPEG coefficient pass the
 // JPEG-cell refinement asks for). A decoded image must have the sizes it claims.
-#include "btf/BtfImageCodec.h"
 #include "FuzzCommon.h"
+#include "btf/BtfImageCodec.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::vector<uint8_t> bytes(data, data + size);

@@ -48,7 +48,8 @@ bool Cloth::Impl::publish() {
     }
     // A grabbed particle that reached its target shows the target exactly (not rounded twice).
     for (size_t q = 0; q < grabbed.size(); ++q)
-        if (particles[size_t(grabbed[q])].x == grabTargets[q]) world[size_t(grabbed[q])].x = grabWorld[q];
+        if (particles[size_t(grabbed[q])].x == grabTargets[q])
+            world[size_t(grabbed[q])].x = grabWorld[q];
     return finite;
 }
 
@@ -102,7 +103,8 @@ const float* Cloth::normalData() const {
 
 void Cloth::step(float dt) {
     if (!(std::isfinite(dt) && dt > 0.0f && dt <= 1.0f))
-        throw InvalidArgument("time step must be in (0, 1] seconds (got " + std::to_string(dt) + ")");
+        throw InvalidArgument("time step must be in (0, 1] seconds (got " + std::to_string(dt) +
+                              ")");
     Impl& m = *mImpl;
     Lock lock(m.lock);
     if (m.asleep) return;
@@ -175,7 +177,8 @@ void Cloth::setVelocities(const std::vector<glm::vec3>& velocities) {
     checkPoints(velocities, size_t(m.n), "velocities");
     for (const glm::vec3& v : velocities)
         if (glm::length(v) > cloth_limits::kMaxCoordinate)
-            throw InvalidArgument("velocities must be below " + std::to_string(cloth_limits::kMaxCoordinate) + " m/s");
+            throw InvalidArgument("velocities must be below " +
+                                  std::to_string(cloth_limits::kMaxCoordinate) + " m/s");
     Lock lock(m.lock);
     m.pendingVelocity = velocities;
     m.hasPendingVelocity = true;
@@ -367,7 +370,8 @@ ClothStats Cloth::stats() const {
         const float strain = std::abs(len - k.rest) / k.rest;
         sum += strain;
         // a NaN strain must show: std::max would drop it
-        s.maxStrain = std::isnan(strain) || std::isnan(s.maxStrain) ? std::nanf("") : std::max(s.maxStrain, strain);
+        s.maxStrain = std::isnan(strain) || std::isnan(s.maxStrain) ? std::nanf("")
+                                                                    : std::max(s.maxStrain, strain);
         ++s.activeConstraints;
     }
     s.meanStrain = s.activeConstraints ? float(sum / s.activeConstraints) : 0.0f;

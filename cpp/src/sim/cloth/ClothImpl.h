@@ -25,7 +25,7 @@ struct Batch {
     int begin, end; // range in the constraint arrays
     int dx, dy;
     int rowBegin = 0, rowEnd = 0, parity = 0; // rows of particle a, colour (the SoA path)
-    int segmentsBegin = 0, segmentsEnd = 0; // its segments in batchSegments
+    int segmentsBegin = 0, segmentsEnd = 0;   // its segments in batchSegments
 };
 
 } // namespace weft::cloth
@@ -75,9 +75,10 @@ struct Cloth::Impl {
     // The structure-of-arrays path of the relaxation (CPUs with AVX-512, no colliders,
     // WEFT_CLOTH_AOS unset): the integration writes the new positions into soa (x, y, z, w
     // arrays of soaStride floats, slots as in cloth::SoaParticles: soaSlot[k] is particle
-    // k's), the sweeps run there, and fromSoa copies them back to the records. denseRest[b * soaSlots + a]: rest length of batch b's active constraint
-    // starting at slot a, -1 where none does (denseLambda likewise); tethers by slot likewise.
-    // denseStale after constraints, inverse masses or tethers change.
+    // k's), the sweeps run there, and fromSoa copies them back to the records. denseRest[b *
+    // soaSlots + a]: rest length of batch b's active constraint starting at slot a, -1 where none
+    // does (denseLambda likewise); tethers by slot likewise. denseStale after constraints, inverse
+    // masses or tethers change.
     bool useSoa = false;
     int soaSegment = 0, soaSlots = 0; // L, m * ny * L
     size_t soaStride = 0;
@@ -111,20 +112,20 @@ struct Cloth::Impl {
     std::unique_ptr<PoolShare> pool; // this cloth's share of the engine pool
     cloth::Isa isa = cloth::bestIsa();
 
-    void build();                    // grid, constraints, batches (ClothSetup.cpp)
-    void rebuildTethers();           // (ClothSetup.cpp)
-    void applyInverseMasses();       // base, pins, grabs, holes
-    void substep(float h, float damping);              // (ClothSolver.cpp)
-    void relax(float h);                               // one sweep: batches, tethers, colliders
+    void build();                         // grid, constraints, batches (ClothSetup.cpp)
+    void rebuildTethers();                // (ClothSetup.cpp)
+    void applyInverseMasses();            // base, pins, grabs, holes
+    void substep(float h, float damping); // (ClothSolver.cpp)
+    void relax(float h);                  // one sweep: batches, tethers, colliders
     void projectBatch(const cloth::Batch& batch, float alphaTilde);
     cloth::SoaParticles soaParticles() {
         float* base = soa.data();
         return {base, base + soaStride, base + 2 * soaStride, base + 3 * soaStride};
     }
-    void syncDense();                // dense arrays, w and tethers of the SoA path
+    void syncDense(); // dense arrays, w and tethers of the SoA path
     void fromSoa();
     void relaxSoa(float h);
-    int soaSplit() const;            // minParallel of the SoA passes over rows: all or none
+    int soaSplit() const; // minParallel of the SoA passes over rows: all or none
     /// Projects particles [begin, end) out of the colliders; friction only in the relaxation
     /// (the re-projection after self-collision must not brake the cloth a second time).
     void collide(int begin, int end, bool friction);
@@ -141,13 +142,13 @@ struct Cloth::Impl {
         if (normalsStale) computeNormals();
         return normals;
     }
-    void afterStep(float dt);        // tearing, sleeping
-    bool faceOpen(int f) const;      // alive and no corner is a hole
+    void afterStep(float dt);   // tearing, sleeping
+    bool faceOpen(int f) const; // alive and no corner is a hole
     bool quadAny(int i, int j) const;
     bool quadBoth(int i, int j) const;
-    bool supported(size_t c) const;  // the faces constraint c runs through are alive
-    void updateActive();             // active from holes and faces
-    bool tearFaces();                // tears overstretched faces; whether any tore
+    bool supported(size_t c) const; // the faces constraint c runs through are alive
+    void updateActive();            // active from holes and faces
+    bool tearFaces();               // tears overstretched faces; whether any tore
     void tethersAlongCloth(const std::vector<int>& anchors);
 };
 

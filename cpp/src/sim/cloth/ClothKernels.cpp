@@ -22,7 +22,6 @@ namespace weft::cloth {
 
 namespace {
 
-
 template <bool Compliant>
 inline void projectOne(Particle& A, Particle& B, float restLen, float alphaTilde, float& lambda,
                        const glm::vec3& restOffset) {
@@ -49,8 +48,7 @@ inline void projectOne(Particle& A, Particle& B, float restLen, float alphaTilde
     B.x += B.w * corr;
 }
 
-template <bool Compliant>
-void scalarRange(Particle* ps, const BatchJob& job, int q0) {
+template <bool Compliant> void scalarRange(Particle* ps, const BatchJob& job, int q0) {
     for (int q = q0; q < job.count; ++q) {
         if (!job.on[q]) continue;
         Particle* a = ps + job.a[q];
@@ -84,8 +82,7 @@ inline bool fixedParticle(const Particle& p, Particle& prev, const IntegrateJob&
     return true;
 }
 
-template <bool Windy>
-void scalarIntegrate(Particle* ps, Particle* prev, const IntegrateJob& job) {
+template <bool Windy> void scalarIntegrate(Particle* ps, Particle* prev, const IntegrateJob& job) {
     for (int k = job.begin; k < job.end; ++k) {
         if (fixedParticle(ps[k], prev[k], job, k)) continue;
         const glm::vec3 x = ps[k].x;
@@ -94,15 +91,13 @@ void scalarIntegrate(Particle* ps, Particle* prev, const IntegrateJob& job) {
     }
 }
 
-
 #ifdef WEFT_CLOTH_X86
 
 inline __m128 select(__m128 mask, __m128 a, __m128 b) {
     return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
 }
 
-template <bool Windy>
-void sseIntegrate(Particle* ps, Particle* prev, const IntegrateJob& job) {
+template <bool Windy> void sseIntegrate(Particle* ps, Particle* prev, const IntegrateJob& job) {
     const __m128 damping = _mm_set1_ps(job.damping);
     const __m128 xyz = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
     const glm::vec3 g = acceleration<false>(job, 0);
@@ -116,7 +111,8 @@ void sseIntegrate(Particle* ps, Particle* prev, const IntegrateJob& job) {
         float* xp = &ps[k].x.x;
         float* pp = &prev[k].x.x;
         const __m128 x = _mm_load_ps(xp);
-        const __m128 next = _mm_add_ps(_mm_add_ps(x, _mm_mul_ps(damping, _mm_sub_ps(x, _mm_load_ps(pp)))), a);
+        const __m128 next =
+            _mm_add_ps(_mm_add_ps(x, _mm_mul_ps(damping, _mm_sub_ps(x, _mm_load_ps(pp)))), a);
         _mm_store_ps(xp, select(xyz, next, x)); // w stays
         _mm_store_ps(pp, x);
     }
@@ -160,7 +156,8 @@ struct Sse {
         uint32_t bytes;
         std::memcpy(&bytes, on, 4);
         const __m128i z = _mm_setzero_si128();
-        const __m128i words = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(int(bytes)), z), z);
+        const __m128i words =
+            _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(int(bytes)), z), z);
         return _mm_castsi128_ps(_mm_cmpgt_epi32(words, z));
     }
     // Records p[0..3] -> x, y, z, w registers, and back.
@@ -235,8 +232,7 @@ struct Avx {
     }
 };
 
-template <class S, bool Compliant>
-WEFT_FLATTEN int simdRange(Particle* ps, const BatchJob& job) {
+template <class S, bool Compliant> WEFT_FLATTEN int simdRange(Particle* ps, const BatchJob& job) {
     using V = typename S::V;
     constexpr int W = S::kWidth;
     const glm::vec3 u = job.restOffset * kUnfold;
@@ -288,8 +284,7 @@ WEFT_FLATTEN int simdRange(Particle* ps, const BatchJob& job) {
 }
 
 // The operations of scalarTethers, lane by lane; returns the first particle left over.
-template <class S>
-WEFT_FLATTEN int simdTethers(Particle* ps, const TetherJob& job) {
+template <class S> WEFT_FLATTEN int simdTethers(Particle* ps, const TetherJob& job) {
     using V = typename S::V;
     constexpr int W = S::kWidth;
     float* pf = &ps[0].x.x;
@@ -322,13 +317,11 @@ WEFT_FLATTEN int simdTethers(Particle* ps, const TetherJob& job) {
     return k;
 }
 
-template <bool Compliant>
-void sseRange(Particle* ps, const BatchJob& job) {
+template <bool Compliant> void sseRange(Particle* ps, const BatchJob& job) {
     scalarRange<Compliant>(ps, job, simdRange<Sse, Compliant>(ps, job));
 }
 
-template <bool Compliant>
-WEFT_AVX void avxRange(Particle* ps, const BatchJob& job) {
+template <bool Compliant> WEFT_AVX void avxRange(Particle* ps, const BatchJob& job) {
     int q = simdRange<Avx, Compliant>(ps, job);
     BatchJob rest = job; // the last 4..7: one SSE group first
     rest.a += q;
@@ -351,9 +344,7 @@ WEFT_AVX void avxTethers(Particle* ps, const TetherJob& job) {
 
 #endif
 
-
 } // namespace
-
 
 Isa bestIsa() {
 #ifdef WEFT_CLOTH_X86
@@ -378,20 +369,18 @@ void projectBatch(Particle* particles, const BatchJob& job, Isa isa) {
         return compliant ? sseRange<true>(particles, job) : sseRange<false>(particles, job);
 #endif
     default:
-        return compliant ? scalarRange<true>(particles, job, 0) : scalarRange<false>(particles, job, 0);
+        return compliant ? scalarRange<true>(particles, job, 0)
+                         : scalarRange<false>(particles, job, 0);
     }
 }
 
 void projectTethers(Particle* particles, const TetherJob& job, Isa isa) {
     switch (isa) {
 #ifdef WEFT_CLOTH_X86
-    case Isa::Avx:
-        return avxTethers(particles, job);
-    case Isa::Sse:
-        return sseTethers(particles, job);
+    case Isa::Avx: return avxTethers(particles, job);
+    case Isa::Sse: return sseTethers(particles, job);
 #endif
-    default:
-        return scalarTethers(particles, job, job.begin);
+    default: return scalarTethers(particles, job, job.begin);
     }
 }
 
@@ -403,7 +392,8 @@ void integrate(Particle* particles, Particle* previous, const IntegrateJob& job,
                      : sseIntegrate<false>(particles, previous, job);
 #endif
     (void)isa;
-    windy ? scalarIntegrate<true>(particles, previous, job) : scalarIntegrate<false>(particles, previous, job);
+    windy ? scalarIntegrate<true>(particles, previous, job)
+          : scalarIntegrate<false>(particles, previous, job);
 }
 
 } // namespace weft::cloth

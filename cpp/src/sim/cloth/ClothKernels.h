@@ -85,12 +85,12 @@ struct DenseSegment {
 /// constraints; they are visited row by row when a row fills a vector, else masked.
 struct DenseBatchJob {
     int rowBegin, rowEnd;
-    int length;           // L: slots per row of a class
+    int length; // L: slots per row of a class
     const DenseSegment* segments;
     int segmentCount;
     int colourRows, parity;
     const float* rest;
-    float* lambda;        // same layout; read and written only when alphaTilde > 0
+    float* lambda; // same layout; read and written only when alphaTilde > 0
     float alphaTilde;
     glm::vec3 restOffset; // rest offset b - a: direction for coincident ends
 };
@@ -146,8 +146,7 @@ constexpr float kCoincident2 = 1e-24f;
 constexpr float kUnfold = 1e-6f;
 
 /// The Verlet step's acceleration term of particle k times h^2 (gravity, plus wind when Windy).
-template <bool Windy>
-inline glm::vec3 acceleration(const IntegrateJob& job, int k) {
+template <bool Windy> inline glm::vec3 acceleration(const IntegrateJob& job, int k) {
     glm::vec3 a = job.gravity;
     if (Windy) {
         const glm::vec3 nn(job.normals[k]);

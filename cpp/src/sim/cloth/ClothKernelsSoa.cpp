@@ -56,7 +56,8 @@ WEFT_AVX512 void denseRun(const SoaParticles& p, const DenseBatchJob& job, ptrdi
     const __m512 zero = _mm512_setzero_ps(), alpha = _mm512_set1_ps(job.alphaTilde);
     const __m512i signBit = _mm512_set1_epi32(int(0x80000000u));
     for (int i = 0; i < count; i += 16) {
-        const __mmask16 inRow = count - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (count - i)) - 1u);
+        const __mmask16 inRow =
+            count - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (count - i)) - 1u);
         const ptrdiff_t a = begin + i;
         const __m512 rest = _mm512_maskz_loadu_ps(inRow, job.rest + a);
         __mmask16 ok = _mm512_mask_cmp_ps_mask(inRow, rest, zero, _CMP_GE_OQ);
@@ -66,9 +67,12 @@ WEFT_AVX512 void denseRun(const SoaParticles& p, const DenseBatchJob& job, ptrdi
         const __m512 wsum = _mm512_add_ps(aw, bw);
         ok = _mm512_mask_cmp_ps_mask(ok, wsum, zero, _CMP_GT_OQ);
         if (!ok) continue;
-        const __m512 ax = _mm512_maskz_loadu_ps(ok, p.x + a), bx = _mm512_maskz_loadu_ps(ok, p.x + a + d);
-        const __m512 ay = _mm512_maskz_loadu_ps(ok, p.y + a), by = _mm512_maskz_loadu_ps(ok, p.y + a + d);
-        const __m512 az = _mm512_maskz_loadu_ps(ok, p.z + a), bz = _mm512_maskz_loadu_ps(ok, p.z + a + d);
+        const __m512 ax = _mm512_maskz_loadu_ps(ok, p.x + a),
+                     bx = _mm512_maskz_loadu_ps(ok, p.x + a + d);
+        const __m512 ay = _mm512_maskz_loadu_ps(ok, p.y + a),
+                     by = _mm512_maskz_loadu_ps(ok, p.y + a + d);
+        const __m512 az = _mm512_maskz_loadu_ps(ok, p.z + a),
+                     bz = _mm512_maskz_loadu_ps(ok, p.z + a + d);
         __m512 dx = _mm512_sub_ps(bx, ax), dy = _mm512_sub_ps(by, ay), dz = _mm512_sub_ps(bz, az);
         __m512 len2 = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)),
                                     _mm512_mul_ps(dz, dz));
@@ -92,7 +96,8 @@ WEFT_AVX512 void denseRun(const SoaParticles& p, const DenseBatchJob& job, ptrdi
         } else {
             s = _mm512_div_ps(negC, _mm512_mul_ps(wsum, len));
         }
-        const __m512 cx = _mm512_mul_ps(dx, s), cy = _mm512_mul_ps(dy, s), cz = _mm512_mul_ps(dz, s);
+        const __m512 cx = _mm512_mul_ps(dx, s), cy = _mm512_mul_ps(dy, s),
+                     cz = _mm512_mul_ps(dz, s);
         _mm512_mask_storeu_ps(p.x + a, ok, _mm512_sub_ps(ax, _mm512_mul_ps(aw, cx)));
         _mm512_mask_storeu_ps(p.y + a, ok, _mm512_sub_ps(ay, _mm512_mul_ps(aw, cy)));
         _mm512_mask_storeu_ps(p.z + a, ok, _mm512_sub_ps(az, _mm512_mul_ps(aw, cz)));
@@ -121,8 +126,7 @@ WEFT_AVX512 void denseRows(const SoaParticles& p, const DenseBatchJob& job) {
     }
 }
 
-template <bool Table>
-WEFT_AVX512 void tethersSoa(const SoaParticles& p, const SoaTetherJob& tj) {
+template <bool Table> WEFT_AVX512 void tethersSoa(const SoaParticles& p, const SoaTetherJob& tj) {
     const TetherJob& job = tj.tethers;
     const __m512 zero = _mm512_setzero_ps();
     __m512 tx = zero, ty = zero, tz = zero; // the anchors' positions, when Table
@@ -138,7 +142,8 @@ WEFT_AVX512 void tethersSoa(const SoaParticles& p, const SoaTetherJob& tj) {
         tz = _mm512_load_ps(bz);
     }
     for (int k = job.begin; k < job.end; k += 16) {
-        const __mmask16 in = job.end - k >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (job.end - k)) - 1u);
+        const __mmask16 in =
+            job.end - k >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (job.end - k)) - 1u);
         const __m512 w = _mm512_maskz_loadu_ps(in, p.w + k);
         const __mmask16 free = _mm512_mask_cmp_ps_mask(in, w, zero, _CMP_NEQ_UQ);
         if (!free) continue;
@@ -159,10 +164,12 @@ WEFT_AVX512 void tethersSoa(const SoaParticles& p, const SoaTetherJob& tj) {
                 az = _mm512_mask_i32gather_ps(zero, free, idx, p.z, 4);
             }
             const __m512 length = _mm512_maskz_loadu_ps(free, job.length + t);
-            const __m512 dx = _mm512_sub_ps(x, ax), dy = _mm512_sub_ps(y, ay), dz = _mm512_sub_ps(z, az);
-            const __m512 len2 = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)),
-                                              _mm512_mul_ps(dz, dz));
-            const __mmask16 pull = _mm512_mask_cmp_ps_mask(free, len2, _mm512_mul_ps(length, length), _CMP_GT_OQ);
+            const __m512 dx = _mm512_sub_ps(x, ax), dy = _mm512_sub_ps(y, ay),
+                         dz = _mm512_sub_ps(z, az);
+            const __m512 len2 = _mm512_add_ps(
+                _mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)), _mm512_mul_ps(dz, dz));
+            const __mmask16 pull =
+                _mm512_mask_cmp_ps_mask(free, len2, _mm512_mul_ps(length, length), _CMP_GT_OQ);
             if (!pull) continue;
             const __m512 scale = _mm512_div_ps(length, _mm512_sqrt_ps(len2));
             x = _mm512_mask_mov_ps(x, pull, _mm512_add_ps(ax, _mm512_mul_ps(dx, scale)));
@@ -176,9 +183,11 @@ WEFT_AVX512 void tethersSoa(const SoaParticles& p, const SoaTetherJob& tj) {
 }
 
 // 16 records (x, y, z, w) in r[0..3] (4 per register) <-> x, y, z, w of the 16 particles.
-WEFT_AVX512 inline void recordsToColumns(const __m512* r, __m512& X, __m512& Y, __m512& Z, __m512& W) {
+WEFT_AVX512 inline void recordsToColumns(const __m512* r, __m512& X, __m512& Y, __m512& Z,
+                                         __m512& W) {
     const __m512i ixy = _mm512_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28, 1, 5, 9, 13, 17, 21, 25, 29);
-    const __m512i izw = _mm512_setr_epi32(2, 6, 10, 14, 18, 22, 26, 30, 3, 7, 11, 15, 19, 23, 27, 31);
+    const __m512i izw =
+        _mm512_setr_epi32(2, 6, 10, 14, 18, 22, 26, 30, 3, 7, 11, 15, 19, 23, 27, 31);
     const __m512 t0 = _mm512_permutex2var_ps(r[0], ixy, r[1]); // x0..7, y0..7
     const __m512 t1 = _mm512_permutex2var_ps(r[0], izw, r[1]); // z0..7, w0..7
     const __m512 t2 = _mm512_permutex2var_ps(r[2], ixy, r[3]); // x8..15, y8..15
@@ -195,7 +204,8 @@ WEFT_AVX512 inline void columnsToRecords(__m512 X, __m512 Y, __m512 Z, __m512 W,
     const __m512 t1 = _mm512_shuffle_f32x4(Z, W, 0x44);
     const __m512 t3 = _mm512_shuffle_f32x4(Z, W, 0xEE);
     const __m512i lo = _mm512_setr_epi32(0, 8, 16, 24, 1, 9, 17, 25, 2, 10, 18, 26, 3, 11, 19, 27);
-    const __m512i hi = _mm512_setr_epi32(4, 12, 20, 28, 5, 13, 21, 29, 6, 14, 22, 30, 7, 15, 23, 31);
+    const __m512i hi =
+        _mm512_setr_epi32(4, 12, 20, 28, 5, 13, 21, 29, 6, 14, 22, 30, 7, 15, 23, 31);
     r[0] = _mm512_permutex2var_ps(t0, lo, t1);
     r[1] = _mm512_permutex2var_ps(t0, hi, t1);
     r[2] = _mm512_permutex2var_ps(t2, lo, t3);
@@ -222,14 +232,16 @@ struct SegmentShuffle {
         const __m512 grouped = _mm512_permutexvar_ps(toSegments, v);
         for (int c = 0; c < m; ++c) {
             const __mmask16 lanes = __mmask16(((1u << g) - 1u) << (c * g));
-            _mm512_mask_storeu_ps(base + row + ptrdiff_t(c) * stride + i / m - c * g, lanes, grouped);
+            _mm512_mask_storeu_ps(base + row + ptrdiff_t(c) * stride + i / m - c * g, lanes,
+                                  grouped);
         }
     }
     WEFT_AVX512 __m512 load(const float* base, ptrdiff_t row, ptrdiff_t stride, int i) const {
         __m512 grouped = _mm512_setzero_ps();
         for (int c = 0; c < m; ++c) {
             const __mmask16 lanes = __mmask16(((1u << g) - 1u) << (c * g));
-            grouped = _mm512_mask_loadu_ps(grouped, lanes, base + row + ptrdiff_t(c) * stride + i / m - c * g);
+            grouped = _mm512_mask_loadu_ps(grouped, lanes,
+                                           base + row + ptrdiff_t(c) * stride + i / m - c * g);
         }
         return _mm512_permutexvar_ps(fromSegments, grouped);
     }
@@ -266,9 +278,12 @@ WEFT_AVX512 void integrateRows(const Particle* ps, Particle* prev, const Integra
             recordsToColumns(q, PX, PY, PZ, PW);
             const __mmask16 free = _mm512_cmp_ps_mask(W, zero, _CMP_NEQ_UQ);
             const __mmask16 stay = __mmask16(nonZero16(job.pinned + k) & ~nonZero16(job.hole + k));
-            const __m512 nx_ = _mm512_add_ps(_mm512_add_ps(X, _mm512_mul_ps(damping, _mm512_sub_ps(X, PX))), ax);
-            const __m512 ny_ = _mm512_add_ps(_mm512_add_ps(Y, _mm512_mul_ps(damping, _mm512_sub_ps(Y, PY))), ay);
-            const __m512 nz_ = _mm512_add_ps(_mm512_add_ps(Z, _mm512_mul_ps(damping, _mm512_sub_ps(Z, PZ))), az);
+            const __m512 nx_ =
+                _mm512_add_ps(_mm512_add_ps(X, _mm512_mul_ps(damping, _mm512_sub_ps(X, PX))), ax);
+            const __m512 ny_ =
+                _mm512_add_ps(_mm512_add_ps(Y, _mm512_mul_ps(damping, _mm512_sub_ps(Y, PY))), ay);
+            const __m512 nz_ =
+                _mm512_add_ps(_mm512_add_ps(Z, _mm512_mul_ps(damping, _mm512_sub_ps(Z, PZ))), az);
             const __mmask16 moved = free | stay; // x_prev becomes x
             columnsToRecords(_mm512_mask_mov_ps(PX, moved, X), _mm512_mask_mov_ps(PY, moved, Y),
                              _mm512_mask_mov_ps(PZ, moved, Z), PW, q);
@@ -312,8 +327,10 @@ WEFT_AVX512 void soaRows(const SoaParticles& s, Particle* ps, int rowBegin, int 
 
 void integrateToSoa(const Particle* particles, Particle* previous, const IntegrateJob& job,
                     const SoaParticles& soa, const int* slot) {
-    if (job.normals) scalarIntegrateToSoa<true>(particles, previous, job, soa, slot);
-    else scalarIntegrateToSoa<false>(particles, previous, job, soa, slot);
+    if (job.normals)
+        scalarIntegrateToSoa<true>(particles, previous, job, soa, slot);
+    else
+        scalarIntegrateToSoa<false>(particles, previous, job, soa, slot);
 }
 
 void integrateRowsToSoa(const Particle* particles, Particle* previous, const IntegrateJob& job,
@@ -331,7 +348,8 @@ void integrateRowsToSoa(const Particle* particles, Particle* previous, const Int
 void soaRowsToRecords(const SoaParticles& soa, Particle* particles, int rowBegin, int rowEnd,
                       const SoaGrid& grid, const int* slot) {
 #ifdef WEFT_CLOTH_AVX512
-    if (16 % grid.m == 0 && hasSoaKernels()) return soaRows(soa, particles, rowBegin, rowEnd, grid, slot);
+    if (16 % grid.m == 0 && hasSoaKernels())
+        return soaRows(soa, particles, rowBegin, rowEnd, grid, slot);
 #endif
     for (int k = rowBegin * grid.nx; k < rowEnd * grid.nx; ++k) {
         const int q = slot[k];
@@ -350,8 +368,10 @@ bool hasSoaKernels() {
 
 void projectDense(const SoaParticles& p, const DenseBatchJob& job) {
 #ifdef WEFT_CLOTH_AVX512
-    if (job.alphaTilde != 0.0f) denseRows<true>(p, job);
-    else denseRows<false>(p, job);
+    if (job.alphaTilde != 0.0f)
+        denseRows<true>(p, job);
+    else
+        denseRows<false>(p, job);
 #else
     (void)p;
     (void)job;
@@ -360,8 +380,10 @@ void projectDense(const SoaParticles& p, const DenseBatchJob& job) {
 
 void projectTethersSoa(const SoaParticles& p, const SoaTetherJob& job) {
 #ifdef WEFT_CLOTH_AVX512
-    if (job.table) tethersSoa<true>(p, job);
-    else tethersSoa<false>(p, job);
+    if (job.table)
+        tethersSoa<true>(p, job);
+    else
+        tethersSoa<false>(p, job);
 #else
     (void)p;
     (void)job;

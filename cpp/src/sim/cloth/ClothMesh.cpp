@@ -51,7 +51,8 @@ ClothMesh Cloth::mesh() const {
             const glm::vec3 du = at(std::min(i + 1, nx - 1), j) - at(std::max(i - 1, 0), j);
             const glm::vec3 dv = at(i, std::min(j + 1, ny - 1)) - at(i, std::max(j - 1, 0));
             glm::vec3 t = du - nrm * glm::dot(nrm, du);
-            if (glm::length(t) < 1e-12f) t = glm::normalize(glm::cross(nrm, glm::vec3(0, 0, 1)) + glm::vec3(1e-6f, 0, 0));
+            if (glm::length(t) < 1e-12f)
+                t = glm::normalize(glm::cross(nrm, glm::vec3(0, 0, 1)) + glm::vec3(1e-6f, 0, 0));
             t = glm::normalize(t);
             const float w = glm::dot(glm::cross(nrm, t), dv) < 0.0f ? -1.0f : 1.0f;
             out.tangents[size_t(k)] = glm::vec4(t, w);
@@ -62,16 +63,21 @@ ClothMesh Cloth::mesh() const {
     for (size_t c = 0; c < m.constraints.size(); ++c) {
         if (!m.active[c]) continue;
         const int a = m.constraints[c].a, b = m.constraints[c].b;
-        if (b == a + 1) right[size_t(a)] = 1;
-        else if (b == a + nx) down[size_t(a)] = 1;
-        else if (b == a + nx + 1) diag[size_t(a)] = 1;
+        if (b == a + 1)
+            right[size_t(a)] = 1;
+        else if (b == a + nx)
+            down[size_t(a)] = 1;
+        else if (b == a + nx + 1)
+            diag[size_t(a)] = 1;
     }
     for (int j = 0; j + 1 < ny; ++j) {
         for (int i = 0; i + 1 < nx; ++i) {
             const uint32_t p00 = uint32_t(j * nx + i), p10 = p00 + 1, p01 = p00 + uint32_t(nx),
                            p11 = p01 + 1;
-            if (diag[p00] && right[p00] && down[p10]) out.indices.insert(out.indices.end(), {p00, p11, p10});
-            if (diag[p00] && down[p00] && right[p01]) out.indices.insert(out.indices.end(), {p00, p01, p11});
+            if (diag[p00] && right[p00] && down[p10])
+                out.indices.insert(out.indices.end(), {p00, p11, p10});
+            if (diag[p00] && down[p00] && right[p01])
+                out.indices.insert(out.indices.end(), {p00, p01, p11});
         }
     }
     return out;

@@ -19,14 +19,15 @@ std::string num(float v) { return std::to_string(v); }
 
 void requireRange(float v, float lo, float hi, const char* what, const char* unit) {
     if (!(std::isfinite(v) && v >= lo && v <= hi))
-        throw InvalidArgument(std::string(what) + " must be in [" + num(lo) + ", " + num(hi) + "] " +
-                              unit + " (got " + num(v) + ")");
+        throw InvalidArgument(std::string(what) + " must be in [" + num(lo) + ", " + num(hi) +
+                              "] " + unit + " (got " + num(v) + ")");
 }
 
 void requireMagnitude(const glm::vec3& v, float hi, const char* what, const char* unit) {
     requireFinite(v, what);
     if (glm::length(glm::dvec3(v)) > double(hi))
-        throw InvalidArgument(std::string(what) + " must have magnitude at most " + num(hi) + " " + unit);
+        throw InvalidArgument(std::string(what) + " must have magnitude at most " + num(hi) + " " +
+                              unit);
 }
 
 } // namespace
@@ -34,13 +35,15 @@ void requireMagnitude(const glm::vec3& v, float hi, const char* what, const char
 void ClothParams::validate() const {
     if (nx < 1 || ny < 1 || int64_t(nx) * ny < 2 || nx > 4096 || ny > 4096)
         throw InvalidArgument("cloth grid must have 1..4096 particles per side and at least 2 "
-                              "in all (got " + std::to_string(nx) + "x" + std::to_string(ny) + ")");
+                              "in all (got " +
+                              std::to_string(nx) + "x" + std::to_string(ny) + ")");
     requireRange(size.x, kMinSize, kMaxSize, "cloth size_x", "m");
     requireRange(size.y, kMinSize, kMaxSize, "cloth size_y", "m");
     requireFinite(origin, "cloth origin");
     for (int c = 0; c < 3; ++c)
         if (std::abs(origin[c]) > kMaxCoordinate)
-            throw InvalidArgument("cloth origin coordinates must be within +-" + num(kMaxCoordinate) + " m");
+            throw InvalidArgument("cloth origin coordinates must be within +-" +
+                                  num(kMaxCoordinate) + " m");
     requireFinite(axisU, "cloth axis_u");
     requireFinite(axisV, "cloth axis_v");
     if (glm::length(axisU) < 1e-6f || glm::length(axisV) < 1e-6f ||
@@ -52,7 +55,8 @@ void ClothParams::validate() const {
     requireFinite(damping, "damping");
     if (damping < 0.0f || damping > 1.0f) throw InvalidArgument("damping must be in [0, 1]");
     requireMagnitude(gravity, kMaxAcceleration, "gravity", "m/s^2");
-    if (iterations < 1 || iterations > 1000) throw InvalidArgument("iterations must be in [1, 1000]");
+    if (iterations < 1 || iterations > 1000)
+        throw InvalidArgument("iterations must be in [1, 1000]");
     if (substeps < 1 || substeps > 1000) throw InvalidArgument("substeps must be in [1, 1000]");
     requireRange(complianceStretch, 0.0f, kMaxCompliance, "compliance_stretch", "m/N");
     requireRange(complianceShear, 0.0f, kMaxCompliance, "compliance_shear", "m/N");
@@ -88,8 +92,8 @@ void Cloth::Impl::build() {
     // Near the world origin (within a few cloth sizes) world coordinates lose nothing and
     // the step publishes no copy; farther out the frame moves to the origin.
     const double extent = double(std::max(p.size.x, p.size.y));
-    const double far = std::max({std::abs(double(p.origin.x)), std::abs(double(p.origin.y)),
-                                 std::abs(double(p.origin.z))});
+    const double far = std::max(
+        {std::abs(double(p.origin.x)), std::abs(double(p.origin.y)), std::abs(double(p.origin.z))});
     frame = far > 4.0 * extent ? glm::dvec3(p.origin) : glm::dvec3(0.0);
     const glm::dvec3 start = glm::dvec3(p.origin) - frame;
     std::vector<glm::dvec3> restD(static_cast<size_t>(n));
@@ -98,7 +102,8 @@ void Cloth::Impl::build() {
         for (int i = 0; i < p.nx; ++i) {
             const double fu = p.nx > 1 ? double(i) / double(p.nx - 1) : 0.0;
             const double fv = p.ny > 1 ? double(j) / double(p.ny - 1) : 0.0;
-            const glm::dvec3 r = start + glm::dvec3(u) * (double(p.size.x) * fu) + glm::dvec3(v) * (double(p.size.y) * fv);
+            const glm::dvec3 r = start + glm::dvec3(u) * (double(p.size.x) * fu) +
+                                 glm::dvec3(v) * (double(p.size.y) * fv);
             restD[size_t(j * p.nx + i)] = r;
             rest[size_t(j * p.nx + i)] = glm::vec3(r);
         }
@@ -114,9 +119,10 @@ void Cloth::Impl::build() {
     }
 
     const int k = p.bendDistance;
-    std::vector<Offset> offsets = {{1, 0, ConstraintFamily::Stretch}, {0, 1, ConstraintFamily::Stretch},
-                                   {1, 1, ConstraintFamily::Shear},   {1, -1, ConstraintFamily::Shear},
-                                   {k, k, ConstraintFamily::Bend},    {k, -k, ConstraintFamily::Bend}};
+    std::vector<Offset> offsets = {
+        {1, 0, ConstraintFamily::Stretch}, {0, 1, ConstraintFamily::Stretch},
+        {1, 1, ConstraintFamily::Shear},   {1, -1, ConstraintFamily::Shear},
+        {k, k, ConstraintFamily::Bend},    {k, -k, ConstraintFamily::Bend}};
     if (p.extraAxial) {
         offsets.push_back({k, 0, ConstraintFamily::Bend});
         offsets.push_back({0, k, ConstraintFamily::Bend});
@@ -134,7 +140,8 @@ void Cloth::Impl::build() {
                     const int colour = (o.dx != 0 ? i / std::abs(o.dx) : j / std::abs(o.dy)) % 2;
                     if (colour != parity) continue;
                     const int a = j * p.nx + i, b = j2 * p.nx + i2;
-                    constraints.push_back({a, b, float(glm::length(restD[size_t(b)] - restD[size_t(a)]))});
+                    constraints.push_back(
+                        {a, b, float(glm::length(restD[size_t(b)] - restD[size_t(a)]))});
                     family.push_back(uint8_t(o.family));
                 }
             batch.end = int(constraints.size());
@@ -170,14 +177,16 @@ void Cloth::Impl::build() {
         batchSegments.clear();
         for (cloth::Batch& b : batches) {
             b.parity = (b.dx != 0 ? constraints[size_t(b.begin)].a % p.nx / b.dx
-                                  : constraints[size_t(b.begin)].a / p.nx / std::abs(b.dy)) % 2;
+                                  : constraints[size_t(b.begin)].a / p.nx / std::abs(b.dy)) %
+                       2;
             b.rowBegin = std::max(0, -b.dy);
             b.rowEnd = std::min(p.ny, p.ny - b.dy);
             b.segmentsBegin = int(batchSegments.size());
             for (int c = 0; c < m; ++c) {
                 if (b.dx != 0 && (c / b.dx) % 2 != b.parity) continue;
                 const int cb = (c + b.dx) % m, shift = (c + b.dx) / m;
-                batchSegments.push_back({c * stride, (cb - c) * stride + b.dy * soaSegment + shift});
+                batchSegments.push_back(
+                    {c * stride, (cb - c) * stride + b.dy * soaSegment + shift});
             }
             b.segmentsEnd = int(batchSegments.size());
         }
@@ -191,13 +200,15 @@ void Cloth::Impl::syncDense() {
     for (size_t b = 0; b < batches.size(); ++b)
         for (int c = batches[b].begin; c < batches[b].end; ++c)
             if (active[size_t(c)])
-                denseRest[b * size_t(soaSlots) + size_t(soaSlot[size_t(constraints[size_t(c)].a)])] =
+                denseRest[b * size_t(soaSlots) +
+                          size_t(soaSlot[size_t(constraints[size_t(c)].a)])] =
                     constraints[size_t(c)].rest;
     const cloth::SoaParticles s = soaParticles();
     std::fill(s.w, s.w + soaStride, 0.0f); // unused slots: fixed
     for (int q = 0; q < n; ++q) s.w[soaSlot[size_t(q)]] = particles[size_t(q)].w;
     tetherAnchorSoa.assign(size_t(tetherSlots) * size_t(soaSlots), 0);
-    tetherLengthSoa.assign(size_t(tetherSlots) * size_t(soaSlots), std::numeric_limits<float>::infinity());
+    tetherLengthSoa.assign(size_t(tetherSlots) * size_t(soaSlots),
+                           std::numeric_limits<float>::infinity());
     tetherTable.clear();
     bool small = true;
     for (int s2 = 0; s2 < tetherSlots; ++s2)
@@ -209,21 +220,24 @@ void Cloth::Impl::syncDense() {
             tetherLengthSoa[to] = tetherLength[from];
             if (!small || tetherLength[from] == std::numeric_limits<float>::infinity()) continue;
             if (std::find(tetherTable.begin(), tetherTable.end(), anchor) == tetherTable.end()) {
-                if (tetherTable.size() < size_t(cloth::kTetherTable)) tetherTable.push_back(anchor);
-                else small = false;
+                if (tetherTable.size() < size_t(cloth::kTetherTable))
+                    tetherTable.push_back(anchor);
+                else
+                    small = false;
             }
         }
     if (!small) tetherTable.clear();
     if (!tetherTable.empty()) {
         // slots without a tether (length +inf) keep anchor index 0: never pulled
         for (size_t t = 0; t < tetherAnchorSoa.size(); ++t)
-            tetherAnchorSoa[t] = tetherLengthSoa[t] == std::numeric_limits<float>::infinity()
-                ? 0 : int(std::find(tetherTable.begin(), tetherTable.end(), tetherAnchorSoa[t]) - tetherTable.begin());
+            tetherAnchorSoa[t] =
+                tetherLengthSoa[t] == std::numeric_limits<float>::infinity()
+                    ? 0
+                    : int(std::find(tetherTable.begin(), tetherTable.end(), tetherAnchorSoa[t]) -
+                          tetherTable.begin());
     }
     denseStale = false;
 }
-
-
 
 void Cloth::Impl::applyInverseMasses() {
     for (int k = 0; k < n; ++k) {
@@ -267,7 +281,8 @@ void Cloth::Impl::rebuildTethers() {
     for (int k = 0; k < n; ++k) {
         if (particles[size_t(k)].w == 0.0f) continue;
         nearest.clear();
-        for (int a : anchors) nearest.push_back({glm::length(rest[size_t(k)] - rest[size_t(a)]), a});
+        for (int a : anchors)
+            nearest.push_back({glm::length(rest[size_t(k)] - rest[size_t(a)]), a});
         std::partial_sort(nearest.begin(), nearest.begin() + tetherSlots, nearest.end());
         for (int s = 0; s < tetherSlots; ++s) {
             tetherAnchor[size_t(s) * size_t(n) + size_t(k)] = nearest[size_t(s)].second;

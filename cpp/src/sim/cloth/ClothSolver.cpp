@@ -24,18 +24,16 @@ constexpr int kMinParallelParticles = 4096;
 // splits all of them or none (a pass that ran on one thread would pull the other's part
 // over). Below this many particles one thread is faster than the fork-joins.
 int soaMinParallel() {
-    static const int v = std::getenv("WEFT_CLOTH_SOA_MIN") ? std::atoi(std::getenv("WEFT_CLOTH_SOA_MIN")) : 8192;
+    static const int v =
+        std::getenv("WEFT_CLOTH_SOA_MIN") ? std::atoi(std::getenv("WEFT_CLOTH_SOA_MIN")) : 8192;
     return v;
 }
 
 float compliance(const ClothParams& p, ConstraintFamily f) {
     switch (f) {
-    case ConstraintFamily::Stretch:
-        return p.complianceStretch;
-    case ConstraintFamily::Shear:
-        return p.complianceShear;
-    case ConstraintFamily::Bend:
-        return p.complianceBend;
+    case ConstraintFamily::Stretch: return p.complianceStretch;
+    case ConstraintFamily::Shear: return p.complianceShear;
+    case ConstraintFamily::Bend: return p.complianceBend;
     }
     return 0.0f;
 }
@@ -43,38 +41,51 @@ float compliance(const ClothParams& p, ConstraintFamily f) {
 
 void Cloth::Impl::computeNormals() const {
     const int nx = params.nx, ny = params.ny;
-    pool->parallelFor(ny, [&](int j0, int j1) {
-        for (int j = j0; j < j1; ++j) {
-            const int jm = std::max(j - 1, 0), jp = std::min(j + 1, ny - 1);
-            for (int i = 0; i < nx; ++i) {
-                const int im = std::max(i - 1, 0), ip = std::min(i + 1, nx - 1);
-                const glm::vec3 du = particles[size_t(j * nx + ip)].x - particles[size_t(j * nx + im)].x;
-                const glm::vec3 dv = particles[size_t(jp * nx + i)].x - particles[size_t(jm * nx + i)].x;
-                const glm::vec3 c = glm::cross(dv, du);
-                const float len = glm::length(c);
-                glm::vec4& out = normals[size_t(j * nx + i)];
-                if (len > 1e-20f) out = glm::vec4(c / len, 0.0f); // else keep the last normal
+    pool->parallelFor(
+        ny,
+        [&](int j0, int j1) {
+            for (int j = j0; j < j1; ++j) {
+                const int jm = std::max(j - 1, 0), jp = std::min(j + 1, ny - 1);
+                for (int i = 0; i < nx; ++i) {
+                    const int im = std::max(i - 1, 0), ip = std::min(i + 1, nx - 1);
+                    const glm::vec3 du =
+                        particles[size_t(j * nx + ip)].x - particles[size_t(j * nx + im)].x;
+                    const glm::vec3 dv =
+                        particles[size_t(jp * nx + i)].x - particles[size_t(jm * nx + i)].x;
+                    const glm::vec3 c = glm::cross(dv, du);
+                    const float len = glm::length(c);
+                    glm::vec4& out = normals[size_t(j * nx + i)];
+                    if (len > 1e-20f) out = glm::vec4(c / len, 0.0f); // else keep the last normal
+                }
             }
-        }
-    }, 64);
+        },
+        64);
     normalsStale = false;
 }
 
 void Cloth::Impl::projectBatch(const cloth::Batch& batch, float alphaTilde) {
     const cloth::Constraint& first = constraints[size_t(batch.begin)];
     const size_t c0 = size_t(batch.begin);
-    const cloth::BatchJob job{endA.data() + c0, batch.end - batch.begin, batch.dy * params.nx + batch.dx,
-                              restLength.data() + c0, active.data() + c0, lambda.data() + c0,
-                              alphaTilde, rest[size_t(first.b)] - rest[size_t(first.a)]};
-    pool->parallelFor(job.count, [&](int q0, int q1) {
-        cloth::BatchJob part = job;
-        part.a += q0;
-        part.rest += q0;
-        part.on += q0;
-        part.lambda += q0;
-        part.count = q1 - q0;
-        cloth::projectBatch(particles.data(), part, isa);
-    }, kMinParallelConstraints);
+    const cloth::BatchJob job{endA.data() + c0,
+                              batch.end - batch.begin,
+                              batch.dy * params.nx + batch.dx,
+                              restLength.data() + c0,
+                              active.data() + c0,
+                              lambda.data() + c0,
+                              alphaTilde,
+                              rest[size_t(first.b)] - rest[size_t(first.a)]};
+    pool->parallelFor(
+        job.count,
+        [&](int q0, int q1) {
+            cloth::BatchJob part = job;
+            part.a += q0;
+            part.rest += q0;
+            part.on += q0;
+            part.lambda += q0;
+            part.count = q1 - q0;
+            cloth::projectBatch(particles.data(), part, isa);
+        },
+        kMinParallelConstraints);
 }
 
 void Cloth::Impl::collide(int begin, int end, bool friction) {
@@ -99,12 +110,18 @@ void Cloth::Impl::relax(float h) {
     const float h2 = h * h;
     for (const cloth::Batch& b : batches) projectBatch(b, compliance(params, b.family) / h2);
     if (tetherSlots > 0) {
-        pool->parallelFor(n, [&](int k0, int k1) {
-            cloth::projectTethers(particles.data(), {k0, k1, tetherSlots, n, tetherAnchor.data(),
-                                                     tetherLength.data()}, isa);
-        }, kMinParallelParticles);
+        pool->parallelFor(
+            n,
+            [&](int k0, int k1) {
+                cloth::projectTethers(
+                    particles.data(),
+                    {k0, k1, tetherSlots, n, tetherAnchor.data(), tetherLength.data()}, isa);
+            },
+            kMinParallelParticles);
     }
-    if (!colliders.empty()) pool->parallelFor(n, [&](int a, int b) { collide(a, b, true); }, 1024);
+    if (!colliders.empty())
+        pool->parallelFor(
+            n, [&](int a, int b) { collide(a, b, true); }, 1024);
 }
 
 int Cloth::Impl::soaSplit() const { return n >= soaMinParallel() ? 1 : INT_MAX; }
@@ -112,9 +129,12 @@ int Cloth::Impl::soaSplit() const { return n >= soaMinParallel() ? 1 : INT_MAX; 
 void Cloth::Impl::fromSoa() {
     const cloth::SoaParticles s = soaParticles();
     const cloth::SoaGrid grid{params.nx, params.ny, 2 * params.bendDistance, soaSegment};
-    pool->parallelFor(params.ny, [&](int j0, int j1) {
-        cloth::soaRowsToRecords(s, particles.data(), j0, j1, grid, soaSlot.data());
-    }, soaSplit());
+    pool->parallelFor(
+        params.ny,
+        [&](int j0, int j1) {
+            cloth::soaRowsToRecords(s, particles.data(), j0, j1, grid, soaSlot.data());
+        },
+        soaSplit());
 }
 
 void Cloth::Impl::relaxSoa(float h) {
@@ -123,31 +143,40 @@ void Cloth::Impl::relaxSoa(float h) {
     for (size_t b = 0; b < batches.size(); ++b) {
         const cloth::Batch& batch = batches[b];
         const cloth::Constraint& first = constraints[size_t(batch.begin)];
-        const cloth::DenseBatchJob job{batch.rowBegin, batch.rowEnd, soaSegment,
+        const cloth::DenseBatchJob job{batch.rowBegin,
+                                       batch.rowEnd,
+                                       soaSegment,
                                        batchSegments.data() + batch.segmentsBegin,
                                        batch.segmentsEnd - batch.segmentsBegin,
-                                       batch.dx == 0 ? std::abs(batch.dy) : 0, batch.parity,
+                                       batch.dx == 0 ? std::abs(batch.dy) : 0,
+                                       batch.parity,
                                        denseRest.data() + b * size_t(soaSlots),
                                        denseLambda.data() + b * size_t(soaSlots),
                                        compliance(params, batch.family) / h2,
                                        rest[size_t(first.b)] - rest[size_t(first.a)]};
-        pool->parallelFor(params.ny, [&](int j0, int j1) {
-            cloth::DenseBatchJob part = job;
-            part.rowBegin = std::max(job.rowBegin, j0);
-            part.rowEnd = std::min(job.rowEnd, j1);
-            if (part.rowEnd > part.rowBegin) cloth::projectDense(s, part);
-        }, soaSplit());
+        pool->parallelFor(
+            params.ny,
+            [&](int j0, int j1) {
+                cloth::DenseBatchJob part = job;
+                part.rowBegin = std::max(job.rowBegin, j0);
+                part.rowEnd = std::min(job.rowEnd, j1);
+                if (part.rowEnd > part.rowBegin) cloth::projectDense(s, part);
+            },
+            soaSplit());
     }
     if (tetherSlots > 0) {
         const int m = 2 * params.bendDistance, stride = params.ny * soaSegment;
-        pool->parallelFor(params.ny, [&](int j0, int j1) {
-            for (int c = 0; c < m; ++c)
-                cloth::projectTethersSoa(s, {{c * stride + j0 * soaSegment, c * stride + j1 * soaSegment,
-                                              tetherSlots, soaSlots, tetherAnchorSoa.data(),
-                                              tetherLengthSoa.data()},
-                                             tetherTable.empty() ? nullptr : tetherTable.data(),
-                                             int(tetherTable.size())});
-        }, soaSplit());
+        pool->parallelFor(
+            params.ny,
+            [&](int j0, int j1) {
+                for (int c = 0; c < m; ++c)
+                    cloth::projectTethersSoa(
+                        s, {{c * stride + j0 * soaSegment, c * stride + j1 * soaSegment,
+                             tetherSlots, soaSlots, tetherAnchorSoa.data(), tetherLengthSoa.data()},
+                            tetherTable.empty() ? nullptr : tetherTable.data(),
+                            int(tetherTable.size())});
+            },
+            soaSplit());
     }
 }
 
@@ -158,7 +187,8 @@ void Cloth::Impl::substep(float h, float damping) {
     const glm::vec3 g = params.gravity;
     if (hasPendingVelocity) {
         for (int k = 0; k < n; ++k)
-            previous[size_t(k)].x = particles[size_t(k)].x - pendingVelocity[size_t(k)] * h + 0.5f * g * h * h;
+            previous[size_t(k)].x =
+                particles[size_t(k)].x - pendingVelocity[size_t(k)] * h + 0.5f * g * h * h;
         hasPendingVelocity = false;
     }
     if (params.selfCollision) rememberSelfStart();
@@ -167,10 +197,18 @@ void Cloth::Impl::substep(float h, float damping) {
         previous[size_t(k)].x = particles[size_t(k)].x;
         particles[size_t(k)].x = grabTargets[q];
     }
-    const cloth::IntegrateJob job{0, 0, pinned.data(), hole.data(), g, h, damping,
-                                  windy ? normals.data() : nullptr, r, wind.strength};
-    const bool compliant = params.complianceStretch > 0 || params.complianceShear > 0 ||
-                           params.complianceBend > 0;
+    const cloth::IntegrateJob job{0,
+                                  0,
+                                  pinned.data(),
+                                  hole.data(),
+                                  g,
+                                  h,
+                                  damping,
+                                  windy ? normals.data() : nullptr,
+                                  r,
+                                  wind.strength};
+    const bool compliant =
+        params.complianceStretch > 0 || params.complianceShear > 0 || params.complianceBend > 0;
     if (useSoa && colliders.empty()) {
         // the same integration and sweeps on the structure-of-arrays layout (bit-identical
         // results); the integration writes the new positions there directly
@@ -178,21 +216,28 @@ void Cloth::Impl::substep(float h, float damping) {
         if (compliant) std::fill(denseLambda.begin(), denseLambda.end(), 0.0f);
         const cloth::SoaParticles s = soaParticles();
         const cloth::SoaGrid grid{params.nx, params.ny, 2 * params.bendDistance, soaSegment};
-        pool->parallelFor(params.ny, [&](int j0, int j1) {
-            cloth::IntegrateJob part = job;
-            part.begin = j0;
-            part.end = j1;
-            cloth::integrateRowsToSoa(particles.data(), previous.data(), part, s, grid, soaSlot.data());
-        }, soaSplit());
+        pool->parallelFor(
+            params.ny,
+            [&](int j0, int j1) {
+                cloth::IntegrateJob part = job;
+                part.begin = j0;
+                part.end = j1;
+                cloth::integrateRowsToSoa(particles.data(), previous.data(), part, s, grid,
+                                          soaSlot.data());
+            },
+            soaSplit());
         for (int it = 0; it < params.iterations; ++it) relaxSoa(h);
         fromSoa();
     } else {
-        pool->parallelFor(n, [&](int k0, int k1) {
-            cloth::IntegrateJob part = job;
-            part.begin = k0;
-            part.end = k1;
-            cloth::integrate(particles.data(), previous.data(), part, isa);
-        }, kMinParallelParticles);
+        pool->parallelFor(
+            n,
+            [&](int k0, int k1) {
+                cloth::IntegrateJob part = job;
+                part.begin = k0;
+                part.end = k1;
+                cloth::integrate(particles.data(), previous.data(), part, isa);
+            },
+            kMinParallelParticles);
         if (compliant) std::fill(lambda.begin(), lambda.end(), 0.0f);
         for (int it = 0; it < params.iterations; ++it) relax(h);
     }

@@ -107,9 +107,11 @@ bool Cloth::Impl::tearFaces() {
             if (!faceAlive[size_t(f0)] && !faceAlive[size_t(f1)]) continue;
             const float shared = std::max(ratio(i, j, i + 1, j + 1), ratio(i, j + 1, i + 1, j));
             if (faceAlive[size_t(f0)])
-                faceStretch[size_t(f0)] = std::max({shared, ratio(i, j, i + 1, j), ratio(i + 1, j, i + 1, j + 1)});
+                faceStretch[size_t(f0)] =
+                    std::max({shared, ratio(i, j, i + 1, j), ratio(i + 1, j, i + 1, j + 1)});
             if (faceAlive[size_t(f1)])
-                faceStretch[size_t(f1)] = std::max({shared, ratio(i, j, i, j + 1), ratio(i, j + 1, i + 1, j + 1)});
+                faceStretch[size_t(f1)] =
+                    std::max({shared, ratio(i, j, i, j + 1), ratio(i, j + 1, i + 1, j + 1)});
             any |= faceStretch[size_t(f0)] > limit || faceStretch[size_t(f1)] > limit;
         }
     if (!any) return false;
@@ -206,8 +208,10 @@ void Cloth::Impl::tethersAlongCloth(const std::vector<int>& anchors) {
         // Never shorter than the path (rounded up), nor than the particle's distance now: a
         // re-anchored tether must not yank a stretched region (a hard projection that moves
         // a particle far in one substep gives it that much velocity).
-        const float now = glm::length(particles[size_t(k)].x - particles[size_t(from[size_t(k)])].x);
-        tetherLength[size_t(k)] = std::max(std::nextafter(float(dist[size_t(k)]), std::numeric_limits<float>::infinity()), now);
+        const float now =
+            glm::length(particles[size_t(k)].x - particles[size_t(from[size_t(k)])].x);
+        tetherLength[size_t(k)] = std::max(
+            std::nextafter(float(dist[size_t(k)]), std::numeric_limits<float>::infinity()), now);
     }
 }
 

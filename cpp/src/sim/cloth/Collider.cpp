@@ -12,11 +12,10 @@ namespace weft {
 void Collider::validate() const {
     requireFinite(center, "collider center");
     requireFinite(friction, "collider friction");
-    if (friction < 0.0f || friction > 1.0f) throw InvalidArgument("collider friction must be in [0, 1]");
+    if (friction < 0.0f || friction > 1.0f)
+        throw InvalidArgument("collider friction must be in [0, 1]");
     switch (kind) {
-    case Kind::Sphere:
-        requirePositive(radius, "sphere radius");
-        break;
+    case Kind::Sphere: requirePositive(radius, "sphere radius"); break;
     case Kind::Plane:
         requireFinite(normal, "plane normal");
         if (glm::length(normal) < 1e-6f) throw InvalidArgument("plane normal must not be zero");
@@ -32,7 +31,8 @@ void Collider::validate() const {
             for (int c = 0; c < 3; ++c)
                 for (int r = 0; r < 3; ++r) worst = std::max(worst, std::abs(e[c][r]));
             if (worst > 1e-3f || glm::determinant(rotation) < 0.0f)
-                throw InvalidArgument("box rotation must be a rotation matrix (orthonormal, det +1)");
+                throw InvalidArgument(
+                    "box rotation must be a rotation matrix (orthonormal, det +1)");
         }
         break;
     case Kind::Capsule:
@@ -77,9 +77,7 @@ float Collider::distance(const glm::vec3& p, glm::vec3& n) const {
         n = len > 1e-12f ? d / len : glm::vec3(0, 1, 0);
         return len - radius;
     }
-    case Kind::Plane:
-        n = glm::normalize(normal);
-        return glm::dot(p - center, n);
+    case Kind::Plane: n = glm::normalize(normal); return glm::dot(p - center, n);
     case Kind::Box: {
         const glm::vec3 local = glm::transpose(rotation) * (p - center);
         const glm::vec3 q = glm::abs(local) - halfExtents;

@@ -12,15 +12,18 @@ namespace weft::cloth {
 NaturalGsPeer::NaturalGsPeer(NaturalGsPeerSetup setup) : mS(std::move(setup)) {
     const size_t n = mS.positions.size();
     const size_t m = mS.a.size();
-    if (mS.inverseMass.size() != n || mS.b.size() != m || mS.rest.size() != m || mS.compliance.size() != m ||
-        mS.tetherAnchor.size() != mS.tetherParticle.size() || mS.tetherLength.size() != mS.tetherParticle.size())
+    if (mS.inverseMass.size() != n || mS.b.size() != m || mS.rest.size() != m ||
+        mS.compliance.size() != m || mS.tetherAnchor.size() != mS.tetherParticle.size() ||
+        mS.tetherLength.size() != mS.tetherParticle.size())
         throw InvalidArgument("natural GS peer: array lengths differ");
     auto check = [&](const std::vector<int>& v) {
         for (int k : v)
-            if (k < 0 || size_t(k) >= n) throw InvalidArgument("natural GS peer: particle index out of range");
+            if (k < 0 || size_t(k) >= n)
+                throw InvalidArgument("natural GS peer: particle index out of range");
     };
     check(mS.a), check(mS.b), check(mS.tetherParticle), check(mS.tetherAnchor);
-    if (mS.iterations < 1 || mS.substeps < 1) throw InvalidArgument("natural GS peer: iterations and substeps >= 1");
+    if (mS.iterations < 1 || mS.substeps < 1)
+        throw InvalidArgument("natural GS peer: iterations and substeps >= 1");
     mX = mS.positions;
     mPrev = mX;
     mLambda.assign(m, 0.0f);

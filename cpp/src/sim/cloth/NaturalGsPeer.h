@@ -13,8 +13,8 @@ namespace weft::cloth {
 
 struct NaturalGsPeerSetup {
     std::vector<glm::vec3> positions;
-    std::vector<float> inverseMass;  // 0 = pinned
-    std::vector<int> a, b;           // constraints, projected in this order
+    std::vector<float> inverseMass; // 0 = pinned
+    std::vector<int> a, b;          // constraints, projected in this order
     std::vector<float> rest, compliance;
     std::vector<int> tetherParticle, tetherAnchor; // one-sided |x_p - x_anchor| <= length
     std::vector<float> tetherLength;
