@@ -19,8 +19,11 @@ U8_TOL = 1
 # held to LINEAR_TOL on every covered pixel. Texture sampling itself is checked separately against
 # NumPy: its precision is the Vulkan implementation's choice. lavapipe (llvmpipe) approximates the
 # sRGB decode (texel values off by up to 1.2e-3) and filters UNORM8 textures in 8-bit fixed point
-# (results on the 1/255 grid); test_texture_sampling_precision measures both.
-TEXTURE_TOL = {True: 1.5e-3, False: 1.0 / 255.0 + 1e-4}  # by Texture.srgb
+# (results on the 1/255 grid); NVIDIA's driver (580, on an H200) decodes sRGB texels to within
+# 3.75e-3 (just under one 8-bit step in linear) and filters them to within 2.7e-3;
+# test_texture_sampling_precision measures both. The allowance is one 8-bit step either way: a
+# missing or doubled sRGB decode is off by 0.2 and more.
+TEXTURE_TOL = {True: 1.0 / 255.0 + 1e-4, False: 1.0 / 255.0 + 1e-4}  # by Texture.srgb
 
 
 def translation(x: float, y: float, z: float) -> np.ndarray:
