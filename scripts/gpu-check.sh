@@ -93,26 +93,31 @@ list_rc=$?
 # nvidia-smi does. Try the manifests the driver installed with its library folder on the path,
 # else write a manifest (what the driver installs as nvidia_icd.json) into the output folder.
 icd_note=""
-if { ((list_rc != 0)) || ! echo "$devices" | awk -F'\t' '$1 == "device" && $3 != "cpu"' | grep -q .; } &&
+has_gpu() { awk -F'\t' '$1 == "device" && $3 != "cpu"' | grep -q .; }
+if { ((list_rc != 0)) || ! echo "$devices" | has_gpu; } &&
     command -v nvidia-smi >/dev/null 2>&1 && nvidia-smi -L >/dev/null 2>&1; then
     nv_libs=""
     for d in /usr/local/nvidia/lib64 /usr/local/nvidia/lib; do
         [ -d "$d" ] && nv_libs=${nv_libs:+$nv_libs:}$d
     done
+    # use_icd MANIFEST NOTE: keeps MANIFEST (and the driver's library folders) when the devices
+    # listed through it include a GPU
+    use_icd() {
+        local more
+        more=$(LD_LIBRARY_PATH="$nv_libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+               VK_ICD_FILENAMES="$1" VK_DRIVER_FILES="$1" list) && echo "$more" | has_gpu || return 1
+        export VK_ICD_FILENAMES="$1" VK_DRIVER_FILES="$1"
+        [ -n "$nv_libs" ] && export LD_LIBRARY_PATH="$nv_libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+        devices=$more
+        list_rc=0
+        icd_note=$2
+        say "$icd_note"
+    }
     for manifest in /usr/local/nvidia/share/vulkan/icd.d/*.json /usr/local/nvidia/etc/vulkan/icd.d/*.json \
                     /usr/share/vulkan/icd.d/nvidia*.json /etc/vulkan/icd.d/nvidia*.json; do
-        [ -f "$manifest" ] || continue
-        if more=$(LD_LIBRARY_PATH="$nv_libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
-                  VK_ICD_FILENAMES="$manifest" VK_DRIVER_FILES="$manifest" list) &&
-            echo "$more" | awk -F'\t' '$1 == "device" && $3 != "cpu"' | grep -q .; then
-            export VK_ICD_FILENAMES="$manifest" VK_DRIVER_FILES="$manifest"
-            [ -n "$nv_libs" ] && export LD_LIBRARY_PATH="$nv_libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-            devices=$more
-            list_rc=0
-            icd_note="the loader did not find NVIDIA's Vulkan ICD manifest: using $manifest"
-            say "$icd_note"
+        [ -f "$manifest" ] &&
+            use_icd "$manifest" "the loader did not find NVIDIA's Vulkan ICD manifest: using $manifest" &&
             break
-        fi
     done
     [ -z "$icd_note" ] &&
     for lib in libGLX_nvidia.so.0 libEGL_nvidia.so.0; do
@@ -120,17 +125,8 @@ if { ((list_rc != 0)) || ! echo "$devices" | awk -F'\t' '$1 == "device" && $3 !=
             for d in ${nv_libs//:/ }; do [ -e "$d/$lib" ] && break; false; done || continue
         printf '{"file_format_version": "1.0.0", "ICD": {"library_path": "%s", "api_version": "1.3"}}\n' \
             "$lib" > "$out/nvidia_icd.json"
-        if more=$(LD_LIBRARY_PATH="$nv_libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
-                  VK_ICD_FILENAMES="$out/nvidia_icd.json" VK_DRIVER_FILES="$out/nvidia_icd.json" list) &&
-            echo "$more" | awk -F'\t' '$1 == "device" && $3 != "cpu"' | grep -q .; then
-            export VK_ICD_FILENAMES="$out/nvidia_icd.json" VK_DRIVER_FILES="$out/nvidia_icd.json"
-            [ -n "$nv_libs" ] && export LD_LIBRARY_PATH="$nv_libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-            devices=$more
-            list_rc=0
-            icd_note="NVIDIA's Vulkan ICD manifest was missing: wrote $out/nvidia_icd.json ($lib)"
-            say "$icd_note"
-            break
-        fi
+        use_icd "$out/nvidia_icd.json" \
+            "NVIDIA's Vulkan ICD manifest was missing: wrote $out/nvidia_icd.json ($lib)" && break
     done
     [ -z "$icd_note" ] && say "nvidia-smi sees a GPU but Vulkan does not, and no NVIDIA ICD library (libGLX_nvidia.so.0 / libEGL_nvidia.so.0) loads: the driver's Vulkan part is missing here"
 fi
