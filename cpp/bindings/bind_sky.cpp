@@ -16,12 +16,14 @@ const char* kUnits =
     "Radiance is linear Rec. 709 RGB whose luminance is Y in kcd/m^2 times `scale` (irradiance\n"
     "in klx times `scale`); +Y is up.";
 
-SkyParams skyParams(py::handle sunDirection, float turbidity, float groundAlbedo, float scale,
+// ground_albedo: one grey value or an RGB triple
+SkyParams skyParams(py::handle sunDirection, float turbidity, py::handle groundAlbedo, float scale,
                     py::handle night) {
     SkyParams p;
     p.sunDirection = toVec3(sunDirection, "sun_direction");
     p.turbidity = turbidity;
-    p.groundAlbedo = groundAlbedo;
+    p.groundAlbedo = py::hasattr(groundAlbedo, "__len__") ? toVec3(groundAlbedo, "ground_albedo")
+                                                          : glm::vec3(groundAlbedo.cast<float>());
     p.scale = scale;
     if (!night.is_none()) p.nightRadiance = toVec3(night, "night_radiance");
     p.validate();
@@ -49,10 +51,11 @@ void bindSky(py::module_& m) {
         "The analytic daylight sky of Preetham, Shirley & Smits 1999 for one sun and turbidity:\n"
         "the Perez distribution of luminance Y and chromaticity x, y scaled to the paper's zenith\n"
         "values, xyY -> XYZ -> linear Rec. 709. Below the horizon a Lambertian ground of\n"
-        "`ground_albedo`; with the sun below the horizon the sky of a sun on the horizon dimmed\n"
-        "by 10^(0.4 h) (h: solar elevation in degrees) plus `night_radiance`. See weft/Sky.h.")
-        .def(py::init([](py::handle sunDirection, float turbidity, float groundAlbedo, float scale,
-                         py::handle night) {
+        "`ground_albedo` (grey, or RGB); with the sun below the horizon the sky of a sun on\n"
+        "the horizon dimmed by 10^(0.4 h) (h: solar elevation in degrees) plus\n"
+        "`night_radiance`. See weft/Sky.h.")
+        .def(py::init([](py::handle sunDirection, float turbidity, py::handle groundAlbedo,
+                         float scale, py::handle night) {
                  return SkyModel(skyParams(sunDirection, turbidity, groundAlbedo, scale, night));
              }),
              py::arg("sun_direction"), py::arg("turbidity") = 3.0f, py::arg("ground_albedo") = 0.2f,
@@ -91,7 +94,7 @@ void bindSky(py::module_& m) {
 
     m.def(
         "sky",
-        [](py::handle sunDirection, float turbidity, int size, float groundAlbedo, bool sun,
+        [](py::handle sunDirection, float turbidity, int size, py::handle groundAlbedo, bool sun,
            float scale, py::handle night) {
             SkyParams p = skyParams(sunDirection, turbidity, groundAlbedo, scale, night);
             p.sun = sun;
@@ -112,7 +115,7 @@ void bindSky(py::module_& m) {
     m.def(
         "sun_light",
         [](py::handle sunDirection, float turbidity, float scale) {
-            return sunLight(skyParams(sunDirection, turbidity, 0.2f, scale, py::none()));
+            return sunLight(skyParams(sunDirection, turbidity, py::float_(0.2), scale, py::none()));
         },
         py::arg("sun_direction"), py::arg("turbidity") = 3.0f, py::arg("scale") = 1.0f,
         "The sun of the analytic sky as a weft.DirectionalLight: colour x intensity = E / pi,\n"

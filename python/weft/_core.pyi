@@ -1371,10 +1371,11 @@ class SkyModel:
     The analytic daylight sky of Preetham, Shirley & Smits 1999 for one sun and turbidity:
     the Perez distribution of luminance Y and chromaticity x, y scaled to the paper's zenith
     values, xyY -> XYZ -> linear Rec. 709. Below the horizon a Lambertian ground of
-    `ground_albedo`; with the sun below the horizon the sky of a sun on the horizon dimmed
-    by 10^(0.4 h) (h: solar elevation in degrees) plus `night_radiance`. See weft/Sky.h.
+    `ground_albedo` (grey, or RGB); with the sun below the horizon the sky of a sun on
+    the horizon dimmed by 10^(0.4 h) (h: solar elevation in degrees) plus
+    `night_radiance`. See weft/Sky.h.
     """
-    def __init__(self, sun_direction: typing.Any, turbidity: typing.SupportsFloat | typing.SupportsIndex = 3.0, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.20000000298023224, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, night_radiance: typing.Any = None) -> None:
+    def __init__(self, sun_direction: typing.Any, turbidity: typing.SupportsFloat | typing.SupportsIndex = 3.0, ground_albedo: typing.Any = 0.20000000298023224, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, night_radiance: typing.Any = None) -> None:
         """
         The analytic sky (Preetham 1999) for a sun in sun_direction, with the class description's turbidity, ground_albedo, radiance scale and night_radiance (RGB, None = black).
         """
@@ -1840,7 +1841,7 @@ def shader_hot_reload_available() -> bool:
     """
     True when weft was built with libshaderc (shader hot reload).
     """
-def sky(sun_direction: typing.Any, turbidity: typing.SupportsFloat | typing.SupportsIndex = 3.0, size: typing.SupportsInt | typing.SupportsIndex = 64, ground_albedo: typing.SupportsFloat | typing.SupportsIndex = 0.20000000298023224, sun: bool = True, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, night_radiance: typing.Any = None) -> CubeMap:
+def sky(sun_direction: typing.Any, turbidity: typing.SupportsFloat | typing.SupportsIndex = 3.0, size: typing.SupportsInt | typing.SupportsIndex = 64, ground_albedo: typing.Any = 0.20000000298023224, sun: bool = True, scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, night_radiance: typing.Any = None) -> CubeMap:
     """
     A radiance CubeMap (size 1..2048 per face) of the analytic sky (Preetham 1999, see
     SkyModel) for the sun in `sun_direction` (towards the sun, any length) and turbidity

@@ -81,10 +81,10 @@ private:
     uint32_t mClothId = 0;
     Material mClothMaterial;
     TexturePtr mWeaveNormals;
-    uint32_t mSunId = 0, mMoonId = 0, mSkyId = 0, mTerrainId = 0;
+    uint32_t mSunId = 0, mMoonId = 0, mTerrainId = 0;
     Material mTerrainMaterial;
+    glm::vec3 mGroundAlbedo{0.2f}; // the grass texture's mean linear colour
     bool mEnvironmentLit = false;
-    Material mSkyMaterial;
     std::shared_ptr<Environment> mSky; // the analytic sky (null with a captured environment)
     glm::vec3 mSkySun{0.0f};           // the sun it was generated for
     DirectionalLight mSunLight;        // its sun

@@ -11,7 +11,7 @@
 // Units: radiance is luminance-calibrated, Rec. 709 luminance of the RGB = Y in kcd/m^2, times
 // `scale`; irradiance (the sun's) is then in klx. The sun: see sunIrradiance() (as a scene
 // light: sunLight in weft/SunLight.h).
-// Below the horizon: a Lambertian ground of `groundAlbedo` lit by the sky and the sun,
+// Below the horizon: a Lambertian ground of RGB `groundAlbedo` lit by the sky and the sun,
 // L = albedo E_horizontal / pi. Night: the model holds for the sun above the horizon only; below
 // it the sky is the model's sky for the sun on the horizon (same azimuth) dimmed by
 // 10^(0.4 h) (h: solar elevation in degrees, < 0), about the measured fall of twilight
@@ -34,8 +34,9 @@ struct SkyParams {
     glm::vec3 sunDirection{0.0f, 1.0f, 0.0f};
     /// Atmospheric turbidity T in [1.7, 10]: 2 very clear, 3 clear, 6 light haze, 10 haze.
     float turbidity = 3.0f;
-    /// Albedo of the Lambertian ground below the horizon, [0, 1].
-    float groundAlbedo = 0.2f;
+    /// RGB albedo of the Lambertian ground below the horizon, each in [0, 1] (grey 0.2 by
+    /// default; a scene's own ground colour makes the ground beyond it a continuation of it).
+    glm::vec3 groundAlbedo{0.2f};
     /// Include the sun's disc in sky cube maps (skyCube); leave it out when the sun is a light.
     bool sun = true;
     /// Multiplies every radiance and irradiance (1: luminance in kcd/m^2), >= 0.

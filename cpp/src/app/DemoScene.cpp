@@ -1,4 +1,3 @@
-#include "app/DemoSkyDome.h"
 #include <weft/DemoScene.h>
 
 #include <algorithm>
@@ -33,7 +32,8 @@ constexpr float kSphereRadius = 0.6f;
 constexpr float kTurbidity = 3.0f;
 constexpr float kSkyScale = 1.0f / 32.0f;
 const glm::vec3 kNightSky = glm::vec3(0.012f, 0.018f, 0.04f) / kSkyScale;
-constexpr int kSkyCubeSize = 32; // diffuse light only needs the sky's low frequencies
+// the sky seen behind the scene: ~1.4 deg per texel, bilinear over a smooth sky
+constexpr int kSkyCubeSize = 64;
 const float kSkyRegenCos = std::cos(glm::radians(1.0f)); // regenerate after the sun moved 1 deg
 
 float smoothstep(float e0, float e1, float x) {
@@ -49,14 +49,16 @@ float terrainHeight(float x, float z) {
     return hills * smoothstep(2.0f, 5.0f, std::sqrt(x * x + z * z));
 }
 
-// Grass-like ground: green noise from a few octaves of hashed values.
-TexturePtr grassTexture(int size) {
+// Grass-like ground: green noise from a few octaves of hashed values. `meanAlbedo`: the texels'
+// mean linear colour (the sky's ground beyond the terrain takes it).
+TexturePtr grassTexture(int size, glm::vec3& meanAlbedo) {
     ImageU8 img(size, size, 4);
     auto hash = [](int x, int y) {
         uint32_t h = uint32_t(x) * 374761393u + uint32_t(y) * 668265263u;
         h = (h ^ (h >> 13)) * 1274126177u;
         return float(h & 0xffff) / 65535.0f;
     };
+    glm::dvec3 sum(0.0);
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
             const float n =
@@ -64,9 +66,14 @@ TexturePtr grassTexture(int size) {
             const glm::vec3 c =
                 glm::mix(glm::vec3(0.18f, 0.32f, 0.10f), glm::vec3(0.42f, 0.55f, 0.22f), n);
             uint8_t* p = img.at(x, y);
-            for (int k = 0; k < 3; ++k) p[k] = uint8_t(std::lround(255.0f * c[k]));
+            for (int k = 0; k < 3; ++k) {
+                p[k] = uint8_t(std::lround(255.0f * c[k]));
+                const float e = float(p[k]) / 255.0f; // sRGB-encoded: decoded when sampled
+                sum[k] += e <= 0.04045f ? e / 12.92f : std::pow((e + 0.055f) / 1.055f, 2.4f);
+            }
             p[3] = 255;
         }
+    meanAlbedo = glm::vec3(sum / double(size * size));
     return std::make_shared<Texture>(std::move(img), true, true);
 }
 
@@ -224,13 +231,6 @@ DemoScene::DemoScene() {
     mClothMaterial.shininess = 20.0f;
     mClothId = mScene.addCloth(mCloth, mClothMaterial);
 
-    // The sky: a large dome drawn from inside that shows the sky's radiance through its ambient
-    // map (updateSky) until the renderer draws the environment behind the scene.
-    mSkyMaterial.kd = mSkyMaterial.ks = glm::vec3(0.0f);
-    mSkyMaterial.twoSided = true;
-    mSkyId = mScene.addMesh(std::make_shared<Mesh>(Mesh::uvSphere(45.0f, 32, 16)), mSkyMaterial,
-                            glm::mat4(1.0f), false);
-
     mSunId = mScene.addLight(DirectionalLight{});
     mMoonId = mScene.addLight(DirectionalLight{});
     updateSky();
@@ -248,7 +248,7 @@ void DemoScene::buildTerrain() {
             heights.push_back(terrainHeight(origin.x + kTerrainSize * float(i) / kTerrainCells,
                                             origin.z + kTerrainSize * float(j) / kTerrainCells));
     Material ground;
-    ground.texture = grassTexture(256);
+    ground.texture = grassTexture(256, mGroundAlbedo);
     ground.ks = glm::vec3(0.03f);
     ground.shininess = 8.0f;
     mTerrainMaterial = ground;
@@ -261,16 +261,15 @@ void DemoScene::buildTerrain() {
 void DemoScene::lightWith(const std::string& path) {
     // An equirectangular panorama (2:1) or a 360-degree sphere map (square), as captured;
     // radiance checked (finite, >= 0, at most kMaxEnvironmentRadiance).
-    CubeMap cube = loadEnvironmentCube(path, 128); // also painted onto the sky dome
+    CubeMap cube = loadEnvironmentCube(path, 128);
     EnvironmentLighting env;
     env.environment = std::make_shared<Environment>(std::move(cube));
     env.domeLights = 16; // shadows from the dome (SPEC §4.5), 4 maps refreshed per frame
     env.domeMapSize = 256;
     env.domeRefresh = 4;
-    env.domeBlur = 4.0f; // the accumulated dome shadows blurred over 4 pixels
+    env.domeBlur = 4.0f;   // the accumulated dome shadows blurred over 4 pixels
+    env.background = true; // the environment is the demo's sky
     mScene.setEnvironment(env);
-    const CubeMap& radiance = env.environment->radiance();
-    paintSkyDome(mSkyMaterial, [&](const glm::vec3& d) { return radiance.sample(d); });
     // The environment replaces the sun, the moon, the analytic sky and the ambient term.
     mEnvironmentLit = true;
     mDayNight = false;
@@ -310,7 +309,6 @@ void DemoScene::updateSky() {
         off.castShadows = false;
         mScene.setLight(mSunId, off);
         mScene.setLight(mMoonId, off);
-        mScene.setMaterial(mSkyId, mSkyMaterial);
         useEnvironmentDiffuse();
         return;
     }
@@ -321,16 +319,13 @@ void DemoScene::updateSky() {
     sky.turbidity = kTurbidity;
     sky.sun = false; // the sun is the directional light, with sharp shadows
     sky.scale = kSkyScale;
+    // the ground below the horizon continues the terrain's grass (seen beyond its edge; its
+    // light from below is green, as the terrain's would be)
+    sky.groundAlbedo = mGroundAlbedo;
     sky.nightRadiance = kNightSky;
     if (!mSky || glm::dot(toSun, mSkySun) < kSkyRegenCos) {
         const auto t0 = std::chrono::steady_clock::now();
-        const SkyModel model(sky);
         CubeMap cube = skyCube(sky, kSkyCubeSize);
-        // The dome shows the horizon's haze below the horizon, not the model's grey ground:
-        // it lies beyond the green terrain's edge.
-        paintSkyDome(mSkyMaterial, [&](const glm::vec3& d) {
-            return model.radiance(glm::vec3(d.x, std::max(d.y, 0.0f), d.z));
-        });
         mSunLight = sunLight(sky);
         mSkyMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                      .count();
@@ -341,13 +336,12 @@ void DemoScene::updateSky() {
             env.environment = mSky;
             env.specularSize = 16; // nothing glossy reflects the sky itself: keep the bake cheap
             env.specularLevels = 5;
+            env.background = true; // drawn behind the scene: the sky the viewer sees
             mScene.setEnvironment(env);
             useEnvironmentDiffuse();
         } else {
             mSky->setRadiance(std::move(cube));
         }
-        mScene.setMaterial(mSkyId, mSkyMaterial);
-        mScene.setBackground(model.radiance(glm::vec3(0.0f, 0.1f, 1.0f)));
     }
     DirectionalLight sun = mSunLight; // colour and intensity from the sky model
     sun.direction = -toSun;

@@ -90,9 +90,10 @@ void SkyParams::validate() const {
     if (!(turbidity >= kSkyTurbidityMin && turbidity <= kSkyTurbidityMax))
         throw InvalidArgument("sky turbidity must be in [1.7, 10] (the model's range), got " +
                               std::to_string(turbidity));
-    if (!(groundAlbedo >= 0.0f && groundAlbedo <= 1.0f))
-        throw InvalidArgument("sky ground albedo must be in [0, 1], got " +
-                              std::to_string(groundAlbedo));
+    for (int c = 0; c < 3; ++c)
+        if (!(groundAlbedo[c] >= 0.0f && groundAlbedo[c] <= 1.0f))
+            throw InvalidArgument("sky ground albedo must be in [0, 1] per channel, got " +
+                                  std::to_string(groundAlbedo[c]));
     if (!(scale >= 0.0f) || !std::isfinite(scale))
         throw InvalidArgument("sky scale must be finite and >= 0, got " + std::to_string(scale));
     for (int c = 0; c < 3; ++c)
@@ -147,7 +148,7 @@ SkyModel::SkyModel(const SkyParams& params) : mParams(params) {
     sky *= 0.5 * (2.0 * kPi) / (double(nu) * nphi);
     mSkyHorizontal = glm::vec3(sky) * params.scale;
     // The ground is Lambertian under the sky and the sun.
-    mGround = float(params.groundAlbedo / kPi) * (glm::vec3(sky) + glm::vec3(sunHorizontal));
+    mGround = params.groundAlbedo * float(1.0 / kPi) * (glm::vec3(sky) + glm::vec3(sunHorizontal));
 }
 
 glm::vec3 SkyModel::xyY(const glm::vec3& dir) const {

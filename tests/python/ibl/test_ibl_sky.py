@@ -180,8 +180,9 @@ def test_cube_holds_the_sky_and_the_sun_disc():
                                rtol=1e-5)
 
 
-def test_ground_is_lambertian_under_sky_and_sun():
-    albedo, size, elevation = 0.3, 48, 40.0
+@pytest.mark.parametrize("albedo", [0.3, (0.1, 0.3, 0.5)])
+def test_ground_is_lambertian_under_sky_and_sun(albedo):
+    size, elevation = 48, 40.0
     sky = ibl.sky(sun_at(elevation), 3.0, size=size, ground_albedo=albedo, sun=False)
     faces = np.asarray(sky.faces, np.float64)
     dirs = np.asarray(ibl.cube_texel_directions(size), np.float64)
@@ -191,7 +192,7 @@ def test_ground_is_lambertian_under_sky_and_sun():
     e_sky = (faces[up] * (dirs[up][:, 1] * dw[up])[:, None]).sum(axis=0)
     model = ibl.SkyModel(sun_at(elevation), 3.0, ground_albedo=albedo)
     e_sun = np.asarray(model.sun_irradiance) * math.sin(math.radians(elevation))
-    expected = albedo * (e_sky + e_sun) / math.pi
+    expected = np.asarray(albedo) * (e_sky + e_sun) / math.pi  # grey or per channel
     np.testing.assert_allclose(faces[3, size // 2, size // 2], expected, rtol=0.02)
     np.testing.assert_allclose(model.sky_horizontal_irradiance, e_sky, rtol=0.02)
 
@@ -230,6 +231,8 @@ def test_scale_is_linear():
     dict(sun_direction=(0.0, 1.0, 0.0), size=4096),
     dict(sun_direction=(0.0, 1.0, 0.0), ground_albedo=-0.1),
     dict(sun_direction=(0.0, 1.0, 0.0), ground_albedo=1.5),
+    dict(sun_direction=(0.0, 1.0, 0.0), ground_albedo=(0.2, 0.2, float("nan"))),
+    dict(sun_direction=(0.0, 1.0, 0.0), ground_albedo=(0.2, 0.2)),
     dict(sun_direction=(0.0, 1.0, 0.0), scale=-1.0),
     dict(sun_direction=(0.0, 1.0, 0.0), night_radiance=(0.0, -1.0, 0.0)),
 ])

@@ -191,7 +191,12 @@ def test_demo_lit_by_a_captured_environment(tmp_path: Path) -> None:
     assert not any(n.startswith("shadow[") for n in names), names  # the sun and moon are off
     later = [p["name"] for p in stats[1]["passes"]]
     assert sum(n.startswith("dome[") for n in later) == 4, later  # round robin while it moves
-    assert_not_uniform(weft.load_png(str(out / "frame_0001.png")))
+    frame = weft.load_png(str(out / "frame_0001.png"))
+    assert_not_uniform(frame)
+    # the panorama is the sky behind the scene (the renderer's background pass): blue above
+    assert "background" in names, names
+    top = frame[:2, :, :3].reshape(-1, 3).astype(np.float64).mean(axis=0)
+    assert top[2] > top[0] + 40.0, top
     bad = tmp_path / "bad.hdr"
     weft.save_hdr(str(bad), np.ones((10, 30, 3), np.float32))
     cmd = demo_command() + ["--headless", "--width", "32", "--height", "32", "--environment",
