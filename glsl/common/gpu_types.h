@@ -30,6 +30,19 @@ WEFT_CONST(int, LIGHT_DIRECTIONAL, 0);
 WEFT_CONST(int, LIGHT_POINT, 1);
 WEFT_CONST(int, LIGHT_SPOT, 2);
 
+// Light groups: the lights of a frame are uploaded sorted by group (Frame.lightStart), so that
+// a shader loops over each group with only that group's code (shading.glsl, forEachLight):
+// lavapipe runs every branch of a loop body under a mask, so a generic body made an unshadowed
+// light pay for every kind of shadow test and the spot lights' cookies.
+WEFT_CONST(int, LIGHT_GROUP_DIRECTIONAL, 0);      // no shadow map
+WEFT_CONST(int, LIGHT_GROUP_DIRECTIONAL_PCF, 1);  // shadow map, fixed PCF kernel
+WEFT_CONST(int, LIGHT_GROUP_DIRECTIONAL_SOFT, 2); // shadow map, PCSS by its angular radius
+WEFT_CONST(int, LIGHT_GROUP_POINT, 3);
+WEFT_CONST(int, LIGHT_GROUP_POINT_SHADOWED, 4); // six cube-face layers
+WEFT_CONST(int, LIGHT_GROUP_SPOT, 5);
+WEFT_CONST(int, LIGHT_GROUP_SPOT_SHADOWED, 6);
+WEFT_CONST(int, LIGHT_GROUPS, 7);
+
 // Instance::flags.x
 WEFT_CONST(uint, MAP_NORMAL, 1u);             // tangent-space normal map
 WEFT_CONST(uint, MAP_AMBIENT, 2u);            // ambient map replaces I_A
@@ -44,7 +57,10 @@ WEFT_CONST(uint, DYNAMIC_REFLECTION, 256u);   // reflects the dynamic capture
 WEFT_CONST(uint, FEATURE_ENVIRONMENT, 1u);  // an environment, or a dynamic-reflection capture
 WEFT_CONST(uint, FEATURE_AMBIENT_DOME, 2u); // the ambient read as a sky behind dome shadows
 WEFT_CONST(uint, FEATURE_BOUNCE, 4u);       // bounce light (Frame.sky.z)
-WEFT_CONST(uint, FEATURE_ALL, 7u);
+WEFT_CONST(uint, FEATURE_COOKIES, 8u);      // a spot light with a cookie
+// FEATURE_LIGHT_GROUP << g: the frame has lights of group g (LIGHT_GROUP_*)
+WEFT_CONST(uint, FEATURE_LIGHT_GROUP, 16u);
+WEFT_CONST(uint, FEATURE_ALL, 2047u); // every bit above: the generic shaders
 
 struct Light {
     vec4 position;    // xyz: position (point, spot); w: LIGHT_*
@@ -107,6 +123,9 @@ struct Frame {
     // receives (caster_bounce.glsl): xyz centre, w radius (0: no caster in this slot) ...
     vec4 bounceSpheres[MAX_BOUNCE_CASTERS];
     ivec4 bounceInstances[MAX_BOUNCE_CASTERS / 4]; // ... and their instances, four per vector
+    // The first light of each group g in the lights buffer (LIGHT_GROUP_*) at [g / 4][g % 4];
+    // [1][3] = the light count (the end of the last group)
+    ivec4 lightStart[2];
 };
 
 #ifdef __cplusplus

@@ -56,29 +56,35 @@ vec3 hairEnvironmentDiffuse(vec3 t) {
     return max(e, vec3(0.0)) * frame.environment.x;
 }
 
-// Ambient * diffuse colour + sum over lights of L * visibility * f(t, l, v), plus, in a scene
-// lit by an environment, its diffuse light along the fibre (hairEnvironmentDiffuse; the
-// specular lobes get no environment light). `debugVis` is the visibility of the frame's debug
-// light (frame.counts.w).
+// Light i (group g) on a fibre: L * visibility * f(t, l, v).
+vec3 hairLight(int i, int g, vec3 p, vec3 t, vec3 v, HairShading s, uint strand,
+               inout float debugVis) {
+    vec3 l;
+    vec3 L = incidentRadiance(lights[i], g, p, l);
+    float vis = 1.0;
+    int slot = hairDomSlot(i);
+    if (slot >= 0) {
+        vis = hairDomTransmittance(slot, p);
+    } else if (lightShadowed(g)) {
+        float depth;
+        vis = shadowVisibility(lights[i], g, p, l, l, depth); // a fibre has no normal: n = l
+    }
+    if (i == frame.counts.w) debugVis = vis;
+    return vis * L * hairShade(s, t, l, v, strand);
+}
+
+// Ambient * diffuse colour + sum over lights of hairLight, plus, in a scene lit by an
+// environment, its diffuse light along the fibre (hairEnvironmentDiffuse; the specular lobes
+// get no environment light). `debugVis` is the visibility of the frame's debug light
+// (frame.counts.w).
 vec3 hairRadiance(vec3 p, vec3 t, vec3 color, HairShading s, uint strand, out float debugVis) {
     vec3 v = normalize(frame.cameraPos.xyz - p);
     s.diffuse.rgb *= color;
     vec3 c = frame.ambient.rgb * s.diffuse.rgb;
     c += hairEnvironmentDiffuse(t) * s.diffuse.rgb;
     debugVis = 1.0;
-    for (int i = 0; i < frame.counts.x; ++i) {
-        vec3 l;
-        vec3 L = incidentRadiance(lights[i], p, l);
-        float vis = 1.0;
-        int slot = hairDomSlot(i);
-        if (slot >= 0) {
-            vis = hairDomTransmittance(slot, p);
-        } else if (lights[i].radiance.w >= 0.0) {
-            float depth;
-            vis = shadowVisibility(lights[i], p, l, l, depth); // a fibre has no normal: n = l
-        }
-        if (i == frame.counts.w) debugVis = vis;
-        c += vis * L * hairShade(s, t, l, v, strand);
-    }
+#define HAIR_LIGHT(I, G) c += hairLight(I, G, p, t, v, s, strand, debugVis)
+    forEachLight(HAIR_LIGHT)
+#undef HAIR_LIGHT
     return c;
 }

@@ -79,18 +79,35 @@ float softShadow(ShadowLayer s, int layer, vec2 uv, float z, float bias, vec3 p,
     return lit / float(kSunPcfTaps);
 }
 
-// Fraction of PCF taps of light `li` that see the light from p. `lightDepth` returns the
-// receiver's NDC depth in the layer used.
-float shadowVisibility(Light L, vec3 p, vec3 n, vec3 l, out float lightDepth) {
+// The group of light L (LIGHT_GROUP_*), as render/FrameData.cpp sorts the lights.
+int lightGroup(Light L) {
     int type = int(L.position.w);
+    bool shadowed = L.radiance.w >= 0.0;
+    if (type == LIGHT_DIRECTIONAL)
+        return !shadowed ? LIGHT_GROUP_DIRECTIONAL
+                         : L.cone.w > 0.0 ? LIGHT_GROUP_DIRECTIONAL_SOFT
+                                          : LIGHT_GROUP_DIRECTIONAL_PCF;
+    if (type == LIGHT_POINT) return shadowed ? LIGHT_GROUP_POINT_SHADOWED : LIGHT_GROUP_POINT;
+    return shadowed ? LIGHT_GROUP_SPOT_SHADOWED : LIGHT_GROUP_SPOT;
+}
+
+bool lightShadowed(int g) {
+    return g == LIGHT_GROUP_DIRECTIONAL_PCF || g == LIGHT_GROUP_DIRECTIONAL_SOFT ||
+           g == LIGHT_GROUP_POINT_SHADOWED || g == LIGHT_GROUP_SPOT_SHADOWED;
+}
+
+// Fraction of the shadow taps of light L (group g, shadowed) that see the light from p.
+// `lightDepth` returns the receiver's NDC depth in the layer used. With g a constant (the
+// group loops of forEachLight) the other groups' tests are compiled out.
+float shadowVisibility(Light L, int g, vec3 p, vec3 n, vec3 l, out float lightDepth) {
     int layer = int(L.radiance.w);
     float c = clamp(dot(n, l), -1.0, 1.0);
     float sinTheta = sqrt(max(0.0, 1.0 - c * c));
     ShadowLayer s = shadowLayers[layer];
-    bool perspective = s.params.y > 0.5;
+    bool perspective = g == LIGHT_GROUP_POINT_SHADOWED || g == LIGHT_GROUP_SPOT_SHADOWED;
     float offset = perspective ? s.params.x * length(L.position.xyz - p) : s.params.x;
     vec3 q = p + n * (offset * sinTheta);
-    if (type == LIGHT_POINT) {
+    if (g == LIGHT_GROUP_POINT_SHADOWED) {
         layer += cubeFace(q - L.position.xyz);
         s = shadowLayers[layer];
     }
@@ -103,11 +120,11 @@ float shadowVisibility(Light L, vec3 p, vec3 n, vec3 l, out float lightDepth) {
     // as if on it (shadowed where a caster was drawn, lit where the map is empty).
     float z = min(ndc.z, 1.0);
     float bias = min(frame.bias.x + frame.bias.y * sinTheta / max(c, 1e-4), frame.bias.z);
+    if (g == LIGHT_GROUP_DIRECTIONAL_SOFT)
+        return softShadow(s, layer, uv, ndc.z, bias, p, n, L.cone.w);
     float receiver = perspective ? linearShadowDepth(z, s.params.z, s.params.w) -
                                        bias * (s.params.w - s.params.z)
                                  : z - bias;
-    if (type == LIGHT_DIRECTIONAL && L.cone.w > 0.0 && !perspective)
-        return softShadow(s, layer, uv, ndc.z, bias, p, n, L.cone.w);
     int size = frame.counts.z;
     int r = frame.counts.y;
     ivec2 texel = ivec2(floor(uv * float(size)));
@@ -139,11 +156,10 @@ vec3 cookieSample(int slot, vec2 uv) {
     return textureLod(cookies[3], uv, 0.0).rgb;
 }
 
-// Unit vector l towards light L from p, and the radiance arriving there: colour * intensity
-// times the distance attenuation a (eq. 2.3 / 2.4), the spot cone and the cookie.
-vec3 incidentRadiance(Light L, vec3 p, out vec3 l) {
-    int type = int(L.position.w);
-    if (type == LIGHT_DIRECTIONAL) {
+// Unit vector l towards light L (group g) from p, and the radiance arriving there: colour *
+// intensity times the distance attenuation a (eq. 2.3 / 2.4), the spot cone and the cookie.
+vec3 incidentRadiance(Light L, int g, vec3 p, out vec3 l) {
+    if (g <= LIGHT_GROUP_DIRECTIONAL_SOFT) {
         l = L.direction.xyz;
         return L.radiance.rgb;
     }
@@ -154,12 +170,12 @@ vec3 incidentRadiance(Light L, vec3 p, out vec3 l) {
     float a = k.w > 0.0 ? max(0.0, 1.0 - dist * dist / (k.w * k.w))
                         : 1.0 / (k.x + k.y * dist + k.z * dist * dist);
     vec3 radiance = L.radiance.rgb * a;
-    if (type == LIGHT_SPOT) {
+    if (g >= LIGHT_GROUP_SPOT) {
         vec3 axis = L.direction.xyz;
         float cosAngle = dot(-l, axis);
         radiance *= smoothstep(L.cone.y, L.cone.x, cosAngle);
         int cookie = int(L.direction.w);
-        if (cookie >= 0 && cosAngle > 0.0) {
+        if (featureOn(FEATURE_COOKIES) && cookie >= 0 && cosAngle > 0.0) {
             vec3 right, up;
             spotBasis(axis, right, up);
             vec3 q = p - L.position.xyz;
@@ -170,6 +186,28 @@ vec3 incidentRadiance(Light L, vec3 p, out vec3 l) {
     }
     return radiance;
 }
+
+// forEachLight(BODY): BODY(i, g) for every light i of the frame, g its group. A pipeline
+// specialized to a frame (kFrameFeatures: the groups present) loops over each group present
+// with g a constant, so each loop holds only its group's code; the generic pipeline (every
+// feature bit) loops over all lights and finds each one's group.
+#define LIGHT_GROUP_LOOP(BODY, G)                                                              \
+    if (featureOn(FEATURE_LIGHT_GROUP << G))                                                   \
+        for (int i = frame.lightStart[G / 4][G % 4];                                           \
+             i < frame.lightStart[(G + 1) / 4][(G + 1) % 4]; ++i)                              \
+            BODY(i, G);
+#define forEachLight(BODY)                                                                     \
+    if ((kFrameFeatures & FEATURE_ALL) == FEATURE_ALL) {                                       \
+        for (int i = 0; i < frame.counts.x; ++i) BODY(i, lightGroup(lights[i]));               \
+    } else {                                                                                   \
+        LIGHT_GROUP_LOOP(BODY, 0)                                                              \
+        LIGHT_GROUP_LOOP(BODY, 1)                                                              \
+        LIGHT_GROUP_LOOP(BODY, 2)                                                              \
+        LIGHT_GROUP_LOOP(BODY, 3)                                                              \
+        LIGHT_GROUP_LOOP(BODY, 4)                                                              \
+        LIGHT_GROUP_LOOP(BODY, 5)                                                              \
+        LIGHT_GROUP_LOOP(BODY, 6)                                                              \
+    }
 
 // Alpha test (SPEC §1.5): true when the fragment is a hole.
 bool alphaDiscarded(vec2 uv, Instance ins) {
@@ -249,6 +287,31 @@ struct Shading {
     EnvironmentTerms environment;
 };
 
+// Light i (group g) on the surface: eq. 2.10's diffuse and specular terms, shadowed.
+void shadeLight(int i, int g, Surface sf, Instance ins, vec3 v, inout Shading sh,
+                inout float debugVis, inout float debugDepth) {
+    vec3 l;
+    vec3 L = incidentRadiance(lights[i], g, sf.p, l);
+    float ndl = dot(sf.n, l);
+    float vis = 1.0;
+    if (lightShadowed(g)) {
+        float depth;
+        vis = shadowVisibility(lights[i], g, sf.p, sf.n, l, depth);
+        if (i == frame.counts.w) {
+            debugVis = vis;
+            debugDepth = depth;
+        }
+    }
+    if (ndl > 0.0) {
+        vec3 h = normalize(l + v);
+        float s = pow(max(dot(sf.ns, h), 0.0), sf.shininess);
+        vec3 d = ndl * L * ins.kd.rgb * sf.T;
+        sh.diffuseUnshadowed += d;
+        sh.diffuse += vis * d;
+        sh.specular += vis * s * L * sf.ks;
+    }
+}
+
 // `debugVis`/`debugDepth` report the debug light's shadow test.
 Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth) {
     vec3 p = sf.p, n = sf.n;
@@ -292,28 +355,9 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     }
     debugVis = 1.0;
     debugDepth = 0.0;
-    for (int i = 0; i < frame.counts.x; ++i) {
-        vec3 l;
-        vec3 L = incidentRadiance(lights[i], p, l);
-        float ndl = dot(n, l);
-        float vis = 1.0;
-        if (lights[i].radiance.w >= 0.0) {
-            float depth;
-            vis = shadowVisibility(lights[i], p, n, l, depth);
-            if (i == frame.counts.w) {
-                debugVis = vis;
-                debugDepth = depth;
-            }
-        }
-        if (ndl > 0.0) {
-            vec3 h = normalize(l + v);
-            float s = pow(max(dot(sf.ns, h), 0.0), sf.shininess);
-            vec3 d = ndl * L * ins.kd.rgb * sf.T;
-            sh.diffuseUnshadowed += d;
-            sh.diffuse += vis * d;
-            sh.specular += vis * s * L * sf.ks;
-        }
-    }
+#define SHADE_LIGHT(I, G) shadeLight(I, G, sf, ins, v, sh, debugVis, debugDepth)
+    forEachLight(SHADE_LIGHT)
+#undef SHADE_LIGHT
     sh.environment = environmentTerms(p, n, v, sf.T, sf.alpha, ins, hiddenSky);
     // One bounce (bounce.glsl): the receivers keep the ambient out of the solid angle they
     // cover and send their own radiance instead, as diffuse light not darkened by the dome.

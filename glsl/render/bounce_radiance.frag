@@ -31,12 +31,12 @@ void main() {
         radiance += frame.ambient.rgb * ci.ka.rgb *
                     ((k == 0 ? 1.0 / 0.282095 : 0.0) - texelFetch(bounceSh, ivec2(18 + k, c), 0).x);
     float band = k == 0 ? 3.14159265 : k < 4 ? 2.09439510 : 0.78539816;
-    for (int i = 0; i < frame.counts.x; ++i) {
+    for (int i = 0; i < frame.counts.x; ++i) { // a few dozen fragments: one generic loop
+        int g = lightGroup(lights[i]);
         vec3 l;
-        vec3 L = incidentRadiance(lights[i], centre, l);
+        vec3 L = incidentRadiance(lights[i], g, centre, l);
         float vis = 1.0, depth;
-        if (lights[i].radiance.w >= 0.0)
-            vis = shadowVisibility(lights[i], centre + l * r, l, l, depth);
+        if (lightShadowed(g)) vis = shadowVisibility(lights[i], g, centre + l * r, l, l, depth);
         float b[9];
         shBasis9(l, vec3(1.0), b);
         radiance += vis * L * ci.kd.rgb * band * b[k];

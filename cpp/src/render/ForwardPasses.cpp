@@ -22,17 +22,6 @@ void resolveInto(VkRenderingAttachmentInfo& a, VkImageView target, VkImageLayout
     a.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE; // only the resolved image is read later
 }
 
-// The gpu::FEATURE_* bits a frame's uniform and instances can turn on (frame.glsl): exactly the
-// runtime tests of the forward shader, so a pipeline without the others draws the same.
-uint32_t frameFeatures(const FrameData& data) {
-    bool reflection = false;
-    for (const GpuInstance& i : data.instances)
-        reflection = reflection || (i.flags.x & gpu::DYNAMIC_REFLECTION) != 0u;
-    return (data.frame.environment.x > 0.0f || reflection ? gpu::FEATURE_ENVIRONMENT : 0u) |
-           (data.frame.sky.w > 0.5f ? gpu::FEATURE_AMBIENT_DOME : 0u) |
-           (data.frame.sky.z > 0.5f ? gpu::FEATURE_BOUNCE : 0u);
-}
-
 } // namespace
 
 void addForwardPasses(FrameGraph& g, FramePassContext& f) {

@@ -105,6 +105,43 @@ struct LightBuilder {
     }
 };
 
+// The light's group (gpu::LIGHT_GROUP_*, as lightGroup in shading.glsl).
+int lightGroup(const GpuLight& l) {
+    const bool shadowed = l.radiance.w >= 0.0f;
+    if (int(l.position.w) == kLightDirectional)
+        return !shadowed         ? gpu::LIGHT_GROUP_DIRECTIONAL
+               : l.cone.w > 0.0f ? gpu::LIGHT_GROUP_DIRECTIONAL_SOFT
+                                 : gpu::LIGHT_GROUP_DIRECTIONAL_PCF;
+    if (int(l.position.w) == kLightPoint)
+        return shadowed ? gpu::LIGHT_GROUP_POINT_SHADOWED : gpu::LIGHT_GROUP_POINT;
+    return shadowed ? gpu::LIGHT_GROUP_SPOT_SHADOWED : gpu::LIGHT_GROUP_SPOT;
+}
+
+// Sorts the lights by group (stable: scene order within a group), fills Frame::lightStart and
+// the light features, and maps scene light indices to their places. A light without shadows
+// that brings no light (the demo's moon by day) is left out (index -1).
+void sortLightsByGroup(FrameData& f) {
+    std::vector<GpuLight> byGroup;
+    byGroup.reserve(f.lights.size());
+    f.gpuLightIndex.assign(f.lights.size(), -1);
+    for (int g = 0; g < gpu::LIGHT_GROUPS; ++g) {
+        f.frame.lightStart[g / 4][g % 4] = int(byGroup.size());
+        for (size_t i = 0; i < f.lights.size(); ++i) {
+            const GpuLight& l = f.lights[i];
+            if (l.radiance.w < 0.0f && glm::vec3(l.radiance) == glm::vec3(0.0f)) continue;
+            if (lightGroup(l) == g) {
+                f.gpuLightIndex[i] = int(byGroup.size());
+                byGroup.push_back(l);
+                f.lightFeatures |= gpu::FEATURE_LIGHT_GROUP << g;
+                if (g >= gpu::LIGHT_GROUP_SPOT && l.direction.w >= 0.0f)
+                    f.lightFeatures |= gpu::FEATURE_COOKIES;
+            }
+        }
+    }
+    f.frame.lightStart[1][3] = int(byGroup.size());
+    f.lights = std::move(byGroup);
+}
+
 } // namespace
 
 FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderSettings& settings,
@@ -157,6 +194,7 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
             std::visit([&](const auto& l) { return builder(int(i), l); }, scene.lights()[i]));
         if (debugLight < 0 && f.shadowInfos[i].active) debugLight = int(i);
     }
+    sortLightsByGroup(f);
 
     GpuFrame& g = f.frame;
     g.viewProj = camera.projection(aspect) * camera.view();
@@ -168,8 +206,19 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
     g.bias = glm::vec4(settings.biasConstant, settings.biasSlope, settings.biasMax, 0);
     // The debug shadow channel reports the first light with a shadow map.
     g.counts = glm::ivec4(int(f.lights.size()), settings.pcfRadius, int(settings.shadowMapSize),
-                          debugLight);
+                          debugLight < 0 ? -1 : f.gpuLightIndex[size_t(debugLight)]);
     return f;
+}
+
+// The gpu::FEATURE_* bits a frame's uniform and instances can turn on (frame.glsl): exactly the
+// runtime tests of the forward shader, so a pipeline without the others draws the same.
+uint32_t frameFeatures(const FrameData& data) {
+    bool reflection = false;
+    for (const GpuInstance& i : data.instances)
+        reflection = reflection || (i.flags.x & gpu::DYNAMIC_REFLECTION) != 0u;
+    return (data.frame.environment.x > 0.0f || reflection ? gpu::FEATURE_ENVIRONMENT : 0u) |
+           (data.frame.sky.w > 0.5f ? gpu::FEATURE_AMBIENT_DOME : 0u) |
+           (data.frame.sky.z > 0.5f ? gpu::FEATURE_BOUNCE : 0u) | data.lightFeatures;
 }
 
 } // namespace weft::render

@@ -34,7 +34,9 @@ struct ShadowView {
 struct FrameData {
     std::vector<GpuInstance> instances;
     std::vector<Draw> draws;
-    std::vector<GpuLight> lights;
+    std::vector<GpuLight> lights;        // sorted by group (gpu::LIGHT_GROUP_*, Frame::lightStart)
+    std::vector<int> gpuLightIndex;      // scene light index -> its place in `lights`
+    uint32_t lightFeatures = 0;          // gpu::FEATURE_LIGHT_GROUP bits and FEATURE_COOKIES
     std::vector<ShadowView> shadowViews; // at most kMaxShadowLayers
     std::vector<GpuShadowLayer> shadowLayers;
     std::vector<ShadowInfo> shadowInfos; // one per scene light
@@ -49,5 +51,9 @@ struct FrameData {
 /// (directional and spot lights one, point lights six); later ones are unshadowed.
 FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                          float aspect, GpuCache& cache);
+
+/// The gpu::FEATURE_* bits the frame's uniform, instances and lights can turn on: the
+/// specialization of the pipelines that shade it (frame.glsl, kFrameFeatures).
+uint32_t frameFeatures(const FrameData& data);
 
 } // namespace weft::render

@@ -90,7 +90,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     if (hasHair) {
         if (!hair) hair = std::make_unique<render::HairPasses>(c, pipes);
         hair->prepare(uint32_t(frameCounter % kFramesInFlight), scene, camera, settings,
-                      targets.width, targets.height);
+                      targets.width, targets.height, data.gpuLightIndex, data.lightFeatures);
     }
     // Debug outputs hold one surface per pixel: those frames are not multisampled.
     const uint32_t samples = debug ? 1u : supportedSamples(settings.msaa);

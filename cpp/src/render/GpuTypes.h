@@ -37,7 +37,8 @@ static_assert(sizeof(GpuShadowLayer) == 80, "GpuShadowLayer must keep its std140
 static_assert(sizeof(GpuDomeLight) == 96, "GpuDomeLight must keep its std430 size");
 static_assert(sizeof(GpuInstance) == 240, "GpuInstance must keep its std140/std430 size");
 static_assert(sizeof(GpuFrame) == 64 + 48 + 32 + 16 + 144 + 64 + 32 + 64 + 16 +
-                                      16 * (gpu::MAX_BOUNCE_CASTERS + gpu::MAX_BOUNCE_CASTERS / 4),
+                                      16 * (gpu::MAX_BOUNCE_CASTERS + gpu::MAX_BOUNCE_CASTERS / 4) +
+                                      32,
               "GpuFrame must keep its std140/std430 size");
 
 } // namespace weft::render

@@ -253,7 +253,9 @@ void HairPasses::writeSets(Slot& slot) {
 }
 
 void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& camera,
-                         const RenderSettings& settings, uint32_t width, uint32_t height) {
+                         const RenderSettings& settings, uint32_t width, uint32_t height,
+                         const std::vector<int>& gpuLightIndex, uint32_t lightFeatures) {
+    mShaded = &mPipes.shaded(lightFeatures);
     mRibbons = settings.hairPrimitive == HairPrimitive::Ribbons;
     // Hair is drawn after the forward pass's MSAA resolve, so it anti-aliases itself with
     // coverage; msaa = 1 asks for no anti-aliasing and keeps one strand per pixel.
@@ -287,7 +289,7 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
                           settings.hairDomLogSpacing ? 1 : 0);
     f.domLight = glm::ivec4(-1);
     for (size_t i = 0; i < mDoms.size(); ++i) {
-        f.domLight[int(i)] = mDoms[i].light;
+        f.domLight[int(i)] = gpuLightIndex[size_t(mDoms[i].light)]; // as the shaders index them
         f.domViewProj[i] = mDoms[i].viewProj;
         f.domMeshViewProj[i] = mDoms[i].meshViewProj;
         f.domLayer[i] = glm::vec4(mDoms[i].layerNdc, 0, 0, 0);
@@ -436,9 +438,9 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                  setViewport(cmd, desc.width, desc.height);
                  // anti-aliased: only the pixels strands cover entirely (hair_fringe adds
                  // the rest)
-                 const VkPipeline pipeline = aa      ? mPipes.aaCore.get()
-                                             : debug ? mPipes.debug[ribbons].get()
-                                                     : mPipes.opaque[ribbons].get();
+                 const VkPipeline pipeline = aa      ? mShaded->aaCore.get()
+                                             : debug ? mShaded->debug[ribbons].get()
+                                                     : mShaded->opaque[ribbons].get();
                  drawCamera(cmd, t, pipeline, mOpacitySet, false, aa || mRibbons);
                  mCtx.fn().cmdEndRendering(cmd);
              }});
@@ -474,7 +476,7 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
              [this, t, beginAccumulation](VkCommandBuffer cmd) {
                  if (!mPipes.sampleMasks) { // coverage as independent alphas
                      beginAccumulation(cmd, true);
-                     drawCamera(cmd, t, mPipes.aaFringe[0], mOpacitySet, false, true);
+                     drawCamera(cmd, t, mShaded->aaFringe[0], mOpacitySet, false, true);
                      mCtx.fn().cmdEndRendering(cmd);
                      return;
                  }
@@ -495,7 +497,7 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
                                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
                      beginAccumulation(cmd, i == 0);
-                     drawCamera(cmd, t, mPipes.aaFringe[i], mOpacitySet, false, true);
+                     drawCamera(cmd, t, mShaded->aaFringe[i], mOpacitySet, false, true);
                      mCtx.fn().cmdEndRendering(cmd);
                  }
              }});
@@ -503,7 +505,7 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
         g.addPass({"hair_oit", shadingReads, accumulates,
                    [this, t, ribbons, aa, fringe, beginAccumulation](VkCommandBuffer cmd) {
                        beginAccumulation(cmd, !fringe);
-                       drawCamera(cmd, t, aa ? mPipes.aaOit.get() : mPipes.oit[ribbons].get(),
+                       drawCamera(cmd, t, aa ? mShaded->aaOit.get() : mShaded->oit[ribbons].get(),
                                   mOpacitySet, true, aa || mRibbons);
                        mCtx.fn().cmdEndRendering(cmd);
                    }});

@@ -29,8 +29,11 @@ public:
     ~HairPasses();
 
     /// Uploads strands and fills this frame's buffers and descriptor sets (frame slot `slot`).
+    /// `gpuLightIndex`: each scene light's place in the frame's light buffer, `lightFeatures`
+    /// the gpu::FEATURE_* bits of its lights (FrameData).
     void prepare(uint32_t slot, const Scene& scene, const Camera& camera,
-                 const RenderSettings& settings, uint32_t width, uint32_t height);
+                 const RenderSettings& settings, uint32_t width, uint32_t height,
+                 const std::vector<int>& gpuLightIndex, uint32_t lightFeatures);
     /// Draws the shadow-casting strands as lines into the bound depth target of a light view.
     void drawDepth(VkCommandBuffer cmd, const glm::mat4& viewProj) const;
 
@@ -87,6 +90,7 @@ private:
     vk::Context& mCtx;
     const ScenePipelines& mScene;
     HairPipelines mPipes;
+    const HairShadedPipelines* mShaded = nullptr; // this frame's (prepare)
     HairGpuCache mCache;
     std::array<Slot, 2> mSlots;
     vk::Image mDomDepth, mDomOpacity, mDomMeshDepth, mDummyDom, mNoMeshes, mAccum, mWeight;

@@ -25,7 +25,7 @@ VkPipelineColorBlendAttachmentState blend(VkBlendFactor src, VkBlendFactor dst,
 
 } // namespace
 
-HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) {
+HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) : mCtx(c) {
     hairSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                             {2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}});
@@ -41,60 +41,6 @@ HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) {
         c, {scene.frameSetLayout, scene.materialSetLayout, hairSetLayout, domSetLayout},
         sizeof(glm::mat4) + sizeof(glm::vec4));
     compositeLayout = vk::createPipelineLayout(c, {oitSetLayout}, 0);
-
-    for (int ribbons = 0; ribbons < 2; ++ribbons) {
-        vk::GraphicsPipelineDesc d;
-        d.vertexShader = "hair/hair.vert";
-        d.fragmentShader = "hair/hair.frag";
-        d.vertexLayout = vk::VertexLayout::None;
-        d.topology =
-            ribbons ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST : VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
-        d.cullMode = VK_CULL_MODE_NONE;
-        d.colorFormats = {kHdrFormat};
-        d.depthFormat = kDepthFormat;
-        d.layout = layout;
-        opaque[ribbons] = vk::createGraphicsPipeline(c, d);
-        d.fragmentShader = "hair/hair_debug.frag";
-        d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat, kDebugFormat, kDebugFormat};
-        debug[ribbons] = vk::createGraphicsPipeline(c, d);
-        d.vertexShader = "hair/hair_oit.vert";
-        d.fragmentShader = "hair/hair_oit.frag";
-        d.colorFormats = {kOitAccumFormat, kOitWeightFormat};
-        d.depthWrite = false; // tested against the opaque scene only
-        const VkPipelineColorBlendAttachmentState accumulate =
-            blend(VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ZERO,
-                  VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA);
-        d.blends = {accumulate, accumulate}; // hair_oit.frag: what each channel accumulates
-        oit[ribbons] = vk::createGraphicsPipeline(c, d);
-    }
-
-    vk::GraphicsPipelineDesc a;
-    a.vertexShader = "hair/hair_aa_core.vert";
-    a.fragmentShader = "hair/hair_aa_core.frag";
-    a.vertexLayout = vk::VertexLayout::None;
-    a.cullMode = VK_CULL_MODE_NONE;
-    a.colorFormats = {kHdrFormat};
-    a.depthFormat = kDepthFormat;
-    a.layout = layout;
-    aaCore = vk::createGraphicsPipeline(c, a);
-    a.vertexShader = "hair/hair_aa_oit.vert";
-    a.fragmentShader = "hair/hair_aa_oit.frag"; // transparent: independent alphas (a * coverage)
-    a.colorFormats = {kOitAccumFormat, kOitWeightFormat};
-    a.depthWrite = false; // partial coverage hides nothing behind it
-    const VkPipelineColorBlendAttachmentState accumulate =
-        blend(VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ZERO,
-              VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA);
-    a.blends = {accumulate, accumulate};
-    aaOit = vk::createGraphicsPipeline(c, a);
-    if (sampleMasks) {
-        a.fragmentShader = "hair/hair_aa_fringe1.frag";
-        aaFringe[1] = vk::createGraphicsPipeline(c, a);
-        a.fragmentShader = "hair/hair_aa_fringe0.frag"; // only writes the sample depths
-        for (VkPipelineColorBlendAttachmentState& b : a.blends) b.colorWriteMask = 0;
-        aaFringe[0] = vk::createGraphicsPipeline(c, a);
-    } else {
-        aaFringe[0] = vk::createGraphicsPipeline(c, a); // coverage as independent alphas
-    }
 
     vk::GraphicsPipelineDesc l;
     l.vertexShader = "hair/hair_light.vert";
@@ -122,6 +68,69 @@ HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) {
                       VK_BLEND_FACTOR_ZERO, VK_BLEND_FACTOR_ONE)};
     o.layout = compositeLayout;
     composite = vk::createGraphicsPipeline(c, o);
+}
+
+const HairShadedPipelines& HairPipelines::shaded(uint32_t features) {
+    auto found = mShaded.find(features);
+    if (found != mShaded.end()) return found->second;
+    HairShadedPipelines& p = mShaded[features];
+    for (int ribbons = 0; ribbons < 2; ++ribbons) {
+        vk::GraphicsPipelineDesc d;
+        d.vertexShader = "hair/hair.vert";
+        d.fragmentShader = "hair/hair.frag";
+        d.vertexLayout = vk::VertexLayout::None;
+        d.topology =
+            ribbons ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST : VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+        d.cullMode = VK_CULL_MODE_NONE;
+        d.colorFormats = {kHdrFormat};
+        d.depthFormat = kDepthFormat;
+        d.layout = layout;
+        d.fragmentConstant = features;
+        p.opaque[ribbons] = vk::createGraphicsPipeline(mCtx, d);
+        d.fragmentShader = "hair/hair_debug.frag";
+        d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat, kDebugFormat, kDebugFormat};
+        p.debug[ribbons] = vk::createGraphicsPipeline(mCtx, d);
+        d.vertexShader = "hair/hair_oit.vert";
+        d.fragmentShader = "hair/hair_oit.frag";
+        d.colorFormats = {kOitAccumFormat, kOitWeightFormat};
+        d.depthWrite = false; // tested against the opaque scene only
+        const VkPipelineColorBlendAttachmentState accumulate =
+            blend(VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ZERO,
+                  VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA);
+        d.blends = {accumulate, accumulate}; // hair_oit.frag: what each channel accumulates
+        p.oit[ribbons] = vk::createGraphicsPipeline(mCtx, d);
+    }
+
+    vk::GraphicsPipelineDesc a;
+    a.vertexShader = "hair/hair_aa_core.vert";
+    a.fragmentShader = "hair/hair_aa_core.frag";
+    a.vertexLayout = vk::VertexLayout::None;
+    a.cullMode = VK_CULL_MODE_NONE;
+    a.colorFormats = {kHdrFormat};
+    a.depthFormat = kDepthFormat;
+    a.layout = layout;
+    a.fragmentConstant = features;
+    p.aaCore = vk::createGraphicsPipeline(mCtx, a);
+    a.vertexShader = "hair/hair_aa_oit.vert";
+    a.fragmentShader = "hair/hair_aa_oit.frag"; // transparent: independent alphas (a * coverage)
+    a.colorFormats = {kOitAccumFormat, kOitWeightFormat};
+    a.depthWrite = false; // partial coverage hides nothing behind it
+    const VkPipelineColorBlendAttachmentState accumulate =
+        blend(VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ZERO,
+              VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA);
+    a.blends = {accumulate, accumulate};
+    p.aaOit = vk::createGraphicsPipeline(mCtx, a);
+    if (sampleMasks) {
+        a.fragmentShader = "hair/hair_aa_fringe1.frag";
+        p.aaFringe[1] = vk::createGraphicsPipeline(mCtx, a);
+        a.fragmentShader = "hair/hair_aa_fringe0.frag"; // only writes the sample depths
+        for (VkPipelineColorBlendAttachmentState& b : a.blends) b.colorWriteMask = 0;
+        p.aaFringe[0] = vk::createGraphicsPipeline(mCtx, a);
+    } else {
+        p.aaFringe[0] = vk::createGraphicsPipeline(mCtx, a); // coverage as independent alphas
+    }
+
+    return p;
 }
 
 } // namespace weft::render

@@ -3,6 +3,8 @@
 // lines and ribbons, light views (shadow-map / DOM depth, DOM opacity) and the OIT composite.
 // Anti-aliased frames draw both primitives as screen-space strips with coverage (the aa*
 // pipelines, glsl/common/hair_vertex.glsl HAIR_AA); debug frames never do.
+#include <unordered_map>
+
 #include "vk/Pipeline.h"
 
 namespace weft::render {
@@ -24,14 +26,8 @@ constexpr uint32_t kHairAaDepthSamples = 32;
 constexpr uint32_t kHairAaCoverageWords = 4;
 constexpr uint32_t kHairAaSampleLayers = kHairAaDepthSamples + kHairAaCoverageWords + 3;
 
-struct HairPipelines {
-    HairPipelines(vk::Context& ctx, const ScenePipelines& scene);
-
-    vk::DescriptorSetLayout hairSetLayout; // set 2: vertices, instances, hair frame
-    vk::DescriptorSetLayout domSetLayout;  // set 3: a DOM image array, mesh depth, samples
-    vk::DescriptorSetLayout oitSetLayout;  // composite: accumulation (+ revealage), weight sum
-    vk::PipelineLayout layout;             // sets 0-3 + push constants (instance / light view)
-    vk::PipelineLayout compositeLayout;
+/// The pipelines that shade strands (hair_lighting.glsl), specialized to a frame's lights.
+struct HairShadedPipelines {
     // [0]: lines, [1]: ribbons
     vk::Pipeline opaque[2], debug[2], oit[2];
     // Anti-aliased strips: the pixels a strand covers entirely (opaque, depth written), the
@@ -39,12 +35,31 @@ struct HairPipelines {
     // passes: the nearest depth at each sample point, then the shares it leaves each strand;
     // else one), transparent strands with coverage.
     vk::Pipeline aaCore, aaFringe[2], aaOit;
+};
+
+struct HairPipelines {
+    HairPipelines(vk::Context& ctx, const ScenePipelines& scene);
+
+    /// The shading pipelines for the gpu::FEATURE_* bits of a frame's lights (FrameData::
+    /// lightFeatures; frame.glsl's kFrameFeatures): only the light groups present are compiled
+    /// into their loops. Created on first use.
+    const HairShadedPipelines& shaded(uint32_t features);
+
+    vk::DescriptorSetLayout hairSetLayout; // set 2: vertices, instances, hair frame
+    vk::DescriptorSetLayout domSetLayout;  // set 3: a DOM image array, mesh depth, samples
+    vk::DescriptorSetLayout oitSetLayout;  // composite: accumulation (+ revealage), weight sum
+    vk::PipelineLayout layout;             // sets 0-3 + push constants (instance / light view)
+    vk::PipelineLayout compositeLayout;
     /// The device has atomics in fragment shaders: a strand's share of a partly covered pixel is
     /// what it shows of it at sample points (hair_oit_main.glsl); without, independent alphas.
     bool sampleMasks = false;
     vk::Pipeline lightDepth; // lines into a depth target (shadow maps, DOM pass 1)
     vk::Pipeline domOpacity; // DOM pass 2
     vk::Pipeline composite;
+
+private:
+    vk::Context& mCtx;
+    std::unordered_map<uint32_t, HairShadedPipelines> mShaded; // by features
 };
 
 } // namespace weft::render

@@ -81,7 +81,10 @@ VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool
                                       uint32_t samples, uint32_t features) {
     const int facing = twoSided ? 2 : mirrored ? 1 : 0;
     features &= gpu::FEATURE_ALL;
-    vk::Pipeline& p = mForward[debug][dome][facing][sampleIndex(samples)][features];
+    static_assert(gpu::FEATURE_ALL < (1u << 11), "the key's feature bits");
+    const uint32_t key = features | uint32_t(sampleIndex(samples)) << 11 | uint32_t(facing) << 13 |
+                         uint32_t(dome) << 15 | uint32_t(debug) << 16;
+    vk::Pipeline& p = mForward[key];
     if (p) return p;
     static const char* const shaders[2][2] = {
         {"render/forward.frag", "render/forward_dome.frag"},
@@ -122,11 +125,7 @@ VkPipeline ScenePipelines::backgroundFor(uint32_t samples, bool withDepth) {
 
 void ScenePipelines::createPipelines() {
     vk::Context& c = mCtx;
-    for (auto& byDebug : mForward) // created again on first use
-        for (auto& byDome : byDebug)
-            for (auto& byFacing : byDome)
-                for (auto& bySamples : byFacing)
-                    for (vk::Pipeline& p : bySamples) p = vk::Pipeline();
+    mForward.clear(); // created again on first use
     for (auto& byDepth : mBackground)
         for (vk::Pipeline& p : byDepth) p = vk::Pipeline();
 

@@ -53,8 +53,8 @@ struct ScenePipelines {
 private:
     vk::Context& mCtx;
     std::unordered_map<int, vk::Pipeline> mOutput; // by format
-    // [debug][dome][facing][samples 1, 2, 4, 8][features]
-    vk::Pipeline mForward[2][2][3][4][gpu::FEATURE_ALL + 1];
+    // by debug, dome, facing, samples 1, 2, 4, 8 and features (forwardFor)
+    std::unordered_map<uint32_t, vk::Pipeline> mForward;
     vk::Pipeline mBackground[2][4]; // [with depth][samples]
 };
 
