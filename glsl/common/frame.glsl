@@ -26,3 +26,7 @@ layout(push_constant) uniform Push { uint instance; } push;
 // default, every feature, draws exactly what a specialized pipeline draws.
 layout(constant_id = 0) const uint kFrameFeatures = 0xFFFFFFFFu;
 bool featureOn(uint feature) { return (kFrameFeatures & feature) != 0u; }
+// The same for the drawn material (specialization constant 1, Instance::flags.x bits): a
+// pipeline for a material without a normal map, a texture, an alpha test, ... has none of
+// their code (texture samples under a mask cost lavapipe as much as taken ones).
+layout(constant_id = 1) const uint kMaterialFlags = 0xFFFFFFFFu;

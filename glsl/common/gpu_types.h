@@ -53,6 +53,11 @@ WEFT_CONST(uint, AMBIENT_RADIANCE, 32u);      // the ambient map is the ambient 
 WEFT_CONST(uint, TWO_SIDED, 64u);             // back faces shaded with the flipped normal
 WEFT_CONST(uint, MIRRORED, 128u);             // det(model) < 0: front and back swap
 WEFT_CONST(uint, DYNAMIC_REFLECTION, 256u);   // reflects the dynamic capture
+WEFT_CONST(uint, MAP_BASE, 512u);             // a base texture (else white)
+WEFT_CONST(uint, MAP_SPECULAR, 1024u);        // a specular map (else white)
+WEFT_CONST(uint, ALPHA_TEST, 2048u);          // alpha cutoff > 0 (ka.w)
+// the bits above: specialization constant 1 of the forward shader (frame.glsl, kMaterialFlags)
+WEFT_CONST(uint, MATERIAL_ALL, 4095u);
 // Frame features, specialization constant 0 of the forward shader (frame.glsl, kFrameFeatures)
 WEFT_CONST(uint, FEATURE_ENVIRONMENT, 1u);  // an environment, or a dynamic-reflection capture
 WEFT_CONST(uint, FEATURE_AMBIENT_DOME, 2u); // the ambient read as a sky behind dome shadows
@@ -96,7 +101,7 @@ struct Instance {
     vec4 environment;  // rgb: reflectivity (Fresnel F0), w: environment-diffuse weight
     vec4 maps;         // x: log2(shininess max / shininess), the exponent in the specular
                        // map's alpha (0: none); y: normal-map scale of x and y
-    uvec4 flags;       // x: MAP_* ... DYNAMIC_REFLECTION bits; y: bounce capture + 1 (0: none;
+    uvec4 flags;       // x: MAP_NORMAL ... ALPHA_TEST bits; y: bounce capture + 1 (0: none;
                        // render/BounceProbes.h)
 };
 

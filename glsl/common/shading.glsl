@@ -3,7 +3,9 @@
 // shadow.py implement the same equations in NumPy.
 #include "frame.glsl"
 
-bool hasFlag(Instance ins, uint flag) { return (ins.flags.x & flag) != 0u; }
+bool hasFlag(Instance ins, uint flag) {
+    return (kMaterialFlags & flag) != 0u && (ins.flags.x & flag) != 0u;
+}
 
 #include "bounce.glsl"
 #include "environment.glsl"
@@ -211,7 +213,7 @@ vec3 incidentRadiance(Light L, int g, vec3 p, out vec3 l) {
 
 // Alpha test (SPEC §1.5): true when the fragment is a hole.
 bool alphaDiscarded(vec2 uv, Instance ins) {
-    return ins.ka.w > 0.0 && texture(baseTexture, uv).a < ins.ka.w;
+    return hasFlag(ins, ALPHA_TEST) && texture(baseTexture, uv).a < ins.ka.w;
 }
 
 // What eq. 2.10 needs at a fragment: position, shading normal n (normal-mapped, eq. 2.11-2.12),
@@ -260,12 +262,12 @@ Surface surfaceAt(vec3 p, vec3 vertexNormal, vec4 tangent, vec2 uv, Instance ins
     vec3 vertexN;
     s.n = shadingNormal(vertexNormal, tangent, uv, ins, frontFacing, vertexN);
     s.ns = hasFlag(ins, SPECULAR_VERTEX_NORMAL) ? vertexN : s.n;
-    vec4 base = texture(baseTexture, uv);
+    vec4 base = hasFlag(ins, MAP_BASE) ? texture(baseTexture, uv) : vec4(1.0);
     s.T = ins.baseColor.rgb * base.rgb;
     s.alpha = base.a;
     // K_S times the specular map; a fitted BTF's per-texel exponent is in the map's alpha,
     // e = shininess * 2^(alpha * log2(max / shininess)) (Material::shininessMax)
-    vec4 spec = texture(specularMap, uv);
+    vec4 spec = hasFlag(ins, MAP_SPECULAR) ? texture(specularMap, uv) : vec4(1.0);
     s.ks = ins.ks.rgb * spec.rgb;
     s.shininess = ins.maps.x > 0.0 ? ins.ks.w * exp2(spec.a * ins.maps.x) : ins.ks.w;
     s.ambient = hasFlag(ins, MAP_AMBIENT) ? texture(ambientMap, uv).rgb : frame.ambient.rgb;

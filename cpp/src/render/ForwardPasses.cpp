@@ -106,8 +106,9 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
              const uint32_t features = frameFeatures(f.data);
              for (const Draw& d : f.data.draws) {
                  if (d.mesh->indexCount == 0) continue; // e.g. a cloth torn to pieces
-                 const VkPipeline p = f.pipes.forwardFor(f.debug, f.domeBlur, d.mirrored,
-                                                         d.twoSided, f.samples, features);
+                 const VkPipeline p =
+                     f.pipes.forwardFor(f.debug, f.domeBlur, d.mirrored, d.twoSided, f.samples,
+                                        features, f.data.instances[d.instance].flags.x);
                  if (p != bound) {
                      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
                      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,

@@ -85,7 +85,7 @@ const HairShadedPipelines& HairPipelines::shaded(uint32_t features) {
         d.colorFormats = {kHdrFormat};
         d.depthFormat = kDepthFormat;
         d.layout = layout;
-        d.fragmentConstant = features;
+        d.fragmentConstants = {features};
         p.opaque[ribbons] = vk::createGraphicsPipeline(mCtx, d);
         d.fragmentShader = "hair/hair_debug.frag";
         d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat, kDebugFormat, kDebugFormat};
@@ -109,7 +109,7 @@ const HairShadedPipelines& HairPipelines::shaded(uint32_t features) {
     a.colorFormats = {kHdrFormat};
     a.depthFormat = kDepthFormat;
     a.layout = layout;
-    a.fragmentConstant = features;
+    a.fragmentConstants = {features};
     p.aaCore = vk::createGraphicsPipeline(mCtx, a);
     a.vertexShader = "hair/hair_aa_oit.vert";
     a.fragmentShader = "hair/hair_aa_oit.frag"; // transparent: independent alphas (a * coverage)

@@ -78,12 +78,14 @@ int sampleIndex(uint32_t samples) { // 1, 2, 4, 8 -> 0..3
 } // namespace
 
 VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool twoSided,
-                                      uint32_t samples, uint32_t features) {
+                                      uint32_t samples, uint32_t features, uint32_t material) {
     const int facing = twoSided ? 2 : mirrored ? 1 : 0;
     features &= gpu::FEATURE_ALL;
-    static_assert(gpu::FEATURE_ALL < (1u << 11), "the key's feature bits");
-    const uint32_t key = features | uint32_t(sampleIndex(samples)) << 11 | uint32_t(facing) << 13 |
-                         uint32_t(dome) << 15 | uint32_t(debug) << 16;
+    material &= gpu::MATERIAL_ALL;
+    static_assert(gpu::FEATURE_ALL < (1u << 11) && gpu::MATERIAL_ALL < (1u << 16),
+                  "the key's bits");
+    const uint64_t key = features | uint64_t(sampleIndex(samples)) << 11 | uint64_t(facing) << 13 |
+                         uint64_t(dome) << 15 | uint64_t(debug) << 16 | uint64_t(material) << 17;
     vk::Pipeline& p = mForward[key];
     if (p) return p;
     static const char* const shaders[2][2] = {
@@ -101,7 +103,7 @@ VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool
     d.cullMode = facing == 2 ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
     d.frontFace = facing == 1 ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
     d.samples = VkSampleCountFlagBits(samples);
-    d.fragmentConstant = features;
+    d.fragmentConstants = {features, material};
     p = vk::createGraphicsPipeline(mCtx, d);
     return p;
 }

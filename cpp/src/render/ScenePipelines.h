@@ -37,8 +37,10 @@ struct ScenePipelines {
     /// winding), or two-sided (no culling). Created on first use.
     /// `samples`: MSAA samples of the targets (1, 2, 4, 8). `features`: the gpu::FEATURE_* bits
     /// the frame may use (frameFeatures); the others' code is left out of the pipeline.
+    /// `material`: the Instance::flags.x bits the draw's material may have (the same).
     VkPipeline forwardFor(bool debug, bool dome, bool mirrored, bool twoSided, uint32_t samples,
-                          uint32_t features = gpu::FEATURE_ALL);
+                          uint32_t features = gpu::FEATURE_ALL,
+                          uint32_t material = gpu::MATERIAL_ALL);
     /// The background (image or environment) into a colour target of `samples`; `withDepth`:
     /// drawn inside a pass that has a depth attachment (not tested, not written).
     VkPipeline backgroundFor(uint32_t samples, bool withDepth = false);
@@ -54,7 +56,7 @@ private:
     vk::Context& mCtx;
     std::unordered_map<int, vk::Pipeline> mOutput; // by format
     // by debug, dome, facing, samples 1, 2, 4, 8 and features (forwardFor)
-    std::unordered_map<uint32_t, vk::Pipeline> mForward;
+    std::unordered_map<uint64_t, vk::Pipeline> mForward;
     vk::Pipeline mBackground[2][4]; // [with depth][samples]
 };
 

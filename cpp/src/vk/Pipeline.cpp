@@ -11,16 +11,17 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& d) {
     s.module = vert;
     s.pName = "main";
     stages.push_back(s);
-    const VkSpecializationMapEntry constant0{0, 0, sizeof(uint32_t)};
-    VkSpecializationInfo specialization{1, &constant0, sizeof(uint32_t), nullptr};
+    std::vector<VkSpecializationMapEntry> constants;
+    for (uint32_t i = 0; i < d.fragmentConstants.size(); ++i)
+        constants.push_back({i, uint32_t(i * sizeof(uint32_t)), sizeof(uint32_t)});
+    const VkSpecializationInfo specialization{uint32_t(constants.size()), constants.data(),
+                                              d.fragmentConstants.size() * sizeof(uint32_t),
+                                              d.fragmentConstants.data()};
     if (d.fragmentShader) {
         frag = createShaderModule(ctx, d.fragmentShader);
         s.stage = VK_SHADER_STAGE_FRAGMENT_BIT;
         s.module = frag;
-        if (d.fragmentConstant) {
-            specialization.pData = &*d.fragmentConstant;
-            s.pSpecializationInfo = &specialization;
-        }
+        if (!constants.empty()) s.pSpecializationInfo = &specialization;
         stages.push_back(s);
     }
 

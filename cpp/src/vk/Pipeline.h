@@ -1,6 +1,5 @@
 #pragma once
 // Graphics pipelines for dynamic rendering, described by a small struct.
-#include <optional>
 #include <vector>
 
 #include "vk/Resources.h"
@@ -30,8 +29,8 @@ struct GraphicsPipelineDesc {
     bool depthWrite = true;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT; // of the attachments drawn into
     VkPipelineLayout layout = VK_NULL_HANDLE;
-    /// Specialization constant 0 of the fragment shader (constant_id = 0), when set.
-    std::optional<uint32_t> fragmentConstant;
+    /// Specialization constants of the fragment shader: constant_id i takes [i] (32-bit).
+    std::vector<uint32_t> fragmentConstants;
 };
 
 Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);
