@@ -9,6 +9,10 @@
 #include <weft/Error.h>
 #include <weft/Image.h>
 
+namespace weft {
+enum class ToneMap; // weft/Renderer.h
+}
+
 namespace weft::py_bind {
 
 namespace py = pybind11;
@@ -24,5 +28,7 @@ py::array_t<uint8_t> toNumpy(const ImageU8& img);
 ImageU8 fromNumpy(py::handle obj);
 py::array_t<float> toNumpy(const ImageF& img);
 ImageF fromNumpyF(py::handle obj);
+/// 'clamp', 'aces', 'agx' or 'neutral' (defined in bind_render.cpp); else InvalidArgument.
+ToneMap toneMapOf(const std::string& name);
 
 } // namespace weft::py_bind

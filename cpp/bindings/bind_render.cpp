@@ -63,13 +63,6 @@ Frame renderFrame(Renderer& r, const Scene& scene, const Camera& camera, uint32_
 
 const char* const kToneMaps[] = {"clamp", "aces", "agx", "neutral"};
 
-ToneMap toneMapOf(const std::string& name) {
-    for (int i = 0; i < 4; ++i)
-        if (name == kToneMaps[i]) return ToneMap(i);
-    throw InvalidArgument("tone_map must be 'clamp', 'aces', 'agx' or 'neutral' (got '" + name +
-                          "')");
-}
-
 std::string toneMapName(ToneMap t) { return kToneMaps[int(t)]; }
 
 #define WEFT_SETTING(pyname, field, type)                                                          \
@@ -82,6 +75,13 @@ std::string toneMapName(ToneMap t) { return kToneMaps[int(t)]; }
         })
 
 } // namespace
+
+ToneMap toneMapOf(const std::string& name) {
+    for (int i = 0; i < 4; ++i)
+        if (name == kToneMaps[i]) return ToneMap(i);
+    throw InvalidArgument("tone_map must be 'clamp', 'aces', 'agx' or 'neutral' (got '" + name +
+                          "')");
+}
 
 void bindRender(py::module_& m) {
     py::class_<Renderer>(

@@ -1,4 +1,5 @@
 // weft._core: the compiled half of the weft Python package.
+#include <cmath>
 #include <cstring>
 
 #include <pybind11/stl.h>
@@ -251,7 +252,8 @@ PYBIND11_MODULE(_core, m) {
         "run_demo",
         [](int width, int height, int frames, bool headless, bool vsync, const std::string& out,
            const std::string& screenshot, const std::string& statsJson, const std::string& script,
-           const std::string& shaderDir, const std::string& environment, py::object hour) {
+           const std::string& shaderDir, const std::string& environment, py::object hour, int msaa,
+           int ambientOcclusion, bool bounce, float exposure, const std::string& toneMap) {
             weft::DemoOptions o;
             o.width = width;
             o.height = height;
@@ -264,6 +266,17 @@ PYBIND11_MODULE(_core, m) {
             o.script = script;
             o.shaderDir = shaderDir;
             o.environment = environment;
+            if (msaa != 1 && msaa != 2 && msaa != 4 && msaa != 8)
+                throw weft::InvalidArgument("msaa must be 1, 2, 4 or 8");
+            if (ambientOcclusion < 0 || ambientOcclusion > 64 || ambientOcclusion % 8 != 0)
+                throw weft::InvalidArgument(
+                    "ambient_occlusion must be 0 or a multiple of 8 up to 64");
+            if (!std::isfinite(exposure)) throw weft::InvalidArgument("exposure must be finite");
+            o.msaa = uint32_t(msaa);
+            o.ambientOcclusion = uint32_t(ambientOcclusion);
+            o.bounce = bounce;
+            o.exposure = exposure;
+            o.toneMap = toneMapOf(toneMap);
             if (!hour.is_none()) {
                 o.hour = hour.cast<float>();
                 if (!(o.hour >= 0.0f && o.hour <= 24.0f))
@@ -276,8 +289,11 @@ PYBIND11_MODULE(_core, m) {
         py::arg("headless") = false, py::arg("vsync") = true, py::arg("out") = "out/demo.png",
         py::arg("screenshot") = "", py::arg("stats_json") = "", py::arg("script") = "",
         py::arg("shader_dir") = "", py::arg("environment") = "", py::arg("hour") = py::none(),
+        py::arg("msaa") = 4, py::arg("ambient_occlusion") = 8, py::arg("bounce") = true,
+        py::arg("exposure") = 0.0f, py::arg("tone_map") = "clamp",
         "Runs the demo (the seed's cloth environment): a window when a display exists, else\n"
-        "headless to `out` (see `weft-demo --help` for frames, scripts and output folders).");
+        "headless to `out` (see `weft-demo --help` for frames, scripts and output folders),\n"
+        "with the renderer's anti-aliasing, ambient occlusion, bounce, exposure and tone map.");
 
     bindScene(m);
     bindModelIo(m);

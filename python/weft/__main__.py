@@ -50,6 +50,25 @@ _dome_size = _checked(int, lambda v: 0 <= v <= 64 and v % 8 == 0,
 _CLOTH_STEPS = 180
 
 
+def _add_picture_arguments(parser: argparse.ArgumentParser) -> None:
+    """The renderer's picture settings, the same for `render` and `demo`."""
+    parser.add_argument("--msaa", type=int, choices=(1, 2, 4, 8), default=4,
+                        help="multisample anti-aliasing samples per pixel (4)")
+    parser.add_argument("--ao", type=_dome_size, default=8, metavar="N",
+                        help="ambient occlusion of a constant ambient (scenes without an "
+                             "environment): dome shadow lights, 0 (off) or a multiple of 8 up "
+                             "to 64 (8)")
+    parser.add_argument("--no-bounce", action="store_true",
+                        help="no bounce light from the receivers (ground) onto the objects")
+    parser.add_argument("--exposure", type=float, default=0.0, metavar="EV",
+                        help="exposure in photographic stops: the image shows radiance x 2^EV (0)")
+    parser.add_argument("--tone-map", choices=("clamp", "aces", "agx", "neutral"),
+                        default="clamp",
+                        help="how radiance above 1 is shown: clamp (the seed's look, clips), "
+                             "aces (filmic), agx (Blender's) or neutral (Khronos PBR Neutral, "
+                             "colours kept); default clamp")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="python -m weft",
@@ -105,6 +124,7 @@ def build_parser() -> argparse.ArgumentParser:
                       help="window mode: save the last presented frame to this PNG")
     demo.add_argument("--stats", default="", metavar="JSON",
                       help="write the last frame's statistics to this JSON file")
+    _add_picture_arguments(demo)
     demo.set_defaults(handler=_cmd_demo)
 
     devices = sub.add_parser("devices", help="list the Vulkan devices and the selected one",
@@ -153,21 +173,7 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--dome", type=_dome_size, default=None, metavar="N",
                         help="shadow lights in the environment's dome: 0 or a multiple of 8 up "
                              "to 64 (default 16 with --environment)")
-    render.add_argument("--msaa", type=int, choices=(1, 2, 4, 8), default=4,
-                        help="multisample anti-aliasing samples per pixel (4)")
-    render.add_argument("--ao", type=_dome_size, default=8, metavar="N",
-                        help="ambient occlusion of a constant ambient (scenes without an "
-                             "environment): dome shadow lights, 0 (off) or a multiple of 8 up "
-                             "to 64 (8)")
-    render.add_argument("--no-bounce", action="store_true",
-                        help="no bounce light from the receivers (ground) onto the objects")
-    render.add_argument("--exposure", type=float, default=0.0, metavar="EV",
-                        help="exposure in photographic stops: the image shows radiance x 2^EV (0)")
-    render.add_argument("--tone-map", choices=("clamp", "aces", "agx", "neutral"),
-                        default="clamp",
-                        help="how radiance above 1 is shown: clamp (the seed's look, clips), "
-                             "aces (filmic), agx (Blender's) or neutral (Khronos PBR Neutral, "
-                             "colours kept); default clamp")
+    _add_picture_arguments(render)
     from weft.reporting import add_progress_arguments
 
     add_progress_arguments(render)
@@ -196,7 +202,9 @@ def _cmd_demo(args: argparse.Namespace) -> int:
                              headless=args.headless, vsync=args.vsync, out=args.out,
                              screenshot=args.screenshot, stats_json=args.stats,
                              script=args.script, shader_dir=args.shader_dir,
-                             environment=args.environment, hour=args.hour))
+                             environment=args.environment, hour=args.hour, msaa=args.msaa,
+                             ambient_occlusion=args.ao, bounce=not args.no_bounce,
+                             exposure=args.exposure, tone_map=args.tone_map))
 
 
 def format_table(rows: List[Dict[str, Any]], columns: Sequence[str]) -> str:

@@ -1799,10 +1799,11 @@ def project_sh9(radiance: typing.Any) -> numpy.typing.NDArray[numpy.float32]:
     """
     SH9 radiance coefficients (9, 3), see weft/IblFilter.h for the order.
     """
-def run_demo(width: typing.SupportsInt | typing.SupportsIndex = 1280, height: typing.SupportsInt | typing.SupportsIndex = 720, frames: typing.SupportsInt | typing.SupportsIndex = 0, headless: bool = False, vsync: bool = True, out: str = 'out/demo.png', screenshot: str = '', stats_json: str = '', script: str = '', shader_dir: str = '', environment: str = '', hour: typing.Any = None) -> int:
+def run_demo(width: typing.SupportsInt | typing.SupportsIndex = 1280, height: typing.SupportsInt | typing.SupportsIndex = 720, frames: typing.SupportsInt | typing.SupportsIndex = 0, headless: bool = False, vsync: bool = True, out: str = 'out/demo.png', screenshot: str = '', stats_json: str = '', script: str = '', shader_dir: str = '', environment: str = '', hour: typing.Any = None, msaa: typing.SupportsInt | typing.SupportsIndex = 4, ambient_occlusion: typing.SupportsInt | typing.SupportsIndex = 8, bounce: bool = True, exposure: typing.SupportsFloat | typing.SupportsIndex = 0.0, tone_map: str = 'clamp') -> int:
     """
     Runs the demo (the seed's cloth environment): a window when a display exists, else
-    headless to `out` (see `weft-demo --help` for frames, scripts and output folders).
+    headless to `out` (see `weft-demo --help` for frames, scripts and output folders),
+    with the renderer's anti-aliasing, ambient occlusion, bounce, exposure and tone map.
     """
 def save_exr(path: str, image: typing.Any) -> None:
     """

@@ -73,3 +73,24 @@ def test_bad_time_is_rejected(tmp_path: Path):
         cmd = [exe] + cmd[4:]
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
     assert proc.returncode != 0 and "time" in proc.stderr.lower(), proc.stderr
+
+
+def test_python_demo_takes_the_renderers_picture_settings(tmp_path: Path):
+    """`python -m weft demo` and run_demo have weft-demo's picture options."""
+    dark, bright = tmp_path / "ev0.png", tmp_path / "ev2.png"
+    common = dict(width=48, height=27, headless=True, hour=12.0, msaa=1, ambient_occlusion=0,
+                  bounce=False, tone_map="neutral")
+    assert weft.run_demo(out=str(dark), exposure=0.0, **common) == 0
+    assert weft.run_demo(out=str(bright), exposure=2.0, **common) == 0
+    a = weft.load_png(str(dark))[..., :3].astype(np.float64)
+    b = weft.load_png(str(bright))[..., :3].astype(np.float64)
+    assert b.mean() > a.mean() + 30.0  # two stops brighter (tone-mapped)
+    with pytest.raises(weft.InvalidArgument):
+        weft.run_demo(out=str(dark), tone_map="sepia", **{k: v for k, v in common.items()
+                                                          if k != "tone_map"})
+    with pytest.raises(weft.InvalidArgument):
+        weft.run_demo(out=str(dark), **dict(common, msaa=3))
+    usage = subprocess.run([sys.executable, "-m", "weft", "demo", "--help"], capture_output=True,
+                           text=True, timeout=60).stdout
+    for option in ("--msaa", "--ao", "--no-bounce", "--exposure", "--tone-map"):
+        assert option in usage, option
