@@ -65,7 +65,10 @@ WEFT_CONST(uint, FEATURE_BOUNCE, 4u);       // bounce light (Frame.sky.z)
 WEFT_CONST(uint, FEATURE_COOKIES, 8u);      // a spot light with a cookie
 // FEATURE_LIGHT_GROUP << g: the frame has lights of group g (LIGHT_GROUP_*)
 WEFT_CONST(uint, FEATURE_LIGHT_GROUP, 16u);
-WEFT_CONST(uint, FEATURE_ALL, 2047u); // every bit above: the generic shaders
+// a shadowed directional light without a deep opacity map: the hair shaders need its shadow
+// map (hair_lighting.glsl; without this bit they read only the maps)
+WEFT_CONST(uint, FEATURE_HAIR_SHADOW_MAPS, 2048u);
+WEFT_CONST(uint, FEATURE_ALL, 4095u); // every bit above: the generic shaders
 
 struct Light {
     vec4 position;    // xyz: position (point, spot); w: LIGHT_*

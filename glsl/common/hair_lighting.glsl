@@ -65,7 +65,8 @@ vec3 hairLight(int i, int g, vec3 p, vec3 t, vec3 v, HairShading s, uint strand,
     int slot = hairDomSlot(i);
     if (slot >= 0) {
         vis = hairDomTransmittance(slot, p);
-    } else if (lightShadowed(g)) {
+    } else if (lightShadowed(g) &&
+               (g > LIGHT_GROUP_DIRECTIONAL_SOFT || featureOn(FEATURE_HAIR_SHADOW_MAPS))) {
         float depth;
         vis = shadowVisibility(lights[i], g, p, l, l, depth); // a fibre has no normal: n = l
     }

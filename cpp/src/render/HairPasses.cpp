@@ -255,7 +255,6 @@ void HairPasses::writeSets(Slot& slot) {
 void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& camera,
                          const RenderSettings& settings, uint32_t width, uint32_t height,
                          const std::vector<int>& gpuLightIndex, uint32_t lightFeatures) {
-    mShaded = &mPipes.shaded(lightFeatures);
     mRibbons = settings.hairPrimitive == HairPrimitive::Ribbons;
     // Hair is drawn after the forward pass's MSAA resolve, so it anti-aliases itself with
     // coverage; msaa = 1 asks for no anti-aliasing and keeps one strand per pixel.
@@ -277,6 +276,14 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
         mAntialias && mPipes.sampleMasks &&
         std::any_of(mDraws.begin(), mDraws.end(), [](const HairDraw& d) { return !d.transparent; });
     fitDoms(scene, settings);
+    // the shadow-map path only where a shadowed directional light has no deep opacity map
+    for (size_t i = 0; i < scene.lights().size(); ++i) {
+        const auto* light = std::get_if<DirectionalLight>(&scene.lights()[i]);
+        const auto hasDom = [&](const Dom& d) { return d.light == int(i); };
+        if (light && light->castShadows && std::none_of(mDoms.begin(), mDoms.end(), hasDom))
+            lightFeatures |= gpu::FEATURE_HAIR_SHADOW_MAPS;
+    }
+    mShaded = &mPipes.shaded(lightFeatures);
     mMeshesShadowHair =
         !mDoms.empty() && std::any_of(scene.instances().begin(), scene.instances().end(),
                                       [](const MeshInstance& m) { return m.castShadows; });

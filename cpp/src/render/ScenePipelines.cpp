@@ -82,10 +82,10 @@ VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool
     const int facing = twoSided ? 2 : mirrored ? 1 : 0;
     features &= gpu::FEATURE_ALL;
     material &= gpu::MATERIAL_ALL;
-    static_assert(gpu::FEATURE_ALL < (1u << 11) && gpu::MATERIAL_ALL < (1u << 16),
+    static_assert(gpu::FEATURE_ALL < (1u << 12) && gpu::MATERIAL_ALL < (1u << 16),
                   "the key's bits");
-    const uint64_t key = features | uint64_t(sampleIndex(samples)) << 11 | uint64_t(facing) << 13 |
-                         uint64_t(dome) << 15 | uint64_t(debug) << 16 | uint64_t(material) << 17;
+    const uint64_t key = features | uint64_t(sampleIndex(samples)) << 12 | uint64_t(facing) << 14 |
+                         uint64_t(dome) << 16 | uint64_t(debug) << 17 | uint64_t(material) << 18;
     vk::Pipeline& p = mForward[key];
     if (p) return p;
     static const char* const shaders[2][2] = {

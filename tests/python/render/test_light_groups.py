@@ -89,3 +89,37 @@ def test_a_light_that_brings_nothing_changes_nothing(renderer):
     dark = weft.DirectionalLight(direction=(0.0, -1.0, 0.0), intensity=0.0, cast_shadows=False)
     b = renderer.render_linear(*stage([2, 4], extra=[dark]))
     np.testing.assert_array_equal(np.asarray(a), np.asarray(b))
+
+
+def test_hair_without_a_deep_opacity_map_reads_the_shadow_map():
+    """Fur that casts no shadow gets no deep opacity map, so its pipelines keep the shadow-map
+    path for the sun (FEATURE_HAIR_SHADOW_MAPS): a board above half of the strands shadows
+    them. Truth: the same strands with the board beside them instead (no shadow) and with no
+    light at all."""
+    xs = np.linspace(-0.8, 0.8, 9, dtype=np.float32)
+    points = np.concatenate([np.stack([xs, np.full_like(xs, y), np.zeros_like(xs)], axis=1)
+                             for y in np.linspace(-0.3, 0.3, 7)])
+
+    def frame(board_x: float):
+        scene = weft.Scene()
+        scene.add_mesh(weft.Mesh.box((0.9, 0.05, 2.0)), weft.Material(),
+                       translation(board_x, 1.0, 0.0))
+        scene.add_hair(weft.HairStrands(points, default_segments=8), weft.HairMaterial(
+            "kajiya_kay", diffuse=(0.6, 0.5, 0.4), specular=(0.0, 0.0, 0.0)),
+            cast_shadows=False)
+        scene.add_light(weft.DirectionalLight(direction=(0.0, -1.0, 0.0), intensity=1.0))
+        scene.ambient = (0.02, 0.02, 0.02)
+        r = weft.Renderer(96, 72, shadow_map_size=256, msaa=1)
+        image = np.asarray(r.render_linear(scene, weft.Camera(position=(0.0, 0.0, 2.5),
+                                                               target=(0.0, 0.0, 0.0),
+                                                               fov_y=0.8)))[..., :3]
+        assert not any(p["name"].startswith("hair_dom") for p in r.stats["passes"])
+        return image.sum(axis=-1)
+
+    shaded, lit = frame(-0.45), frame(3.0)  # the board over the left half / far to the side
+    hair = lit > 0.1
+    left = hair & (np.arange(96)[None, :] < 40)
+    right = hair & (np.arange(96)[None, :] > 56)
+    assert left.sum() > 20 and right.sum() > 20
+    assert shaded[left].mean() < 0.3 * lit[left].mean()  # under the board: shadowed
+    np.testing.assert_allclose(shaded[right].mean(), lit[right].mean(), rtol=0.05)
