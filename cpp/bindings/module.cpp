@@ -1,5 +1,4 @@
 // weft._core: the compiled half of the weft Python package.
-#include <cmath>
 #include <cstring>
 
 #include <pybind11/stl.h>
@@ -266,12 +265,7 @@ PYBIND11_MODULE(_core, m) {
             o.script = script;
             o.shaderDir = shaderDir;
             o.environment = environment;
-            if (msaa != 1 && msaa != 2 && msaa != 4 && msaa != 8)
-                throw weft::InvalidArgument("msaa must be 1, 2, 4 or 8");
-            if (ambientOcclusion < 0 || ambientOcclusion > 64 || ambientOcclusion % 8 != 0)
-                throw weft::InvalidArgument(
-                    "ambient_occlusion must be 0 or a multiple of 8 up to 64");
-            if (!std::isfinite(exposure)) throw weft::InvalidArgument("exposure must be finite");
+            // checked by runDemo (RenderSettings::validate) before it builds anything
             o.msaa = uint32_t(msaa);
             o.ambientOcclusion = uint32_t(ambientOcclusion);
             o.bounce = bounce;

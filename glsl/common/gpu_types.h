@@ -17,8 +17,10 @@ using uvec4 = glm::uvec4;
 using mat4 = glm::mat4;
 using uint = std::uint32_t;
 #define WEFT_CONST(type, name, value) constexpr type name = value
+#define WEFT_FN inline
 #else
 #define WEFT_CONST(type, name, value) const type name = value
+#define WEFT_FN
 #endif
 
 WEFT_CONST(int, MAX_COOKIES, 4);       // distinct spot-light cookie textures per frame
@@ -42,6 +44,16 @@ WEFT_CONST(int, LIGHT_GROUP_POINT_SHADOWED, 4); // six cube-face layers
 WEFT_CONST(int, LIGHT_GROUP_SPOT, 5);
 WEFT_CONST(int, LIGHT_GROUP_SPOT_SHADOWED, 6);
 WEFT_CONST(int, LIGHT_GROUPS, 7);
+
+// The group of a light of kind `type` (LIGHT_*), with or without a shadow map, soft when it is
+// a directional light with an angular size (Light::cone.w > 0).
+WEFT_FN int lightGroupOf(int type, bool shadowed, bool soft) {
+    if (type == LIGHT_DIRECTIONAL)
+        return !shadowed ? LIGHT_GROUP_DIRECTIONAL
+                         : (soft ? LIGHT_GROUP_DIRECTIONAL_SOFT : LIGHT_GROUP_DIRECTIONAL_PCF);
+    if (type == LIGHT_POINT) return shadowed ? LIGHT_GROUP_POINT_SHADOWED : LIGHT_GROUP_POINT;
+    return shadowed ? LIGHT_GROUP_SPOT_SHADOWED : LIGHT_GROUP_SPOT;
+}
 
 // Instance::flags.x
 WEFT_CONST(uint, MAP_NORMAL, 1u);             // tangent-space normal map
@@ -140,4 +152,5 @@ struct Frame {
 } // namespace weft::render::gpu
 #endif
 #undef WEFT_CONST
+#undef WEFT_FN
 #endif // WEFT_GPU_TYPES_H

@@ -81,16 +81,9 @@ float softShadow(ShadowLayer s, int layer, vec2 uv, float z, float bias, vec3 p,
     return lit / float(kSunPcfTaps);
 }
 
-// The group of light L (LIGHT_GROUP_*), as render/FrameData.cpp sorts the lights.
+// The group of light L (gpu_types.h), as render/FrameData.cpp sorts the lights.
 int lightGroup(Light L) {
-    int type = int(L.position.w);
-    bool shadowed = L.radiance.w >= 0.0;
-    if (type == LIGHT_DIRECTIONAL)
-        return !shadowed ? LIGHT_GROUP_DIRECTIONAL
-                         : L.cone.w > 0.0 ? LIGHT_GROUP_DIRECTIONAL_SOFT
-                                          : LIGHT_GROUP_DIRECTIONAL_PCF;
-    if (type == LIGHT_POINT) return shadowed ? LIGHT_GROUP_POINT_SHADOWED : LIGHT_GROUP_POINT;
-    return shadowed ? LIGHT_GROUP_SPOT_SHADOWED : LIGHT_GROUP_SPOT;
+    return lightGroupOf(int(L.position.w), L.radiance.w >= 0.0, L.cone.w > 0.0);
 }
 
 bool lightShadowed(int g) {

@@ -291,6 +291,7 @@ int runDemo(const DemoOptions& o, app::DemoPanel* panel) {
         throw InvalidArgument("demo size must be in [1, 16384] (got " + std::to_string(o.width) +
                               "x" + std::to_string(o.height) + ")");
     if (o.frames < 0) throw InvalidArgument("frames must be >= 0");
+    renderSettings(o); // bad picture settings fail before the seconds of building the scene
     if (!o.shaderDir.empty()) {
         setShaderDirectory(o.shaderDir);
         std::cout << "weft-demo: shader hot reload: watching " << o.shaderDir << std::endl;

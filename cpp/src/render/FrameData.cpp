@@ -105,16 +105,9 @@ struct LightBuilder {
     }
 };
 
-// The light's group (gpu::LIGHT_GROUP_*, as lightGroup in shading.glsl).
+// The light's group (gpu_types.h), as lightGroup in shading.glsl.
 int lightGroup(const GpuLight& l) {
-    const bool shadowed = l.radiance.w >= 0.0f;
-    if (int(l.position.w) == kLightDirectional)
-        return !shadowed         ? gpu::LIGHT_GROUP_DIRECTIONAL
-               : l.cone.w > 0.0f ? gpu::LIGHT_GROUP_DIRECTIONAL_SOFT
-                                 : gpu::LIGHT_GROUP_DIRECTIONAL_PCF;
-    if (int(l.position.w) == kLightPoint)
-        return shadowed ? gpu::LIGHT_GROUP_POINT_SHADOWED : gpu::LIGHT_GROUP_POINT;
-    return shadowed ? gpu::LIGHT_GROUP_SPOT_SHADOWED : gpu::LIGHT_GROUP_SPOT;
+    return gpu::lightGroupOf(int(l.position.w), l.radiance.w >= 0.0f, l.cone.w > 0.0f);
 }
 
 // Sorts the lights by group (stable: scene order within a group), fills Frame::lightStart and

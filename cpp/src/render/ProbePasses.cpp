@@ -29,12 +29,12 @@ void drawCaptureFace(const FramePassContext& f, VkCommandBuffer cmd, VkImageView
         vkCmdDraw(cmd, 3, 1, 0, 0);
     }
     VkPipeline bound = VK_NULL_HANDLE;
+    const uint32_t features = frameFeatures(f.data);
     for (const Draw& d : f.data.draws) {
         if (d.mesh->indexCount == 0 || d.phantom || !include(d, arg)) continue;
         // cube faces mirror the view: the winding flips
-        const VkPipeline p =
-            f.pipes.forwardFor(false, false, !d.mirrored, d.twoSided, 1, frameFeatures(f.data),
-                               f.data.instances[d.instance].flags.x);
+        const VkPipeline p = f.pipes.forwardFor(false, false, !d.mirrored, d.twoSided, 1, features,
+                                                f.data.instances[d.instance].flags.x);
         if (p != bound) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.sceneLayout, 0, 1,
