@@ -190,6 +190,17 @@ void bindRender(py::module_& m) {
             },
             "Blur radius in pixels of the ambient occlusion (0: per pixel).")
         .def_property(
+            "dome_interleave", [](const Renderer& r) { return r.settings().domeInterleave; },
+            [](Renderer& r, bool v) {
+                RenderSettings s = r.settings();
+                s.domeInterleave = v;
+                r.setSettings(s);
+            },
+            "Where a dome's shadows are blurred (ambient occlusion, an environment's dome_blur), "
+            "each pixel of a 2 x 2 block evaluates every fourth dome light and a gather pass "
+            "combines the block's quarters before the blur: a quarter of the dome's cost. False: "
+            "every pixel evaluates every light.")
+        .def_property(
             "msaa", [](const Renderer& r) { return r.settings().msaa; },
             [](Renderer& r, int64_t v) {
                 RenderSettings s = r.settings();

@@ -36,11 +36,18 @@ float domeDepth(vec2 uv, int layer, ivec2 size) {
     return texelFetch(domeMaps, ivec3(ivec2(uv * vec2(size)), layer), 0).r;
 }
 
+// Interleaved dome lights (Keller & Heidrich 2001, interleaved sampling): a fragment shader
+// whose dome goes through the blur pass may set domeFirst to its pixel's place k in its 2 x 2
+// block (RenderSettings::domeInterleave); the fragment then evaluates lights k, k + 4, ... with
+// weight 4, an unbiased estimate of the whole sum, and dome_gather.frag averages the block's four
+// estimates before anything non-linear (the clamps, the multi-bounce fit) is applied.
+int domeFirst = 0, domeStride = 1;
+
 // Eq. 2.23 / pi: the irradiance the occluded dome lights would have brought, at p (normal n).
 vec3 domeOccluded(vec3 p, vec3 n) {
     vec3 occluded = vec3(0.0);
     float spin = 6.28318531 * domeHash(p);
-    for (int i = 0; i < int(frame.environment.z); ++i) {
+    for (int i = domeFirst; i < int(frame.environment.z); i += domeStride) {
         DomeLight d = domeLights[i];
         float c = dot(n, d.direction.xyz);
         if (c <= 0.0) continue;
@@ -98,7 +105,7 @@ vec3 domeOccluded(vec3 p, vec3 n) {
         }
         occluded += d.intensity.rgb * c * (hidden / float(kDomePcfTaps));
     }
-    return occluded;
+    return occluded * float(domeStride);
 }
 
 // E(n) / pi times the intensity: the nine coefficients hold A_l L_lm / pi (Ramamoorthi &
@@ -143,6 +150,9 @@ struct EnvironmentTerms {
     // the visibility the casters' proxies alone leave (1 without dome lights): the blur pass
     // blurs only the dome's noisy rest, visibility / floorVisibility (shadedColor)
     float floorVisibility;
+    // the dome's occluded fraction of the diffuse light, linear (1 - visibility before the
+    // clamps; an interleaved estimate where the dome is interleaved)
+    float occlusion;
 };
 
 // `hidden`: E / pi of the sky the shadow casters' proxy spheres hide from p
@@ -156,6 +166,7 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
     e.diffuse = e.diffuseLit = vec3(0.0);
     e.specular = vec3(0.0);
     e.visibility = e.floorVisibility = 1.0;
+    e.occlusion = 0.0;
     bool probe = hasFlag(ins, DYNAMIC_REFLECTION);
     bool sphere = frame.options.x > 0.5;
     if (!featureOn(FEATURE_ENVIRONMENT) || (frame.environment.x <= 0.0 && !probe)) return e;
@@ -168,11 +179,13 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
         int bp = bounceProbe(ins);
         if (bp >= 0) irradiance = max(irradiance - bounceIrradiance(bp, 1, n), vec3(0.0));
         if (frame.environment.z > 0.0) {
-            lit = max(irradiance - domeOccluded(p, n) * frame.environment.x, vec3(0.0));
+            vec3 occluded = domeOccluded(p, n) * frame.environment.x;
+            lit = max(irradiance - occluded, vec3(0.0));
             vec3 floorLit = max(irradiance - hidden, vec3(0.0));
             lit = min(lit, floorLit);
             float full = dot(irradiance, vec3(0.2126, 0.7152, 0.0722));
             e.visibility = full > 0.0 ? dot(lit, vec3(0.2126, 0.7152, 0.0722)) / full : 1.0;
+            e.occlusion = full > 0.0 ? dot(occluded, vec3(0.2126, 0.7152, 0.0722)) / full : 0.0;
             e.floorVisibility =
                 full > 0.0 ? dot(floorLit, vec3(0.2126, 0.7152, 0.0722)) / full : 1.0;
         } else {

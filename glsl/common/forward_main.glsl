@@ -1,6 +1,7 @@
 // The forward pass's fragment shader, included by the render/forward*.frag variants:
 // DEBUG_OUTPUTS adds the inputs of its shading (for the NumPy shading oracle), DOME_OUTPUT the
-// environment's diffuse light and its dome visibility for the blur pass (dome_blur.frag).
+// environment's diffuse light, the dome's occlusion and its floor for the gather and blur passes
+// (dome_gather.frag, dome_blur*.frag).
 #include "shading.glsl"
 
 layout(location = 0) in vec3 inWorldPos;
@@ -18,8 +19,10 @@ layout(location = 4) out vec4 outAlbedo;   // T: base colour * sampled texture; 
 #ifdef DOME_OUTPUT
 #ifdef DEBUG_OUTPUTS
 layout(location = 5) out vec4 outDome;
+layout(location = 6) out vec2 outDomeAux;
 #else
 layout(location = 1) out vec4 outDome;
+layout(location = 2) out vec2 outDomeAux;
 #endif
 #endif
 
@@ -27,11 +30,20 @@ void main() {
     Instance ins = instances[push.instance];
     if (alphaDiscarded(inUv, ins)) discard;
     float vis, depth;
+#ifdef DOME_OUTPUT
+    if (frame.options.z > 1.5) { // interleaved: this pixel's quarter of the dome lights
+        ivec2 q = ivec2(gl_FragCoord.xy) & 1;
+        domeFirst = q.x + 2 * q.y;
+        domeStride = 4;
+    }
+#endif
     Surface sf = surfaceAt(inWorldPos, inNormal, inTangent, inUv, ins, gl_FrontFacing);
     vec4 dome;
-    outColor = vec4(shadedColor(shade(sf, ins, vis, depth), ins, dome), 1.0);
+    vec2 domeAux;
+    outColor = vec4(shadedColor(shade(sf, ins, vis, depth), ins, dome, domeAux), 1.0);
 #ifdef DOME_OUTPUT
     outDome = dome;
+    outDomeAux = domeAux;
 #endif
 #ifdef DEBUG_OUTPUTS
     outAlbedo = vec4(sf.T, texture(specularMap, inUv).g);

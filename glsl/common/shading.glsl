@@ -9,6 +9,7 @@ bool hasFlag(Instance ins, uint flag) {
 
 #include "bounce.glsl"
 #include "environment.glsl"
+#include "multi_bounce.glsl"
 
 layout(set = 1, binding = 0) uniform sampler2D baseTexture;
 layout(set = 1, binding = 1) uniform sampler2D normalMap;   // linear, tangent space
@@ -274,11 +275,15 @@ struct Shading {
     vec3 ambient;           // I_A K_A T (less what receivers hide from a caster: bounce.glsl)
     float ambientVisibility; // the part of the ambient's sky no caster occludes (ambient dome)
     float ambientFloor;     // ... the part the casters' proxies alone leave (unblurred)
+    float ambientFloorLinear; // ... that part before the multi-bounce fit
+    float ambientOccluded;  // the dome's occluded part of that sky, linear (before any clamp)
+    float ambientRho;       // the albedo of the multi-bounce fit
     vec3 bounce;            // light bounced off receivers and casters (caster_bounce.glsl)
     vec3 diffuse;           // direct diffuse, shadows applied
     vec3 diffuseUnshadowed; // direct diffuse without shadows (phantoms' reference)
     vec3 specular;          // direct specular, shadows applied
-    vec3 skySpecular;       // the ambient's sky reflected (only where it stands for a sky)
+    vec3 skySpecular;       // the ambient's sky reflected (only where it stands for a sky),
+                            // occluded as the ambient (shadedColor)
     EnvironmentTerms environment;
 };
 
@@ -320,7 +325,8 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     // here traces: Jimenez et al. 2016 ("Practical real-time strategies for accurate indirect
     // occlusion", eq. 10) fit that multi-bounce visibility as a cubic in the visibility v whose
     // coefficients depend on the albedo rho around p (taken as the surface's own).
-    sh.ambientVisibility = sh.ambientFloor = 1.0;
+    sh.ambientVisibility = sh.ambientFloor = sh.ambientFloorLinear = 1.0;
+    sh.ambientOccluded = sh.ambientRho = 0.0;
     float ndv = clamp(dot(n, v), 0.0, 1.0);
     // The casters' light (caster_bounce.glsl) and what their proxies cover of p's sky
     int bp = bounceProbe(ins);
@@ -330,11 +336,13 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     if (featureOn(FEATURE_AMBIENT_DOME) && frame.sky.w > 0.5) {
         // the proxies' cover is a floor under the dome's occlusion (see environmentTerms)
         float f = 1.0 - casterCovered;
-        float v = clamp(1.0 - dot(domeOccluded(p, n), vec3(0.2126, 0.7152, 0.0722)), 0.0, f);
+        float o = dot(domeOccluded(p, n), vec3(0.2126, 0.7152, 0.0722));
         float rho = clamp(dot(ins.kd.rgb * sf.T, vec3(0.2126, 0.7152, 0.0722)), 0.0, 1.0);
-        float a = 2.0404 * rho - 0.3324, b = -4.7951 * rho + 0.6417, c = 2.7552 * rho + 0.6903;
-        sh.ambientVisibility = clamp(max(v, ((a * v + b) * v + c) * v), 0.0, 1.0);
-        sh.ambientFloor = clamp(max(f, ((a * f + b) * f + c) * f), 0.0, 1.0);
+        sh.ambientVisibility = multiBounceVisibility(clamp(1.0 - o, 0.0, f), rho);
+        sh.ambientFloor = multiBounceVisibility(f, rho);
+        sh.ambientFloorLinear = f;
+        sh.ambientOccluded = o;
+        sh.ambientRho = rho;
         // A sky reflects as well as lights: the sky's specular reflection I_A DFG(n.v), with
         // the split-sum DFG of Karis 2014 ("Physically based shading on mobile", its analytic
         // fit), occluded as its diffuse light. F0: the reflectivity, else what the highlight
@@ -346,7 +354,7 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
         float a004 = min(r.x * r.x, exp2(-9.28 * ndv)) * r.x + r.y;
         vec2 ab = vec2(-1.04, 1.04) * a004 + r.zw;
         if (any(greaterThan(f0, vec3(0.0)))) // a matte surface has no lobe to reflect with
-            sh.skySpecular = sf.ambient * (f0 * ab.x + ab.y) * sh.ambientVisibility;
+            sh.skySpecular = sf.ambient * (f0 * ab.x + ab.y);
     }
     debugVis = 1.0;
     debugDepth = 0.0;
@@ -367,33 +375,36 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
 }
 
 // The colour of a shaded fragment. With the dome's diffuse deferred to the blur pass
-// (frame.options.z), `dome` receives that part before the dome's shadows (rgb) and its
-// visibility (a), and the colour leaves it out; the part is the environment's diffuse light, or
-// the ambient when the dome stands for the ambient's sky (frame.sky.w). A phantom (SPEC §4.5,
-// AR) shows the background image darkened by the shadows it receives: background * lit / unlit
-// diffuse light (differential rendering of a diffuse stand-in).
-vec3 shadedColor(Shading sh, Instance ins, out vec4 dome) {
+// (frame.options.z), `dome` receives that part before the dome's shadows but after the casters'
+// proxies' floor (rgb), and the dome's linear occlusion (a); `domeAux` the floor before the
+// multi-bounce fit and the fit's albedo. The gather pass (dome_gather.frag) turns them into the
+// visibility over the floor that the blur averages, and the colour leaves the part out. The part
+// is the environment's diffuse light, or the ambient when the dome stands for the ambient's sky
+// (frame.sky.w). A phantom (SPEC §4.5, AR) shows the background image darkened by the shadows it
+// receives: background * lit / unlit diffuse light (differential rendering of a diffuse stand-in).
+vec3 shadedColor(Shading sh, Instance ins, out vec4 dome, out vec2 domeAux) {
     bool deferDome = frame.options.z > 0.5;
     bool ambientDome = frame.sky.w > 0.5;
     EnvironmentTerms e = sh.environment;
-    // what the dome darkens, before (domed) and after (domedLit) its shadows; the rest (direct)
-    vec3 domed = ambientDome ? sh.ambient : e.diffuse;
-    vec3 domedLit = ambientDome ? sh.ambient * sh.ambientVisibility : e.diffuseLit;
-    float visibility = ambientDome ? sh.ambientVisibility : e.visibility;
+    // what the dome darkens, before (domed) and after (domedLit) its shadows; the rest (direct).
+    // A phantom, a diffuse stand-in, reflects no sky.
+    bool phantom = hasFlag(ins, PHANTOM);
+    vec3 domed = ambientDome ? sh.ambient + (phantom ? vec3(0.0) : sh.skySpecular) : e.diffuse;
+    vec3 domedLit = ambientDome ? domed * sh.ambientVisibility : e.diffuseLit;
     vec3 direct = (ambientDome ? e.diffuseLit : sh.ambient) + sh.diffuse + sh.bounce;
-    if (hasFlag(ins, PHANTOM)) {
+    // the blur pass gets the dome's rest over the proxies' floor, which is exact and noise-free
+    // where it applies (a contact shadow kept sharp)
+    float floorVisibility = ambientDome ? sh.ambientFloor : e.floorVisibility;
+    domeAux = ambientDome ? vec2(sh.ambientFloorLinear, sh.ambientRho) : vec2(e.floorVisibility, 0.0);
+    float occlusion = ambientDome ? sh.ambientOccluded : e.occlusion;
+    if (phantom) {
         vec3 unlit = max(sh.ambient + sh.diffuseUnshadowed + e.diffuse, vec3(1e-30));
         vec3 bg = frame.options.w > 0.5
                       ? textureLod(backgroundImage, gl_FragCoord.xy * frame.viewport.xy, 0.0).rgb
                       : frame.background.rgb;
-        dome = vec4(bg * domed / unlit, visibility);
+        dome = vec4(bg * domed / unlit * floorVisibility, occlusion);
         return bg * (deferDome ? direct : direct + domedLit) / unlit;
     }
-    // the blur pass gets the dome's rest over the proxies' floor, which is exact and noise-free
-    // where it applies (a contact shadow kept sharp): unblurred, the product is `visibility`
-    float floorVisibility = ambientDome ? sh.ambientFloor : e.floorVisibility;
-    dome = floorVisibility > 0.0
-               ? vec4(domed * floorVisibility, min(visibility / floorVisibility, 1.0))
-               : vec4(0.0);
-    return direct + sh.specular + sh.skySpecular + e.specular + (deferDome ? vec3(0.0) : domedLit);
+    dome = vec4(domed * floorVisibility, occlusion);
+    return direct + sh.specular + e.specular + (deferDome ? vec3(0.0) : domedLit);
 }

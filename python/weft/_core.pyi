@@ -687,6 +687,14 @@ class Renderer:
     def device_name(self) -> str:
         ...
     @property
+    def dome_interleave(self) -> bool:
+        """
+        Where a dome's shadows are blurred (ambient occlusion, an environment's dome_blur), each pixel of a 2 x 2 block evaluates every fourth dome light and a gather pass combines the block's quarters before the blur: a quarter of the dome's cost. False: every pixel evaluates every light.
+        """
+    @dome_interleave.setter
+    def dome_interleave(self, arg1: bool) -> None:
+        ...
+    @property
     def exposure(self) -> float:
         """
         Exposure in photographic stops: the colour output shows linear radiance x 2^exposure

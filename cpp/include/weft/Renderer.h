@@ -68,6 +68,11 @@ struct RenderSettings {
     /// 8, 64: 0.01); the forward pass pays for every light.
     uint32_t ambientOcclusion = 8;
     float ambientOcclusionBlur = 4.0f;
+    /// Where a dome's shadows are blurred (an environment's dome_blur, or ambientOcclusionBlur),
+    /// each pixel of a 2 x 2 block evaluates every fourth dome light, weighted 4, and a gather
+    /// pass averages the block's quarters before the blur (interleaved sampling): a quarter of
+    /// the dome's cost in the forward pass. Off: every pixel evaluates every light.
+    bool domeInterleave = true;
     /// Multisample anti-aliasing of the forward pass: 1, 2, 4 or 8 samples per pixel, lowered
     /// to what the device supports (debug frames are never multisampled).
     uint32_t msaa = 4;

@@ -30,6 +30,7 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
     const int rHdrMs = ms ? g.addResource("hdr_ms", &t.hdrMs) : -1;
     const int rDepthMs = ms ? g.addResource("depth_ms", &t.depthMs) : -1;
     const int rDomeMs = ms && f.domeBlur ? g.addResource("dome_ms", &t.domeMs) : -1;
+    const int rDomeAuxMs = ms && f.domeBlur ? g.addResource("dome_aux_ms", &t.domeAuxMs) : -1;
     const int rColour = ms ? rHdrMs : f.rHdr; // what the passes draw colour into
     vk::Image& colour = ms ? t.hdrMs : t.hdr;
 
@@ -52,8 +53,13 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
         if (r >= 0) writes.push_back({r, Use::ColorWrite});
     if (f.domeBlur) {
         f.rDomeLight = g.addResource("dome_light", &t.dome);
+        f.rDomeAux = g.addResource("dome_aux", &t.domeAux);
         writes.push_back({f.rDomeLight, Use::ColorWrite});
-        if (ms) writes.push_back({rDomeMs, Use::ColorWrite});
+        writes.push_back({f.rDomeAux, Use::ColorWrite});
+        if (ms) {
+            writes.push_back({rDomeMs, Use::ColorWrite});
+            writes.push_back({rDomeAuxMs, Use::ColorWrite});
+        }
     }
     std::vector<ResourceUse> reads = {{f.rShadow, Use::Sampled}};
     if (f.rDomeMaps >= 0) reads.push_back({f.rDomeMaps, Use::Sampled});
@@ -81,10 +87,15 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
                  color(t.surface.view(), glm::vec4(0.0f));
                  color(t.albedo.view(), glm::vec4(0.0f));
              }
-             if (f.domeBlur) { // no surface: no light to darken, visibility 1
-                 color(ms ? t.domeMs.view() : t.dome.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+             if (f.domeBlur) { // no surface: no light to darken, nothing occluded, floor 1
+                 color(ms ? t.domeMs.view() : t.dome.view(), glm::vec4(0.0f));
                  if (ms)
                      resolveInto(colors.back(), t.dome.view(),
+                                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                 VK_RESOLVE_MODE_AVERAGE_BIT);
+                 color(ms ? t.domeAuxMs.view() : t.domeAux.view(), glm::vec4(1.0f, 0, 0, 0));
+                 if (ms)
+                     resolveInto(colors.back(), t.domeAux.view(),
                                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                                  VK_RESOLVE_MODE_AVERAGE_BIT);
              }

@@ -105,8 +105,8 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
     const render::GpuFrame& frame = data.frame;
     VK_CHECK(vkResetDescriptorPool(c.device(), slot.pool, 0));
     // The frame set, six probe-face sets while capturing, six per bounce capture while taking
-    // those, the output set, the dome blur's two, the bounce projection's.
-    VkDescriptorSetLayout layouts[kFrameSets + 4];
+    // those, the output set, the dome's gather and blur sets, the bounce projection's.
+    VkDescriptorSetLayout layouts[kFrameSets + 5];
     uint32_t setCount = 0;
     layouts[setCount++] = pipes.frameSetLayout;
     if (captureProbe)
@@ -119,23 +119,24 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
     layouts[setCount++] = pipes.outputSetLayout;
     layouts[setCount++] = pipes.domeBlurSetLayout;
     layouts[setCount++] = pipes.domeBlurSetLayout;
+    layouts[setCount++] = pipes.domeBlurSetLayout;
     layouts[setCount++] = pipes.bounceShSetLayout;
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = slot.pool;
     alloc.descriptorSetCount = setCount;
     alloc.pSetLayouts = layouts;
-    VkDescriptorSet sets[kFrameSets + 4];
+    VkDescriptorSet sets[kFrameSets + 5];
     VK_CHECK(vkAllocateDescriptorSets(c.device(), &alloc, sets));
     render::FrameSets result;
     result.frame = sets[0];
     for (uint32_t f = 0; captureProbe && f < 6; ++f) result.faces[f] = sets[1 + f];
     result.output = sets[outputIndex];
-    result.domeRows = sets[outputIndex + 1];
-    result.domeBlur = sets[outputIndex + 2];
-    result.bounceSh = sets[outputIndex + 3];
+    result.domeGather = sets[outputIndex + 1];
+    result.domeRows = sets[outputIndex + 2];
+    result.domeBlur = sets[outputIndex + 3];
+    result.bounceSh = sets[outputIndex + 4];
     for (uint32_t f = 0; f < bounceFaces; ++f) result.bounceFaces[f] = sets[bounceIndex + f];
-    const VkDescriptorSet outputSet = result.output, domeRowsSet = result.domeRows,
-                          domeBlurSet = result.domeBlur;
+    const VkDescriptorSet outputSet = result.output;
     const VkDeviceSize faceStride = probeFaceStride();
     vk::Image& shadowImage = data.shadowViews.empty() ? dummyShadow : shadowMaps;
     vk::Image& domeImage = dome.active() ? dome.maps() : dummyShadow;
@@ -269,26 +270,29 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
     outputWrite.pImageInfo = &hdrInfo;
     vkUpdateDescriptorSets(c.device(), 1, &outputWrite, 0, nullptr);
     if (domeBlur) {
-        // the row pass reads the dome output and the depth, the column pass the dome output and
-        // the row pass's result
+        // binding 0 the dome output, 2 its aux (read by the gather pass), 1 what the pass blurs:
+        // the depth (gather), the gathered visibility (rows), the rows' result (columns)
         targets.ensureDome(c);
         const VkImageLayout colorRead = render::useState(Use::Sampled, false).layout;
-        VkDescriptorImageInfo infos[4] = {
-            {pipes.nearestSampler, targets.dome.view(), colorRead},
+        const VkDescriptorImageInfo dome{pipes.nearestSampler, targets.dome.view(), colorRead};
+        const VkDescriptorImageInfo aux{pipes.nearestSampler, targets.domeAux.view(), colorRead};
+        const VkDescriptorImageInfo input[3] = {
             {pipes.nearestSampler, targets.depth.layerView(0),
              render::useState(Use::Sampled, true).layout},
-            {pipes.nearestSampler, targets.dome.view(), colorRead},
+            {pipes.nearestSampler, targets.domeVisibility.view(), colorRead},
             {pipes.nearestSampler, targets.domeRows.view(), colorRead}};
-        VkWriteDescriptorSet w[4];
-        for (uint32_t i = 0; i < 4; ++i) {
+        const VkDescriptorSet sets[3] = {result.domeGather, result.domeRows, result.domeBlur};
+        VkWriteDescriptorSet w[9];
+        for (uint32_t i = 0; i < 9; ++i) {
+            const uint32_t binding = i % 3;
             w[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w[i].dstSet = i < 2 ? domeRowsSet : domeBlurSet;
-            w[i].dstBinding = i % 2;
+            w[i].dstSet = sets[i / 3];
+            w[i].dstBinding = binding;
             w[i].descriptorCount = 1;
             w[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-            w[i].pImageInfo = &infos[i];
+            w[i].pImageInfo = binding == 0 ? &dome : binding == 2 ? &aux : &input[i / 3];
         }
-        vkUpdateDescriptorSets(c.device(), 4, w, 0, nullptr);
+        vkUpdateDescriptorSets(c.device(), 9, w, 0, nullptr);
     }
     return result;
 }

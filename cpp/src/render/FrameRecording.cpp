@@ -73,7 +73,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     data.frame.environment.w = float(dome.mapSize());
     // The dome's diffuse light goes through the blur pass (SPEC §4.5) when a blur is asked for.
     const bool domeBlur = dome.active() && dome.blurRadius() > 0.0f;
-    data.frame.options.z = domeBlur ? 1.0f : 0.0f;
+    // 2: each pixel of a 2 x 2 block evaluates a quarter of the dome's lights (dome_gather.frag)
+    data.frame.options.z = domeBlur ? (settings.domeInterleave ? 2.0f : 1.0f) : 0.0f;
     data.frame.sky.w = dome.occludesAmbient() ? 1.0f : 0.0f;
     data.frame.options.w = scene.backgroundImage() != nullptr ? 1.0f : 0.0f;
     // Something behind the scene: the background image, or the environment (EnvironmentGpu).

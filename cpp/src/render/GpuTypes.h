@@ -25,6 +25,7 @@ using GpuFrame = gpu::Frame;
 /// Push constants of the dome-shadow blur (glsl/render/dome_blur.frag).
 struct DomeBlurPush {
     glm::vec4 params; // x: radius in pixels, y: camera near, z: camera far, w: depth tolerance
+    glm::vec4 flags;  // x: interleaved dome lights, y: the multi-bounce fit (ambient dome)
 };
 
 /// Push constants of the output pass (glsl/render/output.frag).

@@ -32,10 +32,13 @@ void RenderTargets::ensure(vk::Context& ctx, uint32_t w, uint32_t h, bool debug)
         surface = vk::Image();
         albedo = vk::Image();
         dome = vk::Image();
+        domeAux = vk::Image();
+        domeVisibility = vk::Image();
         domeRows = vk::Image();
         hdrMs = vk::Image();
         depthMs = vk::Image();
         domeMs = vk::Image();
+        domeAuxMs = vk::Image();
     }
     if (debug && !position) {
         position = makeTarget(ctx, w, h, kDebugFormat, color);
@@ -49,6 +52,8 @@ void RenderTargets::ensureDome(vk::Context& ctx) {
     constexpr VkImageUsageFlags usage =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     if (!dome) dome = makeTarget(ctx, width, height, kDomeFormat, usage);
+    if (!domeAux) domeAux = makeTarget(ctx, width, height, kDomeAuxFormat, usage);
+    if (!domeVisibility) domeVisibility = makeTarget(ctx, width, height, kDomeBlurFormat, usage);
     if (!domeRows) domeRows = makeTarget(ctx, width, height, kDomeBlurFormat, usage);
 }
 
@@ -58,6 +63,7 @@ void RenderTargets::ensureMultisampled(vk::Context& ctx, uint32_t count, bool wi
         hdrMs = vk::Image();
         depthMs = vk::Image();
         domeMs = vk::Image();
+        domeAuxMs = vk::Image();
     }
     if (!hdrMs) {
         hdrMs =
@@ -65,9 +71,12 @@ void RenderTargets::ensureMultisampled(vk::Context& ctx, uint32_t count, bool wi
         depthMs = makeTarget(ctx, width, height, kDepthFormat,
                              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, count);
     }
-    if (withDome && !domeMs)
+    if (withDome && !domeMs) {
         domeMs =
             makeTarget(ctx, width, height, kDomeFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, count);
+        domeAuxMs = makeTarget(ctx, width, height, kDomeAuxFormat,
+                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, count);
+    }
 }
 
 vk::Buffer& RenderTargets::readbackFor(vk::Context& ctx, const vk::Image* image) {

@@ -13,8 +13,9 @@ constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDebugFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_SRGB;
-constexpr VkFormat kDomeFormat = VK_FORMAT_R16G16B16A16_SFLOAT; // dome diffuse + visibility
-constexpr VkFormat kDomeBlurFormat = VK_FORMAT_R32G32_SFLOAT;   // row-blurred visibility, depth
+constexpr VkFormat kDomeFormat = VK_FORMAT_R16G16B16A16_SFLOAT; // dome diffuse + occlusion
+constexpr VkFormat kDomeAuxFormat = VK_FORMAT_R16G16_SFLOAT;    // the casters' floor, fit albedo
+constexpr VkFormat kDomeBlurFormat = VK_FORMAT_R32G32_SFLOAT;   // visibility, view depth
 
 struct RenderTargets {
     uint32_t width = 0, height = 0;
@@ -25,12 +26,14 @@ struct RenderTargets {
     vk::Image normal;
     vk::Image surface;
     vk::Image albedo;
-    vk::Image dome;     // the forward pass's dome output for the blur, created on first use
-    vk::Image domeRows; // the blur's first (row) pass
-    // Multisampled forward targets, resolved into hdr, depth (sample 0) and dome; made when the
-    // forward pass renders with more than one sample.
+    // The forward pass's dome outputs for the blur (dome_gather.frag), created on first use
+    vk::Image dome, domeAux;
+    vk::Image domeVisibility; // the gather pass's output
+    vk::Image domeRows;       // the blur's first (row) pass
+    // Multisampled forward targets, resolved into hdr, depth (sample 0) and the dome's; made
+    // when the forward pass renders with more than one sample.
     uint32_t samples = 1;
-    vk::Image hdrMs, depthMs, domeMs;
+    vk::Image hdrMs, depthMs, domeMs, domeAuxMs;
 
     /// Creates the dome images at the current size on first request.
     void ensureDome(vk::Context& ctx);

@@ -33,11 +33,11 @@ void Renderer::Impl::createSlots() {
             {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFrameSets},
             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kFrameSets},
             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-             // frame sets; the output set (1), the dome blur's two (2 each), the bounce
-             // projection's (2)
-             (11 + uint32_t(render::kMaxCookies)) * kFrameSets + 7}};
+             // frame sets; the output set (1), the dome's gather and blur sets (3 each), the
+             // bounce projection's (2)
+             (11 + uint32_t(render::kMaxCookies)) * kFrameSets + 12}};
         VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        pool.maxSets = kFrameSets + 4;
+        pool.maxSets = kFrameSets + 5;
         pool.poolSizeCount = 3;
         pool.pPoolSizes = sizes;
         VkDescriptorPool p;

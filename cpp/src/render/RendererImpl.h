@@ -41,14 +41,14 @@ constexpr uint32_t kBounceFaces = 6 * BounceProbes::kMaxProbes * BounceProbes::k
 constexpr uint32_t kFrameSets = 7 + kBounceFaces;
 
 /// The descriptor sets of one frame: the frame's, one per probe face while capturing, one per
-/// bounce-capture face while capturing those, the output pass's, the dome blur's two passes'
-/// and the bounce projection's.
+/// bounce-capture face while capturing those, the output pass's, the dome's gather and blur
+/// passes' and the bounce projection's.
 struct FrameSets {
     VkDescriptorSet frame = VK_NULL_HANDLE;
     std::array<VkDescriptorSet, 6> faces{};
     std::array<VkDescriptorSet, kBounceFaces> bounceFaces{}; // 6 (count round + probe) + face
-    VkDescriptorSet output = VK_NULL_HANDLE, domeRows = VK_NULL_HANDLE, domeBlur = VK_NULL_HANDLE,
-                    bounceSh = VK_NULL_HANDLE;
+    VkDescriptorSet output = VK_NULL_HANDLE, domeGather = VK_NULL_HANDLE, domeRows = VK_NULL_HANDLE,
+                    domeBlur = VK_NULL_HANDLE, bounceSh = VK_NULL_HANDLE;
 };
 
 /// Per frame in flight: its command buffer, uploads, descriptors and timestamps.

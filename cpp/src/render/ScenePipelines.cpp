@@ -63,7 +63,8 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     shadowLayout = vk::createPipelineLayout(c, {materialSetLayout}, sizeof(ShadowPush));
     outputLayout = vk::createPipelineLayout(c, {outputSetLayout}, sizeof(OutputPush));
     domeBlurSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     domeBlurLayout = vk::createPipelineLayout(c, {domeBlurSetLayout}, sizeof(DomeBlurPush));
     bounceShSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
@@ -97,7 +98,7 @@ VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool
     d.fragmentShader = shaders[debug][dome];
     d.colorFormats = {kHdrFormat};
     if (debug) d.colorFormats.insert(d.colorFormats.end(), 4, kDebugFormat);
-    if (dome) d.colorFormats.push_back(kDomeFormat);
+    if (dome) d.colorFormats.insert(d.colorFormats.end(), {kDomeFormat, kDomeAuxFormat});
     d.depthFormat = kDepthFormat;
     d.layout = sceneLayout;
     d.cullMode = facing == 2 ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
@@ -138,8 +139,10 @@ void ScenePipelines::createPipelines() {
     fd.cullMode = VK_CULL_MODE_NONE;
     fd.depthTest = fd.depthWrite = false;
     fd.layout = domeBlurLayout;
-    fd.fragmentShader = "render/dome_blur_x.frag";
     fd.colorFormats = {kDomeBlurFormat};
+    fd.fragmentShader = "render/dome_gather.frag";
+    domeGather = vk::createGraphicsPipeline(c, fd);
+    fd.fragmentShader = "render/dome_blur_x.frag";
     domeBlurRows = vk::createGraphicsPipeline(c, fd);
     fd.fragmentShader = "render/dome_blur.frag";
     fd.colorFormats = {kHdrFormat};

@@ -27,6 +27,7 @@ struct ScenePipelines {
         bounceShSetLayout;
     vk::PipelineLayout sceneLayout, shadowLayout, outputLayout, domeBlurLayout, bounceShLayout;
     vk::Pipeline shadow, shadowAlpha;
+    vk::Pipeline domeGather;     // the dome's visibility per pixel, for the blur
     vk::Pipeline domeBlurRows;   // the dome blur's row pass
     vk::Pipeline domeBlur;       // its column pass, adding the dome-shadowed diffuse light
     vk::Pipeline bounceSh;       // the bounce captures projected onto SH9 (BounceProbes.h)
