@@ -7,6 +7,7 @@
 #include <weft/Renderer.h>
 
 #include "Convert.h"
+#include "SettingProperty.h"
 
 namespace weft::py_bind {
 
@@ -31,18 +32,6 @@ OitWeight weightOf(const std::string& s) {
     throw InvalidArgument("hair_oit_weight must be 'near_quadratic', 'near_cubic', 'far_quartic' "
                           "or 'ndc_cubic' (or 'eq7' .. 'eq10'; got '" +
                           s + "')");
-}
-
-template <typename Get, typename Set>
-void setting(py::class_<Renderer>& cls, const char* name, Get get, Set set, const char* doc) {
-    cls.def_property(
-        name, [get](const Renderer& r) { return get(r.settings()); },
-        [set](Renderer& r, py::object v) {
-            RenderSettings s = r.settings();
-            set(s, v);
-            r.setSettings(s);
-        },
-        doc);
 }
 
 } // namespace
@@ -74,54 +63,38 @@ void bindHairRender(py::module_& m) {
         .def_property_readonly("hair_count", [](const Scene& s) { return s.hairs().size(); });
 
     py::class_<Renderer> renderer(m.attr("Renderer"));
-    setting(
+    settingProperty<std::string>(
         renderer, "hair_primitive",
         [](const RenderSettings& s) { return primitiveName(s.hairPrimitive); },
-        [](RenderSettings& s, py::object v) {
-            s.hairPrimitive = primitiveOf(v.cast<std::string>());
-        },
+        [](RenderSettings& s, const std::string& v) { s.hairPrimitive = primitiveOf(v); },
         "'lines' (1 pixel) or 'ribbons' (camera-facing, hair_width * thickness wide).");
-    setting(
-        renderer, "hair_width", [](const RenderSettings& s) { return s.hairWidth; },
-        [](RenderSettings& s, py::object v) { s.hairWidth = v.cast<float>(); },
-        "Ribbon width per unit of strand thickness (world units).");
-    setting(
-        renderer, "hair_dom", [](const RenderSettings& s) { return s.hairDeepOpacity; },
-        [](RenderSettings& s, py::object v) { s.hairDeepOpacity = v.cast<bool>(); },
-        "Deep opacity maps for shadow-casting directional lights (else the shadow map).");
-    setting(
+    settingProperty(renderer, "hair_width", &RenderSettings::hairWidth,
+                    "Ribbon width per unit of strand thickness (world units).");
+    settingProperty(renderer, "hair_dom", &RenderSettings::hairDeepOpacity,
+                    "Deep opacity maps for shadow-casting directional lights (else the shadow "
+                    "map).");
+    settingProperty<std::string>(
         renderer, "hair_dom_spacing",
         [](const RenderSettings& s) { return std::string(s.hairDomLogSpacing ? "log" : "linear"); },
-        [](RenderSettings& s, py::object v) {
-            const std::string k = v.cast<std::string>();
+        [](RenderSettings& s, const std::string& k) {
             if (k != "linear" && k != "log")
                 throw InvalidArgument("hair_dom_spacing must be 'linear' or 'log' (got '" + k +
                                       "')");
             s.hairDomLogSpacing = k == "log";
         },
         "DOM layer spacing: 'linear' (d, 2d, 3d) or 'log' (d, 3d, 7d).");
-    setting(
-        renderer, "hair_dom_layer_size", [](const RenderSettings& s) { return s.hairDomLayerSize; },
-        [](RenderSettings& s, py::object v) { s.hairDomLayerSize = v.cast<float>(); },
-        "DOM layer size d (world units); 0: the hair's depth extent / 3 (log: / 7).");
-    setting(
-        renderer, "hair_dom_size", [](const RenderSettings& s) { return s.hairDomSize; },
-        [](RenderSettings& s, py::object v) {
-            const int64_t n = v.cast<int64_t>();
-            if (n < 16 || n > 8192) throw InvalidArgument("hair_dom_size must be in [16, 8192]");
-            s.hairDomSize = uint32_t(n);
-        },
-        "Texels per side of each deep opacity map.");
-    setting(
-        renderer, "hair_transparency", [](const RenderSettings& s) { return s.hairTransparency; },
-        [](RenderSettings& s, py::object v) { s.hairTransparency = v.cast<bool>(); },
-        "Weighted blended OIT for hair with transparency > 0 (else drawn opaque).");
-    setting(
+    settingProperty(renderer, "hair_dom_layer_size", &RenderSettings::hairDomLayerSize,
+                    "DOM layer size d (world units); 0: the hair's depth extent / 3 (log: / 7).");
+    settingProperty(renderer, "hair_dom_size", &RenderSettings::hairDomSize,
+                    "Texels per side of each deep opacity map, in [16, 8192].");
+    settingProperty(renderer, "hair_transparency", &RenderSettings::hairTransparency,
+                    "Weighted blended OIT for hair with transparency > 0 (else drawn opaque).");
+    settingProperty<std::string>(
         renderer, "hair_oit_weight",
         [](const RenderSettings& s) {
             return std::string(kOitWeightNames[int(s.hairOitWeight) - 7]);
         },
-        [](RenderSettings& s, py::object v) { s.hairOitWeight = weightOf(v.cast<std::string>()); },
+        [](RenderSettings& s, const std::string& v) { s.hairOitWeight = weightOf(v); },
         "WBOIT depth weight (McGuire & Bavoil 2013, eq. 7-10): 'near_quadratic', "
         "'near_cubic', 'far_quartic' or 'ndc_cubic' ('eq7' .. 'eq10' also accepted).");
     renderer.def(

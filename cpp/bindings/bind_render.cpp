@@ -9,6 +9,7 @@
 #include <weft/Renderer.h>
 
 #include "Convert.h"
+#include "SettingProperty.h"
 
 namespace weft::py_bind {
 
@@ -65,15 +66,6 @@ const char* const kToneMaps[] = {"clamp", "aces", "agx", "neutral"};
 
 std::string toneMapName(ToneMap t) { return kToneMaps[int(t)]; }
 
-#define WEFT_SETTING(pyname, field, type)                                                          \
-    def_property(                                                                                  \
-        pyname, [](const Renderer& r) { return r.settings().field; },                              \
-        [](Renderer& r, type v) {                                                                  \
-            RenderSettings s = r.settings();                                                       \
-            s.field = v;                                                                           \
-            r.setSettings(s);                                                                      \
-        })
-
 } // namespace
 
 ToneMap toneMapOf(const std::string& name) {
@@ -84,55 +76,51 @@ ToneMap toneMapOf(const std::string& name) {
 }
 
 void bindRender(py::module_& m) {
-    py::class_<Renderer>(
+    const RenderSettings defaults; // the constructor's keyword defaults
+    py::class_<Renderer> cls(
         m, "Renderer",
-        "Vulkan renderer drawing a Scene from a Camera into an offscreen image of width x height.")
-        .def(py::init([](int64_t width, int64_t height, int64_t shadowMapSize, int pcfRadius,
-                         float biasConstant, float biasSlope, float biasMax, float normalOffset,
-                         bool reuseShadowMaps, int64_t msaa, float exposure,
-                         const std::string& toneMap, bool bounce, int64_t ambientOcclusion,
-                         float ambientOcclusionBlur) {
-                 if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
-                     throw InvalidArgument(
-                         "render target size must be 1..65535 pixels per side (got " +
-                         std::to_string(width) + "x" + std::to_string(height) + ")");
-                 if (shadowMapSize <= 0 || shadowMapSize > 65535)
-                     throw InvalidArgument("shadow_map_size out of range");
-                 RenderSettings s;
-                 s.shadowMapSize = uint32_t(shadowMapSize);
-                 s.pcfRadius = pcfRadius;
-                 s.biasConstant = biasConstant;
-                 s.biasSlope = biasSlope;
-                 s.biasMax = biasMax;
-                 s.normalOffset = normalOffset;
-                 s.reuseShadowMaps = reuseShadowMaps;
-                 if (msaa != 1 && msaa != 2 && msaa != 4 && msaa != 8)
-                     throw InvalidArgument("msaa must be 1, 2, 4 or 8 samples (got " +
-                                           std::to_string(msaa) + ")");
-                 s.msaa = uint32_t(msaa);
-                 s.exposure = exposure;
-                 s.toneMap = toneMapOf(toneMap);
-                 s.bounce = bounce;
-                 if (ambientOcclusion < 0 || ambientOcclusion > 64 || ambientOcclusion % 8 != 0)
-                     throw InvalidArgument(
-                         "ambient_occlusion must be 0 or a multiple of 8 up to 64 dome "
-                         "lights (got " +
-                         std::to_string(ambientOcclusion) + ")");
-                 s.ambientOcclusion = uint32_t(ambientOcclusion);
-                 s.ambientOcclusionBlur = ambientOcclusionBlur;
-                 return std::make_unique<Renderer>(uint32_t(width), uint32_t(height), s);
-             }),
-             py::arg("width"), py::arg("height"), py::arg("shadow_map_size") = 2048,
-             py::arg("pcf_radius") = 1, py::arg("bias_constant") = 0.0005f,
-             py::arg("bias_slope") = 0.0015f, py::arg("bias_max") = 0.01f,
-             py::arg("normal_offset") = 1.5f, py::arg("reuse_shadow_maps") = true,
-             py::arg("msaa") = 4, py::arg("exposure") = 0.0f, py::arg("tone_map") = "clamp",
-             py::arg("bounce") = true, py::arg("ambient_occlusion") = 8,
-             py::arg("ambient_occlusion_blur") = 4.0f,
-             "An offscreen renderer of width x height pixels on the selected Vulkan device, "
-             "with its shadow, anti-aliasing (msaa 1/2/4/8), exposure, tone-map ('clamp', "
-             "'aces', 'agx', 'neutral'), bounce and ambient-occlusion settings. Raises "
-             "InvalidArgument for out-of-range settings, Error when no Vulkan device works.")
+        "Vulkan renderer drawing a Scene from a Camera into an offscreen image of width x height.");
+    cls.def(
+           py::init([](int64_t width, int64_t height, int64_t shadowMapSize, int pcfRadius,
+                       float biasConstant, float biasSlope, float biasMax, float normalOffset,
+                       bool reuseShadowMaps, int64_t msaa, float exposure,
+                       const std::string& toneMap, bool bounce, int64_t ambientOcclusion,
+                       float ambientOcclusionBlur) {
+               if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
+                   throw InvalidArgument(
+                       "render target size must be 1..65535 pixels per side (got " +
+                       std::to_string(width) + "x" + std::to_string(height) + ")");
+               RenderSettings s; // checked by the Renderer (RenderSettings::validate)
+               s.shadowMapSize = settingInteger<uint32_t>(shadowMapSize, "shadow_map_size");
+               s.pcfRadius = pcfRadius;
+               s.biasConstant = biasConstant;
+               s.biasSlope = biasSlope;
+               s.biasMax = biasMax;
+               s.normalOffset = normalOffset;
+               s.reuseShadowMaps = reuseShadowMaps;
+               s.msaa = settingInteger<uint32_t>(msaa, "msaa");
+               s.exposure = exposure;
+               s.toneMap = toneMapOf(toneMap);
+               s.bounce = bounce;
+               s.ambientOcclusion = settingInteger<uint32_t>(ambientOcclusion, "ambient_occlusion");
+               s.ambientOcclusionBlur = ambientOcclusionBlur;
+               return std::make_unique<Renderer>(uint32_t(width), uint32_t(height), s);
+           }),
+           py::arg("width"), py::arg("height"),
+           py::arg("shadow_map_size") = int64_t(defaults.shadowMapSize),
+           py::arg("pcf_radius") = defaults.pcfRadius,
+           py::arg("bias_constant") = defaults.biasConstant,
+           py::arg("bias_slope") = defaults.biasSlope, py::arg("bias_max") = defaults.biasMax,
+           py::arg("normal_offset") = defaults.normalOffset,
+           py::arg("reuse_shadow_maps") = defaults.reuseShadowMaps,
+           py::arg("msaa") = int64_t(defaults.msaa), py::arg("exposure") = defaults.exposure,
+           py::arg("tone_map") = toneMapName(defaults.toneMap), py::arg("bounce") = defaults.bounce,
+           py::arg("ambient_occlusion") = int64_t(defaults.ambientOcclusion),
+           py::arg("ambient_occlusion_blur") = defaults.ambientOcclusionBlur,
+           "An offscreen renderer of width x height pixels on the selected Vulkan device, "
+           "with its shadow, anti-aliasing (msaa 1/2/4/8), exposure, tone-map ('clamp', "
+           "'aces', 'agx', 'neutral'), bounce and ambient-occlusion settings. Raises "
+           "InvalidArgument for out-of-range settings, Error when no Vulkan device works.")
         .def_property_readonly("width", &Renderer::width)
         .def_property_readonly("height", &Renderer::height)
         .def_property_readonly("device_name", &Renderer::deviceName)
@@ -148,96 +136,58 @@ void bindRender(py::module_& m) {
             py::arg("width"), py::arg("height"),
             "Changes the output size (1..65535 pixels per side); the next render reallocates "
             "its targets.")
-        .WEFT_SETTING("shadow_map_size", shadowMapSize, uint32_t)
-        .WEFT_SETTING("pcf_radius", pcfRadius, int)
-        .WEFT_SETTING("probe_size", probeSize, uint32_t)
-        .WEFT_SETTING("bias_constant", biasConstant, float)
-        .WEFT_SETTING("bias_slope", biasSlope, float)
-        .WEFT_SETTING("bias_max", biasMax, float)
-        .WEFT_SETTING("normal_offset", normalOffset, float)
-        .WEFT_SETTING("reuse_shadow_maps", reuseShadowMaps, bool)
-        .def_property(
-            "bounce", [](const Renderer& r) { return r.settings().bounce; },
-            [](Renderer& r, bool v) {
-                RenderSettings s = r.settings();
-                s.bounce = v;
-                r.setSettings(s);
-            },
-            "One bounce of diffuse light: what the receivers (instances that cast no shadow, such "
-            "as a ground) reflect onto the shadow casters, and the sky and ambient they hide from "
-            "them (a small SH9 capture per caster, at most 8).")
-        .def_property(
-            "ambient_occlusion", [](const Renderer& r) { return r.settings().ambientOcclusion; },
-            [](Renderer& r, int64_t v) {
-                if (v < 0 || v > 64 || v % 8 != 0)
-                    throw InvalidArgument("ambient_occlusion must be 0 or a multiple of 8 up to 64 "
-                                          "dome lights (got " +
-                                          std::to_string(v) + ")");
-                RenderSettings s = r.settings();
-                s.ambientOcclusion = uint32_t(v);
-                r.setSettings(s);
-            },
-            "Ambient occlusion of a scene without an environment: its constant ambient is read as "
-            "a uniform sky, occluded by the shadow casters through a dome of this many soft shadow "
-            "lights (0: off; a multiple of 8 up to 64).")
-        .def_property(
-            "ambient_occlusion_blur",
-            [](const Renderer& r) { return r.settings().ambientOcclusionBlur; },
-            [](Renderer& r, float v) {
-                RenderSettings s = r.settings();
-                s.ambientOcclusionBlur = v;
-                r.setSettings(s);
-            },
-            "Blur radius in pixels of the ambient occlusion (0: per pixel).")
-        .def_property(
-            "dome_interleave", [](const Renderer& r) { return r.settings().domeInterleave; },
-            [](Renderer& r, bool v) {
-                RenderSettings s = r.settings();
-                s.domeInterleave = v;
-                r.setSettings(s);
-            },
-            "Where a dome's shadows are blurred (ambient occlusion, an environment's dome_blur), "
-            "each pixel of a 2 x 2 block evaluates every fourth dome light and a gather pass "
-            "combines the block's quarters before the blur: a quarter of the dome's cost. False: "
-            "every pixel evaluates every light.")
-        .def_property(
-            "msaa", [](const Renderer& r) { return r.settings().msaa; },
-            [](Renderer& r, int64_t v) {
-                RenderSettings s = r.settings();
-                if (v != 1 && v != 2 && v != 4 && v != 8)
-                    throw InvalidArgument("msaa must be 1, 2, 4 or 8 samples (got " +
-                                          std::to_string(v) + ")");
-                s.msaa = uint32_t(v);
-                r.setSettings(s);
-            },
-            "Multisample anti-aliasing samples per pixel (1, 2, 4, 8; default 4), lowered to what\n"
-            "the device supports (msaa_samples). render_debug frames are not multisampled.")
         .def_property_readonly("msaa_samples", &Renderer::msaaSamples,
-                               "The samples per pixel the device renders for the msaa setting.")
-        .def_property(
-            "exposure", [](const Renderer& r) { return r.settings().exposure; },
-            [](Renderer& r, float v) {
-                RenderSettings s = r.settings();
-                s.exposure = v;
-                r.setSettings(s);
-            },
-            "Exposure in photographic stops: the colour output shows linear radiance x 2^exposure\n"
-            "(render_linear is not exposed).")
-        .def_property(
-            "tone_map", [](const Renderer& r) { return toneMapName(r.settings().toneMap); },
-            [](Renderer& r, const std::string& v) {
-                RenderSettings s = r.settings();
-                s.toneMap = toneMapOf(v);
-                r.setSettings(s);
-            },
-            "'clamp' (the seed's look), 'aces' (Narkowicz's ACES fit), 'agx' (Blender's AgX) or\n"
-            "'neutral' (Khronos PBR Neutral): how exposed radiance maps to the 8-bit colour output.")
-        .def(
-            "render",
-            [](Renderer& r, const Scene& scene, const Camera& camera) {
-                return colorImage(renderFrame(r, scene, camera, OutputColor).color);
-            },
-            py::arg("scene"), py::arg("camera"), "sRGB-encoded RGBA uint8 image (H, W, 4).")
+                               "The samples per pixel the device renders for the msaa setting.");
+    settingProperty(cls, "shadow_map_size", &RenderSettings::shadowMapSize,
+                    "Texels per side of each shadow map, in [16, 16384].");
+    settingProperty(cls, "pcf_radius", &RenderSettings::pcfRadius,
+                    "PCF kernel radius r in [0, 7]: (2r + 1)^2 shadow-map taps.");
+    settingProperty(cls, "probe_size", &RenderSettings::probeSize,
+                    "Texels per face of the dynamic reflection capture, in [4, 2048].");
+    settingProperty(cls, "bias_constant", &RenderSettings::biasConstant,
+                    "Shadow depth bias, constant part (the light's NDC depth units); the bias is "
+                    "bias_constant + bias_slope tan(angle between n and l), at most bias_max.");
+    settingProperty(cls, "bias_slope", &RenderSettings::biasSlope,
+                    "Shadow depth bias per tan(angle between n and l) (see bias_constant).");
+    settingProperty(cls, "bias_max", &RenderSettings::biasMax,
+                    "The largest shadow depth bias (see bias_constant).");
+    settingProperty(cls, "normal_offset", &RenderSettings::normalOffset,
+                    "Receiver offset along the normal, in shadow-map texels.");
+    settingProperty(cls, "reuse_shadow_maps", &RenderSettings::reuseShadowMaps,
+                    "Keep the last frame's shadow maps when no shadow view and no caster changed.");
+    settingProperty(cls, "bounce", &RenderSettings::bounce,
+                    "One bounce of diffuse light: what the receivers (instances that cast no "
+                    "shadow, such as a ground) reflect onto the shadow casters, and the sky and "
+                    "ambient they hide from them (a small SH9 capture per caster, at most 8).");
+    settingProperty(cls, "ambient_occlusion", &RenderSettings::ambientOcclusion,
+                    "Ambient occlusion of a scene without an environment: its constant ambient is "
+                    "read as a uniform sky, occluded by the shadow casters through a dome of this "
+                    "many soft shadow lights (0: off; a multiple of 8 up to 64).");
+    settingProperty(cls, "ambient_occlusion_blur", &RenderSettings::ambientOcclusionBlur,
+                    "Blur radius in pixels of the ambient occlusion (0: per pixel).");
+    settingProperty(cls, "dome_interleave", &RenderSettings::domeInterleave,
+                    "Where a dome's shadows are blurred (ambient occlusion, an environment's "
+                    "dome_blur), each pixel of a 2 x 2 block evaluates every fourth dome light and "
+                    "a gather pass combines the block's quarters before the blur: a quarter of the "
+                    "dome's cost. False: every pixel evaluates every light.");
+    settingProperty(cls, "msaa", &RenderSettings::msaa,
+                    "Multisample anti-aliasing samples per pixel (1, 2, 4, 8; default 4), lowered "
+                    "to what\nthe device supports (msaa_samples). render_debug frames are not "
+                    "multisampled.");
+    settingProperty(cls, "exposure", &RenderSettings::exposure,
+                    "Exposure in photographic stops: the colour output shows linear radiance x "
+                    "2^exposure\n(render_linear is not exposed).");
+    settingProperty<std::string>(
+        cls, "tone_map", [](const RenderSettings& s) { return toneMapName(s.toneMap); },
+        [](RenderSettings& s, const std::string& v) { s.toneMap = toneMapOf(v); },
+        "'clamp' (the seed's look), 'aces' (Narkowicz's ACES fit), 'agx' (Blender's AgX) or\n"
+        "'neutral' (Khronos PBR Neutral): how exposed radiance maps to the 8-bit colour output.");
+    cls.def(
+           "render",
+           [](Renderer& r, const Scene& scene, const Camera& camera) {
+               return colorImage(renderFrame(r, scene, camera, OutputColor).color);
+           },
+           py::arg("scene"), py::arg("camera"), "sRGB-encoded RGBA uint8 image (H, W, 4).")
         .def(
             "render_linear",
             [](Renderer& r, const Scene& scene, const Camera& camera) {

@@ -591,7 +591,6 @@ class Renderer:
     """
     Vulkan renderer drawing a Scene from a Camera into an offscreen image of width x height.
     """
-    reuse_shadow_maps: bool
     def __init__(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex, shadow_map_size: typing.SupportsInt | typing.SupportsIndex = 2048, pcf_radius: typing.SupportsInt | typing.SupportsIndex = 1, bias_constant: typing.SupportsFloat | typing.SupportsIndex = 0.0005000000237487257, bias_slope: typing.SupportsFloat | typing.SupportsIndex = 0.001500000013038516, bias_max: typing.SupportsFloat | typing.SupportsIndex = 0.009999999776482582, normal_offset: typing.SupportsFloat | typing.SupportsIndex = 1.5, reuse_shadow_maps: bool = True, msaa: typing.SupportsInt | typing.SupportsIndex = 4, exposure: typing.SupportsFloat | typing.SupportsIndex = 0.0, tone_map: str = 'clamp', bounce: bool = True, ambient_occlusion: typing.SupportsInt | typing.SupportsIndex = 8, ambient_occlusion_blur: typing.SupportsFloat | typing.SupportsIndex = 4.0) -> None:
         """
         An offscreen renderer of width x height pixels on the selected Vulkan device, with its shadow, anti-aliasing (msaa 1/2/4/8), exposure, tone-map ('clamp', 'aces', 'agx', 'neutral'), bounce and ambient-occlusion settings. Raises InvalidArgument for out-of-range settings, Error when no Vulkan device works.
@@ -659,19 +658,25 @@ class Renderer:
         ...
     @property
     def bias_constant(self) -> float:
-        ...
+        """
+        Shadow depth bias, constant part (the light's NDC depth units); the bias is bias_constant + bias_slope tan(angle between n and l), at most bias_max.
+        """
     @bias_constant.setter
     def bias_constant(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def bias_max(self) -> float:
-        ...
+        """
+        The largest shadow depth bias (see bias_constant).
+        """
     @bias_max.setter
     def bias_max(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def bias_slope(self) -> float:
-        ...
+        """
+        Shadow depth bias per tan(angle between n and l) (see bias_constant).
+        """
     @bias_slope.setter
     def bias_slope(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
@@ -709,7 +714,7 @@ class Renderer:
         Deep opacity maps for shadow-casting directional lights (else the shadow map).
         """
     @hair_dom.setter
-    def hair_dom(self, arg1: typing.Any) -> None:
+    def hair_dom(self, arg1: bool) -> None:
         ...
     @property
     def hair_dom_layer_size(self) -> float:
@@ -717,15 +722,15 @@ class Renderer:
         DOM layer size d (world units); 0: the hair's depth extent / 3 (log: / 7).
         """
     @hair_dom_layer_size.setter
-    def hair_dom_layer_size(self, arg1: typing.Any) -> None:
+    def hair_dom_layer_size(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def hair_dom_size(self) -> int:
         """
-        Texels per side of each deep opacity map.
+        Texels per side of each deep opacity map, in [16, 8192].
         """
     @hair_dom_size.setter
-    def hair_dom_size(self, arg1: typing.Any) -> None:
+    def hair_dom_size(self, arg1: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def hair_dom_spacing(self) -> str:
@@ -733,7 +738,7 @@ class Renderer:
         DOM layer spacing: 'linear' (d, 2d, 3d) or 'log' (d, 3d, 7d).
         """
     @hair_dom_spacing.setter
-    def hair_dom_spacing(self, arg1: typing.Any) -> None:
+    def hair_dom_spacing(self, arg1: str) -> None:
         ...
     @property
     def hair_oit_weight(self) -> str:
@@ -741,7 +746,7 @@ class Renderer:
         WBOIT depth weight (McGuire & Bavoil 2013, eq. 7-10): 'near_quadratic', 'near_cubic', 'far_quartic' or 'ndc_cubic' ('eq7' .. 'eq10' also accepted).
         """
     @hair_oit_weight.setter
-    def hair_oit_weight(self, arg1: typing.Any) -> None:
+    def hair_oit_weight(self, arg1: str) -> None:
         ...
     @property
     def hair_primitive(self) -> str:
@@ -749,7 +754,7 @@ class Renderer:
         'lines' (1 pixel) or 'ribbons' (camera-facing, hair_width * thickness wide).
         """
     @hair_primitive.setter
-    def hair_primitive(self, arg1: typing.Any) -> None:
+    def hair_primitive(self, arg1: str) -> None:
         ...
     @property
     def hair_transparency(self) -> bool:
@@ -757,7 +762,7 @@ class Renderer:
         Weighted blended OIT for hair with transparency > 0 (else drawn opaque).
         """
     @hair_transparency.setter
-    def hair_transparency(self, arg1: typing.Any) -> None:
+    def hair_transparency(self, arg1: bool) -> None:
         ...
     @property
     def hair_width(self) -> float:
@@ -765,7 +770,7 @@ class Renderer:
         Ribbon width per unit of strand thickness (world units).
         """
     @hair_width.setter
-    def hair_width(self, arg1: typing.Any) -> None:
+    def hair_width(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def height(self) -> int:
@@ -786,25 +791,41 @@ class Renderer:
         """
     @property
     def normal_offset(self) -> float:
-        ...
+        """
+        Receiver offset along the normal, in shadow-map texels.
+        """
     @normal_offset.setter
     def normal_offset(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def pcf_radius(self) -> int:
-        ...
+        """
+        PCF kernel radius r in [0, 7]: (2r + 1)^2 shadow-map taps.
+        """
     @pcf_radius.setter
     def pcf_radius(self, arg1: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def probe_size(self) -> int:
-        ...
+        """
+        Texels per face of the dynamic reflection capture, in [4, 2048].
+        """
     @probe_size.setter
     def probe_size(self, arg1: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
-    def shadow_map_size(self) -> int:
+    def reuse_shadow_maps(self) -> bool:
+        """
+        Keep the last frame's shadow maps when no shadow view and no caster changed.
+        """
+    @reuse_shadow_maps.setter
+    def reuse_shadow_maps(self, arg1: bool) -> None:
         ...
+    @property
+    def shadow_map_size(self) -> int:
+        """
+        Texels per side of each shadow map, in [16, 16384].
+        """
     @shadow_map_size.setter
     def shadow_map_size(self, arg1: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
