@@ -1,12 +1,14 @@
 // One bounce of diffuse light (render/BounceProbes.h, bounce_sh.frag): SH9 sets per caster of
 // the receivers' radiance (0), the environment they hide (1) and the solid angle they cover
 // (2), each evaluated as E(n) / pi. Included by shading.glsl after frame.glsl.
-layout(set = 0, binding = 14) uniform sampler2D bounceSh; // row: probe, column: 9 set + k
+layout(set = 0, binding = 14) uniform sampler2D bounceSh; // row: probe * BOUNCE_POINTS + point,
+                                                          // column: 9 set + k
 layout(set = 0, binding = 15) uniform sampler2DArray bounceFaces; // layer 6 probe + face
 // the casters' radiance as proxy spheres (bounce_radiance.frag): row probe, column k
 layout(set = 0, binding = 16) uniform sampler2D bounceRadiance;
 
 #include "cube_faces.glsl"
+#include "bounce_points.glsl"
 
 // The instance's bounce capture, or -1 (none, or a frame without bounce light).
 int bounceProbe(Instance ins) {
@@ -21,17 +23,47 @@ void shBasis9(vec3 n, vec3 w, out float b[9]) {
                  w.z * 0.546274 * (n.x * n.x - n.y * n.y));
 }
 
-// Set `set` of capture `probe` at n with its bands scaled by w (1: the set's own E(n) / pi).
-vec3 bounceSet(int probe, int set, vec3 n, vec3 w) {
+// The rows of capture `probe`'s points (bounce_points.glsl) that light p, and their weights:
+// the points around p's direction from the caster's centre, on the ellipsoid its bounds hold,
+// blended towards the centre's own row for p inside it.
+struct BounceRows {
+    ivec4 rows;
+    vec4 weights;
+};
+
+BounceRows bounceRowsAt(int probe, vec3 p) {
+    vec3 extent = max(frame.bounceHalves[probe].xyz, vec3(1e-6));
+    vec3 a = (p - frame.bounceSpheres[probe].xyz) / extent;
+    float len = length(a);
+    BounceRows r;
+    r.rows = ivec4(probe * BOUNCE_POINTS);
+    r.weights = vec4(1.0, 0.0, 0.0, 0.0);
+    if (len < 1e-6) return r;
+    ivec3 points;
+    vec3 weights;
+    bouncePointsAround(a / len, points, weights);
+    float t = min(len, 1.0);
+    r.rows.yzw += points;
+    r.weights = vec4(1.0 - t, t * weights);
+    return r;
+}
+
+// Set `set` at rows r with its bands scaled by w (1: the set's own E(n) / pi).
+vec3 bounceSet(BounceRows r, int set, vec3 n, vec3 w) {
     float b[9];
     shBasis9(n, w, b);
     vec3 e = vec3(0.0);
-    for (int k = 0; k < 9; ++k) e += b[k] * texelFetch(bounceSh, ivec2(9 * set + k, probe), 0).rgb;
+    for (int j = 0; j < 4; ++j) {
+        vec3 ej = vec3(0.0);
+        for (int k = 0; k < 9; ++k)
+            ej += b[k] * texelFetch(bounceSh, ivec2(9 * set + k, r.rows[j]), 0).rgb;
+        e += r.weights[j] * ej;
+    }
     return e;
 }
 
-vec3 bounceIrradiance(int probe, int set, vec3 n) {
-    return max(bounceSet(probe, set, n, vec3(1.0)), vec3(0.0));
+vec3 bounceIrradiance(BounceRows r, int set, vec3 n) {
+    return max(bounceSet(r, set, n, vec3(1.0)), vec3(0.0));
 }
 
 // Capture `probe`'s texel in direction d: rgb the receivers' radiance, a their coverage.

@@ -177,7 +177,8 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
                             : environmentIrradiance(n);
         // the part of the sky the receivers hide from a caster (bounce.glsl)
         int bp = bounceProbe(ins);
-        if (bp >= 0) irradiance = max(irradiance - bounceIrradiance(bp, 1, n), vec3(0.0));
+        if (bp >= 0)
+            irradiance = max(irradiance - bounceIrradiance(bounceRowsAt(bp, p), 1, n), vec3(0.0));
         if (frame.environment.z > 0.0) {
             vec3 occluded = domeOccluded(p, n) * frame.environment.x;
             lit = max(irradiance - occluded, vec3(0.0));
@@ -211,14 +212,15 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
                        frame.environment.x;
         // A caster's reflection shows the receivers (the ground) where its bounce capture has
         // them, not the sky they hide: the capture's texel along r over a sharp lobe (seen from
-        // the caster's centre, without parallax), its SH9 over a rough one (a cosine lobe),
+        // the caster's centre, without parallax), its SH9 where the fragment is over a rough one,
         // in between by the roughness (the glossy sphere's underside against Mitsuba: -23% ->
         // -10%).
         int bp = bounceProbe(ins);
         if (bp >= 0 && !probe && !sphere) {
             vec4 c = bounceFace(bp, r);
             vec3 sharp = c.rgb - c.a * radiance;
-            vec3 rough = bounceSet(bp, 0, r, vec3(1.0)) - bounceSet(bp, 1, r, vec3(1.0));
+            BounceRows rows = bounceRowsAt(bp, p);
+            vec3 rough = bounceSet(rows, 0, r, vec3(1.0)) - bounceSet(rows, 1, r, vec3(1.0));
             radiance = max(radiance + mix(sharp, rough, roughness), vec3(0.0));
         }
         specular = fresnel * radiance;

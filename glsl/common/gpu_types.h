@@ -26,6 +26,10 @@ using uint = std::uint32_t;
 WEFT_CONST(int, MAX_COOKIES, 4);       // distinct spot-light cookie textures per frame
 WEFT_CONST(int, MAX_SHADOW_LAYERS, 32); // shadow-map layers per frame (a point light takes 6)
 WEFT_CONST(int, MAX_BOUNCE_CASTERS, 8); // casters with a bounce capture (render/BounceProbes.h)
+// Points per caster at which its capture is projected (bounce_sh.frag): its centre (0), the
+// centres of its bounds' faces (1-6: +x, -x, +y, -y, +z, -z) and its corners (7-14), on the
+// ellipsoid its bounds hold; the SH9 sets of caster c are the rows c * BOUNCE_POINTS + point.
+WEFT_CONST(int, BOUNCE_POINTS, 15);
 
 // Light::position.w
 WEFT_CONST(int, LIGHT_DIRECTIONAL, 0);
@@ -143,6 +147,7 @@ struct Frame {
     // receives (caster_bounce.glsl): xyz centre, w radius (0: no caster in this slot) ...
     vec4 bounceSpheres[MAX_BOUNCE_CASTERS];
     ivec4 bounceInstances[MAX_BOUNCE_CASTERS / 4]; // ... and their instances, four per vector
+    vec4 bounceHalves[MAX_BOUNCE_CASTERS]; // ... and the half extents of their bounds (xyz)
     // The first light of each group g in the lights buffer (LIGHT_GROUP_*) at [g / 4][g % 4];
     // [1][3] = the light count (the end of the last group)
     ivec4 lightStart[2];

@@ -365,9 +365,10 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     // One bounce (bounce.glsl): the receivers keep the ambient out of the solid angle they
     // cover and send their own radiance instead, as diffuse light not darkened by the dome.
     if (bp >= 0) {
-        float covered = min(bounceIrradiance(bp, 2, n).x, 1.0);
+        BounceRows rows = bounceRowsAt(bp, p);
+        float covered = min(bounceIrradiance(rows, 2, n).x, 1.0);
         sh.ambient *= 1.0 - covered;
-        sh.bounce += bounceIrradiance(bp, 0, n) * ins.kd.rgb * sf.T;
+        sh.bounce += bounceIrradiance(rows, 0, n) * ins.kd.rgb * sf.T;
     }
     // an ambient no dome occludes loses what the casters' proxies cover
     if (frame.sky.w <= 0.5) sh.ambient *= 1.0 - casterCovered;

@@ -17,19 +17,19 @@ layout(location = 0) out vec4 outRadiance;
 
 void main() {
     ivec2 at = ivec2(gl_FragCoord.xy);
-    int k = at.x, c = at.y;
+    int k = at.x, c = at.y, row = c * BOUNCE_POINTS; // the centre's sets
     Instance ci = instances[frame.bounceInstances[c / 4][c % 4]];
     vec3 centre = frame.bounceSpheres[c].xyz;
     float r = abs(frame.bounceSpheres[c].w); // negative: hidden in another (still lit)
-    vec3 e = texelFetch(bounceSh, ivec2(k, c), 0).rgb;
+    vec3 e = texelFetch(bounceSh, ivec2(k, row), 0).rgb;
     if (frame.environment.x > 0.0)
         e += ci.environment.w * (frame.environmentSh[k].rgb * frame.environment.x -
-                                 texelFetch(bounceSh, ivec2(9 + k, c), 0).rgb);
+                                 texelFetch(bounceSh, ivec2(9 + k, row), 0).rgb);
     vec3 radiance = ci.kd.rgb * e;
     // the ambient's reflection: the multi-bounce fit of the ambient occlusion already has it
     if (frame.sky.w <= 0.5)
         radiance += frame.ambient.rgb * ci.ka.rgb *
-                    ((k == 0 ? 1.0 / 0.282095 : 0.0) - texelFetch(bounceSh, ivec2(18 + k, c), 0).x);
+                    ((k == 0 ? 1.0 / 0.282095 : 0.0) - texelFetch(bounceSh, ivec2(18 + k, row), 0).x);
     float band = k == 0 ? 3.14159265 : k < 4 ? 2.09439510 : 0.78539816;
     for (int i = 0; i < frame.counts.x; ++i) { // a few dozen fragments: one generic loop
         int g = lightGroup(lights[i]);

@@ -23,6 +23,39 @@ static void addRadiancePass(FrameGraph& g, FramePassContext& f, const char* name
                }});
 }
 
+// The captures projected onto SH9 (bounce_sh.frag) into `out`: one fragment per coefficient
+// and point, one draw per probe over its kPoints rows (its centre and extents pushed).
+static void drawBounceSh(FramePassContext& f, VkCommandBuffer cmd, vk::Image& out) {
+    const BounceProbes& b = f.bounce;
+    const uint32_t w = BounceProbes::kShColumns, h = b.count() * BounceProbes::kPoints;
+    VkRenderingAttachmentInfo a =
+        attachment(out.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, {w, h}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &a;
+    f.ctx.fn().cmdBeginRendering(cmd, &info);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.bounceSh.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.bounceShLayout, 0, 1,
+                            &f.sets.bounceSh, 0, nullptr);
+    for (uint32_t p = 0; p < b.count(); ++p) {
+        const uint32_t y = p * BounceProbes::kPoints;
+        VkViewport vp{0.0f, float(y), float(w), float(BounceProbes::kPoints), 0.0f, 1.0f};
+        VkRect2D sc{{0, int32_t(y)}, {w, BounceProbes::kPoints}};
+        vkCmdSetViewport(cmd, 0, 1, &vp);
+        vkCmdSetScissor(cmd, 0, 1, &sc);
+        const BounceShPush push{
+            glm::vec4(f.data.frame.environment.x, float(BounceProbes::kFaceSize), float(p), 0.0f),
+            glm::vec4(b.position(p), 0.0f), glm::vec4(b.half(p), 0.0f)};
+        vkCmdPushConstants(cmd, f.pipes.bounceShLayout, vk::kGraphicsStages, 0, sizeof(push),
+                           &push);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+    }
+    f.ctx.fn().cmdEndRendering(cmd);
+}
+
 void addBouncePasses(FrameGraph& g, FramePassContext& f) {
     BounceProbes& b = f.bounce;
     if (b.count() == 0) return;
@@ -40,9 +73,6 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
     const int rDepth = g.addResource("bounce_depth", &b.depth());
     const int rFirst = g.addResource("bounce_sh_first", &b.shFirst());
     const int rRadianceFirst = g.addResource("bounce_radiance_first", &b.radianceFirst());
-    // x: environment intensity (0: none), y: texels per face, z: probes
-    const glm::vec4 push(f.data.frame.environment.x, float(BounceProbes::kFaceSize),
-                         float(b.count()), 0.0f);
     const uint32_t perRound = 6 * b.count();
     for (uint32_t round = 0; round < BounceProbes::kRounds; ++round) {
         const bool last = round + 1 == BounceProbes::kRounds;
@@ -61,20 +91,16 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
                        [&f, i, set](VkCommandBuffer cmd) {
                            // the receivers alone, over alpha 0: the sky they leave uncovered
                            drawCaptureFace(
-                               f, cmd, f.bounce.faces().layerView(i), f.bounce.depth().view(),
+                               f, cmd, f.bounce.faces().layerView(i), f.bounce.depth().layerView(i),
                                BounceProbes::kFaceSize, f.sets.bounceFaces[set], glm::vec4(0.0f),
                                false, [](const Draw& d, int) { return !d.castShadows; }, 0);
                        }});
         }
         g.addPass({last ? "bounce_sh" : "bounce_sh_first",
-                   {{rFaces, Use::Sampled}},
+                   {{rFaces, Use::Sampled}, {rDepth, Use::Sampled}},
                    {{last ? f.rBounceSh : rFirst, Use::ColorWrite}},
-                   [&f, push, last](VkCommandBuffer cmd) { // one fragment per coefficient, probe
-                       vk::Image& out = last ? f.bounce.sh() : f.bounce.shFirst();
-                       drawFullscreen(f, cmd, out.view(), BounceProbes::kShColumns,
-                                      f.bounce.count(), VK_ATTACHMENT_LOAD_OP_DONT_CARE,
-                                      f.pipes.bounceSh.get(), f.pipes.bounceShLayout,
-                                      f.sets.bounceSh, &push, sizeof(push));
+                   [&f, last](VkCommandBuffer cmd) {
+                       drawBounceSh(f, cmd, last ? f.bounce.sh() : f.bounce.shFirst());
                    }});
         if (!last) // with a second round's set: its SH9 binding holds the first round's
             addRadiancePass(g, f, "bounce_radiance_first", rFirst, rRadianceFirst,

@@ -10,8 +10,10 @@ namespace weft::render {
 
 bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSettings& settings) {
     mPositions.clear();
+    mHalves.clear();
     data.frame.sky.z = 0.0f;
     for (glm::vec4& s : data.frame.bounceSpheres) s = glm::vec4(0.0f);
+    for (glm::vec4& h : data.frame.bounceHalves) h = glm::vec4(0.0f);
     std::vector<uint32_t> casters;
     bool receivers = false;
     for (const Draw& d : data.draws) {
@@ -30,10 +32,12 @@ bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSett
         scene.instanceBounds(casters[i], lo, hi);
         const glm::vec3 centre = 0.5f * (lo + hi), half = 0.5f * (hi - lo);
         mPositions.push_back(centre);
+        mHalves.push_back(half);
         data.instances[casters[i]].flags.y = i + 1;
         // the proxy sphere whose light the others receive: the RMS of the half extents is the
         // radius of a sphere (exact) and a middle measure of a flat or long caster
         data.frame.bounceSpheres[i] = glm::vec4(centre, std::sqrt(glm::dot(half, half) / 3.0f));
+        data.frame.bounceHalves[i] = glm::vec4(half, 0.0f);
         data.frame.bounceInstances[i / 4][i % 4] = int(casters[i]);
     }
     // A proxy wholly inside another is hidden by it (a sphere under the cloth draped over it):
@@ -60,24 +64,33 @@ bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSett
         d.format = kHdrFormat; // the forward pipelines draw into it as they draw the frame
         d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
         mFaces = vk::Image(&mCtx, d);
-        mDepth = captureDepth(mCtx, kFaceSize);
+        // one layer per face, kept for bounce_sh.frag: the receivers' positions
+        vk::ImageDesc z;
+        z.width = z.height = kFaceSize;
+        z.layers = layers;
+        z.format = kDepthFormat;
+        z.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+        mDepth = vk::Image(&mCtx, z);
         vk::ImageDesc s;
         s.width = kShColumns;
-        s.height = kMaxProbes;
+        s.height = kMaxProbes * kPoints;
         s.format = kShFormat;
         s.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
         mSh = vk::Image(&mCtx, s);
         mShFirst = vk::Image(&mCtx, s);
         s.width = kRadianceColumns;
+        s.height = kMaxProbes;
         mRadiance = vk::Image(&mCtx, s);
         mRadianceFirst = vk::Image(&mCtx, s);
         mKey.clear();
     }
     std::vector<uint64_t> key = captureKey(scene, data);
-    for (const glm::vec3& p : mPositions) {
-        uint64_t bits[2] = {0, 0};
-        std::memcpy(bits, &p, sizeof(p));
-        key.insert(key.end(), bits, bits + 2);
+    for (uint32_t i = 0; i < count(); ++i) {
+        uint64_t bits[3] = {0, 0, 0};
+        std::memcpy(bits, &mPositions[i], sizeof(glm::vec3));
+        std::memcpy(reinterpret_cast<char*>(bits) + sizeof(glm::vec3), &mHalves[i],
+                    sizeof(glm::vec3));
+        key.insert(key.end(), bits, bits + 3);
     }
     if (key == mKey) return false;
     mKey = std::move(key);

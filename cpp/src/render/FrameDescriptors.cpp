@@ -244,13 +244,15 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
                       environment.black(), second ? bounce.shFirst().view() : noBounce, false,
                       second ? bounce.radianceFirst().view() : noBounce);
     }
-    if (captureBounce) { // the projection reads the captures and the environment's chain
-        VkDescriptorImageInfo infos[2] = {
+    if (captureBounce) { // the projection reads the captures, their depths, the environment
+        VkDescriptorImageInfo infos[3] = {
             {pipes.nearestSampler, bounce.faces().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
             {pipes.environmentSampler, environment.view(scene.environment()),
-             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
-        VkWriteDescriptorSet w[2];
-        for (uint32_t i = 0; i < 2; ++i) {
+             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+            {pipes.nearestSampler, bounce.depth().view(),
+             render::useState(Use::Sampled, true).layout}};
+        VkWriteDescriptorSet w[3];
+        for (uint32_t i = 0; i < 3; ++i) {
             w[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w[i].dstSet = result.bounceSh;
             w[i].dstBinding = i;
@@ -258,7 +260,7 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
             w[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
             w[i].pImageInfo = &infos[i];
         }
-        vkUpdateDescriptorSets(c.device(), 2, w, 0, nullptr);
+        vkUpdateDescriptorSets(c.device(), 3, w, 0, nullptr);
     }
     VkDescriptorImageInfo hdrInfo{pipes.nearestSampler, targets.hdr.view(),
                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};

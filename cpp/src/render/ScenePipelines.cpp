@@ -67,8 +67,9 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     domeBlurLayout = vk::createPipelineLayout(c, {domeBlurSetLayout}, sizeof(DomeBlurPush));
     bounceShSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
-    bounceShLayout = vk::createPipelineLayout(c, {bounceShSetLayout}, sizeof(glm::vec4));
+                                                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+    bounceShLayout = vk::createPipelineLayout(c, {bounceShSetLayout}, sizeof(BounceShPush));
     createPipelines();
 }
 
