@@ -1,6 +1,7 @@
 // One bounce of diffuse light (BounceProbes.h): each caster's cube capture of the receivers,
-// then one pass projecting every capture onto SH9 (bounce_sh.frag); twice, the second round's
-// receivers lit by the first round's casters. The forward pass reads the second.
+// where its texels lie as seen from the caster's points (bounce_geometry.frag, once), then one
+// pass projecting every capture onto SH9 at those points (bounce_sh.frag); twice, the second
+// round's receivers lit by the first round's casters. The forward pass reads the second.
 #include "render/BounceProbes.h"
 #include "render/FramePasses.h"
 #include "render/PassSetup.h"
@@ -23,11 +24,13 @@ static void addRadiancePass(FrameGraph& g, FramePassContext& f, const char* name
                }});
 }
 
-// The captures projected onto SH9 (bounce_sh.frag) into `out`: one fragment per coefficient
-// and point, one draw per probe over its kPoints rows (its centre and extents pushed).
-static void drawBounceSh(FramePassContext& f, VkCommandBuffer cmd, vk::Image& out) {
+// A pass over the probes' points into `out` (`width` columns): bounce_geometry.frag (a column
+// per capture texel) or bounce_sh.frag (per coefficient); one draw per probe over its kPoints
+// rows, its centre and extents pushed.
+static void drawPerPoint(FramePassContext& f, VkCommandBuffer cmd, vk::Image& out,
+                         VkPipeline pipeline, uint32_t w) {
     const BounceProbes& b = f.bounce;
-    const uint32_t w = BounceProbes::kShColumns, h = b.count() * BounceProbes::kPoints;
+    const uint32_t h = b.count() * BounceProbes::kPoints;
     VkRenderingAttachmentInfo a =
         attachment(out.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
     a.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
@@ -37,7 +40,7 @@ static void drawBounceSh(FramePassContext& f, VkCommandBuffer cmd, vk::Image& ou
     info.colorAttachmentCount = 1;
     info.pColorAttachments = &a;
     f.ctx.fn().cmdBeginRendering(cmd, &info);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.bounceSh.get());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.bounceShLayout, 0, 1,
                             &f.sets.bounceSh, 0, nullptr);
     for (uint32_t p = 0; p < b.count(); ++p) {
@@ -71,6 +74,7 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
         return;
     }
     const int rDepth = g.addResource("bounce_depth", &b.depth());
+    const int rGeometry = g.addResource("bounce_geometry", &b.geometry());
     const int rFirst = g.addResource("bounce_sh_first", &b.shFirst());
     const int rRadianceFirst = g.addResource("bounce_radiance_first", &b.radianceFirst());
     const uint32_t perRound = 6 * b.count();
@@ -96,11 +100,20 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
                                false, [](const Draw& d, int) { return !d.castShadows; }, 0);
                        }});
         }
+        if (round == 0) // the receivers stand as they stood: the second round's depths are these
+            g.addPass({"bounce_geometry",
+                       {{rDepth, Use::Sampled}},
+                       {{rGeometry, Use::ColorWrite}},
+                       [&f](VkCommandBuffer cmd) {
+                           drawPerPoint(f, cmd, f.bounce.geometry(), f.pipes.bounceGeometry.get(),
+                                        6 * BounceProbes::kFaceSize * BounceProbes::kFaceSize);
+                       }});
         g.addPass({last ? "bounce_sh" : "bounce_sh_first",
-                   {{rFaces, Use::Sampled}, {rDepth, Use::Sampled}},
+                   {{rFaces, Use::Sampled}, {rGeometry, Use::Sampled}},
                    {{last ? f.rBounceSh : rFirst, Use::ColorWrite}},
                    [&f, last](VkCommandBuffer cmd) {
-                       drawBounceSh(f, cmd, last ? f.bounce.sh() : f.bounce.shFirst());
+                       drawPerPoint(f, cmd, last ? f.bounce.sh() : f.bounce.shFirst(),
+                                    f.pipes.bounceSh.get(), BounceProbes::kShColumns);
                    }});
         if (!last) // with a second round's set: its SH9 binding holds the first round's
             addRadiancePass(g, f, "bounce_radiance_first", rFirst, rRadianceFirst,

@@ -78,6 +78,8 @@ bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSett
         s.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
         mSh = vk::Image(&mCtx, s);
         mShFirst = vk::Image(&mCtx, s);
+        s.width = 6 * kFaceSize * kFaceSize;
+        mGeometry = vk::Image(&mCtx, s);
         s.width = kRadianceColumns;
         s.height = kMaxProbes;
         mRadiance = vk::Image(&mCtx, s);

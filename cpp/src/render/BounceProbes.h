@@ -53,6 +53,9 @@ public:
     vk::Image& depth() { return mDepth; } // layer 6 probe + face, like faces()
     const glm::vec3& half(uint32_t probe) const { return mHalves[probe]; } // its bounds' extents
     vk::Image& sh() { return mSh; } // row: probe * kPoints + point, column: 9 set + coefficient
+    /// Row: probe * kPoints + point, column: capture texel (face S + v) S + u: the direction
+    /// and solid angle the point sees it at (bounce_geometry.frag), for the projection.
+    vk::Image& geometry() { return mGeometry; }
     vk::Image& shFirst() { return mShFirst; } // the first round's (what the second one reads)
     /// Row: probe, column: coefficient k of the radiance the caster sends out as the proxy
     /// sphere of caster_bounce.glsl (bounce_radiance.frag, every frame with probes).
@@ -61,7 +64,7 @@ public:
 
 private:
     vk::Context& mCtx;
-    vk::Image mFaces, mDepth, mSh, mShFirst, mRadiance, mRadianceFirst;
+    vk::Image mFaces, mDepth, mGeometry, mSh, mShFirst, mRadiance, mRadianceFirst;
     std::vector<glm::vec3> mPositions, mHalves;
     std::vector<uint64_t> mKey;
 };

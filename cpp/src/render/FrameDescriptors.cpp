@@ -244,15 +244,17 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
                       environment.black(), second ? bounce.shFirst().view() : noBounce, false,
                       second ? bounce.radianceFirst().view() : noBounce);
     }
-    if (captureBounce) { // the projection reads the captures, their depths, the environment
-        VkDescriptorImageInfo infos[3] = {
+    if (captureBounce) { // the projection: the captures, their depths, the environment, geometry
+        VkDescriptorImageInfo infos[4] = {
             {pipes.nearestSampler, bounce.faces().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
             {pipes.environmentSampler, environment.view(scene.environment()),
              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
             {pipes.nearestSampler, bounce.depth().view(),
-             render::useState(Use::Sampled, true).layout}};
-        VkWriteDescriptorSet w[3];
-        for (uint32_t i = 0; i < 3; ++i) {
+             render::useState(Use::Sampled, true).layout},
+            {pipes.nearestSampler, bounce.geometry().view(),
+             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+        VkWriteDescriptorSet w[4];
+        for (uint32_t i = 0; i < 4; ++i) {
             w[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w[i].dstSet = result.bounceSh;
             w[i].dstBinding = i;
@@ -260,7 +262,7 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
             w[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
             w[i].pImageInfo = &infos[i];
         }
-        vkUpdateDescriptorSets(c.device(), 3, w, 0, nullptr);
+        vkUpdateDescriptorSets(c.device(), 4, w, 0, nullptr);
     }
     VkDescriptorImageInfo hdrInfo{pipes.nearestSampler, targets.hdr.view(),
                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};

@@ -68,7 +68,8 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
     domeBlurLayout = vk::createPipelineLayout(c, {domeBlurSetLayout}, sizeof(DomeBlurPush));
     bounceShSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+                                                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                                {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     bounceShLayout = vk::createPipelineLayout(c, {bounceShSetLayout}, sizeof(BounceShPush));
     createPipelines();
 }
@@ -163,6 +164,8 @@ void ScenePipelines::createPipelines() {
     fd.fragmentShader = "render/bounce_sh.frag";
     fd.colorFormats = {BounceProbes::kShFormat};
     bounceSh = vk::createGraphicsPipeline(c, fd);
+    fd.fragmentShader = "render/bounce_geometry.frag";
+    bounceGeometry = vk::createGraphicsPipeline(c, fd);
     fd.layout = sceneLayout;
     fd.fragmentShader = "render/bounce_radiance.frag";
     bounceRadiance = vk::createGraphicsPipeline(c, fd);

@@ -30,6 +30,7 @@ struct ScenePipelines {
     vk::Pipeline domeGather;     // the dome's visibility per pixel, for the blur
     vk::Pipeline domeBlurRows;   // the dome blur's row pass
     vk::Pipeline domeBlur;       // its column pass, adding the dome-shadowed diffuse light
+    vk::Pipeline bounceGeometry; // where the captures' texels lie from the casters' points
     vk::Pipeline bounceSh;       // the bounce captures projected onto SH9 (BounceProbes.h)
     vk::Pipeline bounceRadiance; // the casters' radiance in SH9, from the frame set
 
