@@ -31,15 +31,7 @@ static void drawPerPoint(FramePassContext& f, VkCommandBuffer cmd, vk::Image& ou
                          VkPipeline pipeline, uint32_t w) {
     const BounceProbes& b = f.bounce;
     const uint32_t h = b.count() * BounceProbes::kPoints;
-    VkRenderingAttachmentInfo a =
-        attachment(out.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, {w, h}};
-    info.layerCount = 1;
-    info.colorAttachmentCount = 1;
-    info.pColorAttachments = &a;
-    f.ctx.fn().cmdBeginRendering(cmd, &info);
+    beginColorTarget(f, cmd, out.view(), w, h, VK_ATTACHMENT_LOAD_OP_DONT_CARE);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.bounceShLayout, 0, 1,
                             &f.sets.bounceSh, 0, nullptr);

@@ -64,7 +64,7 @@ bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSett
         d.format = kHdrFormat; // the forward pipelines draw into it as they draw the frame
         d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
         mFaces = vk::Image(&mCtx, d);
-        // one layer per face, kept for bounce_sh.frag: the receivers' positions
+        // one layer per face, kept for bounce_geometry.frag: where the receivers are
         vk::ImageDesc z;
         z.width = z.height = kFaceSize;
         z.layers = layers;

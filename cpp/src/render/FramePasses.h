@@ -80,6 +80,10 @@ void drawCaptureFace(const FramePassContext& f, VkCommandBuffer cmd, VkImageView
 void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target,
                     VkAttachmentLoadOp load, VkPipeline pipeline, VkPipelineLayout layout,
                     VkDescriptorSet set, const void* push, uint32_t pushBytes);
+/// Begins rendering into one colour target of w x h (`load`: what it starts with), the
+/// viewport and scissor over it; the caller binds, draws and ends.
+void beginColorTarget(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target,
+                      uint32_t w, uint32_t h, VkAttachmentLoadOp load);
 /// The same into a target of w x h.
 void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target, uint32_t w,
                     uint32_t h, VkAttachmentLoadOp load, VkPipeline pipeline,

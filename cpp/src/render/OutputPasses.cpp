@@ -20,10 +20,8 @@ void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView 
                    push, pushBytes);
 }
 
-void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target, uint32_t w,
-                    uint32_t h, VkAttachmentLoadOp load, VkPipeline pipeline,
-                    VkPipelineLayout layout, VkDescriptorSet set, const void* push,
-                    uint32_t pushBytes) {
+void beginColorTarget(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target,
+                      uint32_t w, uint32_t h, VkAttachmentLoadOp load) {
     VkRenderingAttachmentInfo a =
         attachment(target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
     a.loadOp = load;
@@ -34,6 +32,13 @@ void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView 
     info.pColorAttachments = &a;
     f.ctx.fn().cmdBeginRendering(cmd, &info);
     setViewport(cmd, w, h);
+}
+
+void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView target, uint32_t w,
+                    uint32_t h, VkAttachmentLoadOp load, VkPipeline pipeline,
+                    VkPipelineLayout layout, VkDescriptorSet set, const void* push,
+                    uint32_t pushBytes) {
+    beginColorTarget(f, cmd, target, w, h, load);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
     if (pushBytes) vkCmdPushConstants(cmd, layout, vk::kGraphicsStages, 0, pushBytes, push);

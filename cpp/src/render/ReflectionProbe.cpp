@@ -36,7 +36,8 @@ std::vector<uint64_t> captureKey(const Scene& scene, const FrameData& data) {
     return key;
 }
 
-vk::Image captureDepth(vk::Context& ctx, uint32_t size) {
+// The depth attachment the probe's faces are drawn with, one face at a time: size x size.
+static vk::Image captureDepth(vk::Context& ctx, uint32_t size) {
     vk::ImageDesc z;
     z.width = z.height = size;
     z.format = kDepthFormat;

@@ -23,9 +23,6 @@ glm::mat4 probeFaceViewProj(int face, const glm::vec3& position, float zNear, fl
 /// scene) and the environment's radiance.
 std::vector<uint64_t> captureKey(const Scene& scene, const FrameData& data);
 
-/// The depth attachment a capture's faces are drawn with, one face at a time: size x size.
-vk::Image captureDepth(vk::Context& ctx, uint32_t size);
-
 class ReflectionProbe {
 public:
     explicit ReflectionProbe(vk::Context& ctx) : mCtx(ctx) {}
