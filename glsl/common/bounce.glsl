@@ -6,6 +6,8 @@ layout(set = 0, binding = 14) uniform sampler2D bounceSh; // row: probe * BOUNCE
 layout(set = 0, binding = 15) uniform sampler2DArray bounceFaces; // layer 6 probe + face
 // the casters' radiance as proxy spheres (bounce_radiance.frag): row probe, column k
 layout(set = 0, binding = 16) uniform sampler2D bounceRadiance;
+// the captures' depths (layer 6 probe + face), where their receivers are
+layout(set = 0, binding = 17) uniform sampler2DArray bounceDepth;
 
 #include "cube_faces.glsl"
 #include "bounce_points.glsl"
@@ -71,4 +73,31 @@ vec4 bounceFace(int probe, vec3 d) {
     vec2 uv;
     int face = cubeFace(d, uv);
     return textureLod(bounceFaces, vec3(uv, float(6 * probe + face)), 0.0);
+}
+
+// Where the ray from p along unit r meets capture `probe`'s receivers, as a direction from the
+// caster's centre (r itself where the ray meets none): the capture's depth gives the receivers'
+// distance from the centre along a direction, and three steps of p + t r at that distance
+// converge on the hit (Szirmay-Kalos et al. 2005, "Approximate ray-tracing on the GPU with
+// distance impostors"). Without it a glossy caster reflected, near its contact with the ground,
+// the sunlit ground beyond its shadow that the centre sees along r.
+vec3 bounceHitDirection(int probe, vec3 p, vec3 r) {
+    const float near = 0.02, far = 1000.0; // probeFaceViewProj's planes (ReflectionProbe.cpp)
+    vec3 o = p - frame.bounceSpheres[probe].xyz;
+    vec3 d = r;
+    ivec3 size = textureSize(bounceDepth, 0);
+    for (int i = 0; i < 3; ++i) {
+        vec2 uv;
+        int face = cubeFace(d, uv);
+        ivec2 t = clamp(ivec2(uv * vec2(size.xy)), ivec2(0), size.xy - 1);
+        float z = texelFetch(bounceDepth, ivec3(t, 6 * probe + face), 0).r;
+        if (z >= 1.0) return d;
+        float along = near * far / (far - z * (far - near)); // along the face's axis
+        float dist = along / max(dot(d, kCubeAxes[3 * face]), 1e-6);
+        float b = dot(o, r), c = dot(o, o) - dist * dist;
+        float disc = b * b - c;
+        if (disc < 0.0) return d;
+        d = normalize(o + (-b + sqrt(disc)) * r);
+    }
+    return d;
 }

@@ -57,6 +57,8 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
     f.rBounceSh = g.addResource("bounce_sh", &b.sh());
     // the captures themselves: what the casters' glossy reflections see of the receivers
     const int rFaces = f.rBounceFaces = g.addResource("bounce_faces", &b.faces());
+    // ... and their depths: where a glossy caster's reflected ray meets the receivers
+    const int rDepth = f.rBounceDepth = g.addResource("bounce_depth", &b.depth());
     // the casters' radiance, every frame with probes: the lights may move while captures stand
     f.rBounceRadiance = g.addResource("bounce_radiance", &b.radiance());
     if (!f.captureBounce) {
@@ -65,7 +67,6 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
                         f.sets.frame);
         return;
     }
-    const int rDepth = g.addResource("bounce_depth", &b.depth());
     const int rGeometry = g.addResource("bounce_geometry", &b.geometry());
     const int rFirst = g.addResource("bounce_sh_first", &b.shFirst());
     const int rRadianceFirst = g.addResource("bounce_radiance_first", &b.radianceFirst());

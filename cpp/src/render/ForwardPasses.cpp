@@ -66,6 +66,7 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
     if (f.rProbe >= 0) reads.push_back({f.rProbe, Use::Sampled});
     if (f.rBounceSh >= 0) reads.push_back({f.rBounceSh, Use::Sampled});
     if (f.rBounceFaces >= 0) reads.push_back({f.rBounceFaces, Use::Sampled});
+    if (f.rBounceDepth >= 0) reads.push_back({f.rBounceDepth, Use::Sampled});
     if (f.rBounceRadiance >= 0) reads.push_back({f.rBounceRadiance, Use::Sampled});
     if (f.background) reads.push_back({rColour, Use::ColorWrite}); // drawn over, loaded
 

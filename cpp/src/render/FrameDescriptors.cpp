@@ -188,6 +188,9 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
                                               render::useState(Use::Sampled, true).layout};
         VkDescriptorImageInfo radianceSh{pipes.nearestSampler, radianceView,
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        const VkDescriptorImageInfo depthsInfo{
+            pipes.nearestSampler, withFaces ? bounce.depth().view() : dummyShadow.view(),
+            render::useState(Use::Sampled, true).layout};
         // Binding i of frame.glsl / environment.glsl: a buffer or images (count > 1: an array).
         struct Entry {
             VkDescriptorType type;
@@ -214,7 +217,8 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
                                  {image, nullptr, &radianceInfo, 1},
                                  {image, nullptr, &bounceInfo, 1},
                                  {image, nullptr, &facesInfo, 1},
-                                 {image, nullptr, &radianceSh, 1}};
+                                 {image, nullptr, &radianceSh, 1},
+                                 {image, nullptr, &depthsInfo, 1}};
         constexpr uint32_t kBindings = sizeof(entries) / sizeof(entries[0]);
         VkWriteDescriptorSet writes[kBindings];
         for (uint32_t i = 0; i < kBindings; ++i) {

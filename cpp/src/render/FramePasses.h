@@ -59,7 +59,7 @@ struct FramePassContext {
     int rShadow = -1, rDepth = -1, rHdr = -1, rLdr = -1;
     int rDebug[4] = {-1, -1, -1, -1};
     int rDomeMaps = -1, rProbe = -1, rDomeLight = -1, rDomeAux = -1, rBounceSh = -1,
-        rBounceFaces = -1, rBounceRadiance = -1;
+        rBounceFaces = -1, rBounceDepth = -1, rBounceRadiance = -1;
     std::vector<std::string> reused; // passes skipped because their output is still valid
 };
 
