@@ -76,7 +76,9 @@ done
 layer=$(ls /usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json 2>/dev/null || true)
 if [ -n "$layer" ]; then
     lib=$(sed -n 's/.*"library_path": *"\([^"]*\)".*/\1/p' "$layer")
-    libpath=$(ldconfig -p | awk -v l="$(basename "$lib")" '$1 == l {print $NF; exit}')
+    # awk reads to the end: an early exit can kill ldconfig with SIGPIPE, which pipefail turns
+    # into the script's silent exit 141
+    libpath=$(ldconfig -p | awk -v l="$(basename "$lib")" '$1 == l && !n++ {print $NF}')
     [ -z "$libpath" ] && libpath=$lib
     cp -L "$libpath" "$stage/share/vulkan/explicit_layer.d/libVkLayer_khronos_validation.so"
     # A library_path with a slash is read relative to the manifest (Vulkan loader docs).

@@ -225,7 +225,7 @@ status=passed
 ((tests_rc == 0 && bench_rc == 0 && timing_rc == 0)) || status=failed
 cat > "$out/gpu-check.json" <<EOF
 {"status": "$status", "gpu": $( ((gpu)) && echo true || echo false), "date": "$(date -u +%Y-%m-%dT%H:%M:%SZ)",
- "host": "$(esc "$(uname -srm)")", "cpu": "$(esc "$(sed -n 's/^model name\t*: //p' /proc/cpuinfo | head -1)")",
+ "host": "$(esc "$(uname -srm)")", "cpu": "$(esc "$(awk -F': ' '/^model name/ {print $2; exit}' /proc/cpuinfo)")",
  "device": {"index": "$(esc "$pick")", "name": "$(esc "$dev_name")", "type": "$(esc "$dev_type")",
             "api_version": "$(esc "$dev_api")", "driver": "$(esc "$dev_driver")"},
  "gpu_tool": "$(esc "$gpu_info")", "icd": "$(esc "$icd_note")", "loader": "$(esc "$loader")", "validation": "$(esc "$validation_note")",
@@ -243,7 +243,7 @@ EOF
     echo "- device $pick: **$dev_name** ($dev_type, Vulkan $dev_api, driver $dev_driver)"
     [ -n "$gpu_info" ] && echo "- GPU (vendor tool): $gpu_info"
     echo "- Vulkan loader: $loader; validation: $validation_note"
-    echo "- host: $(uname -srm); $(sed -n 's/^model name\t*: //p' /proc/cpuinfo | head -1)"
+    echo "- host: $(uname -srm); $(awk -F': ' '/^model name/ {print $2; exit}' /proc/cpuinfo)"
     echo "- C++ tests: ${tests_passed:-0} passed, ${tests_failed:-0} failed, ${tests_skipped:-0} skipped (exit $tests_rc, ${tests_s} s)"
     echo "- benchmark (validation $validation_note): exit $bench_rc, ${bench_s} s"
     if [ -f "$out/bench-timing/bench.md" ]; then
