@@ -19,12 +19,19 @@
 // E / pi = L (r / D)^2 cos(theta) while it is wholly above p's horizon (exact for a sphere), and
 // with the C1 blend s^2 (h + s)^2 / (4 s) (s = r / D, h = cos theta) while the horizon cuts it.
 // Inside a proxy (a concave caster's hollow) its outside is not what p sees: faded out there.
+// The proxy's shape is the ellipsoid the caster's bounds hold (half axes a; bounce_points.glsl's
+// points lie on it): seen from p along w it stands in as the sphere of its projected area,
+// pi r_w^2 = pi a_x a_y a_z |w / a| (exact for a sphere, r_w = r), and p is inside where
+// |(c - p) / a| < 1. A cloth draped over a sphere (bounds 1.5 x 0.85 x 1.5 m) no longer reaches
+// below its hem to the ground, which the sphere of the RMS half extent did (the ground in its
+// contact shadow came out 1.7-2.6x too bright against Mitsuba).
 // What the casters hide of the sky is reported to the caller: `hiddenSky`, E / pi of the
 // environment's radiance towards them (blurred over their caps), and `covered`, the
 // cosine-weighted fraction of p's sky they fill. Without a dome the caller takes them away;
 // with one they are a floor under its occlusion (environmentTerms); so a caster never brightens
-// its surroundings by light it also blocks. A proxy wholly inside another's (a sphere under a
-// cloth) is hidden by it and sends nothing (BounceProbes marks it with a negative radius).
+// its surroundings by light it also blocks. Proxies that overlap (a sphere under the cloth
+// draped over it) share the solid angle: each fills at most what the ones before it left, so
+// the sky is never covered twice nor lit twice from the same directions.
 // Not counted: what the casters show each other in the captures (one bounce), the caster's
 // texture (its K_D stands for its colour). Included by shading.glsl after the shadow lookups.
 
@@ -49,14 +56,18 @@ vec3 casterBounce(vec3 p, vec3 n, int self, out vec3 hiddenSky,
     for (int c = 0; c < MAX_BOUNCE_CASTERS; ++c) {
         float r = frame.bounceSpheres[c].w;
         if (r <= 0.0 || c == self) continue;
+        vec3 a = max(frame.bounceHalves[c].xyz, vec3(1e-3 * r));
         vec3 d = frame.bounceSpheres[c].xyz - p;
+        float inside = length(d / a); // 1 on the ellipsoid
+        if (inside <= 0.5) continue;
         float D = length(d);
-        if (D <= 0.5 * r) continue;
         vec3 w = d / D;
-        float s = min(r / D, 1.0), h = dot(n, w);
+        float rw = sqrt(a.x * a.y * a.z * length(w / a)); // its projected area's radius
+        float s = min(rw / D, 1.0), h = dot(n, w);
         if (h <= -s) continue;
         float f = h >= s ? h * s * s : s * s * (h + s) * (h + s) / (4.0 * s);
-        f *= smoothstep(0.5 * r, r, D);
+        f *= smoothstep(0.5, 1.0, inside);
+        f = min(f, 1.0 - covered);
         if (f <= 1e-4) continue;
         e += f * casterRadiance(c, -w, s);
         // the sky behind the proxy, blurred over about its cap (half-angle asin s): the
@@ -69,6 +80,5 @@ vec3 casterBounce(vec3 p, vec3 n, int self, out vec3 hiddenSky,
                                     frame.environment.y * sqrt(asin(s) / 1.5707963)).rgb;
         covered += f;
     }
-    covered = min(covered, 1.0);
     return e;
 }

@@ -51,7 +51,7 @@ void main() {
     int k = at.x, c = at.y;
     Instance ci = instances[frame.bounceInstances[c / 4][c % 4]];
     vec3 centre = frame.bounceSpheres[c].xyz;
-    float r = abs(frame.bounceSpheres[c].w); // negative: hidden in another (still lit)
+    float r = frame.bounceSpheres[c].w;
     vec3 e, hidden;
     float covered;
     surfaceSets(c, k, e, hidden, covered);

@@ -40,20 +40,6 @@ bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSett
         data.frame.bounceHalves[i] = glm::vec4(half, 0.0f);
         data.frame.bounceInstances[i / 4][i % 4] = int(casters[i]);
     }
-    // A proxy wholly inside another is hidden by it (a sphere under the cloth draped over it):
-    // its light would reach the receivers through the outer caster. Marked by a negative
-    // radius, which caster_bounce.glsl skips; its capture still lights the caster itself.
-    for (uint32_t i = 0; i < casters.size(); ++i) {
-        const glm::vec4 inner = data.frame.bounceSpheres[i];
-        for (uint32_t j = 0; j < casters.size(); ++j) {
-            const glm::vec4 outer = data.frame.bounceSpheres[j];
-            if (i != j && outer.w > inner.w &&
-                glm::length(glm::vec3(inner) - glm::vec3(outer)) + inner.w <= outer.w) {
-                data.frame.bounceSpheres[i].w = -inner.w;
-                break;
-            }
-        }
-    }
     data.frame.sky.z = 1.0f;
 
     const uint32_t layers = 6 * kMaxProbes;

@@ -41,9 +41,11 @@ W, H, SPP = 128, 96, 512
 #: (BounceProbes) -> after the casters' bounce in two rounds, the sky's reflection, soft sun
 #: shadows and MSAA frames scored -> after the casters' proxies as a floor under the dome's
 #: occlusion with the dome blur over the rest, the sky they hide blurred over their caps, the
-#: casters' glossy reflections of their captures, a proxy inside another hidden -> now (the
-#: bounce captures projected at 15 points over each caster, the casters' light from their
-#: surface's irradiance, a glossy caster's reflection where its ray meets the receivers):
+#: casters' glossy reflections of their captures, a proxy inside another hidden -> the bounce
+#: captures projected at 15 points over each caster, the casters' light from their surface's
+#: irradiance, a glossy caster's reflection where its ray meets the receivers -> now (the
+#: proxies as the ellipsoids of the casters' bounds sharing the solid angle they fill, none
+#: hidden; a caster reflects its capture under the ambient's sky too; cloth only):
 #:   spheres_sky  whole 0.33 -> 0.099 -> 0.077 -> 0.050 -> 0.043 -> 0.037  covered ... -> 0.058
 #:                -> 0.048  objects 0.252 -> 0.199 -> 0.096 -> 0.078 -> 0.072 -> 0.047
 #:                edges ... -> 0.107 -> 0.077 -> 0.063
@@ -51,26 +53,25 @@ W, H, SPP = 128, 96, 512
 #:                -> 0.054  objects 0.297 -> 0.260 -> 0.120 -> 0.093 -> 0.087 -> 0.053
 #:                edges ... -> 0.108 -> 0.091 -> 0.071
 #:                unlit bias -0.40 -> -0.17 -> -0.11 -> -0.107 -> -0.019
-#:   cloth        whole 0.29 -> 0.295 -> 0.081 -> 0.069 -> 0.062 -> 0.062  covered ... -> 0.078
-#:                -> 0.078  objects 0.284 -> 0.125 -> 0.102 -> 0.107 -> 0.095
-#:                edges ... -> 0.138 -> 0.125 -> 0.118
-#:                unlit bias -0.63 -> -0.34 -> -0.21 -> -0.245 -> -0.120 (the sphere under the
-#:                cloth: the light inside a concave caster is not modelled)
+#:   cloth        whole 0.29 -> 0.295 -> 0.081 -> 0.069 -> 0.062 -> 0.062 -> 0.050  covered ...
+#:                -> 0.078 -> 0.078 -> 0.062  objects 0.284 -> 0.125 -> 0.102 -> 0.107 -> 0.095
+#:                -> 0.078  edges ... -> 0.138 -> 0.125 -> 0.118 -> 0.083
+#:                unlit bias -0.63 -> -0.34 -> -0.21 -> -0.245 -> -0.120 -> -0.046
 #:   dome         whole 0.31 -> 0.057 -> 0.045 -> 0.031 -> 0.025 -> 0.025  covered ... -> 0.031
 #:                -> 0.031  objects 0.280 -> 0.227 -> 0.048 -> 0.036 -> 0.039 -> 0.043
 #:                edges ... -> 0.030 -> 0.032 -> 0.030
-#: rel (covered / objects) now: 0.022 / 0.029, 0.027 / 0.032, 0.041 / 0.046, 0.014 / 0.019.
+#: rel (covered / objects) now: 0.022 / 0.029, 0.027 / 0.032, 0.035 / 0.041, 0.014 / 0.019.
 #: The reference's pair noise floor (two seeds) is 0.013-0.037 FLIP. Margin: +25% of the value
 #: (a 128 x 96 frame's FLIP moves by a few % with the reference's noise). The issue's targets
-#: (whole <= 0.04, objects and edges <= 0.08) are met by both sphere scenes and the dome scene,
-#: not by the cloth's.
+#: (whole <= 0.04, objects and edges <= 0.08) are met by both sphere scenes and the dome scene;
+#: the cloth's meets objects, not whole (its reference's own noise floor is 0.028) and edges.
 TOLERANCES = {
     "spheres_sky": {"whole": (0.046, None), "covered": (0.060, 0.028), "objects": (0.059, 0.036),
                     "edges": (0.079, None)},
     "spheres_sun": {"whole": (0.050, None), "covered": (0.068, 0.034), "objects": (0.066, 0.040),
                     "edges": (0.089, None)},
-    "cloth": {"whole": (0.078, None), "covered": (0.098, 0.051), "objects": (0.119, 0.058),
-              "edges": (0.148, None)},
+    "cloth": {"whole": (0.063, None), "covered": (0.078, 0.044), "objects": (0.098, 0.051),
+              "edges": (0.104, None)},
     "dome": {"whole": (0.031, None), "covered": (0.039, 0.018), "objects": (0.054, 0.024),
              "edges": (0.038, None)},
 }
@@ -253,10 +254,10 @@ def test_reference_noise_floor_is_below_the_tolerances(evaluations):
 def test_bounce_light_brings_the_unlit_side_towards_the_path_tracer(evaluations):
     """Where the key light does not reach, the path tracer adds light bounced off the ground.
     Without bounce weft is 41-57% too dark there; the bounce light (the receivers' SH9 captures
-    at 15 points per caster, the casters' proxies, two rounds) takes it to 2-12% (measured
-    -0.019 and -0.120: the spheres meet the target, 10%; the cloth scene needs the light inside
-    a concave caster, which the sphere under the cloth lacks)."""
-    for name, floor in (("spheres_sun", -0.08), ("cloth", -0.15)):
+    at 15 points per caster, the casters' proxies, two rounds, a glossy caster's reflection of
+    its capture) takes it to 2-5% (measured -0.019 and -0.046; the target is 10%; the cloth
+    scene's was -0.120 while the sphere under the cloth reflected only the ambient's sky)."""
+    for name, floor in (("spheres_sun", -0.08), ("cloth", -0.08)):
         e = evaluations[name]
         unlit = e.result["regions"]["unlit"]
         assert floor < unlit["bias"] < 0.05, (name, unlit)
