@@ -17,6 +17,8 @@
 #include <weft/Sky.h>
 #include <weft/SunLight.h>
 
+#include "core/Srgb.h"
+
 namespace weft::app {
 
 namespace {
@@ -69,7 +71,7 @@ TexturePtr grassTexture(int size, glm::vec3& meanAlbedo) {
             for (int k = 0; k < 3; ++k) {
                 p[k] = uint8_t(std::lround(255.0f * c[k]));
                 const float e = float(p[k]) / 255.0f; // sRGB-encoded: decoded when sampled
-                sum[k] += e <= 0.04045f ? e / 12.92f : std::pow((e + 0.055f) / 1.055f, 2.4f);
+                sum[k] += srgbToLinear(e);
             }
             p[3] = 255;
         }

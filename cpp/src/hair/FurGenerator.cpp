@@ -10,16 +10,13 @@
 
 #include <weft/Error.h>
 
+#include "core/Srgb.h"
 #include "core/ThreadPool.h"
 #include "hair/HairRandom.h"
 
 namespace weft {
 
 namespace {
-
-float srgbToLinear(float c) {
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
 
 // Bilinear, repeat, texel centres at (i + 0.5) / size, v = 0 at the top row; linear RGB.
 glm::vec3 sampleTexture(const ImageU8& img, glm::vec2 uv) {
