@@ -29,9 +29,14 @@
 // environment's radiance towards them (blurred over their caps), and `covered`, the
 // cosine-weighted fraction of p's sky they fill. Without a dome the caller takes them away;
 // with one they are a floor under its occlusion (environmentTerms); so a caster never brightens
-// its surroundings by light it also blocks. Proxies that overlap (a sphere under the cloth
-// draped over it) share the solid angle: each fills at most what the ones before it left, so
-// the sky is never covered twice nor lit twice from the same directions.
+// its surroundings by light it also blocks. Proxies whose caps overlap as p sees them (a sphere
+// under the cloth draped over it, two spheres in a row) fill about the union of their caps: a
+// cap gives up its overlap with the largest cap before it (the depth of the two caps' overlap
+// over the smaller's diameter, times the smaller's share), and none fills more than the ones
+// before it left. Summed instead, the cloth and the sphere under it covered the whole sky of
+// the ground at the sphere's foot: under the ambient alone that ground came out at 0.22-0.27
+// of Mitsuba's, at 0.7-1.1 with the union. (The overlap with every cap before, kept in arrays,
+// scored the same and made lavapipe's forward pass 1.33x slower; this one is within noise.)
 // Not counted: what the casters show each other in the captures (one bounce), the caster's
 // texture (its K_D stands for its colour). Included by shading.glsl after the shadow lookups.
 
@@ -53,6 +58,8 @@ vec3 casterBounce(vec3 p, vec3 n, int self, out vec3 hiddenSky,
     // no bounce light in this frame, or a capture
     if (!featureOn(FEATURE_BOUNCE) || frame.sky.z < 0.5) return e;
     bool hideSky = frame.environment.x > 0.0;
+    vec4 big = vec4(0.0); // the largest cap before: direction, half-angle asin(s) ...
+    float bigShare = 0.0; // ... and the share of p's sky it fills alone
     for (int c = 0; c < MAX_BOUNCE_CASTERS; ++c) {
         float r = frame.bounceSpheres[c].w;
         if (r <= 0.0 || c == self) continue;
@@ -67,7 +74,15 @@ vec3 casterBounce(vec3 p, vec3 n, int self, out vec3 hiddenSky,
         if (h <= -s) continue;
         float f = h >= s ? h * s * s : s * s * (h + s) * (h + s) / (4.0 * s);
         f *= smoothstep(0.5, 1.0, inside);
-        f = min(f, 1.0 - covered);
+        float share = f, alpha = asin(s);
+        float apart = acos(clamp(dot(w, big.xyz), -1.0, 1.0));
+        float depth = (alpha + big.w - apart) / (2.0 * min(alpha, big.w) + 1e-6);
+        f -= clamp(depth, 0.0, 1.0) * min(share, bigShare);
+        if (alpha > big.w) {
+            big = vec4(w, alpha);
+            bigShare = share;
+        }
+        f = clamp(f, 0.0, 1.0 - covered);
         if (f <= 1e-4) continue;
         e += f * casterRadiance(c, -w, s);
         // the sky behind the proxy, blurred over about its cap (half-angle asin s): the

@@ -44,34 +44,36 @@ W, H, SPP = 128, 96, 512
 #: casters' glossy reflections of their captures, a proxy inside another hidden -> the bounce
 #: captures projected at 15 points over each caster, the casters' light from their surface's
 #: irradiance, a glossy caster's reflection where its ray meets the receivers -> now (the
-#: proxies as the ellipsoids of the casters' bounds sharing the solid angle they fill, none
-#: hidden; a caster reflects its capture under the ambient's sky too; cloth only):
+#: proxies as the ellipsoids of the casters' bounds filling the union of their caps, none
+#: hidden; a caster reflects its capture under the ambient's sky too):
 #:   spheres_sky  whole 0.33 -> 0.099 -> 0.077 -> 0.050 -> 0.043 -> 0.037  covered ... -> 0.058
 #:                -> 0.048  objects 0.252 -> 0.199 -> 0.096 -> 0.078 -> 0.072 -> 0.047
-#:                edges ... -> 0.107 -> 0.077 -> 0.063
-#:   spheres_sun  whole 0.34 -> 0.118 -> 0.088 -> 0.055 -> 0.049 -> 0.040  covered ... -> 0.066
+#:                edges ... -> 0.107 -> 0.077 -> 0.063 -> 0.068
+#:   spheres_sun  whole 0.34 -> 0.118 -> 0.088 -> 0.055 -> 0.049 -> 0.040 -> 0.041 (0.0369
+#:                against 8192 spp)  covered ... -> 0.066
 #:                -> 0.054  objects 0.297 -> 0.260 -> 0.120 -> 0.093 -> 0.087 -> 0.053
-#:                edges ... -> 0.108 -> 0.091 -> 0.071
+#:                edges ... -> 0.108 -> 0.091 -> 0.071 -> 0.073
 #:                unlit bias -0.40 -> -0.17 -> -0.11 -> -0.107 -> -0.019
-#:   cloth        whole 0.29 -> 0.295 -> 0.081 -> 0.069 -> 0.062 -> 0.062 -> 0.050  covered ...
-#:                -> 0.078 -> 0.078 -> 0.062  objects 0.284 -> 0.125 -> 0.102 -> 0.107 -> 0.095
-#:                -> 0.078  edges ... -> 0.138 -> 0.125 -> 0.118 -> 0.083
-#:                unlit bias -0.63 -> -0.34 -> -0.21 -> -0.245 -> -0.120 -> -0.046
+#:   cloth        whole 0.29 -> 0.295 -> 0.081 -> 0.069 -> 0.062 -> 0.062 -> 0.048  covered ...
+#:                -> 0.078 -> 0.078 -> 0.060  objects 0.284 -> 0.125 -> 0.102 -> 0.107 -> 0.095
+#:                -> 0.081  edges ... -> 0.138 -> 0.125 -> 0.118 -> 0.082
+#:                unlit bias -0.63 -> -0.34 -> -0.21 -> -0.245 -> -0.120 -> -0.048
 #:   dome         whole 0.31 -> 0.057 -> 0.045 -> 0.031 -> 0.025 -> 0.025  covered ... -> 0.031
 #:                -> 0.031  objects 0.280 -> 0.227 -> 0.048 -> 0.036 -> 0.039 -> 0.043
 #:                edges ... -> 0.030 -> 0.032 -> 0.030
 #: rel (covered / objects) now: 0.022 / 0.029, 0.027 / 0.032, 0.035 / 0.041, 0.014 / 0.019.
 #: The reference's pair noise floor (two seeds) is 0.013-0.037 FLIP. Margin: +25% of the value
 #: (a 128 x 96 frame's FLIP moves by a few % with the reference's noise). The issue's targets
-#: (whole <= 0.04, objects and edges <= 0.08) are met by both sphere scenes and the dome scene;
-#: the cloth's meets objects, not whole (its reference's own noise floor is 0.028) and edges.
+#: (whole <= 0.04, objects and edges <= 0.08) are met by the sphere scenes (the sun's whole at
+#: 0.041 against this reference, 0.037 against 8192 spp) and the dome scene; not by the
+#: cloth's (its reference's own noise floor is 0.028 whole).
 TOLERANCES = {
     "spheres_sky": {"whole": (0.046, None), "covered": (0.060, 0.028), "objects": (0.059, 0.036),
                     "edges": (0.079, None)},
     "spheres_sun": {"whole": (0.050, None), "covered": (0.068, 0.034), "objects": (0.066, 0.040),
                     "edges": (0.089, None)},
-    "cloth": {"whole": (0.063, None), "covered": (0.078, 0.044), "objects": (0.098, 0.051),
-              "edges": (0.104, None)},
+    "cloth": {"whole": (0.060, None), "covered": (0.075, 0.044), "objects": (0.101, 0.051),
+              "edges": (0.103, None)},
     "dome": {"whole": (0.031, None), "covered": (0.039, 0.018), "objects": (0.054, 0.024),
              "edges": (0.038, None)},
 }
@@ -255,7 +257,7 @@ def test_bounce_light_brings_the_unlit_side_towards_the_path_tracer(evaluations)
     """Where the key light does not reach, the path tracer adds light bounced off the ground.
     Without bounce weft is 41-57% too dark there; the bounce light (the receivers' SH9 captures
     at 15 points per caster, the casters' proxies, two rounds, a glossy caster's reflection of
-    its capture) takes it to 2-5% (measured -0.019 and -0.046; the target is 10%; the cloth
+    its capture) takes it to 2-5% (measured -0.017 and -0.048; the target is 10%; the cloth
     scene's was -0.120 while the sphere under the cloth reflected only the ambient's sky)."""
     for name, floor in (("spheres_sun", -0.08), ("cloth", -0.08)):
         e = evaluations[name]
@@ -264,6 +266,31 @@ def test_bounce_light_brings_the_unlit_side_towards_the_path_tracer(evaluations)
         ref = scenes.build(name)
         without = ev.evaluate(ref, weft.Renderer(W, H, bounce=False), SPP, reference=e.reference)
         assert without.result["regions"]["unlit"]["bias"] < unlit["bias"] - 0.2, name
+
+def test_the_ground_at_a_draped_sphere_s_foot_under_the_ambient_alone(renderer):
+    """The cloth scene with its sun off: the constant ambient (a uniform sky) alone. Where the
+    sphere under the cloth meets the ground, the sky is hidden by the sphere and the cloth's
+    overhang together, each covering much of what the other does. Summing their proxies'
+    cover left that ground no sky: 0.22-0.27 of Mitsuba's there, whole FLIP 0.046; with their
+    caps' union 0.79 over the darkest ground (0.7-1.1 per pixel against 8192 spp) and 0.029."""
+    ref = scenes.build("cloth")
+    light = ref.scene.lights[0]
+    light.intensity = 0.0
+    ref.scene.set_light(0, light)
+    e = ev.evaluate(ref, renderer, SPP)
+    regions = e.result["regions"]
+    assert regions["whole"]["flip"] < 0.04, regions["whole"]
+    luma = np.array([0.2126, 0.7152, 0.0722])
+    weft_y, truth_y = e.weft_linear @ luma, e.reference @ luma
+    ground = e.debug["instance"] == 0
+    ground &= e.debug["mask"] & ~e.regions["edges"]
+    open_sky = np.median(truth_y[ground])
+    contact = ground & (truth_y < 0.5 * open_sky)  # the darkest ground: at the sphere's foot
+    assert contact.sum() > 30
+    ratio = weft_y[contact].sum() / truth_y[contact].sum()
+    assert 0.7 < ratio < 1.3, ratio
+    assert abs(weft_y[ground].sum() / truth_y[ground].sum() - 1.0) < 0.05
+
 
 # ---------------------------------------------------------------------------------------------
 # Anti-aliasing reference
