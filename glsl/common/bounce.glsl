@@ -14,7 +14,10 @@ layout(set = 0, binding = 17) uniform sampler2DArray bounceDepth;
 
 // The instance's bounce capture, or -1 (none, or a frame without bounce light).
 int bounceProbe(Instance ins) {
-    return featureOn(FEATURE_BOUNCE) && frame.sky.z > 0.5 ? int(ins.flags.y) - 1 : -1;
+    return (kMaterialFlags & BOUNCE_CAPTURE) != 0u && featureOn(FEATURE_BOUNCE) &&
+                   frame.sky.z > 0.5
+               ? int(ins.flags.y) - 1
+               : -1;
 }
 
 // SH9 basis at unit n, each band scaled by w (x: l = 0, y: l = 1, z: l = 2).

@@ -120,7 +120,7 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
                  if (d.mesh->indexCount == 0) continue; // e.g. a cloth torn to pieces
                  const VkPipeline p =
                      f.pipes.forwardFor(f.debug, f.domeBlur, d.mirrored, d.twoSided, f.samples,
-                                        features, f.data.instances[d.instance].flags.x);
+                                        features, materialFeatures(f.data, d.instance));
                  if (p != bound) {
                      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
                      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,

@@ -216,4 +216,9 @@ uint32_t frameFeatures(const FrameData& data) {
            (data.frame.sky.z > 0.5f ? gpu::FEATURE_BOUNCE : 0u) | data.lightFeatures;
 }
 
+uint32_t materialFeatures(const FrameData& data, uint32_t instance) {
+    const GpuInstance& i = data.instances[instance];
+    return i.flags.x | (i.flags.y != 0u ? gpu::BOUNCE_CAPTURE : 0u);
+}
+
 } // namespace weft::render

@@ -56,4 +56,8 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
 /// specialization of the pipelines that shade it (frame.glsl, kFrameFeatures).
 uint32_t frameFeatures(const FrameData& data);
 
+/// The material bits of instance `instance` that specialize the pipelines drawing it (frame.glsl,
+/// kMaterialFlags): its Instance::flags.x, plus gpu::BOUNCE_CAPTURE where it has a capture.
+uint32_t materialFeatures(const FrameData& data, uint32_t instance);
+
 } // namespace weft::render

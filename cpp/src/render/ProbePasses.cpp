@@ -34,7 +34,7 @@ void drawCaptureFace(const FramePassContext& f, VkCommandBuffer cmd, VkImageView
         if (d.mesh->indexCount == 0 || d.phantom || !include(d, arg)) continue;
         // cube faces mirror the view: the winding flips
         const VkPipeline p = f.pipes.forwardFor(false, false, !d.mirrored, d.twoSided, 1, features,
-                                                f.data.instances[d.instance].flags.x);
+                                                materialFeatures(f.data, d.instance));
         if (p != bound) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.sceneLayout, 0, 1,

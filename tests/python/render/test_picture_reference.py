@@ -56,8 +56,8 @@ W, H, SPP = 128, 96, 512
 #:                unlit bias -0.40 -> -0.17 -> -0.11 -> -0.107 -> -0.019
 #:   cloth        whole 0.29 -> 0.295 -> 0.081 -> 0.069 -> 0.062 -> 0.062 -> 0.048  covered ...
 #:                -> 0.078 -> 0.078 -> 0.060  objects 0.284 -> 0.125 -> 0.102 -> 0.107 -> 0.095
-#:                -> 0.081  edges ... -> 0.138 -> 0.125 -> 0.118 -> 0.082
-#:                unlit bias -0.63 -> -0.34 -> -0.21 -> -0.245 -> -0.120 -> -0.048
+#:                -> 0.081  edges ... -> 0.138 -> 0.125 -> 0.118 -> 0.079
+#:                unlit bias -0.63 -> -0.34 -> -0.21 -> -0.245 -> -0.120 -> -0.026
 #:   dome         whole 0.31 -> 0.057 -> 0.045 -> 0.031 -> 0.025 -> 0.025  covered ... -> 0.031
 #:                -> 0.031  objects 0.280 -> 0.227 -> 0.048 -> 0.036 -> 0.039 -> 0.043
 #:                edges ... -> 0.030 -> 0.032 -> 0.030
@@ -66,14 +66,14 @@ W, H, SPP = 128, 96, 512
 #: (a 128 x 96 frame's FLIP moves by a few % with the reference's noise). The issue's targets
 #: (whole <= 0.04, objects and edges <= 0.08) are met by the sphere scenes (the sun's whole at
 #: 0.041 against this reference, 0.037 against 8192 spp) and the dome scene; not by the
-#: cloth's (its reference's own noise floor is 0.028 whole).
+#: cloth's whole and objects (its reference's own noise floor is 0.028 whole).
 TOLERANCES = {
     "spheres_sky": {"whole": (0.046, None), "covered": (0.060, 0.028), "objects": (0.059, 0.036),
                     "edges": (0.079, None)},
     "spheres_sun": {"whole": (0.050, None), "covered": (0.068, 0.034), "objects": (0.066, 0.040),
                     "edges": (0.089, None)},
     "cloth": {"whole": (0.060, None), "covered": (0.075, 0.044), "objects": (0.101, 0.051),
-              "edges": (0.103, None)},
+              "edges": (0.099, None)},
     "dome": {"whole": (0.031, None), "covered": (0.039, 0.018), "objects": (0.054, 0.024),
              "edges": (0.038, None)},
 }
@@ -257,7 +257,7 @@ def test_bounce_light_brings_the_unlit_side_towards_the_path_tracer(evaluations)
     """Where the key light does not reach, the path tracer adds light bounced off the ground.
     Without bounce weft is 41-57% too dark there; the bounce light (the receivers' SH9 captures
     at 15 points per caster, the casters' proxies, two rounds, a glossy caster's reflection of
-    its capture) takes it to 2-5% (measured -0.017 and -0.048; the target is 10%; the cloth
+    its capture) takes it to 2-3% (measured -0.017 and -0.026; the target is 10%; the cloth
     scene's was -0.120 while the sphere under the cloth reflected only the ambient's sky)."""
     for name, floor in (("spheres_sun", -0.08), ("cloth", -0.08)):
         e = evaluations[name]
