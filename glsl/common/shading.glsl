@@ -362,9 +362,9 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
             // occluded by the dome (the receivers are not its sky). Without it the sphere under
             // the draped cloth was 12% too dark on its unlit side against Mitsuba (with a
             // Lambertian sphere both agree to 0.2%): it reflects the sunlit ground. Blended
-            // towards the capture's SH9 by the roughness, as environmentTerms does, it scored a
-            // little worse on that scene (edges FLIP 0.079 against 0.076) and made lavapipe's
-            // forward pass 4% longer.
+            // towards the capture's SH9 by the roughness it scored a little worse on that
+            // scene (edges FLIP 0.079 against 0.076) and made lavapipe's forward pass 4%
+            // longer (environmentTerms reflects it alike under an environment).
             if (bp >= 0) {
                 vec4 c = bounceFace(bp, bounceHitDirection(bp, p, reflect(-v, n)));
                 sh.skySpecular *= 1.0 - clamp(c.a, 0.0, 1.0);
