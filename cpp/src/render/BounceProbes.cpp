@@ -34,8 +34,9 @@ bool BounceProbes::prepare(const Scene& scene, FrameData& data, const RenderSett
         mPositions.push_back(centre);
         mHalves.push_back(half);
         data.instances[casters[i]].flags.y = i + 1;
-        // the proxy sphere whose light the others receive: the RMS of the half extents is the
-        // radius of a sphere (exact) and a middle measure of a flat or long caster
+        // the proxy whose light the others receive is the ellipsoid of the bounds (the half
+        // extents, caster_bounce.glsl); its radius, the RMS of the half extents (a sphere's
+        // exactly), places the lit pole bounce_radiance.frag tests the lights' shadows at
         data.frame.bounceSpheres[i] = glm::vec4(centre, std::sqrt(glm::dot(half, half) / 3.0f));
         data.frame.bounceHalves[i] = glm::vec4(half, 0.0f);
         data.frame.bounceInstances[i / 4][i % 4] = int(casters[i]);
