@@ -28,6 +28,8 @@ layout(location = 2) out vec2 outDomeAux;
 
 void main() {
     Instance ins = instances[push.instance];
+    pixelDx = dFdx(inWorldPos); // before any discard: derivatives need the whole quad
+    pixelDy = dFdy(inWorldPos);
     if (alphaDiscarded(inUv, ins)) discard;
     float vis, depth;
 #ifdef DOME_OUTPUT

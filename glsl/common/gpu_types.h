@@ -80,7 +80,7 @@ WEFT_CONST(uint, BOUNCE_CAPTURE, 4096u);
 WEFT_CONST(uint, MATERIAL_ALL, 8191u);
 // Frame features, specialization constant 0 of the forward shader (frame.glsl, kFrameFeatures)
 WEFT_CONST(uint, FEATURE_ENVIRONMENT, 1u);  // an environment, or a dynamic-reflection capture
-WEFT_CONST(uint, FEATURE_AMBIENT_DOME, 2u); // the ambient read as a sky behind dome shadows
+WEFT_CONST(uint, FEATURE_AMBIENT_SKY, 2u);  // the ambient read as a uniform sky (Frame.ambient.w)
 WEFT_CONST(uint, FEATURE_BOUNCE, 4u);       // bounce light (Frame.sky.z)
 WEFT_CONST(uint, FEATURE_COOKIES, 8u);      // a spot light with a cookie
 // FEATURE_LIGHT_GROUP << g: the frame has lights of group g (LIGHT_GROUP_*)
@@ -132,7 +132,7 @@ struct Instance {
 struct Frame {
     mat4 viewProj;
     vec4 cameraPos;
-    vec4 ambient;
+    vec4 ambient;  // rgb: I_A, w: 1 where it reads as a uniform sky (FEATURE_AMBIENT_SKY)
     vec4 background;
     vec4 bias;     // x: constant, y: slope, z: max (units of the light's depth range)
     ivec4 counts;  // x: lights, y: PCF radius, z: shadow-map size, w: debug light or -1

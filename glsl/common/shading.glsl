@@ -92,6 +92,19 @@ bool lightShadowed(int g) {
            g == LIGHT_GROUP_POINT_SHADOWED || g == LIGHT_GROUP_SPOT_SHADOWED;
 }
 
+// The pixel's footprint on the surface being shaded: the world-space change of its position
+// from one pixel to the next, across (pixelDx) and down (pixelDy). The forward pass sets them
+// (forward_main.glsl); shaders without pixels (the hair's lighting, the bounce captures) leave
+// them zero.
+vec3 pixelDx = vec3(0.0), pixelDy = vec3(0.0);
+
+// The step d (world) from q in shadow layer s as (uv, NDC depth), ndc being q's own.
+vec3 shadowFootprint(ShadowLayer s, vec3 q, vec3 d, vec3 ndc) {
+    vec4 c = s.viewProj * vec4(q + d, 1.0);
+    vec3 e = c.xyz / c.w - ndc;
+    return vec3(0.5 * e.xy, e.z);
+}
+
 // Fraction of the shadow taps of light L (group g, shadowed) that see the light from p.
 // `lightDepth` returns the receiver's NDC depth in the layer used. With g a constant (the
 // group loops of forEachLight) the other groups' tests are compiled out.
@@ -123,6 +136,35 @@ float shadowVisibility(Light L, int g, vec3 p, vec3 n, vec3 l, out float lightDe
                                  : z - bias;
     int size = frame.counts.z;
     int r = frame.counts.y;
+    // Where a pixel covers more of the map than the kernel (a distant or small frame), its
+    // (2r + 1)^2 taps sample the pixel's footprint instead, each against its own depth on the
+    // receiver's plane (never deeper than the centre's): the shadow's edge is then filtered over
+    // the pixel, as the image's other edges are by MSAA, instead of stair-stepping and
+    // flickering at the pixel scale (pixelDx / pixelDy, set by the forward pass; zero
+    // elsewhere, which keeps the kernel). The taps span the central half of the pixel: the
+    // plane is a poor guess across a whole pixel of a folded cloth, whose folds then shadowed
+    // themselves. Cloth scene against Mitsuba (128 x 96, 4096 spp), FLIP whole / objects /
+    // edges: 0.0445 / 0.0791 / 0.0762 with the kernel, 0.0438 / 0.0779 / 0.0746 with this (the
+    // whole pixel: 0.0437 / 0.0803 / 0.0746).
+    vec3 fx = shadowFootprint(s, q, pixelDx, ndc), fy = shadowFootprint(s, q, pixelDy, ndc);
+    float kernel = float(2 * r + 1);
+    if (max(length(fx.xy), length(fy.xy)) * float(size) > kernel) {
+        float lit = 0.0;
+        for (int j = -r; j <= r; ++j) {
+            for (int i = -r; i <= r; ++i) {
+                vec2 ab = 0.5 * vec2(i, j) / kernel; // an N x N grid on the pixel's centre
+                vec3 t = vec3(uv, ndc.z) + ab.x * fx + ab.y * fy;
+                float zt = min(min(t.z, ndc.z), 1.0);
+                float rt = perspective ? linearShadowDepth(zt, s.params.z, s.params.w) -
+                                             bias * (s.params.w - s.params.z)
+                                       : zt - bias;
+                float stored = shadowDepth(t.xy, layer, size);
+                if (perspective) stored = linearShadowDepth(stored, s.params.z, s.params.w);
+                lit += (rt <= stored) ? 1.0 : 0.0;
+            }
+        }
+        return lit / (kernel * kernel);
+    }
     ivec2 texel = ivec2(floor(uv * float(size)));
     float lit = 0.0;
     for (int dy = -r; dy <= r; ++dy) {
@@ -312,6 +354,22 @@ void shadeLight(int i, int g, Surface sf, Instance ins, vec3 v, inout Shading sh
     }
 }
 
+// A sky reflects as well as lights: the ambient's uniform sky reflected, I_A DFG(n.v), with the
+// split-sum DFG of Karis 2014 ("Physically based shading on mobile", its analytic fit); `dfg`
+// returns that weight. F0: the reflectivity, else what the highlight reflects of a uniform sky
+// at normal view, K_S 8 / (s + 2) (its lobe's integral).
+vec3 skyReflection(Surface sf, Instance ins, float ndv, out vec3 dfg) {
+    vec3 f0 = any(greaterThan(ins.environment.rgb, vec3(0.0)))
+                  ? ins.environment.rgb : sf.ks * (8.0 / (sf.shininess + 2.0));
+    float roughness = environmentRoughness(sf.shininess);
+    vec4 r = roughness * vec4(-1.0, -0.0275, -0.572, 0.022) + vec4(1.0, 0.0425, 1.04, -0.04);
+    float a004 = min(r.x * r.x, exp2(-9.28 * ndv)) * r.x + r.y;
+    vec2 ab = vec2(-1.04, 1.04) * a004 + r.zw;
+    // a matte surface has no lobe to reflect with
+    dfg = any(greaterThan(f0, vec3(0.0))) ? f0 * ab.x + ab.y : vec3(0.0);
+    return sf.ambient * dfg;
+}
+
 // `debugVis`/`debugDepth` report the debug light's shadow test.
 Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth) {
     vec3 p = sf.p, n = sf.n;
@@ -328,53 +386,41 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     sh.ambientVisibility = sh.ambientFloor = sh.ambientFloorLinear = 1.0;
     sh.ambientOccluded = sh.ambientRho = 0.0;
     float ndv = clamp(dot(n, v), 0.0, 1.0);
-    vec3 receiverSpecular = vec3(0.0);
+    vec3 dfg = vec3(0.0);
     // The casters' light (caster_bounce.glsl) and what their proxies cover of p's sky
     int bp = bounceProbe(ins);
     float casterCovered;
     vec3 hiddenSky;
     sh.bounce = casterBounce(p, n, bp, hiddenSky, casterCovered) * ins.kd.rgb * sf.T;
-    if (featureOn(FEATURE_AMBIENT_DOME) && frame.sky.w > 0.5) {
-        // the proxies' cover is a floor under the dome's occlusion (see environmentTerms)
-        float f = 1.0 - casterCovered;
-        float o = dot(domeOccluded(p, n), vec3(0.2126, 0.7152, 0.0722));
-        float rho = clamp(dot(ins.kd.rgb * sf.T, vec3(0.2126, 0.7152, 0.0722)), 0.0, 1.0);
-        sh.ambientVisibility = multiBounceVisibility(clamp(1.0 - o, 0.0, f), rho);
-        sh.ambientFloor = multiBounceVisibility(f, rho);
-        sh.ambientFloorLinear = f;
-        sh.ambientOccluded = o;
-        sh.ambientRho = rho;
-        // A sky reflects as well as lights: the sky's specular reflection I_A DFG(n.v), with
-        // the split-sum DFG of Karis 2014 ("Physically based shading on mobile", its analytic
-        // fit), occluded as its diffuse light. F0: the reflectivity, else what the highlight
-        // reflects of a uniform sky at normal view, K_S 8 / (s + 2) (its lobe's integral).
-        vec3 f0 = any(greaterThan(ins.environment.rgb, vec3(0.0)))
-                      ? ins.environment.rgb : sf.ks * (8.0 / (sf.shininess + 2.0));
-        float roughness = environmentRoughness(sf.shininess);
-        vec4 r = roughness * vec4(-1.0, -0.0275, -0.572, 0.022) + vec4(1.0, 0.0425, 1.04, -0.04);
-        float a004 = min(r.x * r.x, exp2(-9.28 * ndv)) * r.x + r.y;
-        vec2 ab = vec2(-1.04, 1.04) * a004 + r.zw;
-        if (any(greaterThan(f0, vec3(0.0)))) { // a matte surface has no lobe to reflect with
-            vec3 dfg = f0 * ab.x + ab.y;
-            sh.skySpecular = sf.ambient * dfg;
-            // A caster reflects the receivers where its bounce capture has them, in place of
-            // the sky they hide: the capture's texel where the reflected ray meets them. Not
-            // occluded by the dome (the receivers are not its sky). Without it the sphere under
-            // the draped cloth was 12% too dark on its unlit side against Mitsuba (with a
-            // Lambertian sphere both agree to 0.2%): it reflects the sunlit ground. Blended
-            // towards the capture's SH9 by the roughness it scored a little worse on that
-            // scene (edges FLIP 0.079 against 0.076) and made lavapipe's forward pass 4%
-            // longer (environmentTerms reflects it alike under an environment).
-            if (bp >= 0) {
-                vec4 c = bounceFace(bp, bounceHitDirection(bp, p, reflect(-v, n)));
-                sh.skySpecular *= 1.0 - clamp(c.a, 0.0, 1.0);
-                receiverSpecular = dfg * c.rgb;
-            }
+    if (featureOn(FEATURE_AMBIENT_SKY) && frame.ambient.w > 0.5) {
+        sh.skySpecular = skyReflection(sf, ins, ndv, dfg);
+        if (frame.sky.w > 0.5) { // a dome occludes the sky
+            // the proxies' cover is a floor under the dome's occlusion (see environmentTerms)
+            float f = 1.0 - casterCovered;
+            float o = dot(domeOccluded(p, n), vec3(0.2126, 0.7152, 0.0722));
+            float rho = clamp(dot(ins.kd.rgb * sf.T, vec3(0.2126, 0.7152, 0.0722)), 0.0, 1.0);
+            sh.ambientVisibility = multiBounceVisibility(clamp(1.0 - o, 0.0, f), rho);
+            sh.ambientFloor = multiBounceVisibility(f, rho);
+            sh.ambientFloorLinear = f;
+            sh.ambientOccluded = o;
+            sh.ambientRho = rho;
+        }
+        // A caster reflects the receivers where its bounce capture has them, in place of the
+        // sky they hide: the capture's texel where the reflected ray meets them. Not occluded
+        // by the dome (the receivers are not its sky). Without it the sphere under the draped
+        // cloth was 12% too dark on its unlit side against Mitsuba (with a Lambertian sphere
+        // both agree to 0.2%): it reflects the sunlit ground. Blended towards the capture's SH9
+        // by the roughness it scored a little worse on that scene (edges FLIP 0.079 against
+        // 0.076) and made lavapipe's forward pass 4% longer (environmentTerms reflects it alike
+        // under an environment).
+        if (bp >= 0 && any(greaterThan(dfg, vec3(0.0)))) {
+            vec4 c = bounceFace(bp, bounceHitDirection(bp, p, reflect(-v, n)));
+            sh.skySpecular *= 1.0 - clamp(c.a, 0.0, 1.0);
+            sh.specular = dfg * c.rgb;
         }
     }
     debugVis = 1.0;
     debugDepth = 0.0;
-    sh.specular = receiverSpecular;
 #define SHADE_LIGHT(I, G) shadeLight(I, G, sf, ins, v, sh, debugVis, debugDepth)
     forEachLight(SHADE_LIGHT)
 #undef SHADE_LIGHT
@@ -409,7 +455,8 @@ vec3 shadedColor(Shading sh, Instance ins, out vec4 dome, out vec2 domeAux) {
     bool phantom = hasFlag(ins, PHANTOM);
     vec3 domed = ambientDome ? sh.ambient + (phantom ? vec3(0.0) : sh.skySpecular) : e.diffuse;
     vec3 domedLit = ambientDome ? domed * sh.ambientVisibility : e.diffuseLit;
-    vec3 direct = (ambientDome ? e.diffuseLit : sh.ambient) + sh.diffuse + sh.bounce;
+    vec3 direct = (ambientDome ? e.diffuseLit : sh.ambient + (phantom ? vec3(0.0) : sh.skySpecular)) +
+                  sh.diffuse + sh.bounce;
     // the blur pass gets the dome's rest over the proxies' floor, which is exact and noise-free
     // where it applies (a contact shadow kept sharp)
     float floorVisibility = ambientDome ? sh.ambientFloor : e.floorVisibility;

@@ -196,7 +196,12 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
     g.inverseViewProj = glm::inverse(g.viewProj);
     g.cameraPos = glm::vec4(camera.position, 1);
     g.view = camera.view();
-    g.ambient = glm::vec4(scene.ambient(), 0);
+    // w: the ambient reads as a uniform sky, which reflects (and a dome occludes where something
+    // casts a shadow, DomeShadows): ambient occlusion on and no environment to stand for the sky
+    const glm::vec3 ambient = scene.ambient();
+    const bool ambientSky = settings.ambientOcclusion > 0 && !scene.environment().environment &&
+                            glm::max(ambient.x, glm::max(ambient.y, ambient.z)) > 0.0f;
+    g.ambient = glm::vec4(ambient, ambientSky ? 1.0f : 0.0f);
     g.background = glm::vec4(scene.background(), 1);
     g.bias = glm::vec4(settings.biasConstant, settings.biasSlope, settings.biasMax, 0);
     // The debug shadow channel reports the first light with a shadow map.
@@ -212,7 +217,7 @@ uint32_t frameFeatures(const FrameData& data) {
     for (const GpuInstance& i : data.instances)
         reflection = reflection || (i.flags.x & gpu::DYNAMIC_REFLECTION) != 0u;
     return (data.frame.environment.x > 0.0f || reflection ? gpu::FEATURE_ENVIRONMENT : 0u) |
-           (data.frame.sky.w > 0.5f ? gpu::FEATURE_AMBIENT_DOME : 0u) |
+           (data.frame.ambient.w > 0.5f ? gpu::FEATURE_AMBIENT_SKY : 0u) |
            (data.frame.sky.z > 0.5f ? gpu::FEATURE_BOUNCE : 0u) | data.lightFeatures;
 }
 

@@ -77,6 +77,10 @@ def shadow_lookup(position: np.ndarray, normal: np.ndarray, light: Any,
                       lin(z) = near far / (far - z (far - near))
         visibility = fraction of lit taps among the (2r+1)^2 texels around
                      (floor(u S), floor(v S)) (clamped to the map)
+
+    That is the forward pass's test where a pixel covers at most 2r+1 texels of the map; where
+    it covers more, the pass spreads the same taps over the pixel's footprint instead (from the
+    position's screen derivatives, which a receiver list does not have; shading.glsl).
     """
     p = np.asarray(position, dtype=np.float64)
     n = np.asarray(normal, dtype=np.float64)
