@@ -10,6 +10,19 @@
 #include "ValueProperty.h"
 
 namespace weft::py_bind {
+namespace {
+
+const char* const kHighlights[] = {"blinn_phong", "ggx"};
+
+std::string highlightName(Highlight h) { return kHighlights[int(h)]; }
+
+Highlight highlightOf(const std::string& name) {
+    for (int i = 0; i < 2; ++i)
+        if (name == kHighlights[i]) return Highlight(i);
+    throw InvalidArgument("Material.highlight must be 'blinn_phong' or 'ggx' (got '" + name + "')");
+}
+
+} // namespace
 
 void bindMaterial(py::module_& m) {
     py::class_<Texture, std::shared_ptr<Texture>>(
@@ -46,14 +59,16 @@ void bindMaterial(py::module_& m) {
         "(128, 128, 255) flat); specular_map: its RGB multiplies ks; alpha_cutoff > 0 discards\n"
         "fragments whose base-texture alpha is below it, in the image and the shadow maps;\n"
         "ambient_map (linear) replaces the scene's ambient per texel; specular_vertex_normal\n"
-        "evaluates the highlight with the unmapped normal (BTF n_s = (0, 0, 1), eq. 4.30).")
+        "evaluates the highlight with the unmapped normal (BTF n_s = (0, 0, 1), eq. 4.30);\n"
+        "highlight: 'blinn_phong' (the seed's K_S (n.h)^s) or 'ggx' (the GGX lobe of the\n"
+        "environment reflection, F0 = reflectivity or 8 ks / (shininess + 2)).")
         .def(py::init([](py::handle ka, py::handle kd, py::handle ks, float shininess,
                          py::handle baseColor, std::shared_ptr<Texture> texture,
                          std::shared_ptr<Texture> normalMap, std::shared_ptr<Texture> specularMap,
                          float alphaCutoff, std::shared_ptr<Texture> ambientMap,
                          bool specularVertexNormal, bool twoSided, py::handle reflectivity,
                          float environmentDiffuse, bool dynamicReflection, bool glossInAlpha,
-                         bool phantom) {
+                         bool phantom, const std::string& highlight) {
                  Material mat;
                  mat.ka = toVec3(ka, "ka");
                  mat.kd = toVec3(kd, "kd");
@@ -72,6 +87,7 @@ void bindMaterial(py::module_& m) {
                  mat.dynamicReflection = dynamicReflection;
                  mat.glossInAlpha = glossInAlpha;
                  mat.phantom = phantom;
+                 mat.highlight = highlightOf(highlight);
                  mat.validate();
                  return mat;
              }),
@@ -84,6 +100,7 @@ void bindMaterial(py::module_& m) {
              py::arg("reflectivity") = py::make_tuple(0, 0, 0),
              py::arg("environment_diffuse") = 0.0f, py::arg("dynamic_reflection") = false,
              py::arg("gloss_in_alpha") = false, py::arg("phantom") = false,
+             py::arg("highlight") = highlightName(Material{}.highlight),
              "A material with the coefficients, textures and flags the class description lists "
              "(colours as RGB triples in [0, 1] or more).")
         .WEFT_VEC3_PROPERTY(Material, "ka", ka)
@@ -138,6 +155,13 @@ void bindMaterial(py::module_& m) {
             [](Material& x, bool v) { setChecked(x, [&](Material& y) { y.phantom = v; }); },
             "A stand-in for a real object (AR): shows the background image times the\n"
             "shadows it receives (lit / unshadowed diffuse light), nothing else.")
+        .def_property(
+            "highlight", [](const Material& x) { return highlightName(x.highlight); },
+            [](Material& x, const std::string& v) { x.highlight = highlightOf(v); },
+            "The highlight's lobe under the lights: 'blinn_phong' (the seed's K_S (n.h)^s,\n"
+            "unnormalised) or 'ggx' (the environment reflection's GGX lobe of alpha =\n"
+            "sqrt(2 / (shininess + 2)), Smith masking, Schlick's Fresnel of F0 = reflectivity\n"
+            "or else 8 ks / (shininess + 2)), so a light and an environment's sun agree.")
         .def_property(
             "alpha_cutoff", [](const Material& x) { return x.alphaCutoff; },
             [](Material& x, float v) { setChecked(x, [&](Material& y) { y.alphaCutoff = v; }); })

@@ -72,12 +72,13 @@ WEFT_CONST(uint, DYNAMIC_REFLECTION, 256u);   // reflects the dynamic capture
 WEFT_CONST(uint, MAP_BASE, 512u);             // a base texture (else white)
 WEFT_CONST(uint, MAP_SPECULAR, 1024u);        // a specular map (else white)
 WEFT_CONST(uint, ALPHA_TEST, 2048u);          // alpha cutoff > 0 (ka.w)
+WEFT_CONST(uint, HIGHLIGHT_GGX, 4096u);       // the highlight is GGX (Material::highlight)
 // Not a bit of flags.x: the instance has a bounce capture (flags.y > 0). Only its pipelines
 // hold the code that reads one (a receiver's fragments ran the glossy casters' capture lookups
 // under a mask: the cloth scene's forward pass 1.5x as long; materialFeatures in FrameData.h)
-WEFT_CONST(uint, BOUNCE_CAPTURE, 4096u);
+WEFT_CONST(uint, BOUNCE_CAPTURE, 8192u);
 // the bits above: specialization constant 1 of the forward shader (frame.glsl, kMaterialFlags)
-WEFT_CONST(uint, MATERIAL_ALL, 8191u);
+WEFT_CONST(uint, MATERIAL_ALL, 16383u);
 // Frame features, specialization constant 0 of the forward shader (frame.glsl, kFrameFeatures)
 WEFT_CONST(uint, FEATURE_ENVIRONMENT, 1u);  // an environment, or a dynamic-reflection capture
 WEFT_CONST(uint, FEATURE_AMBIENT_SKY, 2u);  // the ambient read as a uniform sky (Frame.ambient.w)

@@ -329,6 +329,45 @@ struct Shading {
     EnvironmentTerms environment;
 };
 
+// F0 of the material's GGX coat (Material::highlight, skyReflection): the reflectivity, else
+// 8 K_S / (s + 2), the F0 whose highlight peak at normal incidence is the Blinn-Phong one's K_S
+// (and whose lobe reflects K_S 8 / (s + 2) of a uniform sky at normal view).
+vec3 coatF0(Surface sf, Instance ins) {
+    return any(greaterThan(ins.environment.rgb, vec3(0.0))) ? ins.environment.rgb
+                                                            : sf.ks * (8.0 / (sf.shininess + 2.0));
+}
+
+// The unpolarised Fresnel reflectance at cos c of the dielectric whose normal-incidence
+// reflectance is f0 (relative IOR eta = (1 + sqrt f0) / (1 - sqrt f0), f0 < 1); Walter et al.
+// 2007, eq. 22. Schlick's approximation is ~20% low at 60 degrees for f0 = 0.04.
+vec3 dielectricFresnel(float c, vec3 f0) {
+    vec3 r = sqrt(clamp(f0, 0.0, 0.999));
+    vec3 eta = (1.0 + r) / (1.0 - r);
+    vec3 g = sqrt(eta * eta - 1.0 + c * c);
+    vec3 a = (g - c) / (g + c), b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    return 0.5 * a * a * (1.0 + b * b);
+}
+
+// The highlight of a light of radiance 1 from l, seen from v: the seed's K_S (n.h)^s, or with
+// HIGHLIGHT_GGX the GGX lobe of the environment reflection (Material.h Highlight::Ggx):
+// pi (n.l) F D G / (4 (n.l)(n.v)) (weft's lights bring the irradiance pi L), D of
+// alpha^2 = 2 / (s + 2), Smith's separable G1 (Walter et al. 2007, eqs. 33-34), the dielectric's
+// F. Against Mitsuba's GGX coat the Blinn-Phong lobe, matched at its peak, lacks the tail: a
+// glossy ground under a sun came out ~1% dark, and the cloth scene's FLIP 0.044 against 0.038.
+vec3 highlight(Surface sf, Instance ins, vec3 l, vec3 v) {
+    vec3 h = normalize(l + v);
+    float nh = max(dot(sf.ns, h), 0.0);
+    if (!hasFlag(ins, HIGHLIGHT_GGX)) return pow(nh, sf.shininess) * sf.ks;
+    vec3 f0 = coatF0(sf, ins);
+    if (!any(greaterThan(f0, vec3(0.0)))) return vec3(0.0); // no coat: Schlick's rim is not one
+    float a2 = 2.0 / (sf.shininess + 2.0);
+    float nl = max(dot(sf.ns, l), 1e-4), nv = max(dot(sf.ns, v), 1e-4);
+    float q = nh * nh * (a2 - 1.0) + 1.0;
+    float g1l = 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 / (nl * nl) - 1.0)));
+    float g1v = 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 / (nv * nv) - 1.0)));
+    return dielectricFresnel(clamp(dot(v, h), 0.0, 1.0), f0) * (a2 * g1l * g1v / (4.0 * q * q * nv));
+}
+
 // Light i (group g) on the surface: eq. 2.10's diffuse and specular terms, shadowed.
 void shadeLight(int i, int g, Surface sf, Instance ins, vec3 v, inout Shading sh,
                 inout float debugVis, inout float debugDepth) {
@@ -345,22 +384,18 @@ void shadeLight(int i, int g, Surface sf, Instance ins, vec3 v, inout Shading sh
         }
     }
     if (ndl > 0.0) {
-        vec3 h = normalize(l + v);
-        float s = pow(max(dot(sf.ns, h), 0.0), sf.shininess);
         vec3 d = ndl * L * ins.kd.rgb * sf.T;
         sh.diffuseUnshadowed += d;
         sh.diffuse += vis * d;
-        sh.specular += vis * s * L * sf.ks;
+        sh.specular += vis * L * highlight(sf, ins, l, v);
     }
 }
 
 // A sky reflects as well as lights: the ambient's uniform sky reflected, I_A DFG(n.v), with the
 // split-sum DFG of Karis 2014 ("Physically based shading on mobile", its analytic fit); `dfg`
-// returns that weight. F0: the reflectivity, else what the highlight reflects of a uniform sky
-// at normal view, K_S 8 / (s + 2) (its lobe's integral).
+// returns that weight, for the coat's F0 (coatF0).
 vec3 skyReflection(Surface sf, Instance ins, float ndv, out vec3 dfg) {
-    vec3 f0 = any(greaterThan(ins.environment.rgb, vec3(0.0)))
-                  ? ins.environment.rgb : sf.ks * (8.0 / (sf.shininess + 2.0));
+    vec3 f0 = coatF0(sf, ins);
     float roughness = environmentRoughness(sf.shininess);
     vec4 r = roughness * vec4(-1.0, -0.0275, -0.572, 0.022) + vec4(1.0, 0.0425, 1.04, -0.04);
     float a004 = min(r.x * r.x, exp2(-9.28 * ndv)) * r.x + r.y;

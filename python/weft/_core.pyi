@@ -104,14 +104,16 @@ class Material:
     (128, 128, 255) flat); specular_map: its RGB multiplies ks; alpha_cutoff > 0 discards
     fragments whose base-texture alpha is below it, in the image and the shadow maps;
     ambient_map (linear) replaces the scene's ambient per texel; specular_vertex_normal
-    evaluates the highlight with the unmapped normal (BTF n_s = (0, 0, 1), eq. 4.30).
+    evaluates the highlight with the unmapped normal (BTF n_s = (0, 0, 1), eq. 4.30);
+    highlight: 'blinn_phong' (the seed's K_S (n.h)^s) or 'ggx' (the GGX lobe of the
+    environment reflection, F0 = reflectivity or 8 ks / (shininess + 2)).
     """
     ambient_map: Texture
     normal_map: Texture
     specular_map: Texture
     specular_vertex_normal: bool
     texture: Texture
-    def __init__(self, ka: typing.Any = (1, 1, 1), kd: typing.Any = (1, 1, 1), ks: typing.Any = (0, 0, 0), shininess: typing.SupportsFloat | typing.SupportsIndex = 32.0, base_color: typing.Any = (1, 1, 1), texture: Texture | None = None, normal_map: Texture | None = None, specular_map: Texture | None = None, alpha_cutoff: typing.SupportsFloat | typing.SupportsIndex = 0.0, ambient_map: Texture | None = None, specular_vertex_normal: bool = False, two_sided: bool = False, reflectivity: typing.Any = (0, 0, 0), environment_diffuse: typing.SupportsFloat | typing.SupportsIndex = 0.0, dynamic_reflection: bool = False, gloss_in_alpha: bool = False, phantom: bool = False) -> None:
+    def __init__(self, ka: typing.Any = (1, 1, 1), kd: typing.Any = (1, 1, 1), ks: typing.Any = (0, 0, 0), shininess: typing.SupportsFloat | typing.SupportsIndex = 32.0, base_color: typing.Any = (1, 1, 1), texture: Texture | None = None, normal_map: Texture | None = None, specular_map: Texture | None = None, alpha_cutoff: typing.SupportsFloat | typing.SupportsIndex = 0.0, ambient_map: Texture | None = None, specular_vertex_normal: bool = False, two_sided: bool = False, reflectivity: typing.Any = (0, 0, 0), environment_diffuse: typing.SupportsFloat | typing.SupportsIndex = 0.0, dynamic_reflection: bool = False, gloss_in_alpha: bool = False, phantom: bool = False, highlight: str = 'blinn_phong') -> None:
         """
         A material with the coefficients, textures and flags the class description lists (colours as RGB triples in [0, 1] or more).
         """
@@ -159,6 +161,17 @@ class Material:
         """
     @gloss_in_alpha.setter
     def gloss_in_alpha(self, arg1: bool) -> None:
+        ...
+    @property
+    def highlight(self) -> str:
+        """
+        The highlight's lobe under the lights: 'blinn_phong' (the seed's K_S (n.h)^s,
+        unnormalised) or 'ggx' (the environment reflection's GGX lobe of alpha =
+        sqrt(2 / (shininess + 2)), Smith masking, Schlick's Fresnel of F0 = reflectivity
+        or else 8 ks / (shininess + 2)), so a light and an environment's sun agree.
+        """
+    @highlight.setter
+    def highlight(self, arg1: str) -> None:
         ...
     @property
     def ka(self) -> tuple:

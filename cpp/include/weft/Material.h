@@ -6,6 +6,20 @@
 
 namespace weft {
 
+/// The shape of a material's highlight under the lights (Material::highlight).
+enum class Highlight {
+    /// The seed's K_S (n.h)^s (SPEC eq. 2.10): unnormalised, no Fresnel, masking or n.l.
+    BlinnPhong,
+    /// The GGX microfacet lobe the environment reflection already uses, so that a light and an
+    /// environment's sun give one highlight: K_D's light plus
+    ///   pi L (n.l) F(v.h) D(n.h) G1(n.l) G1(n.v) / (4 (n.l)(n.v)),
+    /// GGX D and separable Smith G1 of alpha = sqrt(2 / (s + 2)), Schlick's F of F0 =
+    /// `reflectivity`, or without one 8 K_S / (s + 2) (the F0 whose peak at normal incidence is
+    /// the Blinn-Phong highlight's K_S). Walter et al. 2007, "Microfacet models for refraction
+    /// through rough surfaces" (eqs. 33, 34).
+    Ggx,
+};
+
 struct Material {
     glm::vec3 ka{1.0f};        // ambient coefficient K_A
     glm::vec3 kd{1.0f};        // diffuse coefficient K_D
@@ -61,6 +75,8 @@ struct Material {
     /// it receives. It shows the background (Scene::setBackgroundImage, else the background
     /// colour) times its lit / unshadowed diffuse light, and hides what lies behind it.
     bool phantom = false;
+    /// The highlight's lobe under the lights; the environment reflection is GGX either way.
+    Highlight highlight = Highlight::BlinnPhong;
 
     /// Throws InvalidArgument for negative or non-finite coefficients or shininess <= 0.
     void validate() const;

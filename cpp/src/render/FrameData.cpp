@@ -156,7 +156,8 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
             (m.twoSided ? gpu::TWO_SIDED : 0u) | (mirrored ? gpu::MIRRORED : 0u) |
             (m.dynamicReflection ? gpu::DYNAMIC_REFLECTION : 0u) |
             (m.texture ? gpu::MAP_BASE : 0u) | (m.specularMap ? gpu::MAP_SPECULAR : 0u) |
-            (m.alphaCutoff > 0.0f ? gpu::ALPHA_TEST : 0u);
+            (m.alphaCutoff > 0.0f ? gpu::ALPHA_TEST : 0u) |
+            (m.highlight == Highlight::Ggx ? gpu::HIGHLIGHT_GGX : 0u);
         g.flags = glm::uvec4(flags, 0u, 0u, 0u);
         g.kd = glm::vec4(inst.material.kd, 0.0f);
         g.ks = glm::vec4(inst.material.ks, inst.material.shininess);

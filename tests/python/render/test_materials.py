@@ -194,3 +194,10 @@ def test_material_validation() -> None:
     with pytest.raises(ValueError):
         m.alpha_cutoff = -0.1
     assert m.alpha_cutoff == 0.0
+    assert m.highlight == "blinn_phong"  # the seed's highlight by default
+    m.highlight = "ggx"
+    assert m.highlight == "ggx" and weft.Material(highlight="ggx").highlight == "ggx"
+    with pytest.raises(ValueError, match="'blinn_phong' or 'ggx'"):
+        m.highlight = "phong"
+    with pytest.raises(ValueError, match="'blinn_phong' or 'ggx'"):
+        weft.Material(highlight="GGX")

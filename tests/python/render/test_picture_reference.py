@@ -45,35 +45,37 @@ W, H, SPP = 128, 96, 512
 #: captures projected at 15 points over each caster, the casters' light from their surface's
 #: irradiance, a glossy caster's reflection where its ray meets the receivers -> now (the
 #: proxies as the ellipsoids of the casters' bounds filling the union of their caps, none
-#: hidden; a caster reflects its capture under the ambient's sky too):
+#: hidden; a caster reflects its capture under the ambient's sky too) -> now (the reference
+#: scenes' glossy materials with the GGX highlight, Material.highlight = 'ggx'):
 #:   spheres_sky  whole 0.33 -> 0.099 -> 0.077 -> 0.050 -> 0.043 -> 0.037  covered ... -> 0.058
 #:                -> 0.048  objects 0.252 -> 0.199 -> 0.096 -> 0.078 -> 0.072 -> 0.047
 #:                edges ... -> 0.107 -> 0.077 -> 0.063 -> 0.067
-#:   spheres_sun  whole 0.34 -> 0.118 -> 0.088 -> 0.055 -> 0.049 -> 0.040 -> 0.041 (0.0367
-#:                against 8192 spp)  covered ... -> 0.066
-#:                -> 0.054  objects 0.297 -> 0.260 -> 0.120 -> 0.093 -> 0.087 -> 0.053 -> 0.052
+#:   spheres_sun  whole 0.34 -> 0.118 -> 0.088 -> 0.055 -> 0.049 -> 0.040 -> 0.041 -> 0.040
+#:                (0.037 against 2048 spp)  covered ... -> 0.066 -> 0.054 -> 0.053
+#:                objects 0.297 -> 0.260 -> 0.120 -> 0.093 -> 0.087 -> 0.053 -> 0.052 -> 0.050
 #:                edges ... -> 0.108 -> 0.091 -> 0.071 -> 0.071
 #:                unlit bias -0.40 -> -0.17 -> -0.11 -> -0.107 -> -0.019 -> -0.016
-#:   cloth        whole 0.29 -> 0.295 -> 0.081 -> 0.069 -> 0.062 -> 0.062 -> 0.048  covered ...
-#:                -> 0.078 -> 0.078 -> 0.060  objects 0.284 -> 0.125 -> 0.102 -> 0.107 -> 0.095
-#:                -> 0.081  edges ... -> 0.138 -> 0.125 -> 0.118 -> 0.079
+#:   cloth        whole 0.29 -> 0.295 -> 0.081 -> 0.069 -> 0.062 -> 0.062 -> 0.048 -> 0.043
+#:                (0.037 against 4096 spp)  covered ... -> 0.078 -> 0.078 -> 0.060 -> 0.054
+#:                objects 0.284 -> 0.125 -> 0.102 -> 0.107 -> 0.095 -> 0.081 -> 0.068
+#:                edges ... -> 0.138 -> 0.125 -> 0.118 -> 0.079 -> 0.070
 #:                unlit bias -0.63 -> -0.34 -> -0.21 -> -0.245 -> -0.120 -> -0.026
 #:   dome         whole 0.31 -> 0.057 -> 0.045 -> 0.031 -> 0.025 -> 0.025  covered ... -> 0.031
 #:                -> 0.031  objects 0.280 -> 0.227 -> 0.048 -> 0.036 -> 0.039 -> 0.043
 #:                edges ... -> 0.030 -> 0.032 -> 0.030
-#: rel (covered / objects) now: 0.022 / 0.029, 0.027 / 0.032, 0.035 / 0.041, 0.014 / 0.019.
+#: rel (covered / objects) now: 0.023 / 0.029, 0.027 / 0.030, 0.034 / 0.037, 0.014 / 0.019.
 #: The reference's pair noise floor (two seeds) is 0.013-0.037 FLIP. Margin: +25% of the value
 #: (a 128 x 96 frame's FLIP moves by a few % with the reference's noise). The issue's targets
-#: (whole <= 0.04, objects and edges <= 0.08) are met by the sphere scenes (the sun's whole at
-#: 0.041 against this reference, 0.037 against 8192 spp) and the dome scene; not by the
-#: cloth's whole and objects (its reference's own noise floor is 0.028 whole).
+#: (whole <= 0.04, objects and edges <= 0.08) are met by every scene against a quieter
+#: reference (2048-4096 spp: 0.036 / 0.037 / 0.037 / 0.024 whole); against this one the sun's
+#: and the cloth's whole include the reference's own noise (floor 0.020 / 0.028).
 TOLERANCES = {
     "spheres_sky": {"whole": (0.046, None), "covered": (0.060, 0.028), "objects": (0.059, 0.036),
                     "edges": (0.079, None)},
-    "spheres_sun": {"whole": (0.050, None), "covered": (0.068, 0.034), "objects": (0.066, 0.040),
+    "spheres_sun": {"whole": (0.050, None), "covered": (0.067, 0.034), "objects": (0.062, 0.038),
                     "edges": (0.089, None)},
-    "cloth": {"whole": (0.060, None), "covered": (0.075, 0.044), "objects": (0.101, 0.051),
-              "edges": (0.099, None)},
+    "cloth": {"whole": (0.054, None), "covered": (0.067, 0.042), "objects": (0.086, 0.046),
+              "edges": (0.088, None)},
     "dome": {"whole": (0.031, None), "covered": (0.039, 0.018), "objects": (0.054, 0.024),
              "edges": (0.038, None)},
 }
@@ -131,6 +133,40 @@ def test_glossy_lobe_adds_to_an_undiminished_lambertian():
     np.testing.assert_allclose(got, lin, rtol=0.01)
     assert conv.highlight_f0(0.04, 12.0) == pytest.approx(8 * 0.04 / 14)
     assert conv.ior_from_f0(0.04) == pytest.approx(1.5)
+
+
+@pytest.mark.parametrize("case", ["ground under the sun", "glossy, highlight in view"])
+def test_ggx_highlight_is_the_reference_s_coat_under_a_light(case):
+    """Material.highlight = 'ggx' draws the GGX coat the export gives Mitsuba (GGX D, Smith
+    masking, the dielectric's Fresnel): on a plane under a directional light, Mitsuba's direct
+    light and weft's agree to 0.3% per band of rows (measured 0.03-0.05%), where the seed's
+    Blinn-Phong highlight, matched to the coat at its peak, is 1% dark on a sunlit ground (its
+    lobe lacks the GGX tail) and 30-70% dark on a glossy highlight seen at a slant. (With
+    Schlick's Fresnel instead of the dielectric's the glossy case was 11-15% dark.)"""
+    if case == "ground under the sun":  # the cloth scene's ground and sun
+        make = lambda h: weft.Material(kd=(0.55, 0.55, 0.52), ks=(0.04,) * 3, shininess=12.0,
+                                       highlight=h)
+        direction, blinn_phong_off = (-0.4, -1.0, -0.3), 0.006
+    else:
+        make = lambda h: scenes.glossy_material((0.3, 0.3, 0.3), 0.04, 60.0, highlight=h)
+        direction, blinn_phong_off = (0.0, -0.5, 0.9), 0.3
+    camera = weft.scenes.cloth_camera()
+    bands = (slice(14, 24), slice(24, 36), slice(36, 48))
+    for highlight in ("ggx", "blinn_phong"):
+        scene = weft.Scene()
+        scene.ambient = (0.0, 0.0, 0.0)
+        scene.add_mesh(weft.Mesh.plane(8.0, 8.0, 4, 4), make(highlight), cast_shadows=False)
+        scene.add_light(weft.DirectionalLight(direction=direction, intensity=0.9))
+        truth = mx.render_mitsuba(scene, camera, 64, 48, spp=256, integrator="direct")
+        got = np.asarray(weft.Renderer(64, 48).render_linear(scene, camera))[..., :3]
+        plane = truth[..., 0] > 0.0
+        assert plane[14:].all()
+        ratios = [got[rows][plane[rows]].mean() / truth[rows][plane[rows]].mean()
+                  for rows in bands]
+        if highlight == "ggx":
+            np.testing.assert_allclose(ratios, 1.0, atol=0.003, err_msg=case)
+        else:  # the test can tell the lobes apart
+            assert max(abs(r - 1.0) for r in ratios) > blinn_phong_off, (case, ratios)
 
 
 def test_environment_diffuse_is_lambert_under_the_radiance():
