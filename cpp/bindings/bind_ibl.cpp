@@ -259,6 +259,17 @@ void bindIbl(py::module_& m) {
         "The seed's irradiance approximation: blurs about three axes through half_angle "
         "radians in `steps` steps.");
     m.def(
+        "coat_albedo",
+        [](double cosView, double alpha, double f0, int samples) {
+            return coatAlbedo(cosView, alpha, f0, samples);
+        },
+        py::arg("cos_view"), py::arg("alpha"), py::arg("f0"), py::arg("samples") = 1024,
+        "Directional albedo towards a view at cos n.v = cos_view of the GGX coat with alpha\n"
+        "(0: a mirror) and normal-incidence reflectance f0: the integral of f(l, v) (n.l) with\n"
+        "GGX D, separable Smith masking and the dielectric's exact Fresnel, by importance\n"
+        "sampling (Hammersley). The weight a Material(specular_model='ggx')\n"
+        "puts on its prefiltered environment reflection (the renderer samples a table of it).");
+    m.def(
         "phong_exact",
         [](py::handle cube, float shininess, int size, int sourceSize) {
             const CubeArg c = toCube(cube, "radiance");

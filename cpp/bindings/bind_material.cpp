@@ -12,14 +12,15 @@
 namespace weft::py_bind {
 namespace {
 
-const char* const kHighlights[] = {"blinn_phong", "ggx"};
+const char* const kSpecularModels[] = {"blinn_phong", "ggx"};
 
-std::string highlightName(Highlight h) { return kHighlights[int(h)]; }
+std::string specularModelName(SpecularModel m) { return kSpecularModels[int(m)]; }
 
-Highlight highlightOf(const std::string& name) {
+SpecularModel specularModelOf(const std::string& name) {
     for (int i = 0; i < 2; ++i)
-        if (name == kHighlights[i]) return Highlight(i);
-    throw InvalidArgument("Material.highlight must be 'blinn_phong' or 'ggx' (got '" + name + "')");
+        if (name == kSpecularModels[i]) return SpecularModel(i);
+    throw InvalidArgument("Material.specular_model must be 'blinn_phong' or 'ggx' (got '" + name +
+                          "')");
 }
 
 } // namespace
@@ -60,15 +61,15 @@ void bindMaterial(py::module_& m) {
         "fragments whose base-texture alpha is below it, in the image and the shadow maps;\n"
         "ambient_map (linear) replaces the scene's ambient per texel; specular_vertex_normal\n"
         "evaluates the highlight with the unmapped normal (BTF n_s = (0, 0, 1), eq. 4.30);\n"
-        "highlight: 'blinn_phong' (the seed's K_S (n.h)^s) or 'ggx' (the GGX lobe of the\n"
-        "environment reflection, F0 = reflectivity or 8 ks / (shininess + 2)).")
+        "specular_model: 'blinn_phong' (the seed's highlight K_S (n.h)^s and Schlick-weighted\n"
+        "reflection) or 'ggx' (a GGX coat, what a path tracer draws).")
         .def(py::init([](py::handle ka, py::handle kd, py::handle ks, float shininess,
                          py::handle baseColor, std::shared_ptr<Texture> texture,
                          std::shared_ptr<Texture> normalMap, std::shared_ptr<Texture> specularMap,
                          float alphaCutoff, std::shared_ptr<Texture> ambientMap,
                          bool specularVertexNormal, bool twoSided, py::handle reflectivity,
                          float environmentDiffuse, bool dynamicReflection, bool glossInAlpha,
-                         bool phantom, const std::string& highlight) {
+                         bool phantom, const std::string& specularModel) {
                  Material mat;
                  mat.ka = toVec3(ka, "ka");
                  mat.kd = toVec3(kd, "kd");
@@ -87,7 +88,7 @@ void bindMaterial(py::module_& m) {
                  mat.dynamicReflection = dynamicReflection;
                  mat.glossInAlpha = glossInAlpha;
                  mat.phantom = phantom;
-                 mat.highlight = highlightOf(highlight);
+                 mat.specularModel = specularModelOf(specularModel);
                  mat.validate();
                  return mat;
              }),
@@ -100,7 +101,7 @@ void bindMaterial(py::module_& m) {
              py::arg("reflectivity") = py::make_tuple(0, 0, 0),
              py::arg("environment_diffuse") = 0.0f, py::arg("dynamic_reflection") = false,
              py::arg("gloss_in_alpha") = false, py::arg("phantom") = false,
-             py::arg("highlight") = highlightName(Material{}.highlight),
+             py::arg("specular_model") = specularModelName(Material{}.specularModel),
              "A material with the coefficients, textures and flags the class description lists "
              "(colours as RGB triples in [0, 1] or more).")
         .WEFT_VEC3_PROPERTY(Material, "ka", ka)
@@ -156,12 +157,14 @@ void bindMaterial(py::module_& m) {
             "A stand-in for a real object (AR): shows the background image times the\n"
             "shadows it receives (lit / unshadowed diffuse light), nothing else.")
         .def_property(
-            "highlight", [](const Material& x) { return highlightName(x.highlight); },
-            [](Material& x, const std::string& v) { x.highlight = highlightOf(v); },
-            "The highlight's lobe under the lights: 'blinn_phong' (the seed's K_S (n.h)^s,\n"
-            "unnormalised) or 'ggx' (the environment reflection's GGX lobe of alpha =\n"
-            "sqrt(2 / (shininess + 2)), Smith masking, Schlick's Fresnel of F0 = reflectivity\n"
-            "or else 8 ks / (shininess + 2)), so a light and an environment's sun agree.")
+            "specular_model", [](const Material& x) { return specularModelName(x.specularModel); },
+            [](Material& x, const std::string& v) { x.specularModel = specularModelOf(v); },
+            "'blinn_phong': the seed's highlight K_S (n.h)^s (unnormalised) and environment\n"
+            "reflection weighted by Schlick's F(n.v). 'ggx': a GGX coat of alpha =\n"
+            "sqrt(2 / (shininess + 2)) and F0 = reflectivity (or else 8 ks / (shininess + 2)):\n"
+            "the lights' highlight is its microfacet lobe (Smith masking, the dielectric's\n"
+            "Fresnel), so a light and an environment's sun agree, and the reflection is\n"
+            "weighted by its directional albedo.")
         .def_property(
             "alpha_cutoff", [](const Material& x) { return x.alphaCutoff; },
             [](Material& x, float v) { setChecked(x, [&](Material& y) { y.alphaCutoff = v; }); })

@@ -16,6 +16,8 @@ layout(set = 0, binding = 10) uniform sampler2D backgroundImage;   // camera ima
 layout(set = 0, binding = 11) uniform sampler2D sphereIrradiance;  // eye-space sphere maps
 layout(set = 0, binding = 12) uniform sampler2D sphereGlossy;      // mips by roughness
 layout(set = 0, binding = 13) uniform samplerCube environmentRadiance; // the background's source
+// the GGX coat's directional albedo (weft/IblFilter.h coatAlbedo, COAT_* of gpu_types.h)
+layout(set = 0, binding = 18) uniform sampler2DArray coatAlbedo;
 
 layout(push_constant) uniform Push { uint instance; } push;
 

@@ -72,13 +72,19 @@ WEFT_CONST(uint, DYNAMIC_REFLECTION, 256u);   // reflects the dynamic capture
 WEFT_CONST(uint, MAP_BASE, 512u);             // a base texture (else white)
 WEFT_CONST(uint, MAP_SPECULAR, 1024u);        // a specular map (else white)
 WEFT_CONST(uint, ALPHA_TEST, 2048u);          // alpha cutoff > 0 (ka.w)
-WEFT_CONST(uint, HIGHLIGHT_GGX, 4096u);       // the highlight is GGX (Material::highlight)
+WEFT_CONST(uint, SPECULAR_GGX, 4096u);        // a GGX coat (Material::specularModel)
 // Not a bit of flags.x: the instance has a bounce capture (flags.y > 0). Only its pipelines
 // hold the code that reads one (a receiver's fragments ran the glossy casters' capture lookups
 // under a mask: the cloth scene's forward pass 1.5x as long; materialFeatures in FrameData.h)
 WEFT_CONST(uint, BOUNCE_CAPTURE, 8192u);
 // the bits above: specialization constant 1 of the forward shader (frame.glsl, kMaterialFlags)
 WEFT_CONST(uint, MATERIAL_ALL, 16383u);
+// The GGX coat's directional albedo (weft/IblFilter.h coatAlbedo, frame.glsl coatAlbedo): a 2D
+// array of COAT_COSINES (sqrt(n.v) from 0 to 1) x COAT_ROUGHNESS (perceptual roughness
+// sqrt(alpha)) texels and COAT_F0 layers (sqrt(F0) from 0 to 1), each grid even end to end.
+WEFT_CONST(int, COAT_COSINES, 16);
+WEFT_CONST(int, COAT_ROUGHNESS, 16);
+WEFT_CONST(int, COAT_F0, 12);
 // Frame features, specialization constant 0 of the forward shader (frame.glsl, kFrameFeatures)
 WEFT_CONST(uint, FEATURE_ENVIRONMENT, 1u);  // an environment, or a dynamic-reflection capture
 WEFT_CONST(uint, FEATURE_AMBIENT_SKY, 2u);  // the ambient read as a uniform sky (Frame.ambient.w)

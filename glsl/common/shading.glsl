@@ -108,6 +108,17 @@ vec3 shadowFootprint(ShadowLayer s, vec3 q, vec3 d, vec3 ndc) {
 // Fraction of the shadow taps of light L (group g, shadowed) that see the light from p.
 // `lightDepth` returns the receiver's NDC depth in the layer used. With g a constant (the
 // group loops of forEachLight) the other groups' tests are compiled out.
+// A receiver's depth z in layer s's map as the PCF test compares it, biased (linear for a
+// perspective map), and a stored depth in the same measure.
+float receiverDepth(float z, float bias, bool perspective, ShadowLayer s) {
+    return perspective ? linearShadowDepth(z, s.params.z, s.params.w) -
+                             bias * (s.params.w - s.params.z)
+                       : z - bias;
+}
+float storedDepth(float stored, bool perspective, ShadowLayer s) {
+    return perspective ? linearShadowDepth(stored, s.params.z, s.params.w) : stored;
+}
+
 float shadowVisibility(Light L, int g, vec3 p, vec3 n, vec3 l, out float lightDepth) {
     int layer = int(L.radiance.w);
     float c = clamp(dot(n, l), -1.0, 1.0);
@@ -131,9 +142,6 @@ float shadowVisibility(Light L, int g, vec3 p, vec3 n, vec3 l, out float lightDe
     float bias = min(frame.bias.x + frame.bias.y * sinTheta / max(c, 1e-4), frame.bias.z);
     if (g == LIGHT_GROUP_DIRECTIONAL_SOFT)
         return softShadow(s, layer, uv, ndc.z, bias, p, n, L.cone.w);
-    float receiver = perspective ? linearShadowDepth(z, s.params.z, s.params.w) -
-                                       bias * (s.params.w - s.params.z)
-                                 : z - bias;
     int size = frame.counts.z;
     int r = frame.counts.y;
     // Where a pixel covers more of the map than the kernel (a distant or small frame), its
@@ -154,25 +162,21 @@ float shadowVisibility(Light L, int g, vec3 p, vec3 n, vec3 l, out float lightDe
             for (int i = -r; i <= r; ++i) {
                 vec2 ab = 0.5 * vec2(i, j) / kernel; // an N x N grid on the pixel's centre
                 vec3 t = vec3(uv, ndc.z) + ab.x * fx + ab.y * fy;
-                float zt = min(min(t.z, ndc.z), 1.0);
-                float rt = perspective ? linearShadowDepth(zt, s.params.z, s.params.w) -
-                                             bias * (s.params.w - s.params.z)
-                                       : zt - bias;
-                float stored = shadowDepth(t.xy, layer, size);
-                if (perspective) stored = linearShadowDepth(stored, s.params.z, s.params.w);
+                float rt = receiverDepth(min(min(t.z, ndc.z), 1.0), bias, perspective, s);
+                float stored = storedDepth(shadowDepth(t.xy, layer, size), perspective, s);
                 lit += (rt <= stored) ? 1.0 : 0.0;
             }
         }
         return lit / (kernel * kernel);
     }
+    float receiver = receiverDepth(z, bias, perspective, s);
     ivec2 texel = ivec2(floor(uv * float(size)));
     float lit = 0.0;
     for (int dy = -r; dy <= r; ++dy) {
         for (int dx = -r; dx <= r; ++dx) {
             ivec2 t = clamp(texel + ivec2(dx, dy), ivec2(0), ivec2(size - 1));
             float stored = texelFetch(shadowMaps, ivec3(t, layer), 0).r;
-            if (perspective) stored = linearShadowDepth(stored, s.params.z, s.params.w);
-            lit += (receiver <= stored) ? 1.0 : 0.0;
+            lit += (receiver <= storedDepth(stored, perspective, s)) ? 1.0 : 0.0;
         }
     }
     return lit / float((2 * r + 1) * (2 * r + 1));
@@ -329,7 +333,7 @@ struct Shading {
     EnvironmentTerms environment;
 };
 
-// F0 of the material's GGX coat (Material::highlight, skyReflection): the reflectivity, else
+// F0 of the material's GGX coat (Material::specularModel, skyReflection): the reflectivity, else
 // 8 K_S / (s + 2), the F0 whose highlight peak at normal incidence is the Blinn-Phong one's K_S
 // (and whose lobe reflects K_S 8 / (s + 2) of a uniform sky at normal view).
 vec3 coatF0(Surface sf, Instance ins) {
@@ -349,7 +353,7 @@ vec3 dielectricFresnel(float c, vec3 f0) {
 }
 
 // The highlight of a light of radiance 1 from l, seen from v: the seed's K_S (n.h)^s, or with
-// HIGHLIGHT_GGX the GGX lobe of the environment reflection (Material.h Highlight::Ggx):
+// SPECULAR_GGX the GGX lobe of the environment reflection (Material.h SpecularModel::Ggx):
 // pi (n.l) F D G / (4 (n.l)(n.v)) (weft's lights bring the irradiance pi L), D of
 // alpha^2 = 2 / (s + 2), Smith's separable G1 (Walter et al. 2007, eqs. 33-34), the dielectric's
 // F. Against Mitsuba's GGX coat the Blinn-Phong lobe, matched at its peak, lacks the tail: a
@@ -357,7 +361,7 @@ vec3 dielectricFresnel(float c, vec3 f0) {
 vec3 highlight(Surface sf, Instance ins, vec3 l, vec3 v) {
     vec3 h = normalize(l + v);
     float nh = max(dot(sf.ns, h), 0.0);
-    if (!hasFlag(ins, HIGHLIGHT_GGX)) return pow(nh, sf.shininess) * sf.ks;
+    if (!hasFlag(ins, SPECULAR_GGX)) return pow(nh, sf.shininess) * sf.ks;
     vec3 f0 = coatF0(sf, ins);
     if (!any(greaterThan(f0, vec3(0.0)))) return vec3(0.0); // no coat: Schlick's rim is not one
     float a2 = 2.0 / (sf.shininess + 2.0);
@@ -365,7 +369,8 @@ vec3 highlight(Surface sf, Instance ins, vec3 l, vec3 v) {
     float q = nh * nh * (a2 - 1.0) + 1.0;
     float g1l = 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 / (nl * nl) - 1.0)));
     float g1v = 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 / (nv * nv) - 1.0)));
-    return dielectricFresnel(clamp(dot(v, h), 0.0, 1.0), f0) * (a2 * g1l * g1v / (4.0 * q * q * nv));
+    vec3 fresnel = dielectricFresnel(clamp(dot(v, h), 0.0, 1.0), f0);
+    return fresnel * (a2 * g1l * g1v / (4.0 * q * q * nv));
 }
 
 // Light i (group g) on the surface: eq. 2.10's diffuse and specular terms, shadowed.
@@ -391,17 +396,15 @@ void shadeLight(int i, int g, Surface sf, Instance ins, vec3 v, inout Shading sh
     }
 }
 
-// A sky reflects as well as lights: the ambient's uniform sky reflected, I_A DFG(n.v), with the
-// split-sum DFG of Karis 2014 ("Physically based shading on mobile", its analytic fit); `dfg`
-// returns that weight, for the coat's F0 (coatF0).
+// A sky reflects as well as lights: the ambient's uniform sky reflected, I_A A(n.v), A the
+// coat's directional albedo (coatReflectance); `dfg` returns that weight. (Karis's analytic fit
+// of it, with Schlick's Fresnel, left a lone glossy ground ~1% dark against Mitsuba.)
 vec3 skyReflection(Surface sf, Instance ins, float ndv, out vec3 dfg) {
     vec3 f0 = coatF0(sf, ins);
-    float roughness = environmentRoughness(sf.shininess);
-    vec4 r = roughness * vec4(-1.0, -0.0275, -0.572, 0.022) + vec4(1.0, 0.0425, 1.04, -0.04);
-    float a004 = min(r.x * r.x, exp2(-9.28 * ndv)) * r.x + r.y;
-    vec2 ab = vec2(-1.04, 1.04) * a004 + r.zw;
     // a matte surface has no lobe to reflect with
-    dfg = any(greaterThan(f0, vec3(0.0))) ? f0 * ab.x + ab.y : vec3(0.0);
+    dfg = any(greaterThan(f0, vec3(0.0)))
+              ? coatReflectance(ndv, environmentRoughness(sf.shininess), f0)
+              : vec3(0.0);
     return sf.ambient * dfg;
 }
 
@@ -488,14 +491,15 @@ vec3 shadedColor(Shading sh, Instance ins, out vec4 dome, out vec2 domeAux) {
     // what the dome darkens, before (domed) and after (domedLit) its shadows; the rest (direct).
     // A phantom, a diffuse stand-in, reflects no sky.
     bool phantom = hasFlag(ins, PHANTOM);
-    vec3 domed = ambientDome ? sh.ambient + (phantom ? vec3(0.0) : sh.skySpecular) : e.diffuse;
+    vec3 sky = sh.ambient + (phantom ? vec3(0.0) : sh.skySpecular); // the ambient's sky's light
+    vec3 domed = ambientDome ? sky : e.diffuse;
     vec3 domedLit = ambientDome ? domed * sh.ambientVisibility : e.diffuseLit;
-    vec3 direct = (ambientDome ? e.diffuseLit : sh.ambient + (phantom ? vec3(0.0) : sh.skySpecular)) +
-                  sh.diffuse + sh.bounce;
+    vec3 direct = (ambientDome ? e.diffuseLit : sky) + sh.diffuse + sh.bounce;
     // the blur pass gets the dome's rest over the proxies' floor, which is exact and noise-free
     // where it applies (a contact shadow kept sharp)
     float floorVisibility = ambientDome ? sh.ambientFloor : e.floorVisibility;
-    domeAux = ambientDome ? vec2(sh.ambientFloorLinear, sh.ambientRho) : vec2(e.floorVisibility, 0.0);
+    domeAux = ambientDome ? vec2(sh.ambientFloorLinear, sh.ambientRho)
+                          : vec2(e.floorVisibility, 0.0);
     float occlusion = ambientDome ? sh.ambientOccluded : e.occlusion;
     if (phantom) {
         vec3 unlit = max(sh.ambient + sh.diffuseUnshadowed + e.diffuse, vec3(1e-30));

@@ -9,7 +9,7 @@ import typing
 class Error(RuntimeError): ...
 class InvalidArgument(Error, ValueError): ...
 class IoError(Error, OSError): ...
-__all__: list[str] = ['BtfSamples', 'Camera', 'Cloth', 'Collider', 'CubeMap', 'DirectionalLight', 'Environment', 'Error', 'HairMaterial', 'HairStrands', 'InvalidArgument', 'IoError', 'Material', 'Mesh', 'MeshPart', 'PointLight', 'Renderer', 'Scene', 'ShadowDome', 'SkyModel', 'SpotLight', 'Texture', 'Wind', 'btf_blinn_phong_noise', 'btf_decode_image', 'btf_drawn_maps', 'btf_fit_blinn_phong', 'btf_fit_lafortune', 'btf_fit_linear', 'btf_fit_specular', 'btf_have_ceres', 'btf_lafortune_errors', 'btf_load', 'btf_material_from_linear', 'btf_parse_file_name', 'btf_render', 'btf_render_material', 'btf_resolvable_exponent', 'btf_sample_errors', 'btf_solve_linear', 'btf_standard_directions', 'btf_write', 'clear_shader_errors', 'clear_validation_messages', 'cube_coords', 'cube_texel_directions', 'cube_texel_solid_angles', 'cube_to_equirect', 'cube_to_sphere', 'default_scene', 'demo_scene', 'device_memory', 'devices', 'dfg_lut', 'equirect_to_cube', 'extract_lights', 'fill_unseen', 'fisheye_to_cube', 'generate_fur', 'generate_hair', 'hair_from_bytes', 'hair_shade_eval', 'irradiance_box_blur', 'irradiance_exact', 'irradiance_exact_gpu', 'irradiance_from_sh', 'irradiance_rotational_blur', 'load_demo_script', 'load_exr', 'load_gltf', 'load_hair', 'load_hdr', 'load_image_float', 'load_obj', 'load_obj_parts', 'load_png', 'phong_exact', 'phong_sampled', 'poll_shader_changes', 'prefilter_ggx', 'prefilter_ggx_gpu', 'project_sh9', 'run_demo', 'save_exr', 'save_hair', 'save_hdr', 'save_png', 'set_shader_directory', 'sh_irradiance', 'shader_directory', 'shader_errors', 'shader_hot_reload_available', 'sky', 'sphere_to_cube', 'sun_light', 'validation_enabled', 'validation_messages']
+__all__: list[str] = ['BtfSamples', 'Camera', 'Cloth', 'Collider', 'CubeMap', 'DirectionalLight', 'Environment', 'Error', 'HairMaterial', 'HairStrands', 'InvalidArgument', 'IoError', 'Material', 'Mesh', 'MeshPart', 'PointLight', 'Renderer', 'Scene', 'ShadowDome', 'SkyModel', 'SpotLight', 'Texture', 'Wind', 'btf_blinn_phong_noise', 'btf_decode_image', 'btf_drawn_maps', 'btf_fit_blinn_phong', 'btf_fit_lafortune', 'btf_fit_linear', 'btf_fit_specular', 'btf_have_ceres', 'btf_lafortune_errors', 'btf_load', 'btf_material_from_linear', 'btf_parse_file_name', 'btf_render', 'btf_render_material', 'btf_resolvable_exponent', 'btf_sample_errors', 'btf_solve_linear', 'btf_standard_directions', 'btf_write', 'clear_shader_errors', 'clear_validation_messages', 'coat_albedo', 'cube_coords', 'cube_texel_directions', 'cube_texel_solid_angles', 'cube_to_equirect', 'cube_to_sphere', 'default_scene', 'demo_scene', 'device_memory', 'devices', 'dfg_lut', 'equirect_to_cube', 'extract_lights', 'fill_unseen', 'fisheye_to_cube', 'generate_fur', 'generate_hair', 'hair_from_bytes', 'hair_shade_eval', 'irradiance_box_blur', 'irradiance_exact', 'irradiance_exact_gpu', 'irradiance_from_sh', 'irradiance_rotational_blur', 'load_demo_script', 'load_exr', 'load_gltf', 'load_hair', 'load_hdr', 'load_image_float', 'load_obj', 'load_obj_parts', 'load_png', 'phong_exact', 'phong_sampled', 'poll_shader_changes', 'prefilter_ggx', 'prefilter_ggx_gpu', 'project_sh9', 'run_demo', 'save_exr', 'save_hair', 'save_hdr', 'save_png', 'set_shader_directory', 'sh_irradiance', 'shader_directory', 'shader_errors', 'shader_hot_reload_available', 'sky', 'sphere_to_cube', 'sun_light', 'validation_enabled', 'validation_messages']
 class Mesh:
     """
     Indexed triangle mesh (counter-clockwise front faces). Immutable once made.
@@ -105,15 +105,15 @@ class Material:
     fragments whose base-texture alpha is below it, in the image and the shadow maps;
     ambient_map (linear) replaces the scene's ambient per texel; specular_vertex_normal
     evaluates the highlight with the unmapped normal (BTF n_s = (0, 0, 1), eq. 4.30);
-    highlight: 'blinn_phong' (the seed's K_S (n.h)^s) or 'ggx' (the GGX lobe of the
-    environment reflection, F0 = reflectivity or 8 ks / (shininess + 2)).
+    specular_model: 'blinn_phong' (the seed's highlight K_S (n.h)^s and Schlick-weighted
+    reflection) or 'ggx' (a GGX coat, what a path tracer draws).
     """
     ambient_map: Texture
     normal_map: Texture
     specular_map: Texture
     specular_vertex_normal: bool
     texture: Texture
-    def __init__(self, ka: typing.Any = (1, 1, 1), kd: typing.Any = (1, 1, 1), ks: typing.Any = (0, 0, 0), shininess: typing.SupportsFloat | typing.SupportsIndex = 32.0, base_color: typing.Any = (1, 1, 1), texture: Texture | None = None, normal_map: Texture | None = None, specular_map: Texture | None = None, alpha_cutoff: typing.SupportsFloat | typing.SupportsIndex = 0.0, ambient_map: Texture | None = None, specular_vertex_normal: bool = False, two_sided: bool = False, reflectivity: typing.Any = (0, 0, 0), environment_diffuse: typing.SupportsFloat | typing.SupportsIndex = 0.0, dynamic_reflection: bool = False, gloss_in_alpha: bool = False, phantom: bool = False, highlight: str = 'blinn_phong') -> None:
+    def __init__(self, ka: typing.Any = (1, 1, 1), kd: typing.Any = (1, 1, 1), ks: typing.Any = (0, 0, 0), shininess: typing.SupportsFloat | typing.SupportsIndex = 32.0, base_color: typing.Any = (1, 1, 1), texture: Texture | None = None, normal_map: Texture | None = None, specular_map: Texture | None = None, alpha_cutoff: typing.SupportsFloat | typing.SupportsIndex = 0.0, ambient_map: Texture | None = None, specular_vertex_normal: bool = False, two_sided: bool = False, reflectivity: typing.Any = (0, 0, 0), environment_diffuse: typing.SupportsFloat | typing.SupportsIndex = 0.0, dynamic_reflection: bool = False, gloss_in_alpha: bool = False, phantom: bool = False, specular_model: str = 'blinn_phong') -> None:
         """
         A material with the coefficients, textures and flags the class description lists (colours as RGB triples in [0, 1] or more).
         """
@@ -161,17 +161,6 @@ class Material:
         """
     @gloss_in_alpha.setter
     def gloss_in_alpha(self, arg1: bool) -> None:
-        ...
-    @property
-    def highlight(self) -> str:
-        """
-        The highlight's lobe under the lights: 'blinn_phong' (the seed's K_S (n.h)^s,
-        unnormalised) or 'ggx' (the environment reflection's GGX lobe of alpha =
-        sqrt(2 / (shininess + 2)), Smith masking, Schlick's Fresnel of F0 = reflectivity
-        or else 8 ks / (shininess + 2)), so a light and an environment's sun agree.
-        """
-    @highlight.setter
-    def highlight(self, arg1: str) -> None:
         ...
     @property
     def ka(self) -> tuple:
@@ -228,6 +217,19 @@ class Material:
         """
     @shininess_max.setter
     def shininess_max(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def specular_model(self) -> str:
+        """
+        'blinn_phong': the seed's highlight K_S (n.h)^s (unnormalised) and environment
+        reflection weighted by Schlick's F(n.v). 'ggx': a GGX coat of alpha =
+        sqrt(2 / (shininess + 2)) and F0 = reflectivity (or else 8 ks / (shininess + 2)):
+        the lights' highlight is its microfacet lobe (Smith masking, the dielectric's
+        Fresnel), so a light and an environment's sun agree, and the reflection is
+        weighted by its directional albedo.
+        """
+    @specular_model.setter
+    def specular_model(self, arg1: str) -> None:
         ...
     @property
     def two_sided(self) -> bool:
@@ -1662,6 +1664,14 @@ def clear_shader_errors() -> None:
 def clear_validation_messages() -> None:
     """
     Forgets the validation messages collected so far.
+    """
+def coat_albedo(cos_view: typing.SupportsFloat | typing.SupportsIndex, alpha: typing.SupportsFloat | typing.SupportsIndex, f0: typing.SupportsFloat | typing.SupportsIndex, samples: typing.SupportsInt | typing.SupportsIndex = 1024) -> float:
+    """
+    Directional albedo towards a view at cos n.v = cos_view of the GGX coat with alpha
+    (0: a mirror) and normal-incidence reflectance f0: the integral of f(l, v) (n.l) with
+    GGX D, separable Smith masking and the dielectric's exact Fresnel, by importance
+    sampling (Hammersley). The weight a Material(specular_model='ggx')
+    puts on its prefiltered environment reflection (the renderer samples a table of it).
     """
 def cube_coords(directions: typing.Any) -> tuple[numpy.typing.NDArray[numpy.int32], numpy.typing.NDArray[numpy.float32]]:
     """

@@ -6,17 +6,20 @@
 
 namespace weft {
 
-/// The shape of a material's highlight under the lights (Material::highlight).
-enum class Highlight {
-    /// The seed's K_S (n.h)^s (SPEC eq. 2.10): unnormalised, no Fresnel, masking or n.l.
+/// A material's specular terms (Material::specularModel).
+enum class SpecularModel {
+    /// The seed's: the lights' highlight K_S (n.h)^s (SPEC eq. 2.10: unnormalised, no Fresnel,
+    /// masking or n.l), the environment reflection weighted by Schlick's F(n.v) (SPEC §1.3).
     BlinnPhong,
-    /// The GGX microfacet lobe the environment reflection already uses, so that a light and an
-    /// environment's sun give one highlight: K_D's light plus
+    /// A GGX coat, what a path tracer draws: the lights' highlight is the microfacet lobe whose
+    /// prefiltered radiance the environment reflection reads (so a light and an environment's
+    /// sun give one highlight), K_D's light plus
     ///   pi L (n.l) F(v.h) D(n.h) G1(n.l) G1(n.v) / (4 (n.l)(n.v)),
     /// GGX D and separable Smith G1 of alpha = sqrt(2 / (s + 2)), Schlick's F of F0 =
     /// `reflectivity`, or without one 8 K_S / (s + 2) (the F0 whose peak at normal incidence is
-    /// the Blinn-Phong highlight's K_S). Walter et al. 2007, "Microfacet models for refraction
-    /// through rough surfaces" (eqs. 33, 34).
+    /// the Blinn-Phong highlight's K_S), with the dielectric's exact Fresnel; and the reflection
+    /// is weighted by the coat's directional albedo (split sum, Karis 2013) instead of F(n.v).
+    /// Walter et al. 2007, "Microfacet models for refraction through rough surfaces".
     Ggx,
 };
 
@@ -75,8 +78,8 @@ struct Material {
     /// it receives. It shows the background (Scene::setBackgroundImage, else the background
     /// colour) times its lit / unshadowed diffuse light, and hides what lies behind it.
     bool phantom = false;
-    /// The highlight's lobe under the lights; the environment reflection is GGX either way.
-    Highlight highlight = Highlight::BlinnPhong;
+    /// The specular terms: the seed's, or a GGX coat.
+    SpecularModel specularModel = SpecularModel::BlinnPhong;
 
     /// Throws InvalidArgument for negative or non-finite coefficients or shininess <= 0.
     void validate() const;

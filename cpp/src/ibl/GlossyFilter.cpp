@@ -218,4 +218,65 @@ std::vector<float> dfgLut(int size, int samples) {
     return out;
 }
 
+namespace {
+
+// The unpolarised Fresnel reflectance at cos c of the dielectric whose normal-incidence
+// reflectance is f0 (Walter et al. 2007, "Microfacet models for refraction", eq. 22).
+double dielectricFresnel(double c, double f0) {
+    const double r = std::sqrt(std::clamp(f0, 0.0, 0.999));
+    const double eta = (1.0 + r) / (1.0 - r);
+    const double g = std::sqrt(eta * eta - 1.0 + c * c);
+    const double a = (g - c) / (g + c), b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    return 0.5 * a * a * (1.0 + b * b);
+}
+
+// Smith's G1 of GGX with alpha^2 = a2 at cos c (Walter et al. 2007, eq. 34).
+double smithG1(double c, double a2) {
+    return 2.0 / (1.0 + std::sqrt(1.0 + a2 * (1.0 / (c * c) - 1.0)));
+}
+
+} // namespace
+
+double coatAlbedo(double cosView, double alpha, double f0, int samples) {
+    auto inUnit = [](double x) { return std::isfinite(x) && x >= 0.0 && x <= 1.0; };
+    if (!inUnit(cosView) || !inUnit(alpha) || !inUnit(f0))
+        throw InvalidArgument("coat_albedo: cos_view, alpha and f0 must be in [0, 1]");
+    requireCount(samples, 1 << 20, "sample count");
+    const double nv = std::max(cosView, 1e-4), a2 = alpha * alpha;
+    const glm::dvec3 v(std::sqrt(1.0 - nv * nv), 0.0, nv);
+    const double g1v = smithG1(nv, a2);
+    double sum = 0.0;
+    for (int s = 0; s < samples; ++s) {
+        const glm::dvec3 h(ggxHalf(hammersley(unsigned(s), unsigned(samples)), float(alpha)));
+        const double vh = glm::dot(v, h), nl = 2.0 * vh * h.z - nv;
+        if (vh <= 0.0 || nl <= 0.0) continue;
+        // f (n.l) over the density of l, D (n.h) / (4 v.h)
+        sum += dielectricFresnel(vh, f0) * smithG1(nl, a2) * g1v * vh / (nv * h.z);
+    }
+    return sum / samples;
+}
+
+std::vector<float> coatAlbedoTable(int cosines, int roughness, int f0s, int samples) {
+    requireCount(cosines, 1024, "table size");
+    requireCount(roughness, 1024, "table size");
+    requireCount(f0s, 1024, "table size");
+    if (cosines < 2 || roughness < 2 || f0s < 2)
+        throw InvalidArgument("coat albedo table: at least 2 values per axis");
+    std::vector<float> out(size_t(cosines) * size_t(roughness) * size_t(f0s));
+    iblParallelFor(f0s, [&](int begin, int end) {
+        for (int k = begin; k < end; ++k) {
+            const double w = double(k) / (f0s - 1);
+            for (int j = 0; j < roughness; ++j) {
+                const double r = double(j) / (roughness - 1);
+                for (int i = 0; i < cosines; ++i) {
+                    const double c = double(i) / (cosines - 1);
+                    out[(size_t(k) * roughness + size_t(j)) * cosines + size_t(i)] =
+                        float(coatAlbedo(c * c, r * r, w * w, samples));
+                }
+            }
+        }
+    });
+    return out;
+}
+
 } // namespace weft

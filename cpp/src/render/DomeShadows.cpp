@@ -6,6 +6,7 @@
 
 #include <weft/Environment.h>
 
+#include "render/FrameData.h"
 #include "render/RenderTargets.h"
 
 namespace weft::render {
@@ -13,10 +14,8 @@ namespace weft::render {
 std::vector<int> DomeShadows::prepare(const Scene& scene, const RenderSettings& settings,
                                       const std::vector<uint64_t>& casterKey, uint64_t frame) {
     const EnvironmentLighting& env = scene.environment();
-    const glm::vec3 ambient = scene.ambient();
     // casterKey is empty exactly when nothing casts a shadow
-    mAmbient = !env.environment && settings.ambientOcclusion > 0 && !casterKey.empty() &&
-               glm::max(ambient.x, glm::max(ambient.y, ambient.z)) > 0.0f;
+    mAmbient = ambientReadsAsSky(scene, settings) && !casterKey.empty();
     if (!mAmbient && (!env.environment || env.domeLights == 0)) {
         mLights.clear();
         mMaps = vk::Image();

@@ -137,6 +137,12 @@ void sortLightsByGroup(FrameData& f) {
 
 } // namespace
 
+bool ambientReadsAsSky(const Scene& scene, const RenderSettings& settings) {
+    const glm::vec3 ambient = scene.ambient();
+    return settings.ambientOcclusion > 0 && !scene.environment().environment &&
+           glm::max(ambient.x, glm::max(ambient.y, ambient.z)) > 0.0f;
+}
+
 FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                          float aspect, GpuCache& cache) {
     FrameData f;
@@ -157,7 +163,7 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
             (m.dynamicReflection ? gpu::DYNAMIC_REFLECTION : 0u) |
             (m.texture ? gpu::MAP_BASE : 0u) | (m.specularMap ? gpu::MAP_SPECULAR : 0u) |
             (m.alphaCutoff > 0.0f ? gpu::ALPHA_TEST : 0u) |
-            (m.highlight == Highlight::Ggx ? gpu::HIGHLIGHT_GGX : 0u);
+            (m.specularModel == SpecularModel::Ggx ? gpu::SPECULAR_GGX : 0u);
         g.flags = glm::uvec4(flags, 0u, 0u, 0u);
         g.kd = glm::vec4(inst.material.kd, 0.0f);
         g.ks = glm::vec4(inst.material.ks, inst.material.shininess);
@@ -197,12 +203,7 @@ FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderS
     g.inverseViewProj = glm::inverse(g.viewProj);
     g.cameraPos = glm::vec4(camera.position, 1);
     g.view = camera.view();
-    // w: the ambient reads as a uniform sky, which reflects (and a dome occludes where something
-    // casts a shadow, DomeShadows): ambient occlusion on and no environment to stand for the sky
-    const glm::vec3 ambient = scene.ambient();
-    const bool ambientSky = settings.ambientOcclusion > 0 && !scene.environment().environment &&
-                            glm::max(ambient.x, glm::max(ambient.y, ambient.z)) > 0.0f;
-    g.ambient = glm::vec4(ambient, ambientSky ? 1.0f : 0.0f);
+    g.ambient = glm::vec4(scene.ambient(), ambientReadsAsSky(scene, settings) ? 1.0f : 0.0f);
     g.background = glm::vec4(scene.background(), 1);
     g.bias = glm::vec4(settings.biasConstant, settings.biasSlope, settings.biasMax, 0);
     // The debug shadow channel reports the first light with a shadow map.

@@ -52,6 +52,12 @@ struct FrameData {
 FrameData buildFrameData(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                          float aspect, GpuCache& cache);
 
+/// Whether the scene's ambient reads as a uniform sky (Frame.ambient.w): ambient occlusion on,
+/// a non-zero ambient and no environment to stand for the sky. Such a sky is reflected by glossy
+/// surfaces (shading.glsl skyReflection) and occluded by a dome where something casts a shadow
+/// (DomeShadows).
+bool ambientReadsAsSky(const Scene& scene, const RenderSettings& settings);
+
 /// The gpu::FEATURE_* bits the frame's uniform, instances and lights can turn on: the
 /// specialization of the pipelines that shade it (frame.glsl, kFrameFeatures).
 uint32_t frameFeatures(const FrameData& data);

@@ -188,6 +188,8 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
                                               render::useState(Use::Sampled, true).layout};
         VkDescriptorImageInfo radianceSh{pipes.nearestSampler, radianceView,
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        const VkDescriptorImageInfo coatInfo{pipes.cookieSampler, coatAlbedo.view(),
+                                             render::useState(Use::Sampled, false).layout};
         const VkDescriptorImageInfo depthsInfo{
             pipes.nearestSampler, withFaces ? bounce.depth().view() : dummyShadow.view(),
             render::useState(Use::Sampled, true).layout};
@@ -218,7 +220,8 @@ render::FrameSets Renderer::Impl::bindFrame(FrameSlot& slot, const Scene& scene,
                                  {image, nullptr, &bounceInfo, 1},
                                  {image, nullptr, &facesInfo, 1},
                                  {image, nullptr, &radianceSh, 1},
-                                 {image, nullptr, &depthsInfo, 1}};
+                                 {image, nullptr, &depthsInfo, 1},
+                                 {image, nullptr, &coatInfo, 1}};
         constexpr uint32_t kBindings = sizeof(entries) / sizeof(entries[0]);
         VkWriteDescriptorSet writes[kBindings];
         for (uint32_t i = 0; i < kBindings; ++i) {

@@ -35,7 +35,7 @@ void Renderer::Impl::createSlots() {
             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
              // frame sets; the output set (1), the dome's gather and blur sets (3 each), the
              // bounce projection's (4)
-             (12 + uint32_t(render::kMaxCookies)) * kFrameSets + 14}};
+             (13 + uint32_t(render::kMaxCookies)) * kFrameSets + 14}};
         VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pool.maxSets = kFrameSets + 5;
         pool.poolSizeCount = 3;

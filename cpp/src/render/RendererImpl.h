@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "render/BounceProbes.h"
+#include "render/CoatAlbedoGpu.h"
 #include "render/DomeShadows.h"
 #include "render/EnvironmentGpu.h"
 #include "render/FrameData.h"
@@ -88,6 +89,7 @@ struct Renderer::Impl {
     std::vector<uint64_t> shadowSignature; // what the shadow maps hold (see shadowKey)
     uint64_t shaderGenerationBuilt = shaderGeneration(); // hot reload: shaders the pipes use
     vk::Image dummyShadow;
+    vk::Image coatAlbedo; // the GGX coat's directional albedo (CoatAlbedoGpu.h)
     std::vector<ShadowInfo> shadowInfos;
     FrameStats stats;
     render::FrameOverlay* overlay = nullptr; // drawn over present() frames (FrameOverlay.h)
@@ -97,6 +99,7 @@ struct Renderer::Impl {
             std::make_unique<render::GpuCache>(*ctx, pipes.materialSetLayout, pipes.textureSampler);
         createSlots();
         createDummyShadow();
+        coatAlbedo = render::uploadCoatAlbedo(*ctx);
     }
 
     ~Impl() {

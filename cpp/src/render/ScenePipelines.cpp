@@ -53,7 +53,8 @@ ScenePipelines::ScenePipelines(vk::Context& c) : mCtx(c) {
             {14, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
             {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
             {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-            {17, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
+            {17, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {18, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}});
     materialSetLayout = vk::createSetLayout(c, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},

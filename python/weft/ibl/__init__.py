@@ -24,6 +24,7 @@ from weft._core import (
     Environment,
     ShadowDome,
     SkyModel,
+    coat_albedo,
     cube_coords,
     cube_texel_directions,
     cube_texel_solid_angles,
@@ -66,7 +67,8 @@ from weft.ibl.video import environments_from_video, read_video_frames
 
 __all__ = [
     "CubeMap", "Environment", "ShadowDome", "EnvLight", "SkyModel", "sky", "sun_light",
-    "cube_coords", "cube_texel_directions", "cube_texel_solid_angles", "cube_to_equirect",
+    "coat_albedo", "cube_coords", "cube_texel_directions", "cube_texel_solid_angles",
+    "cube_to_equirect",
     "cube_to_sphere", "dfg_lut", "equirect_to_cube", "fill_unseen", "fisheye_to_cube",
     "irradiance_box_blur", "irradiance_exact", "irradiance_exact_gpu", "irradiance_from_sh",
     "irradiance_rotational_blur", "phong_exact", "phong_sampled", "prefilter_ggx",

@@ -194,10 +194,11 @@ def test_material_validation() -> None:
     with pytest.raises(ValueError):
         m.alpha_cutoff = -0.1
     assert m.alpha_cutoff == 0.0
-    assert m.highlight == "blinn_phong"  # the seed's highlight by default
-    m.highlight = "ggx"
-    assert m.highlight == "ggx" and weft.Material(highlight="ggx").highlight == "ggx"
+    assert m.specular_model == "blinn_phong"  # the seed's by default
+    m.specular_model = "ggx"
+    assert m.specular_model == "ggx"
+    assert weft.Material(specular_model="ggx").specular_model == "ggx"
     with pytest.raises(ValueError, match="'blinn_phong' or 'ggx'"):
-        m.highlight = "phong"
+        m.specular_model = "phong"
     with pytest.raises(ValueError, match="'blinn_phong' or 'ggx'"):
-        weft.Material(highlight="GGX")
+        weft.Material(specular_model="GGX")

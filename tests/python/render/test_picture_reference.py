@@ -46,36 +46,37 @@ W, H, SPP = 128, 96, 512
 #: irradiance, a glossy caster's reflection where its ray meets the receivers -> now (the
 #: proxies as the ellipsoids of the casters' bounds filling the union of their caps, none
 #: hidden; a caster reflects its capture under the ambient's sky too) -> now (the reference
-#: scenes' glossy materials with the GGX highlight, Material.highlight = 'ggx'):
-#:   spheres_sky  whole 0.33 -> 0.099 -> 0.077 -> 0.050 -> 0.043 -> 0.037  covered ... -> 0.058
-#:                -> 0.048  objects 0.252 -> 0.199 -> 0.096 -> 0.078 -> 0.072 -> 0.047
-#:                edges ... -> 0.107 -> 0.077 -> 0.063 -> 0.067
-#:   spheres_sun  whole 0.34 -> 0.118 -> 0.088 -> 0.055 -> 0.049 -> 0.040 -> 0.041 -> 0.040
-#:                (0.037 against 2048 spp)  covered ... -> 0.066 -> 0.054 -> 0.053
-#:                objects 0.297 -> 0.260 -> 0.120 -> 0.093 -> 0.087 -> 0.053 -> 0.052 -> 0.050
-#:                edges ... -> 0.108 -> 0.091 -> 0.071 -> 0.071
+#: scenes' glossy materials GGX coats, Material.specular_model = 'ggx': the lights' highlight
+#: the coat's lobe, the reflection weighted by its albedo; the sky's reflection by that albedo):
+#:   spheres_sky  whole 0.33 -> 0.099 -> 0.077 -> 0.050 -> 0.043 -> 0.037 -> 0.035  covered ...
+#:                -> 0.058 -> 0.048 -> 0.047  objects 0.252 -> 0.199 -> 0.096 -> 0.078 -> 0.072
+#:                -> 0.047 -> 0.040  edges ... -> 0.107 -> 0.077 -> 0.063 -> 0.067 -> 0.061
+#:   spheres_sun  whole 0.34 -> 0.118 -> 0.088 -> 0.055 -> 0.049 -> 0.040 -> 0.041 -> 0.038
+#:                (0.035 against 2048 spp)  covered ... -> 0.066 -> 0.054 -> 0.051
+#:                objects 0.297 -> 0.260 -> 0.120 -> 0.093 -> 0.087 -> 0.053 -> 0.052 -> 0.043
+#:                edges ... -> 0.108 -> 0.091 -> 0.071 -> 0.071 -> 0.064
 #:                unlit bias -0.40 -> -0.17 -> -0.11 -> -0.107 -> -0.019 -> -0.016
 #:   cloth        whole 0.29 -> 0.295 -> 0.081 -> 0.069 -> 0.062 -> 0.062 -> 0.048 -> 0.043
-#:                (0.037 against 4096 spp)  covered ... -> 0.078 -> 0.078 -> 0.060 -> 0.054
-#:                objects 0.284 -> 0.125 -> 0.102 -> 0.107 -> 0.095 -> 0.081 -> 0.068
-#:                edges ... -> 0.138 -> 0.125 -> 0.118 -> 0.079 -> 0.070
+#:                (0.037 against 4096 spp)  covered ... -> 0.078 -> 0.078 -> 0.060 -> 0.053
+#:                objects 0.284 -> 0.125 -> 0.102 -> 0.107 -> 0.095 -> 0.081 -> 0.067
+#:                edges ... -> 0.138 -> 0.125 -> 0.118 -> 0.079 -> 0.069
 #:                unlit bias -0.63 -> -0.34 -> -0.21 -> -0.245 -> -0.120 -> -0.026
 #:   dome         whole 0.31 -> 0.057 -> 0.045 -> 0.031 -> 0.025 -> 0.025  covered ... -> 0.031
 #:                -> 0.031  objects 0.280 -> 0.227 -> 0.048 -> 0.036 -> 0.039 -> 0.043
 #:                edges ... -> 0.030 -> 0.032 -> 0.030
-#: rel (covered / objects) now: 0.023 / 0.029, 0.027 / 0.030, 0.034 / 0.037, 0.014 / 0.019.
+#: rel (covered / objects) now: 0.021 / 0.024, 0.026 / 0.027, 0.033 / 0.036, 0.014 / 0.019.
 #: The reference's pair noise floor (two seeds) is 0.013-0.037 FLIP. Margin: +25% of the value
 #: (a 128 x 96 frame's FLIP moves by a few % with the reference's noise). The issue's targets
 #: (whole <= 0.04, objects and edges <= 0.08) are met by every scene against a quieter
-#: reference (2048-4096 spp: 0.036 / 0.037 / 0.037 / 0.024 whole); against this one the sun's
-#: and the cloth's whole include the reference's own noise (floor 0.020 / 0.028).
+#: reference (2048-4096 spp: 0.033 / 0.035 / 0.037 / 0.024 whole); against this one the
+#: cloth's whole includes the reference's own noise (floor 0.028).
 TOLERANCES = {
-    "spheres_sky": {"whole": (0.046, None), "covered": (0.060, 0.028), "objects": (0.059, 0.036),
+    "spheres_sky": {"whole": (0.044, None), "covered": (0.058, 0.027), "objects": (0.050, 0.030),
+                    "edges": (0.076, None)},
+    "spheres_sun": {"whole": (0.048, None), "covered": (0.064, 0.032), "objects": (0.054, 0.034),
                     "edges": (0.079, None)},
-    "spheres_sun": {"whole": (0.050, None), "covered": (0.067, 0.034), "objects": (0.062, 0.038),
-                    "edges": (0.089, None)},
-    "cloth": {"whole": (0.054, None), "covered": (0.067, 0.042), "objects": (0.086, 0.046),
-              "edges": (0.088, None)},
+    "cloth": {"whole": (0.053, None), "covered": (0.066, 0.042), "objects": (0.084, 0.045),
+              "edges": (0.087, None)},
     "dome": {"whole": (0.031, None), "covered": (0.039, 0.018), "objects": (0.054, 0.024),
              "edges": (0.038, None)},
 }
@@ -137,7 +138,7 @@ def test_glossy_lobe_adds_to_an_undiminished_lambertian():
 
 @pytest.mark.parametrize("case", ["ground under the sun", "glossy, highlight in view"])
 def test_ggx_highlight_is_the_reference_s_coat_under_a_light(case):
-    """Material.highlight = 'ggx' draws the GGX coat the export gives Mitsuba (GGX D, Smith
+    """Material.specular_model = 'ggx' draws the GGX coat the export gives Mitsuba (GGX D, Smith
     masking, the dielectric's Fresnel): on a plane under a directional light, Mitsuba's direct
     light and weft's agree to 0.3% per band of rows (measured 0.03-0.05%), where the seed's
     Blinn-Phong highlight, matched to the coat at its peak, is 1% dark on a sunlit ground (its
@@ -145,17 +146,17 @@ def test_ggx_highlight_is_the_reference_s_coat_under_a_light(case):
     Schlick's Fresnel instead of the dielectric's the glossy case was 11-15% dark.)"""
     if case == "ground under the sun":  # the cloth scene's ground and sun
         make = lambda h: weft.Material(kd=(0.55, 0.55, 0.52), ks=(0.04,) * 3, shininess=12.0,
-                                       highlight=h)
+                                       specular_model=h)
         direction, blinn_phong_off = (-0.4, -1.0, -0.3), 0.006
     else:
-        make = lambda h: scenes.glossy_material((0.3, 0.3, 0.3), 0.04, 60.0, highlight=h)
+        make = lambda h: scenes.glossy_material((0.3, 0.3, 0.3), 0.04, 60.0, specular_model=h)
         direction, blinn_phong_off = (0.0, -0.5, 0.9), 0.3
     camera = weft.scenes.cloth_camera()
     bands = (slice(14, 24), slice(24, 36), slice(36, 48))
-    for highlight in ("ggx", "blinn_phong"):
+    for model in ("ggx", "blinn_phong"):
         scene = weft.Scene()
         scene.ambient = (0.0, 0.0, 0.0)
-        scene.add_mesh(weft.Mesh.plane(8.0, 8.0, 4, 4), make(highlight), cast_shadows=False)
+        scene.add_mesh(weft.Mesh.plane(8.0, 8.0, 4, 4), make(model), cast_shadows=False)
         scene.add_light(weft.DirectionalLight(direction=direction, intensity=0.9))
         truth = mx.render_mitsuba(scene, camera, 64, 48, spp=256, integrator="direct")
         got = np.asarray(weft.Renderer(64, 48).render_linear(scene, camera))[..., :3]
@@ -163,10 +164,79 @@ def test_ggx_highlight_is_the_reference_s_coat_under_a_light(case):
         assert plane[14:].all()
         ratios = [got[rows][plane[rows]].mean() / truth[rows][plane[rows]].mean()
                   for rows in bands]
-        if highlight == "ggx":
+        if model == "ggx":
             np.testing.assert_allclose(ratios, 1.0, atol=0.003, err_msg=case)
         else:  # the test can tell the lobes apart
             assert max(abs(r - 1.0) for r in ratios) > blinn_phong_off, (case, ratios)
+
+
+def _mitsuba_coat_albedo(cos_view: float, alpha: float, f0: float, spp: int = 4096) -> float:
+    """What Mitsuba's GGX coat (roughconductor, k = 0: the dielectric's Fresnel) reflects of a
+    uniform sky of radiance 1 towards a view at cos_view: its directional albedo."""
+    s = math.sqrt(1.0 - cos_view * cos_view)
+    scene = mi.load_dict({
+        "type": "scene", "integrator": {"type": "direct"},
+        "sensor": {"type": "perspective", "fov": 2.0,
+                   "to_world": mi.ScalarTransform4f().look_at(
+                       origin=[3.0 * s, 0.0, 3.0 * cos_view], target=[0, 0, 0], up=[0, 1, 0]),
+                   "film": {"type": "hdrfilm", "width": 4, "height": 4,
+                            "rfilter": {"type": "box"}},
+                   "sampler": {"type": "independent", "sample_count": spp}},
+        "plane": {"type": "rectangle", "to_world": mi.ScalarTransform4f().scale([50, 50, 1]),
+                  "bsdf": {"type": "roughconductor", "distribution": "ggx", "alpha": alpha,
+                           "eta": conv.ior_from_f0(f0), "k": 0.0}},
+        "sky": {"type": "constant", "radiance": {"type": "rgb", "value": 1.0}}})
+    return float(np.asarray(mi.render(scene, spp=spp))[..., 0].mean())
+
+
+def test_coat_albedo_is_what_mitsuba_s_coat_reflects_of_a_uniform_sky():
+    """weft.ibl.coat_albedo (the table a GGX coat's reflection is weighted with) against
+    Mitsuba's coat under a uniform sky, from grazing to normal views, smooth to rough, F0 0.02 to
+    0.5: within 0.6% (measured); the seed's Schlick weight F(n.v) is 10-70% off on the same
+    cases, and Karis's Schlick split-sum (dfg_lut) 10-25% low at F0 0.02-0.05."""
+    cases = ((0.2, 0.07, 0.04), (0.5, 0.3, 0.04), (0.9, 0.6, 0.1), (0.15, 0.5, 0.5),
+             (0.05, 0.2, 0.02))
+    schlick_off = []
+    for cos_view, alpha, f0 in cases:
+        truth = _mitsuba_coat_albedo(cos_view, alpha, f0)
+        assert weft.ibl.coat_albedo(cos_view, alpha, f0) == pytest.approx(truth, rel=0.01)
+        schlick = f0 + (1.0 - f0) * (1.0 - cos_view) ** 5
+        schlick_off.append(abs(schlick / truth - 1.0))
+    assert max(schlick_off) > 0.3  # the cases tell the weights apart
+    assert weft.ibl.coat_albedo(1.0, 0.0, 0.04) == pytest.approx(0.04, abs=1e-9)  # a mirror
+    for bad in ((1.5, 0.1, 0.04), (0.5, -0.1, 0.04), (0.5, 0.1, math.nan)):
+        with pytest.raises(ValueError):
+            weft.ibl.coat_albedo(*bad)
+
+
+def test_a_ggx_coat_reflects_a_uniform_sky_as_mitsuba_s_does():
+    """A black GGX-coated sphere (F0 0.04, s = 60) under a uniform environment shows only its
+    reflection, the coat's albedo towards each pixel's view: weft within 1.5% of Mitsuba over
+    rings of the sphere up to 0.95 of its radius (measured 0.2-1.4%; the outermost ring's pixels
+    span a steep stretch of the albedo, which Mitsuba integrates and weft samples at the pixel's
+    centre). The seed's Schlick-weighted reflection is 13% dark on the middle ring and 32%
+    bright towards the rim; with the table interpolated linearly in sqrt(F0) the centre was 3%
+    bright."""
+    camera = weft.Camera(position=(0.0, 0.0, 3.0), target=(0.0, 0.0, 0.0), fov_y=0.75)
+    y, x = np.mgrid[0:64, 0:64]
+    radius_px = 32.0 / math.tan(0.375) / math.sqrt(8.0)  # the sphere's silhouette, in pixels
+    ring_radius = np.hypot(x + 0.5 - 32.0, y + 0.5 - 32.0) / radius_px
+    rings = ((0.0, 0.5), (0.5, 0.8), (0.8, 0.9), (0.9, 0.95))
+    for model in ("ggx", "blinn_phong"):
+        scene = weft.Scene()
+        scene.ambient = (0.0, 0.0, 0.0)
+        scene.add_mesh(weft.Mesh.uv_sphere(1.0, 96, 48),
+                       scenes.glossy_material((0.0, 0.0, 0.0), 0.04, 60.0, specular_model=model),
+                       cast_shadows=False)
+        scene.set_environment(weft.ibl.CubeMap(np.ones((6, 16, 16, 3), np.float32)))
+        truth = mx.render_mitsuba(scene, camera, 64, 64, spp=512, integrator="direct")
+        got = np.asarray(weft.Renderer(64, 64).render_linear(scene, camera))[..., :3]
+        ratios = [got[(ring_radius >= a) & (ring_radius < b)].mean()
+                  / truth[(ring_radius >= a) & (ring_radius < b)].mean() for a, b in rings]
+        if model == "ggx":
+            np.testing.assert_allclose(ratios, 1.0, atol=0.015)
+        else:
+            assert max(abs(r - 1.0) for r in ratios) > 0.1, ratios
 
 
 def test_environment_diffuse_is_lambert_under_the_radiance():
@@ -332,7 +402,8 @@ def test_a_glossy_ground_alone_reflects_the_ambient_sky():
     """A glossy ground with nothing on it (so nothing casts a shadow and no dome is built)
     under the ambient read as a uniform sky: it reflects that sky as it does beside a caster.
     Before, only a frame with a dome reflected it, and the lone ground came out 5-9% too dark
-    against Mitsuba (0.914 / 0.928 / 0.953 over three bands of rows); now 0.99-1.005."""
+    against Mitsuba (0.914 / 0.928 / 0.953 over three bands of rows); 0.99-1.005 with Karis's
+    analytic DFG (Schlick's Fresnel), 0.996-0.999 with the coat's albedo table."""
     scene = weft.Scene()
     ground = weft.Material(kd=(0.55, 0.55, 0.52), ks=(0.04,) * 3, shininess=12.0)
     ground.ka = ground.kd  # the ambient as a sky's light (conventions)
@@ -347,7 +418,7 @@ def test_a_glossy_ground_alone_reflects_the_ambient_sky():
         band[rows] = True
         band &= ground_px
         ratio = e.weft_linear[band].mean() / e.reference[band][..., :3].mean()
-        assert abs(ratio - 1.0) < 0.02, (rows, ratio)
+        assert abs(ratio - 1.0) < 0.01, (rows, ratio)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -14,11 +14,12 @@ and tested (tests/python/render/test_picture_reference.py):
 - **Ambient.** weft adds ``I_A K_A T`` without occlusion. The physical reading is a uniform sky of
   radiance ``I_A`` (a ``constant`` emitter): a Lambertian surface under it gets ``K_D T I_A``
   where nothing occludes it, so the two agree only when ``K_A = K_D`` (noted otherwise).
-- **Glossy.** weft has two specular terms: a direct highlight and an environment reflection. The
-  highlight of ``Material.highlight = 'ggx'`` is exactly the GGX lobe described below (D, Smith
-  masking, the dielectric's Fresnel of F0; shading.glsl ``highlight``), so the export is exact
-  there; the seed's default, ``'blinn_phong'``, is ``K_S (n.h)^s L`` (no Fresnel, no masking, no
-  n.l, unnormalised) and is approximated by the same coat (below). The reflection is ``F(n.v) *
+- **Glossy.** weft has two specular terms: a direct highlight and an environment reflection.
+  With ``Material.specular_model = 'ggx'`` the highlight is exactly the GGX lobe described below
+  (D, Smith masking, the dielectric's Fresnel of F0; shading.glsl ``highlight``) and the
+  reflection is weighted by that lobe's directional albedo, so the export is that material.
+  The seed's default, ``'blinn_phong'``, is approximated by the same coat: its highlight is
+  ``K_S (n.h)^s L`` (no Fresnel, no masking, no n.l, unnormalised) and its reflection ``F(n.v) *
   prefiltered GGX radiance(R)`` with Schlick's ``F0 = reflectivity`` and GGX
   ``alpha = sqrt(2 / (s + 2))`` (environmentRoughness: perceptual roughness sqrt(alpha)), no
   DFG scale, added to an undiminished Lambertian ``K_D T``. The material both approximate is
@@ -32,10 +33,10 @@ and tested (tests/python/render/test_picture_reference.py):
   one whose peak matches weft's highlight at normal incidence: ``f = F0 D(n) / (4 cos^2)``
   with ``D(n) = 1 / (pi alpha^2)`` brings ``F0 / (4 pi alpha^2) * E = F0 L / (4 alpha^2)``
   (E = pi L) against ``K_S L``, so ``F0 = 4 alpha^2 K_S = 8 K_S / (s + 2)`` (weft's 'ggx'
-  highlight takes the same F0). Known mismatches (weft's, not the reference's): the Blinn-Phong
+  coat takes the same F0). Known mismatches of 'blinn_phong' (weft's, not the reference's): the
   highlight's shape away from normal incidence and at grazing light (no n.l, Fresnel or GGX
-  tail: a sunlit glossy ground ~1% dark), and weft's reflection has no masking / energy (DFG)
-  term, so it is too bright at grazing angles on rough surfaces.
+  tail: a sunlit glossy ground ~1% dark), and a reflection without masking / energy (DFG) term,
+  too bright at grazing angles.
 - **Camera.** weft.Camera's ``fov_y`` is the full vertical angle (glm::perspective): Mitsuba
   ``perspective`` with ``fov_axis = 'y'`` and ``fov = degrees(fov_y)``, ``look_at`` the same
   position / target / up.

@@ -12,9 +12,9 @@ as it is and :mod:`~weft.reference.picture.mitsuba_export` exports for the path 
   the dome of shadow lights alone.
 
 Materials are written so that both renderers mean the same thing (conventions.py): glossy ones
-have the GGX highlight (``Material.highlight = 'ggx'``) with ``reflectivity = F0`` (or, in the
-cloth scene's materials, the F0 of their ``ks``) so that weft's highlight and its reflection are
-the same GGX coat the reference draws, and ``ka = kd`` so that the ambient is a sky's light.
+are GGX coats (``Material.specular_model = 'ggx'``) of ``reflectivity = F0`` (or, in the cloth
+scene's materials, the F0 of their ``ks``), so that weft's highlight and its reflection are the
+coat the reference draws, and ``ka = kd`` so that the ambient is a sky's light.
 (With the seed's Blinn-Phong highlight, matched to the coat at its peak, the cloth scene scored
 FLIP 0.044 against 0.038: its lobe lacks the GGX tail, ~1% of a sunlit ground's light.)
 """
@@ -56,10 +56,10 @@ class ReferenceScene:
 
 def glossy_material(kd: Sequence[float], f0: float, shininess: float, **kw):
     """A weft.Material whose highlight and environment reflection are one GGX coat of ``f0``
-    (``ks`` the coat's Blinn-Phong equivalent, for ``highlight='blinn_phong'`` in ``kw``)."""
+    (``ks`` the coat's Blinn-Phong equivalent, for ``specular_model='blinn_phong'`` in ``kw``)."""
     import weft
 
-    kw.setdefault("highlight", "ggx")
+    kw.setdefault("specular_model", "ggx")
     return weft.Material(ka=kd, kd=kd, ks=(f0 * (shininess + 2.0) / 8.0,) * 3,
                          shininess=shininess, reflectivity=(f0,) * 3, **kw)
 
@@ -150,7 +150,7 @@ def build(name: str, dome_lights: int = 16, specular_samples: Optional[int] = No
         for i in range(scene.instance_count):
             m = scene.material(i)
             m.ka = m.kd  # the ambient as a sky's light (see the module doc)
-            m.highlight = "ggx"  # ... and the highlight the reference's coat
+            m.specular_model = "ggx"  # ... and its specular the reference's coat
             scene.set_material(i, m)
         # ... and that uniform sky is what both show behind the scene
         scene.background = scene.ambient
