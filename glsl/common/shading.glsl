@@ -105,9 +105,6 @@ vec3 shadowFootprint(ShadowLayer s, vec3 q, vec3 d, vec3 ndc) {
     return vec3(0.5 * e.xy, e.z);
 }
 
-// Fraction of the shadow taps of light L (group g, shadowed) that see the light from p.
-// `lightDepth` returns the receiver's NDC depth in the layer used. With g a constant (the
-// group loops of forEachLight) the other groups' tests are compiled out.
 // A receiver's depth z in layer s's map as the PCF test compares it, biased (linear for a
 // perspective map), and a stored depth in the same measure.
 float receiverDepth(float z, float bias, bool perspective, ShadowLayer s) {
@@ -119,6 +116,9 @@ float storedDepth(float stored, bool perspective, ShadowLayer s) {
     return perspective ? linearShadowDepth(stored, s.params.z, s.params.w) : stored;
 }
 
+// Fraction of the shadow taps of light L (group g, shadowed) that see the light from p.
+// `lightDepth` returns the receiver's NDC depth in the layer used. With g a constant (the
+// group loops of forEachLight) the other groups' tests are compiled out.
 float shadowVisibility(Light L, int g, vec3 p, vec3 n, vec3 l, out float lightDepth) {
     int layer = int(L.radiance.w);
     float c = clamp(dot(n, l), -1.0, 1.0);

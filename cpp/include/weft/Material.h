@@ -1,5 +1,6 @@
 #pragma once
-// Blinn-Phong material of SPEC eq. 2.10: P = (I_A K_A + I_D K_D a) * T + I_S K_S a.
+// Blinn-Phong material of SPEC eq. 2.10: P = (I_A K_A + I_D K_D a) * T + I_S K_S a, or with
+// specularModel = Ggx a GGX coat over the same diffuse terms.
 #include <glm/glm.hpp>
 
 #include <weft/Texture.h>

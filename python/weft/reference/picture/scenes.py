@@ -15,8 +15,9 @@ Materials are written so that both renderers mean the same thing (conventions.py
 are GGX coats (``Material.specular_model = 'ggx'``) of ``reflectivity = F0`` (or, in the cloth
 scene's materials, the F0 of their ``ks``), so that weft's highlight and its reflection are the
 coat the reference draws, and ``ka = kd`` so that the ambient is a sky's light.
-(With the seed's Blinn-Phong highlight, matched to the coat at its peak, the cloth scene scored
-FLIP 0.044 against 0.038: its lobe lacks the GGX tail, ~1% of a sunlit ground's light.)
+(With the seed's Blinn-Phong specular, matched to the coat at its peak, the cloth scene scored
+FLIP 0.044 against 0.037 as a coat: its highlight lacks the GGX tail, ~1% of a sunlit ground's
+light, and its Schlick-weighted reflection makes a glossy sphere's rim glow.)
 """
 
 from __future__ import annotations
