@@ -341,6 +341,11 @@ vec3 coatF0(Surface sf, Instance ins) {
                                                             : sf.ks * (8.0 / (sf.shininess + 2.0));
 }
 
+// Smith's G1 of GGX with alpha^2 = a2 at cos c (Walter et al. 2007, eq. 34).
+float smithG1(float c, float a2) {
+    return 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 / (c * c) - 1.0)));
+}
+
 // The unpolarised Fresnel reflectance at cos c of the dielectric whose normal-incidence
 // reflectance is f0 (relative IOR eta = (1 + sqrt f0) / (1 - sqrt f0), f0 < 1); Walter et al.
 // 2007, eq. 22. Schlick's approximation is ~20% low at 60 degrees for f0 = 0.04.
@@ -367,10 +372,8 @@ vec3 highlight(Surface sf, Instance ins, vec3 l, vec3 v) {
     float a2 = 2.0 / (sf.shininess + 2.0);
     float nl = max(dot(sf.ns, l), 1e-4), nv = max(dot(sf.ns, v), 1e-4);
     float q = nh * nh * (a2 - 1.0) + 1.0;
-    float g1l = 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 / (nl * nl) - 1.0)));
-    float g1v = 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 / (nv * nv) - 1.0)));
     vec3 fresnel = dielectricFresnel(clamp(dot(v, h), 0.0, 1.0), f0);
-    return fresnel * (a2 * g1l * g1v / (4.0 * q * q * nv));
+    return fresnel * (a2 * smithG1(nl, a2) * smithG1(nv, a2) / (4.0 * q * q * nv));
 }
 
 // Light i (group g) on the surface: eq. 2.10's diffuse and specular terms, shadowed.
