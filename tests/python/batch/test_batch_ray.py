@@ -7,10 +7,12 @@ from __future__ import annotations
 import json
 import os
 import secrets
+import shutil
 import signal
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 
 import pytest
@@ -70,10 +72,12 @@ def _running_in_group(pgid: int) -> bool:
 
 
 @pytest.fixture(scope="module")
-def cluster(tmp_path_factory):
+def cluster():
     """HOST:PORT of a two-node cluster (head + worker, --num-cpus 1 each), stopped after."""
     port = _free_port()
-    temp = str(tmp_path_factory.mktemp("ray"))
+    # Ray's sockets live under its temp dir, and an AF_UNIX path may not exceed 107 bytes: under
+    # pytest-xdist, tmp_path_factory's /tmp/pytest-of-root/pytest-N/popen-gwK/ left too few
+    temp = tempfile.mkdtemp(prefix="weft-ray-")
     env = dict(os.environ, RAY_USAGE_STATS_ENABLED="0")
     ray_cli = os.path.join(os.path.dirname(sys.executable), "ray")
     common = ["--num-cpus", "1", "--object-store-memory", str(100 << 20), "--block",
@@ -94,6 +98,7 @@ def cluster(tmp_path_factory):
         if ray.is_initialized():
             ray.shutdown()
         _stop(procs)
+        shutil.rmtree(temp, ignore_errors=True)
 
 
 def _wait_for_nodes(address: str, count: int, timeout: float = 60.0) -> None:
