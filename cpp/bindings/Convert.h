@@ -30,5 +30,6 @@ py::array_t<float> toNumpy(const ImageF& img);
 ImageF fromNumpyF(py::handle obj);
 /// 'clamp', 'aces', 'agx' or 'neutral' (defined in bind_render.cpp); else InvalidArgument.
 ToneMap toneMapOf(const std::string& name);
+std::string toneMapName(ToneMap t);
 
 } // namespace weft::py_bind

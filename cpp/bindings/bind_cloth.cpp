@@ -10,6 +10,7 @@
 #include "sim/cloth/NaturalGsPeer.h"
 
 #include "Convert.h"
+#include "Fields.h"
 
 namespace weft::py_bind {
 
@@ -105,15 +106,6 @@ Collider makeCollider(Collider::Kind kind, float friction) {
     return c;
 }
 
-#define WEFT_CLOTH_SETTING(pyname, field, type)                                                    \
-    def_property(                                                                                  \
-        pyname, [](const Cloth& c) { return c.params().field; },                                   \
-        [](Cloth& c, type v) {                                                                     \
-            ClothParams p = c.params();                                                            \
-            p.field = v;                                                                           \
-            c.setParams(p);                                                                        \
-        })
-
 } // namespace
 
 void bindCloth(py::module_& m) {
@@ -155,41 +147,20 @@ void bindCloth(py::module_& m) {
             "positions", [](const cloth::NaturalGsPeer& p) { return pyPoints(p.positions()); })
         .def("kinetic_energy", &cloth::NaturalGsPeer::kineticEnergy, py::arg("particle_mass"));
 
-    py::class_<Wind>(m, "Wind",
-                     "Global wind: per-particle acceleration s (n.r) n (SPEC eq. 3.5).\n"
-                     "A value: Cloth.wind returns a copy; assign Cloth.wind to change it.\n"
-                     "direction: finite, non-zero; |strength| <= 1e4 m/s^2.")
-        .def(py::init([](py::handle direction, float strength) {
-                 Wind w;
-                 w.direction = toVec3(direction, "direction");
-                 w.strength = strength;
-                 w.validate();
-                 return w;
-             }),
-             py::arg("direction") = py::make_tuple(1, 0, 0), py::arg("strength") = 0.0f,
-             "Wind blowing along `direction` (normalised) with `strength` in m/s^2.")
-        .def_property(
-            "direction", [](const Wind& w) { return fromVec3(w.direction); },
-            [](Wind& w, py::handle v) {
-                Wind next = w;
-                next.direction = toVec3(v, "direction");
-                next.validate();
-                w = next;
-            })
-        .def_property(
-            "strength", [](const Wind& w) { return w.strength; },
-            [](Wind& w, float v) {
-                Wind next = w;
-                next.strength = v;
-                next.validate();
-                w = next;
-            })
-        .def(py::self == py::self)
-        .def("__repr__", [](const Wind& w) {
-            return "<weft.Wind direction=(" + std::to_string(w.direction.x) + ", " +
-                   std::to_string(w.direction.y) + ", " + std::to_string(w.direction.z) +
-                   ") strength=" + std::to_string(w.strength) + ">";
-        });
+    const auto windFields =
+        std::make_tuple(field("direction", &Wind::direction), field("strength", &Wind::strength));
+    py::class_<Wind> wind(m, "Wind",
+                          "Global wind: per-particle acceleration s (n.r) n (SPEC eq. 3.5).\n"
+                          "A value: Cloth.wind returns a copy; assign Cloth.wind to change it.\n"
+                          "direction: finite, non-zero; |strength| <= 1e4 m/s^2.");
+    defInit(wind, validated<Wind>, windFields,
+            "Wind blowing along `direction` (normalised) with `strength` in m/s^2.");
+    defProperties(wind, windFields);
+    wind.def(py::self == py::self).def("__repr__", [](const Wind& w) {
+        return "<weft.Wind direction=(" + std::to_string(w.direction.x) + ", " +
+               std::to_string(w.direction.y) + ", " + std::to_string(w.direction.z) +
+               ") strength=" + std::to_string(w.strength) + ">";
+    });
 
     py::class_<Collider>(m, "Collider", "A shape the cloth is projected out of (SPEC §2.2).")
         .def_static(
@@ -284,7 +255,31 @@ void bindCloth(py::module_& m) {
             return std::string("<weft.Collider ") + names[int(c.kind)] + ">";
         });
 
-    py::class_<Cloth, std::shared_ptr<Cloth>>(
+    using P = ClothParams;
+    const auto layout = std::make_tuple( // fixed when the cloth is made
+        field("nx", &P::nx), field("ny", &P::ny),
+        field<py::handle, P>(
+            "size", [](const P& p) { return py::make_tuple(p.size.x, p.size.y); },
+            [](P& p, py::handle v) {
+                auto s = numericArray(v, "size");
+                if (s.ndim() != 1 || s.size() != 2)
+                    throw InvalidArgument("size must be (size_u, size_v)");
+                p.size = glm::vec2(float(s.data()[0]), float(s.data()[1]));
+            }),
+        field("origin", &P::origin), field("axis_u", &P::axisU), field("axis_v", &P::axisV),
+        field("mass", &P::mass), field("bend_distance", &P::bendDistance),
+        field("extra_axial", &P::extraAxial));
+    const auto settings = std::make_tuple( // also properties
+        field("damping", &P::damping), field("gravity", &P::gravity),
+        field("iterations", &P::iterations), field("substeps", &P::substeps),
+        field("compliance_stretch", &P::complianceStretch),
+        field("compliance_shear", &P::complianceShear),
+        field("compliance_bend", &P::complianceBend), field("tethers", &P::tethers),
+        field("thickness", &P::thickness), field("self_collision", &P::selfCollision),
+        field("self_thickness", &P::selfThickness), field("tear_strain", &P::tearStrain),
+        field("sleep_threshold", &P::sleepThreshold), field("sleep_steps", &P::sleepSteps),
+        field("threads", &P::threads));
+    py::class_<Cloth, std::shared_ptr<Cloth>> cloth(
         m, "Cloth",
         "Grid cloth simulated with position-based dynamics (SPEC §2): Verlet + XPBD distance\n"
         "constraints over a graph-coloured parallel Gauss-Seidel, colliders, wind, grabbing,\n"
@@ -292,89 +287,27 @@ void bindCloth(py::module_& m) {
         "Accepted ranges (else weft.InvalidArgument): size 1e-3..1e3 m per side, |origin| <= 1e7 m,\n"
         "mass 1e-6..1e6 kg, |gravity| and |wind strength| <= 1e4 m/s^2, compliance <= 1e6 m/N,\n"
         "thickness and self_thickness <= 1 m, tear_strain <= 100, sleep_threshold <= 100 m/s,\n"
-        "advance(max_steps) <= 1000. Calls from several threads are serialised.")
+        "advance(max_steps) <= 1000. Calls from several threads are serialised.");
+    defInit(
+        cloth, [](const P& p) { return std::make_unique<Cloth>(p); },
+        std::tuple_cat(layout, settings),
+        "A rectangular nx x ny particle grid spanning `size` along axis_u/axis_v from "
+        "`origin`, simulated with XPBD (SPEC §3): stretch, shear and bend compliances, "
+        "tethers, collisions, self-collision, tearing and sleeping as the keywords say. "
+        "Raises InvalidArgument for out-of-range parameters.");
+    defSettingProperties(
+        cloth, [](const Cloth& c) { return c.params(); },
+        [](Cloth& c, const P& p) { c.setParams(p); }, settings);
+    cloth
         .def_static("soa_kernels_available", &Cloth::soaKernelsAvailable,
                     "Whether this CPU runs the structure-of-arrays relaxation (AVX-512; cloths\n"
                     "without colliders, unless WEFT_CLOTH_AOS=1); results are bit-identical.")
-        .def(py::init([](int nx, int ny, py::handle size, py::handle origin, py::handle axisU,
-                         py::handle axisV, float mass, int bendDistance, bool extraAxial,
-                         float damping, py::handle gravity, int iterations, int substeps, float cs,
-                         float csh, float cb, bool tethers, float thickness, bool selfCollision,
-                         float selfThickness, float tearStrain, float sleepThreshold,
-                         int sleepSteps, int threads) {
-                 ClothParams p;
-                 p.nx = nx;
-                 p.ny = ny;
-                 auto s = numericArray(size, "size");
-                 if (s.ndim() != 1 || s.size() != 2)
-                     throw InvalidArgument("size must be (size_u, size_v)");
-                 p.size = glm::vec2(float(s.data()[0]), float(s.data()[1]));
-                 p.origin = toVec3(origin, "origin");
-                 p.axisU = toVec3(axisU, "axis_u");
-                 p.axisV = toVec3(axisV, "axis_v");
-                 p.mass = mass;
-                 p.bendDistance = bendDistance;
-                 p.extraAxial = extraAxial;
-                 p.damping = damping;
-                 p.gravity = toVec3(gravity, "gravity");
-                 p.iterations = iterations;
-                 p.substeps = substeps;
-                 p.complianceStretch = cs;
-                 p.complianceShear = csh;
-                 p.complianceBend = cb;
-                 p.tethers = tethers;
-                 p.thickness = thickness;
-                 p.selfCollision = selfCollision;
-                 p.selfThickness = selfThickness;
-                 p.tearStrain = tearStrain;
-                 p.sleepThreshold = sleepThreshold;
-                 p.sleepSteps = sleepSteps;
-                 p.threads = threads;
-                 return std::make_unique<Cloth>(p);
-             }),
-             py::arg("nx") = 32, py::arg("ny") = 32, py::arg("size") = py::make_tuple(1.0, 1.0),
-             py::arg("origin") = py::make_tuple(-0.5, 1.0, -0.5),
-             py::arg("axis_u") = py::make_tuple(1, 0, 0),
-             py::arg("axis_v") = py::make_tuple(0, 0, 1), py::arg("mass") = 1.0f,
-             py::arg("bend_distance") = 2, py::arg("extra_axial") = false,
-             py::arg("damping") = 0.99f, py::arg("gravity") = py::make_tuple(0.0, -9.81, 0.0),
-             py::arg("iterations") = 1, py::arg("substeps") = 1,
-             py::arg("compliance_stretch") = 0.0f, py::arg("compliance_shear") = 0.0f,
-             py::arg("compliance_bend") = 0.0f, py::arg("tethers") = false,
-             py::arg("thickness") = 0.005f, py::arg("self_collision") = false,
-             py::arg("self_thickness") = 0.0f, py::arg("tear_strain") = 0.0f,
-             py::arg("sleep_threshold") = 0.0f, py::arg("sleep_steps") = 30, py::arg("threads") = 0,
-             "A rectangular nx x ny particle grid spanning `size` along axis_u/axis_v from "
-             "`origin`, simulated with XPBD (SPEC §3): stretch, shear and bend compliances, "
-             "tethers, collisions, self-collision, tearing and sleeping as the keywords say. "
-             "Raises InvalidArgument for out-of-range parameters.")
         .def_property_readonly("nx", [](const Cloth& c) { return c.params().nx; })
         .def_property_readonly("ny", [](const Cloth& c) { return c.params().ny; })
         .def_property_readonly("particle_count", &Cloth::particleCount)
         .def_property_readonly("constraint_count", &Cloth::constraintCount)
         .def_property_readonly("step_count", &Cloth::stepCount)
         .def_property_readonly("sleeping", &Cloth::sleeping)
-        .WEFT_CLOTH_SETTING("damping", damping, float)
-        .WEFT_CLOTH_SETTING("iterations", iterations, int)
-        .WEFT_CLOTH_SETTING("substeps", substeps, int)
-        .WEFT_CLOTH_SETTING("compliance_stretch", complianceStretch, float)
-        .WEFT_CLOTH_SETTING("compliance_shear", complianceShear, float)
-        .WEFT_CLOTH_SETTING("compliance_bend", complianceBend, float)
-        .WEFT_CLOTH_SETTING("tethers", tethers, bool)
-        .WEFT_CLOTH_SETTING("thickness", thickness, float)
-        .WEFT_CLOTH_SETTING("self_collision", selfCollision, bool)
-        .WEFT_CLOTH_SETTING("self_thickness", selfThickness, float)
-        .WEFT_CLOTH_SETTING("tear_strain", tearStrain, float)
-        .WEFT_CLOTH_SETTING("sleep_threshold", sleepThreshold, float)
-        .WEFT_CLOTH_SETTING("sleep_steps", sleepSteps, int)
-        .WEFT_CLOTH_SETTING("threads", threads, int)
-        .def_property(
-            "gravity", [](const Cloth& c) { return fromVec3(c.params().gravity); },
-            [](Cloth& c, py::handle v) {
-                ClothParams p = c.params();
-                p.gravity = toVec3(v, "gravity");
-                c.setParams(p);
-            })
         .def_property_readonly(
             "positions",
             [](py::object self) {

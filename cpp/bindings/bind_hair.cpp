@@ -13,6 +13,7 @@
 #include <weft/HairShadeEval.h>
 
 #include "Convert.h"
+#include "Fields.h"
 
 namespace weft::py_bind {
 
@@ -111,10 +112,11 @@ HairPtr makeStrands(py::handle points, py::object segments, py::object thickness
     return h;
 }
 
+const char* const kStyles[] = {"straight", "wavy", "curly"};
+
 HairStyleKind styleKind(const std::string& s) {
-    if (s == "straight") return HairStyleKind::Straight;
-    if (s == "wavy") return HairStyleKind::Wavy;
-    if (s == "curly") return HairStyleKind::Curly;
+    for (int i = 0; i < 3; ++i)
+        if (s == kStyles[i]) return HairStyleKind(i);
     throw InvalidArgument("hair style must be 'straight', 'wavy' or 'curly', got '" + s + "'");
 }
 
@@ -134,13 +136,13 @@ HairModel modelOf(const std::string& s) {
                           "'");
 }
 
-// Sets one field on a copy, validates the copy and only then keeps it.
-template <typename F> void updateMaterial(HairMaterial& m, F&& change) {
-    HairMaterial next = m;
-    change(next);
-    next.validate();
-    m = next;
-}
+// generate_fur's arguments: the mesh, its parameters and an optional texture.
+struct FurCall {
+    std::shared_ptr<const Mesh> mesh;
+    FurParams params;
+    ImageU8 texture;
+    bool hasTexture = false;
+};
 
 std::string materialRepr(const HairMaterial& m) {
     std::ostringstream s;
@@ -172,20 +174,6 @@ std::string materialRepr(const HairMaterial& m) {
 }
 
 } // namespace
-
-#define WEFT_HAIR_FLOAT(name, field)                                                               \
-    def_property(                                                                                  \
-        name, [](const HairMaterial& m) { return m.field; },                                       \
-        [](HairMaterial& m, float v) {                                                             \
-            updateMaterial(m, [&](HairMaterial& x) { x.field = v; });                              \
-        })
-#define WEFT_HAIR_VEC3(name, field)                                                                \
-    def_property(                                                                                  \
-        name, [](const HairMaterial& m) { return fromVec3(m.field); },                             \
-        [](HairMaterial& m, py::handle v) {                                                        \
-            const glm::vec3 value = toVec3(v, name);                                               \
-            updateMaterial(m, [&](HairMaterial& x) { x.field = value; });                          \
-        })
 
 void bindHair(py::module_& m) {
     py::class_<HairStrands, HairPtr>(
@@ -345,119 +333,91 @@ void bindHair(py::module_& m) {
         py::arg("path"), py::arg("strands"), py::arg("z_up") = false,
         "Writes a .hair file with the arrays the strands hold (z_up: rotate back to Z-up).");
 
-    m.def(
-        "generate_hair",
-        [](uint32_t strands, uint64_t points, const std::string& style, float length,
-           float lengthJitter, float waveAmplitude, float waveFrequency, float curlRadius,
-           float droop, py::handle scalpCenter, py::handle scalpRadii, float scalpCutoff,
-           uint32_t seed, int threads) {
-            HairStyle s;
-            s.kind = styleKind(style);
-            s.strands = strands;
-            s.points = points;
-            s.length = length;
-            s.lengthJitter = lengthJitter;
-            s.waveAmplitude = waveAmplitude;
-            s.waveFrequency = waveFrequency;
-            s.curlRadius = curlRadius;
-            s.droop = droop;
-            s.scalpCenter = toVec3(scalpCenter, "scalp_center");
-            s.scalpRadii = toVec3(scalpRadii, "scalp_radii");
-            s.scalpCutoff = scalpCutoff;
-            s.seed = seed;
-            s.threads = threads;
+    const auto style = std::make_tuple(
+        field("strands", &HairStyle::strands), field("points", &HairStyle::points),
+        field<std::string, HairStyle>(
+            "style", [](const HairStyle& s) { return std::string(kStyles[int(s.kind)]); },
+            [](HairStyle& s, const std::string& v) { s.kind = styleKind(v); }),
+        field("length", &HairStyle::length), field("length_jitter", &HairStyle::lengthJitter),
+        field("wave_amplitude", &HairStyle::waveAmplitude),
+        field("wave_frequency", &HairStyle::waveFrequency),
+        field("curl_radius", &HairStyle::curlRadius), field("droop", &HairStyle::droop),
+        field("scalp_center", &HairStyle::scalpCenter),
+        field("scalp_radii", &HairStyle::scalpRadii),
+        field("scalp_cutoff", &HairStyle::scalpCutoff), field("seed", &HairStyle::seed),
+        field("threads", &HairStyle::threads));
+    defFunction(
+        m, "generate_hair",
+        [](const HairStyle& s) {
             py::gil_scoped_release release;
             return std::make_shared<HairStrands>(generateHair(s));
         },
-        py::arg("strands") = 1000, py::arg("points") = 16000, py::arg("style") = "straight",
-        py::arg("length") = 0.25f, py::arg("length_jitter") = 0.0f,
-        py::arg("wave_amplitude") = 0.01f, py::arg("wave_frequency") = 8.0f,
-        py::arg("curl_radius") = 0.01f, py::arg("droop") = 0.6f,
-        py::arg("scalp_center") = py::make_tuple(0.0, 1.6, 0.0),
-        py::arg("scalp_radii") = py::make_tuple(0.09, 0.11, 0.1), py::arg("scalp_cutoff") = 0.1f,
-        py::arg("seed") = 1, py::arg("threads") = 0,
+        style,
         "Procedural hair on the upper part of an ellipsoid scalp (style 'straight', 'wavy' or\n"
         "'curly'). `points` is the total: each strand gets points // strands points and the\n"
         "first points % strands one more (the seed's sizes: 160,000 = 10,000 x 16, 687,532 and\n"
         "1,031,268 = 10,000 and 15,000 strands of 68-69 points). wave_frequency: waves (curly:\n"
         "turns) per metre; droop in [0, 1]: how far strands turn from the normal towards -Y.");
 
-    m.def(
-        "generate_fur",
-        [](const Mesh& mesh, int level, float density, int segments, float length,
-           float lengthJitter, float directionJitter, py::handle down, py::object texture,
-           uint32_t seed, int threads) {
-            FurParams p;
-            p.level = level;
-            p.density = density;
-            p.segments = segments;
-            p.length = length;
-            p.lengthJitter = lengthJitter;
-            p.directionJitter = directionJitter;
-            p.down = toVec3(down, "down");
-            p.seed = seed;
-            p.threads = threads;
-            ImageU8 image;
-            if (!texture.is_none()) image = fromNumpy(texture);
+    using Fur = FurCall;
+    const auto fur = std::tuple_cat(
+        std::make_tuple(required(field<std::shared_ptr<Mesh>, Fur>(
+            "mesh", [](const Fur& c) { return std::const_pointer_cast<Mesh>(c.mesh); },
+            [](Fur& c, const std::shared_ptr<Mesh>& mesh) {
+                if (!mesh) throw InvalidArgument("generate_fur: mesh must be a weft.Mesh");
+                c.mesh = mesh;
+            }))),
+        within(&Fur::params, std::make_tuple(field("level", &FurParams::level),
+                                             field("density", &FurParams::density),
+                                             field("segments", &FurParams::segments),
+                                             field("length", &FurParams::length),
+                                             field("length_jitter", &FurParams::lengthJitter),
+                                             field("direction_jitter", &FurParams::directionJitter),
+                                             field("down", &FurParams::down))),
+        std::make_tuple(field<py::object, Fur>(
+            "texture", [](const Fur&) { return py::object(py::none()); },
+            [](Fur& c, const py::object& t) {
+                c.hasTexture = !t.is_none();
+                if (c.hasTexture) c.texture = fromNumpy(t);
+            })),
+        within(&Fur::params, std::make_tuple(field("seed", &FurParams::seed),
+                                             field("threads", &FurParams::threads))));
+    defFunction(
+        m, "generate_fur",
+        [](const Fur& c) {
             py::gil_scoped_release release;
             return std::make_shared<HairStrands>(
-                generateFur(mesh, p, texture.is_none() ? nullptr : &image));
+                generateFur(*c.mesh, c.params, c.hasTexture ? &c.texture : nullptr));
         },
-        py::arg("mesh"), py::arg("level") = 1, py::arg("density") = 0.0f, py::arg("segments") = 10,
-        py::arg("length") = 0.3f, py::arg("length_jitter") = 0.0f,
-        py::arg("direction_jitter") = 0.0f, py::arg("down") = py::make_tuple(0.0, -0.5, 0.0),
-        py::arg("texture") = py::none(), py::arg("seed") = 1, py::arg("threads") = 0,
+        fur,
         "Fur (002 listing 1): one strand per sub-triangle (level^2 per triangle, or\n"
         "round(sqrt(area * density)) ^ 2 when density > 0) from its centroid along the\n"
         "interpolated normal; `segments` segments of length / segments, each bent further by\n"
         "`down`. length_jitter (relative), direction_jitter (max radians) vary each strand;\n"
         "texture (uint8 sRGB image) colours each strand at its root's UV.");
 
-    py::class_<HairMaterial>(
+    using HM = HairMaterial;
+    const auto material = std::make_tuple(
+        field<std::string, HM>(
+            "model", [](const HM& x) { return modelName(x.model); },
+            [](HM& x, const std::string& s) { x.model = modelOf(s); }),
+        field("diffuse", &HM::diffuse), field("specular", &HM::specular),
+        field("shininess", &HM::shininess), field("shift", &HM::shift), field("width", &HM::width),
+        field("eta", &HM::eta), field("absorption", &HM::absorption),
+        field("caustic_width", &HM::causticWidth), field("color_r", &HM::colorR),
+        field("color_tt", &HM::colorTT), field("color_trt", &HM::colorTRT),
+        field("intensity", &HM::intensity), field("tt_azimuthal_width", &HM::ttAzimuthalWidth),
+        field("glint_intensity", &HM::glintIntensity), field("glint_width", &HM::glintWidth),
+        field("glint_angle_min", &HM::glintAngleMin), field("glint_angle_max", &HM::glintAngleMax));
+    py::class_<HM> hairMaterial(
         m, "HairMaterial",
         "Hair shading parameters (SPEC §5.2) for model 'kajiya_kay', 'marschner' or 'sadeghi'.\n"
-        "Angles in radians; every setter validates (weft.InvalidArgument).")
-        .def(py::init([](const std::string& model, py::kwargs kwargs) {
-                 py::object obj = py::cast(HairMaterial{});
-                 obj.attr("model") = model;
-                 py::object type = py::type::of(obj);
-                 for (auto item : kwargs) {
-                     const std::string key = py::str(item.first);
-                     // only the properties below: a mistyped keyword must not become a plain
-                     // attribute error (or, worse, be accepted)
-                     if (!py::hasattr(type, key.c_str()) || key.empty() || key[0] == '_' ||
-                         !py::isinstance(type.attr(key.c_str()),
-                                         py::module_::import("builtins").attr("property")))
-                         throw InvalidArgument(
-                             "weft.HairMaterial(): unknown keyword argument '" + key +
-                             "'; it takes model and any property of HairMaterial");
-                     py::setattr(obj, item.first, item.second);
-                 }
-                 return obj.cast<HairMaterial>();
-             }),
-             py::arg("model") = "sadeghi",
-             "HairMaterial(model='sadeghi', **attributes): any property below as a keyword.")
-        .def_property(
-            "model", [](const HairMaterial& x) { return modelName(x.model); },
-            [](HairMaterial& x, const std::string& s) { x.model = modelOf(s); })
-        .WEFT_HAIR_VEC3("diffuse", diffuse)
-        .WEFT_HAIR_VEC3("specular", specular)
-        .WEFT_HAIR_FLOAT("shininess", shininess)
-        .WEFT_HAIR_VEC3("shift", shift)
-        .WEFT_HAIR_VEC3("width", width)
-        .WEFT_HAIR_FLOAT("eta", eta)
-        .WEFT_HAIR_VEC3("absorption", absorption)
-        .WEFT_HAIR_FLOAT("caustic_width", causticWidth)
-        .WEFT_HAIR_VEC3("color_r", colorR)
-        .WEFT_HAIR_VEC3("color_tt", colorTT)
-        .WEFT_HAIR_VEC3("color_trt", colorTRT)
-        .WEFT_HAIR_VEC3("intensity", intensity)
-        .WEFT_HAIR_FLOAT("tt_azimuthal_width", ttAzimuthalWidth)
-        .WEFT_HAIR_FLOAT("glint_intensity", glintIntensity)
-        .WEFT_HAIR_FLOAT("glint_width", glintWidth)
-        .WEFT_HAIR_FLOAT("glint_angle_min", glintAngleMin)
-        .WEFT_HAIR_FLOAT("glint_angle_max", glintAngleMax)
-        .def("__repr__", &materialRepr);
+        "Angles in radians; every setter validates (weft.InvalidArgument).");
+    defInit(hairMaterial, validated<HM>, material,
+            "A hair material of `model` with the other parameters as given (the rest at the\n"
+            "defaults of weft/HairMaterial.h).");
+    defProperties(hairMaterial, material);
+    hairMaterial.def("__repr__", &materialRepr);
 
     m.def(
         "hair_shade_eval",

@@ -7,7 +7,7 @@
 #include <weft/Renderer.h>
 
 #include "Convert.h"
-#include "SettingProperty.h"
+#include "Fields.h"
 
 namespace weft::py_bind {
 
@@ -62,41 +62,43 @@ void bindHairRender(py::module_& m) {
              "Replaces the HairMaterial of the hair instance with this id.")
         .def_property_readonly("hair_count", [](const Scene& s) { return s.hairs().size(); });
 
+    using S = RenderSettings;
     py::class_<Renderer> renderer(m.attr("Renderer"));
-    settingProperty<std::string>(
-        renderer, "hair_primitive",
-        [](const RenderSettings& s) { return primitiveName(s.hairPrimitive); },
-        [](RenderSettings& s, const std::string& v) { s.hairPrimitive = primitiveOf(v); },
-        "'lines' (1 pixel) or 'ribbons' (camera-facing, hair_width * thickness wide).");
-    settingProperty(renderer, "hair_width", &RenderSettings::hairWidth,
-                    "Ribbon width per unit of strand thickness (world units).");
-    settingProperty(renderer, "hair_dom", &RenderSettings::hairDeepOpacity,
-                    "Deep opacity maps for shadow-casting directional lights (else the shadow "
-                    "map).");
-    settingProperty<std::string>(
-        renderer, "hair_dom_spacing",
-        [](const RenderSettings& s) { return std::string(s.hairDomLogSpacing ? "log" : "linear"); },
-        [](RenderSettings& s, const std::string& k) {
-            if (k != "linear" && k != "log")
-                throw InvalidArgument("hair_dom_spacing must be 'linear' or 'log' (got '" + k +
-                                      "')");
-            s.hairDomLogSpacing = k == "log";
-        },
-        "DOM layer spacing: 'linear' (d, 2d, 3d) or 'log' (d, 3d, 7d).");
-    settingProperty(renderer, "hair_dom_layer_size", &RenderSettings::hairDomLayerSize,
-                    "DOM layer size d (world units); 0: the hair's depth extent / 3 (log: / 7).");
-    settingProperty(renderer, "hair_dom_size", &RenderSettings::hairDomSize,
-                    "Texels per side of each deep opacity map, in [16, 8192].");
-    settingProperty(renderer, "hair_transparency", &RenderSettings::hairTransparency,
-                    "Weighted blended OIT for hair with transparency > 0 (else drawn opaque).");
-    settingProperty<std::string>(
-        renderer, "hair_oit_weight",
-        [](const RenderSettings& s) {
-            return std::string(kOitWeightNames[int(s.hairOitWeight) - 7]);
-        },
-        [](RenderSettings& s, const std::string& v) { s.hairOitWeight = weightOf(v); },
-        "WBOIT depth weight (McGuire & Bavoil 2013, eq. 7-10): 'near_quadratic', "
-        "'near_cubic', 'far_quartic' or 'ndc_cubic' ('eq7' .. 'eq10' also accepted).");
+    defSettingProperties(
+        renderer, [](const Renderer& r) { return r.settings(); },
+        [](Renderer& r, const S& s) { r.setSettings(s); },
+        std::make_tuple(
+            field<std::string, S>(
+                "hair_primitive", [](const S& s) { return primitiveName(s.hairPrimitive); },
+                [](S& s, const std::string& v) { s.hairPrimitive = primitiveOf(v); },
+                "'lines' (1 pixel) or 'ribbons' (camera-facing, hair_width * thickness wide)."),
+            field("hair_width", &S::hairWidth,
+                  "Ribbon width per unit of strand thickness (world units)."),
+            field("hair_dom", &S::hairDeepOpacity,
+                  "Deep opacity maps for shadow-casting directional lights (else the shadow "
+                  "map)."),
+            field<std::string, S>(
+                "hair_dom_spacing",
+                [](const S& s) { return std::string(s.hairDomLogSpacing ? "log" : "linear"); },
+                [](S& s, const std::string& k) {
+                    if (k != "linear" && k != "log")
+                        throw InvalidArgument("hair_dom_spacing must be 'linear' or 'log' (got '" +
+                                              k + "')");
+                    s.hairDomLogSpacing = k == "log";
+                },
+                "DOM layer spacing: 'linear' (d, 2d, 3d) or 'log' (d, 3d, 7d)."),
+            field("hair_dom_layer_size", &S::hairDomLayerSize,
+                  "DOM layer size d (world units); 0: the hair's depth extent / 3 (log: / 7)."),
+            field("hair_dom_size", &S::hairDomSize,
+                  "Texels per side of each deep opacity map, in [16, 8192]."),
+            field("hair_transparency", &S::hairTransparency,
+                  "Weighted blended OIT for hair with transparency > 0 (else drawn opaque)."),
+            field<std::string, S>(
+                "hair_oit_weight",
+                [](const S& s) { return std::string(kOitWeightNames[int(s.hairOitWeight) - 7]); },
+                [](S& s, const std::string& v) { s.hairOitWeight = weightOf(v); },
+                "WBOIT depth weight (McGuire & Bavoil 2013, eq. 7-10): 'near_quadratic', "
+                "'near_cubic', 'far_quartic' or 'ndc_cubic' ('eq7' .. 'eq10' also accepted).")));
     renderer.def(
         "hair_dom_map",
         [](const Renderer& r, int light) {

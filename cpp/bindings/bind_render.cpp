@@ -9,7 +9,7 @@
 #include <weft/Renderer.h>
 
 #include "Convert.h"
-#include "SettingProperty.h"
+#include "Fields.h"
 
 namespace weft::py_bind {
 
@@ -64,9 +64,9 @@ Frame renderFrame(Renderer& r, const Scene& scene, const Camera& camera, uint32_
 
 const char* const kToneMaps[] = {"clamp", "aces", "agx", "neutral"};
 
-std::string toneMapName(ToneMap t) { return kToneMaps[int(t)]; }
-
 } // namespace
+
+std::string toneMapName(ToneMap t) { return kToneMaps[int(t)]; }
 
 ToneMap toneMapOf(const std::string& name) {
     for (int i = 0; i < 4; ++i)
@@ -75,62 +75,97 @@ ToneMap toneMapOf(const std::string& name) {
                           "')");
 }
 
+namespace {
+
+// Renderer(width, height, settings...): the size is checked here so that a refused size names
+// the range (RenderSettings::validate checks the rest).
+struct RendererSetup {
+    int64_t width = 0, height = 0;
+    RenderSettings settings;
+};
+
+void checkSize(int64_t width, int64_t height) {
+    if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
+        throw InvalidArgument("render target size must be 1..65535 pixels per side (got " +
+                              std::to_string(width) + "x" + std::to_string(height) + ")");
+}
+
+} // namespace
+
 void bindRender(py::module_& m) {
-    const RenderSettings defaults; // the constructor's keyword defaults
+    using S = RenderSettings;
+    const auto settings = std::make_tuple(
+        field("shadow_map_size", &S::shadowMapSize,
+              "Texels per side of each shadow map, in [16, 16384]."),
+        field("pcf_radius", &S::pcfRadius,
+              "PCF kernel radius r in [0, 7]: (2r + 1)^2 shadow-map taps."),
+        field("bias_constant", &S::biasConstant,
+              "Shadow depth bias, constant part (the light's NDC depth units); the bias is "
+              "bias_constant + bias_slope tan(angle between n and l), at most bias_max."),
+        field("bias_slope", &S::biasSlope,
+              "Shadow depth bias per tan(angle between n and l) (see bias_constant)."),
+        field("bias_max", &S::biasMax, "The largest shadow depth bias (see bias_constant)."),
+        field("normal_offset", &S::normalOffset,
+              "Receiver offset along the normal, in shadow-map texels."),
+        field("reuse_shadow_maps", &S::reuseShadowMaps,
+              "Keep the last frame's shadow maps when no shadow view and no caster changed."),
+        field("msaa", &S::msaa,
+              "Multisample anti-aliasing samples per pixel (1, 2, 4, 8; default 4), lowered "
+              "to what\nthe device supports (msaa_samples). render_debug frames are not "
+              "multisampled."),
+        field("exposure", &S::exposure,
+              "Exposure in photographic stops: the colour output shows linear radiance x "
+              "2^exposure\n(render_linear is not exposed)."),
+        field<std::string, S>(
+            "tone_map", [](const S& s) { return toneMapName(s.toneMap); },
+            [](S& s, const std::string& v) { s.toneMap = toneMapOf(v); },
+            "'clamp' (the seed's look), 'aces' (Narkowicz's ACES fit), 'agx' (Blender's AgX) or\n"
+            "'neutral' (Khronos PBR Neutral): how exposed radiance maps to the 8-bit colour "
+            "output."),
+        field("bounce", &S::bounce,
+              "One bounce of diffuse light: what the receivers (instances that cast no "
+              "shadow, such as a ground) reflect onto the shadow casters, and the sky and "
+              "ambient they hide from them (a small SH9 capture per caster, at most 8)."),
+        field("ambient_occlusion", &S::ambientOcclusion,
+              "Ambient occlusion of a scene without an environment: its constant ambient is "
+              "read as a uniform sky, occluded by the shadow casters through a dome of this "
+              "many soft shadow lights (0: off; a multiple of 8 up to 64)."),
+        field("ambient_occlusion_blur", &S::ambientOcclusionBlur,
+              "Blur radius in pixels of the ambient occlusion (0: per pixel)."),
+        field("probe_size", &S::probeSize,
+              "Texels per face of the dynamic reflection capture, in [4, 2048]."),
+        field("dome_interleave", &S::domeInterleave,
+              "Where a dome's shadows are blurred (ambient occlusion, an environment's "
+              "dome_blur), each pixel of a 2 x 2 block evaluates every fourth dome light and "
+              "a gather pass combines the block's quarters before the blur: a quarter of the "
+              "dome's cost. False: every pixel evaluates every light."));
+    using Setup = RendererSetup;
+    const auto size = std::make_tuple(required(field("width", &Setup::width)),
+                                      required(field("height", &Setup::height)));
     py::class_<Renderer> cls(
         m, "Renderer",
         "Vulkan renderer drawing a Scene from a Camera into an offscreen image of width x height.");
-    cls.def(
-           py::init([](int64_t width, int64_t height, int64_t shadowMapSize, int pcfRadius,
-                       float biasConstant, float biasSlope, float biasMax, float normalOffset,
-                       bool reuseShadowMaps, int64_t msaa, float exposure,
-                       const std::string& toneMap, bool bounce, int64_t ambientOcclusion,
-                       float ambientOcclusionBlur) {
-               if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
-                   throw InvalidArgument(
-                       "render target size must be 1..65535 pixels per side (got " +
-                       std::to_string(width) + "x" + std::to_string(height) + ")");
-               RenderSettings s; // checked by the Renderer (RenderSettings::validate)
-               s.shadowMapSize = settingInteger<uint32_t>(shadowMapSize, "shadow_map_size");
-               s.pcfRadius = pcfRadius;
-               s.biasConstant = biasConstant;
-               s.biasSlope = biasSlope;
-               s.biasMax = biasMax;
-               s.normalOffset = normalOffset;
-               s.reuseShadowMaps = reuseShadowMaps;
-               s.msaa = settingInteger<uint32_t>(msaa, "msaa");
-               s.exposure = exposure;
-               s.toneMap = toneMapOf(toneMap);
-               s.bounce = bounce;
-               s.ambientOcclusion = settingInteger<uint32_t>(ambientOcclusion, "ambient_occlusion");
-               s.ambientOcclusionBlur = ambientOcclusionBlur;
-               return std::make_unique<Renderer>(uint32_t(width), uint32_t(height), s);
-           }),
-           py::arg("width"), py::arg("height"),
-           py::arg("shadow_map_size") = int64_t(defaults.shadowMapSize),
-           py::arg("pcf_radius") = defaults.pcfRadius,
-           py::arg("bias_constant") = defaults.biasConstant,
-           py::arg("bias_slope") = defaults.biasSlope, py::arg("bias_max") = defaults.biasMax,
-           py::arg("normal_offset") = defaults.normalOffset,
-           py::arg("reuse_shadow_maps") = defaults.reuseShadowMaps,
-           py::arg("msaa") = int64_t(defaults.msaa), py::arg("exposure") = defaults.exposure,
-           py::arg("tone_map") = toneMapName(defaults.toneMap), py::arg("bounce") = defaults.bounce,
-           py::arg("ambient_occlusion") = int64_t(defaults.ambientOcclusion),
-           py::arg("ambient_occlusion_blur") = defaults.ambientOcclusionBlur,
-           "An offscreen renderer of width x height pixels on the selected Vulkan device, "
-           "with its shadow, anti-aliasing (msaa 1/2/4/8), exposure, tone-map ('clamp', "
-           "'aces', 'agx', 'neutral'), bounce and ambient-occlusion settings. Raises "
-           "InvalidArgument for out-of-range settings, Error when no Vulkan device works.")
-        .def_property_readonly("width", &Renderer::width)
+    defInit(
+        cls,
+        [](const Setup& s) {
+            checkSize(s.width, s.height);
+            return std::make_unique<Renderer>(uint32_t(s.width), uint32_t(s.height), s.settings);
+        },
+        std::tuple_cat(size, within(&Setup::settings, settings)),
+        "An offscreen renderer of width x height pixels on the selected Vulkan device, "
+        "with its shadow, anti-aliasing (msaa 1/2/4/8), exposure, tone-map ('clamp', "
+        "'aces', 'agx', 'neutral'), bounce and ambient-occlusion settings. Raises "
+        "InvalidArgument for out-of-range settings, Error when no Vulkan device works.");
+    defSettingProperties(
+        cls, [](const Renderer& r) { return r.settings(); },
+        [](Renderer& r, const S& s) { r.setSettings(s); }, settings);
+    cls.def_property_readonly("width", &Renderer::width)
         .def_property_readonly("height", &Renderer::height)
         .def_property_readonly("device_name", &Renderer::deviceName)
         .def(
             "resize",
             [](Renderer& r, int64_t w, int64_t h) {
-                if (w <= 0 || h <= 0 || w > 65535 || h > 65535)
-                    throw InvalidArgument(
-                        "render target size must be 1..65535 pixels per side (got " +
-                        std::to_string(w) + "x" + std::to_string(h) + ")");
+                checkSize(w, h);
                 r.resize(uint32_t(w), uint32_t(h));
             },
             py::arg("width"), py::arg("height"),
@@ -138,50 +173,6 @@ void bindRender(py::module_& m) {
             "its targets.")
         .def_property_readonly("msaa_samples", &Renderer::msaaSamples,
                                "The samples per pixel the device renders for the msaa setting.");
-    settingProperty(cls, "shadow_map_size", &RenderSettings::shadowMapSize,
-                    "Texels per side of each shadow map, in [16, 16384].");
-    settingProperty(cls, "pcf_radius", &RenderSettings::pcfRadius,
-                    "PCF kernel radius r in [0, 7]: (2r + 1)^2 shadow-map taps.");
-    settingProperty(cls, "probe_size", &RenderSettings::probeSize,
-                    "Texels per face of the dynamic reflection capture, in [4, 2048].");
-    settingProperty(cls, "bias_constant", &RenderSettings::biasConstant,
-                    "Shadow depth bias, constant part (the light's NDC depth units); the bias is "
-                    "bias_constant + bias_slope tan(angle between n and l), at most bias_max.");
-    settingProperty(cls, "bias_slope", &RenderSettings::biasSlope,
-                    "Shadow depth bias per tan(angle between n and l) (see bias_constant).");
-    settingProperty(cls, "bias_max", &RenderSettings::biasMax,
-                    "The largest shadow depth bias (see bias_constant).");
-    settingProperty(cls, "normal_offset", &RenderSettings::normalOffset,
-                    "Receiver offset along the normal, in shadow-map texels.");
-    settingProperty(cls, "reuse_shadow_maps", &RenderSettings::reuseShadowMaps,
-                    "Keep the last frame's shadow maps when no shadow view and no caster changed.");
-    settingProperty(cls, "bounce", &RenderSettings::bounce,
-                    "One bounce of diffuse light: what the receivers (instances that cast no "
-                    "shadow, such as a ground) reflect onto the shadow casters, and the sky and "
-                    "ambient they hide from them (a small SH9 capture per caster, at most 8).");
-    settingProperty(cls, "ambient_occlusion", &RenderSettings::ambientOcclusion,
-                    "Ambient occlusion of a scene without an environment: its constant ambient is "
-                    "read as a uniform sky, occluded by the shadow casters through a dome of this "
-                    "many soft shadow lights (0: off; a multiple of 8 up to 64).");
-    settingProperty(cls, "ambient_occlusion_blur", &RenderSettings::ambientOcclusionBlur,
-                    "Blur radius in pixels of the ambient occlusion (0: per pixel).");
-    settingProperty(cls, "dome_interleave", &RenderSettings::domeInterleave,
-                    "Where a dome's shadows are blurred (ambient occlusion, an environment's "
-                    "dome_blur), each pixel of a 2 x 2 block evaluates every fourth dome light and "
-                    "a gather pass combines the block's quarters before the blur: a quarter of the "
-                    "dome's cost. False: every pixel evaluates every light.");
-    settingProperty(cls, "msaa", &RenderSettings::msaa,
-                    "Multisample anti-aliasing samples per pixel (1, 2, 4, 8; default 4), lowered "
-                    "to what\nthe device supports (msaa_samples). render_debug frames are not "
-                    "multisampled.");
-    settingProperty(cls, "exposure", &RenderSettings::exposure,
-                    "Exposure in photographic stops: the colour output shows linear radiance x "
-                    "2^exposure\n(render_linear is not exposed).");
-    settingProperty<std::string>(
-        cls, "tone_map", [](const RenderSettings& s) { return toneMapName(s.toneMap); },
-        [](RenderSettings& s, const std::string& v) { s.toneMap = toneMapOf(v); },
-        "'clamp' (the seed's look), 'aces' (Narkowicz's ACES fit), 'agx' (Blender's AgX) or\n"
-        "'neutral' (Khronos PBR Neutral): how exposed radiance maps to the 8-bit colour output.");
     cls.def(
            "render",
            [](Renderer& r, const Scene& scene, const Camera& camera) {

@@ -8,7 +8,7 @@
 #include <weft/Scene.h>
 
 #include "Convert.h"
-#include "ValueProperty.h"
+#include "Fields.h"
 
 namespace weft::py_bind {
 
@@ -141,36 +141,16 @@ void bindScene(py::module_& m) {
     bindMaterial(m); // Texture, Material, then the lights: before the Scene methods taking them
     bindLights(m);
 
-    py::class_<Camera>(m, "Camera", "Perspective camera (fov_y in radians).")
-        .def(py::init([](py::handle position, py::handle target, py::handle up, float fovY,
-                         float zNear, float zFar) {
-                 Camera c;
-                 c.position = toVec3(position, "position");
-                 c.target = toVec3(target, "target");
-                 c.up = toVec3(up, "up");
-                 c.fovY = fovY;
-                 c.zNear = zNear;
-                 c.zFar = zFar;
-                 c.validate();
-                 return c;
-             }),
-             py::arg("position") = py::make_tuple(0, 1, 4),
-             py::arg("target") = py::make_tuple(0, 0, 0), py::arg("up") = py::make_tuple(0, 1, 0),
-             py::arg("fov_y") = 0.7853982f, py::arg("near") = 0.05f, py::arg("far") = 100.0f,
-             "A perspective camera at `position` looking at `target`; fov_y in radians, near "
-             "and far clip distances.")
-        .WEFT_VEC3_PROPERTY(Camera, "position", position)
-        .WEFT_VEC3_PROPERTY(Camera, "target", target)
-        .WEFT_VEC3_PROPERTY(Camera, "up", up)
-        .def_property(
-            "fov_y", [](const Camera& c) { return c.fovY; },
-            [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.fovY = v; }); })
-        .def_property(
-            "near", [](const Camera& c) { return c.zNear; },
-            [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.zNear = v; }); })
-        .def_property(
-            "far", [](const Camera& c) { return c.zFar; },
-            [](Camera& c, float v) { setChecked(c, [&](Camera& x) { x.zFar = v; }); })
+    const auto cameraFields =
+        std::make_tuple(field("position", &Camera::position), field("target", &Camera::target),
+                        field("up", &Camera::up), field("fov_y", &Camera::fovY),
+                        field("near", &Camera::zNear), field("far", &Camera::zFar));
+    py::class_<Camera> camera(m, "Camera", "Perspective camera (fov_y in radians).");
+    defInit(camera, validated<Camera>, cameraFields,
+            "A perspective camera at `position` looking at `target`; fov_y in radians, near "
+            "and far clip distances.");
+    defProperties(camera, cameraFields);
+    camera
         .def(
             "view_matrix", [](const Camera& c) { return fromMat4(c.view()); },
             "World -> view matrix (4x4, acts on column vectors).")
@@ -183,8 +163,9 @@ void bindScene(py::module_& m) {
                    ">";
         });
 
-    py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "Meshes with materials, lights, ambient.")
-        .def(py::init<>(), "An empty scene: add meshes, cloths, hair and lights.")
+    py::class_<Scene, std::shared_ptr<Scene>> scene(m, "Scene",
+                                                    "Meshes with materials, lights, ambient.");
+    scene.def(py::init<>(), "An empty scene: add meshes, cloths, hair and lights.")
         .def(
             "add_mesh",
             [](Scene& s, std::shared_ptr<Mesh> mesh, std::optional<Material> material,
@@ -267,65 +248,6 @@ void bindScene(py::module_& m) {
         .def_property(
             "background", [](const Scene& s) { return fromVec3(s.background()); },
             [](Scene& s, py::handle v) { s.setBackground(toVec3(v, "background")); })
-        .def(
-            "set_environment",
-            [](Scene& s, py::object environment, float intensity, int specularSize,
-               int specularLevels, int specularSamples, int domeLights, int domeMapSize,
-               int domeRefresh, float domeBlur, float domeBlurDepthTolerance,
-               const std::string& lookup, int sphereMapSize, bool background,
-               float backgroundBlur) {
-                EnvironmentLighting e;
-                if (py::isinstance<Environment>(environment))
-                    e.environment = environment.cast<std::shared_ptr<Environment>>();
-                else if (py::isinstance<CubeMap>(environment))
-                    e.environment =
-                        std::make_shared<Environment>(environment.cast<const CubeMap&>());
-                else
-                    throw InvalidArgument(
-                        "Scene.set_environment: expected a weft.ibl.Environment or a "
-                        "weft.ibl.CubeMap (radiance, world space)");
-                e.intensity = intensity;
-                e.specularSize = specularSize;
-                e.specularLevels = specularLevels;
-                e.specularSamples = specularSamples;
-                e.domeLights = domeLights;
-                e.domeMapSize = domeMapSize;
-                e.domeRefresh = domeRefresh;
-                e.domeBlur = domeBlur;
-                e.domeBlurDepthTolerance = domeBlurDepthTolerance;
-                if (lookup == "cube")
-                    e.lookup = EnvironmentLighting::Lookup::Cube;
-                else if (lookup == "sphere_map")
-                    e.lookup = EnvironmentLighting::Lookup::SphereMap;
-                else
-                    throw InvalidArgument(
-                        "Scene.set_environment: lookup must be 'cube' or 'sphere_map' "
-                        "(got '" +
-                        lookup + "')");
-                e.sphereMapSize = sphereMapSize;
-                e.background = background;
-                e.backgroundBlur = backgroundBlur;
-                s.setEnvironment(e);
-            },
-            py::arg("environment"), py::arg("intensity") = 1.0f, py::arg("specular_size") = 64,
-            py::arg("specular_levels") = 6, py::arg("specular_samples") = 64,
-            py::arg("dome_lights") = 0, py::arg("dome_map_size") = 256, py::arg("dome_refresh") = 0,
-            py::arg("dome_blur") = 0.0f, py::arg("dome_blur_depth_tolerance") = 0.05f,
-            py::arg("lookup") = "cube", py::arg("sphere_map_size") = 128,
-            py::arg("background") = false, py::arg("background_blur") = 0.0f,
-            "Lights the scene with an environment (a weft.ibl.Environment, re-baked when its version\n"
-            "changes, or a weft.ibl.CubeMap, copied into a new one): SH9 irradiance for materials'\n"
-            "environment_diffuse, a GGX chain (level l: roughness l / (levels - 1)) for their\n"
-            "reflectivity. dome_lights (0, 8, ..., 64) shadow lights of Environment.shadow_dome\n"
-            "cast dome_map_size shadow maps; the diffuse loses the occluded ones' light (eq. 2.23);\n"
-            "while casters move, dome_refresh maps per frame are re-rendered (0: all).\n"
-            "dome_blur > 0 blurs the dome's shadows over that many pixels (bilateral: depths that\n"
-            "differ by more than dome_blur_depth_tolerance, relative, do not mix); they darken the\n"
-            "diffuse light only. lookup='sphere_map' is the seed's eye-space path: the environment\n"
-            "is read as eye space (a capture from the viewer's camera) and looked up in sphere maps\n"
-            "of sphere_map_size at normalize(d_eye + (0, 0, 1)). background=True draws the\n"
-            "environment behind the scene (and in the dynamic probe): sharp, or at background_blur\n"
-            "> 0 the glossy chain at that roughness (0..1). A background_image wins over it.")
         .def("clear_environment", &Scene::clearEnvironment,
              "Removes the environment (back to the constant ambient).")
         .def_property(
@@ -358,6 +280,54 @@ void bindScene(py::module_& m) {
             return "<weft.Scene " + std::to_string(s.instances().size()) + " meshes, " +
                    std::to_string(s.lights().size()) + " lights>";
         });
+
+    using E = EnvironmentLighting;
+    const auto environment = std::make_tuple(
+        required(field<py::object, E>(
+            "environment", [](const E& e) { return py::cast(e.environment); },
+            [](E& e, const py::object& environment) {
+                if (py::isinstance<Environment>(environment))
+                    e.environment = environment.cast<std::shared_ptr<Environment>>();
+                else if (py::isinstance<CubeMap>(environment))
+                    e.environment =
+                        std::make_shared<Environment>(environment.cast<const CubeMap&>());
+                else
+                    throw InvalidArgument("Scene.set_environment: expected a weft.ibl.Environment "
+                                          "or a weft.ibl.CubeMap (radiance, world space)");
+            })),
+        field("intensity", &E::intensity), field("specular_size", &E::specularSize),
+        field("specular_levels", &E::specularLevels),
+        field("specular_samples", &E::specularSamples), field("dome_lights", &E::domeLights),
+        field("dome_map_size", &E::domeMapSize), field("dome_refresh", &E::domeRefresh),
+        field("dome_blur", &E::domeBlur),
+        field("dome_blur_depth_tolerance", &E::domeBlurDepthTolerance),
+        field<std::string, E>(
+            "lookup",
+            [](const E& e) { return e.lookup == E::Lookup::Cube ? "cube" : "sphere_map"; },
+            [](E& e, const std::string& lookup) {
+                if (lookup != "cube" && lookup != "sphere_map")
+                    throw InvalidArgument("Scene.set_environment: lookup must be 'cube' or "
+                                          "'sphere_map' (got '" +
+                                          lookup + "')");
+                e.lookup = lookup == "cube" ? E::Lookup::Cube : E::Lookup::SphereMap;
+            }),
+        field("sphere_map_size", &E::sphereMapSize), field("background", &E::background),
+        field("background_blur", &E::backgroundBlur));
+    defMethod(
+        scene, "set_environment", [](Scene& s, const E& e) { s.setEnvironment(e); }, environment,
+        "Lights the scene with an environment (a weft.ibl.Environment, re-baked when its version\n"
+        "changes, or a weft.ibl.CubeMap, copied into a new one): SH9 irradiance for materials'\n"
+        "environment_diffuse, a GGX chain (level l: roughness l / (levels - 1)) for their\n"
+        "reflectivity. dome_lights (0, 8, ..., 64) shadow lights of Environment.shadow_dome\n"
+        "cast dome_map_size shadow maps; the diffuse loses the occluded ones' light (eq. 2.23);\n"
+        "while casters move, dome_refresh maps per frame are re-rendered (0: all).\n"
+        "dome_blur > 0 blurs the dome's shadows over that many pixels (bilateral: depths that\n"
+        "differ by more than dome_blur_depth_tolerance, relative, do not mix); they darken the\n"
+        "diffuse light only. lookup='sphere_map' is the seed's eye-space path: the environment\n"
+        "is read as eye space (a capture from the viewer's camera) and looked up in sphere maps\n"
+        "of sphere_map_size at normalize(d_eye + (0, 0, 1)). background=True draws the\n"
+        "environment behind the scene (and in the dynamic probe): sharp, or at background_blur\n"
+        "> 0 the glossy chain at that roughness (0..1). A background_image wins over it.");
 
     m.def(
         "default_scene",

@@ -9,6 +9,7 @@
 #include <weft/ShaderReload.h>
 
 #include "Convert.h"
+#include "Fields.h"
 #include <weft/DemoScene.h>
 #include <weft/DemoScript.h>
 
@@ -247,44 +248,35 @@ PYBIND11_MODULE(_core, m) {
         "The events of a demo --script file as (frame, action, key code, x, y) tuples (what\n"
         "run_demo(script=...) plays); IoError names file:line of a malformed line.");
 
-    m.def(
-        "run_demo",
-        [](int width, int height, int frames, bool headless, bool vsync, const std::string& out,
-           const std::string& screenshot, const std::string& statsJson, const std::string& script,
-           const std::string& shaderDir, const std::string& environment, py::object hour, int msaa,
-           int ambientOcclusion, bool bounce, float exposure, const std::string& toneMap) {
-            weft::DemoOptions o;
-            o.width = width;
-            o.height = height;
-            o.frames = frames;
-            o.headless = headless;
-            o.vsync = vsync;
-            o.out = out;
-            o.screenshot = screenshot;
-            o.statsJson = statsJson;
-            o.script = script;
-            o.shaderDir = shaderDir;
-            o.environment = environment;
-            // checked by runDemo (RenderSettings::validate) before it builds anything
-            o.msaa = uint32_t(msaa);
-            o.ambientOcclusion = uint32_t(ambientOcclusion);
-            o.bounce = bounce;
-            o.exposure = exposure;
-            o.toneMap = toneMapOf(toneMap);
-            if (!hour.is_none()) {
+    using O = weft::DemoOptions;
+    const auto demo = std::make_tuple(
+        field("width", &O::width), field("height", &O::height), field("frames", &O::frames),
+        field("headless", &O::headless), field("vsync", &O::vsync), field("out", &O::out),
+        field("screenshot", &O::screenshot), field("stats_json", &O::statsJson),
+        field("script", &O::script), field("shader_dir", &O::shaderDir),
+        field("environment", &O::environment),
+        field<py::object, O>(
+            "hour",
+            [](const O& o) { return o.hour < 0.0f ? py::object(py::none()) : py::float_(o.hour); },
+            [](O& o, const py::object& hour) {
+                if (hour.is_none()) return;
                 o.hour = hour.cast<float>();
                 if (!(o.hour >= 0.0f && o.hour <= 24.0f))
                     throw weft::InvalidArgument("hour (time of day) must be in [0, 24]");
-            }
+            }),
+        // checked by runDemo (RenderSettings::validate) before it builds anything
+        field("msaa", &O::msaa), field("ambient_occlusion", &O::ambientOcclusion),
+        field("bounce", &O::bounce), field("exposure", &O::exposure),
+        field<std::string, O>(
+            "tone_map", [](const O& o) { return toneMapName(o.toneMap); },
+            [](O& o, const std::string& v) { o.toneMap = toneMapOf(v); }));
+    defFunction(
+        m, "run_demo",
+        [](const O& o) {
             py::gil_scoped_release release;
             return weft::runDemo(o);
         },
-        py::arg("width") = 1280, py::arg("height") = 720, py::arg("frames") = 0,
-        py::arg("headless") = false, py::arg("vsync") = true, py::arg("out") = "out/demo.png",
-        py::arg("screenshot") = "", py::arg("stats_json") = "", py::arg("script") = "",
-        py::arg("shader_dir") = "", py::arg("environment") = "", py::arg("hour") = py::none(),
-        py::arg("msaa") = 4, py::arg("ambient_occlusion") = 8, py::arg("bounce") = true,
-        py::arg("exposure") = 0.0f, py::arg("tone_map") = "clamp",
+        demo,
         "Runs the demo (the seed's cloth environment): a window when a display exists, else\n"
         "headless to `out` (see `weft-demo --help` for frames, scripts and output folders),\n"
         "with the renderer's anti-aliasing, ambient occlusion, bounce, exposure and tone map.");

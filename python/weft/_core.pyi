@@ -113,7 +113,7 @@ class Material:
     specular_map: Texture
     specular_vertex_normal: bool
     texture: Texture
-    def __init__(self, ka: typing.Any = (1, 1, 1), kd: typing.Any = (1, 1, 1), ks: typing.Any = (0, 0, 0), shininess: typing.SupportsFloat | typing.SupportsIndex = 32.0, base_color: typing.Any = (1, 1, 1), texture: Texture | None = None, normal_map: Texture | None = None, specular_map: Texture | None = None, alpha_cutoff: typing.SupportsFloat | typing.SupportsIndex = 0.0, ambient_map: Texture | None = None, specular_vertex_normal: bool = False, two_sided: bool = False, reflectivity: typing.Any = (0, 0, 0), environment_diffuse: typing.SupportsFloat | typing.SupportsIndex = 0.0, dynamic_reflection: bool = False, gloss_in_alpha: bool = False, phantom: bool = False, specular_model: str = 'blinn_phong') -> None:
+    def __init__(self, ka: typing.Any = (1.0, 1.0, 1.0), kd: typing.Any = (1.0, 1.0, 1.0), ks: typing.Any = (0.0, 0.0, 0.0), shininess: typing.SupportsFloat | typing.SupportsIndex = 32.0, base_color: typing.Any = (1.0, 1.0, 1.0), texture: Texture | None = None, normal_map: Texture | None = None, specular_map: Texture | None = None, alpha_cutoff: typing.SupportsFloat | typing.SupportsIndex = 0.0, ambient_map: Texture | None = None, specular_vertex_normal: bool = False, two_sided: bool = False, reflectivity: typing.Any = (0.0, 0.0, 0.0), environment_diffuse: typing.SupportsFloat | typing.SupportsIndex = 0.0, dynamic_reflection: bool = False, gloss_in_alpha: bool = False, phantom: bool = False, specular_model: str = 'blinn_phong', normal_scale: typing.SupportsFloat | typing.SupportsIndex = 1.0, shininess_max: typing.SupportsFloat | typing.SupportsIndex = 0.0, ambient_map_is_radiance: bool = False) -> None:
         """
         A material with the coefficients, textures and flags the class description lists (colours as RGB triples in [0, 1] or more).
         """
@@ -237,14 +237,14 @@ class Material:
         Draw both faces; the back face uses the flipped normal (cloth: always).
         """
     @two_sided.setter
-    def two_sided(self, arg0: bool) -> None:
+    def two_sided(self, arg1: bool) -> None:
         ...
 class DirectionalLight:
     """
     Sun-like light. `direction` points from the light into the scene.
     """
     cast_shadows: bool
-    def __init__(self, direction: typing.Any = (0, -1, 0), color: typing.Any = (1, 1, 1), intensity: typing.SupportsFloat | typing.SupportsIndex = 1.0, cast_shadows: bool = True, angular_radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    def __init__(self, direction: typing.Any = (0.0, -1.0, 0.0), color: typing.Any = (1.0, 1.0, 1.0), intensity: typing.SupportsFloat | typing.SupportsIndex = 1.0, cast_shadows: bool = True, angular_radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         """
         A directional light shining along `direction` with `color` x `intensity`; `angular_radius` (radians) of its disc softens its shadow.
         """
@@ -283,7 +283,7 @@ class PointLight:
     perspective views.
     """
     cast_shadows: bool
-    def __init__(self, position: typing.Any = (0, 2, 0), color: typing.Any = (1, 1, 1), intensity: typing.SupportsFloat | typing.SupportsIndex = 1.0, attenuation: typing.Any = (1, 0, 0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0, cast_shadows: bool = True, shadow_near: typing.SupportsFloat | typing.SupportsIndex = 0.05000000074505806) -> None:
+    def __init__(self, position: typing.Any = (0.0, 2.0, 0.0), color: typing.Any = (1.0, 1.0, 1.0), intensity: typing.SupportsFloat | typing.SupportsIndex = 1.0, attenuation: typing.Any = (1.0, 0.0, 0.0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0, cast_shadows: bool = True, shadow_near: typing.SupportsFloat | typing.SupportsIndex = 0.05000000074505806) -> None:
         """
         A point light at `position` with `color` x `intensity`; attenuation (k_c, k_l, k_q) of 1 / (k_c + k_l d + k_q d²), or with radius > 0 the windowed falloff (SPEC §1.2); shadow_near: the near plane of its shadow views.
         """
@@ -337,7 +337,7 @@ class SpotLight:
     """
     cast_shadows: bool
     cookie: Texture
-    def __init__(self, position: typing.Any = (0, 2, 0), direction: typing.Any = (0, -1, 0), color: typing.Any = (1, 1, 1), intensity: typing.SupportsFloat | typing.SupportsIndex = 1.0, inner_angle: typing.SupportsFloat | typing.SupportsIndex = 0.3499999940395355, outer_angle: typing.SupportsFloat | typing.SupportsIndex = 0.5, attenuation: typing.Any = (1, 0, 0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0, cookie: Texture | None = None, cast_shadows: bool = True, shadow_near: typing.SupportsFloat | typing.SupportsIndex = 0.05000000074505806) -> None:
+    def __init__(self, position: typing.Any = (0.0, 2.0, 0.0), direction: typing.Any = (0.0, -1.0, 0.0), color: typing.Any = (1.0, 1.0, 1.0), intensity: typing.SupportsFloat | typing.SupportsIndex = 1.0, inner_angle: typing.SupportsFloat | typing.SupportsIndex = 0.3499999940395355, outer_angle: typing.SupportsFloat | typing.SupportsIndex = 0.5, attenuation: typing.Any = (1.0, 0.0, 0.0), radius: typing.SupportsFloat | typing.SupportsIndex = 0.0, cookie: Texture | None = None, cast_shadows: bool = True, shadow_near: typing.SupportsFloat | typing.SupportsIndex = 0.05000000074505806) -> None:
         """
         A spot light at `position` shining along `direction`, full inside inner_angle and falling smoothly to zero at outer_angle (radians); attenuation and radius as PointLight; an optional cookie Texture projected through the cone.
         """
@@ -401,7 +401,7 @@ class Camera:
     """
     Perspective camera (fov_y in radians).
     """
-    def __init__(self, position: typing.Any = (0, 1, 4), target: typing.Any = (0, 0, 0), up: typing.Any = (0, 1, 0), fov_y: typing.SupportsFloat | typing.SupportsIndex = 0.7853981852531433, near: typing.SupportsFloat | typing.SupportsIndex = 0.05000000074505806, far: typing.SupportsFloat | typing.SupportsIndex = 100.0) -> None:
+    def __init__(self, position: typing.Any = (0.0, 1.0, 4.0), target: typing.Any = (0.0, 0.0, 0.0), up: typing.Any = (0.0, 1.0, 0.0), fov_y: typing.SupportsFloat | typing.SupportsIndex = 0.7853981852531433, near: typing.SupportsFloat | typing.SupportsIndex = 0.05000000074505806, far: typing.SupportsFloat | typing.SupportsIndex = 100.0) -> None:
         """
         A perspective camera at `position` looking at `target`; fov_y in radians, near and far clip distances.
         """
@@ -606,7 +606,7 @@ class Renderer:
     """
     Vulkan renderer drawing a Scene from a Camera into an offscreen image of width x height.
     """
-    def __init__(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex, shadow_map_size: typing.SupportsInt | typing.SupportsIndex = 2048, pcf_radius: typing.SupportsInt | typing.SupportsIndex = 1, bias_constant: typing.SupportsFloat | typing.SupportsIndex = 0.0005000000237487257, bias_slope: typing.SupportsFloat | typing.SupportsIndex = 0.001500000013038516, bias_max: typing.SupportsFloat | typing.SupportsIndex = 0.009999999776482582, normal_offset: typing.SupportsFloat | typing.SupportsIndex = 1.5, reuse_shadow_maps: bool = True, msaa: typing.SupportsInt | typing.SupportsIndex = 4, exposure: typing.SupportsFloat | typing.SupportsIndex = 0.0, tone_map: str = 'clamp', bounce: bool = True, ambient_occlusion: typing.SupportsInt | typing.SupportsIndex = 8, ambient_occlusion_blur: typing.SupportsFloat | typing.SupportsIndex = 4.0) -> None:
+    def __init__(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex, shadow_map_size: typing.SupportsInt | typing.SupportsIndex = 2048, pcf_radius: typing.SupportsInt | typing.SupportsIndex = 1, bias_constant: typing.SupportsFloat | typing.SupportsIndex = 0.0005000000237487257, bias_slope: typing.SupportsFloat | typing.SupportsIndex = 0.001500000013038516, bias_max: typing.SupportsFloat | typing.SupportsIndex = 0.009999999776482582, normal_offset: typing.SupportsFloat | typing.SupportsIndex = 1.5, reuse_shadow_maps: bool = True, msaa: typing.SupportsInt | typing.SupportsIndex = 4, exposure: typing.SupportsFloat | typing.SupportsIndex = 0.0, tone_map: str = 'clamp', bounce: bool = True, ambient_occlusion: typing.SupportsInt | typing.SupportsIndex = 8, ambient_occlusion_blur: typing.SupportsFloat | typing.SupportsIndex = 4.0, probe_size: typing.SupportsInt | typing.SupportsIndex = 64, dome_interleave: bool = True) -> None:
         """
         An offscreen renderer of width x height pixels on the selected Vulkan device, with its shadow, anti-aliasing (msaa 1/2/4/8), exposure, tone-map ('clamp', 'aces', 'agx', 'neutral'), bounce and ambient-occlusion settings. Raises InvalidArgument for out-of-range settings, Error when no Vulkan device works.
         """
@@ -880,7 +880,7 @@ class Wind:
     __hash__: typing.ClassVar[None]  # type: ignore[assignment]
     def __eq__(self, arg0: object) -> bool:
         ...
-    def __init__(self, direction: typing.Any = (1, 0, 0), strength: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    def __init__(self, direction: typing.Any = (1.0, 0.0, 0.0), strength: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         """
         Wind blowing along `direction` (normalised) with `strength` in m/s^2.
         """
@@ -954,7 +954,7 @@ class Cloth:
         Whether this CPU runs the structure-of-arrays relaxation (AVX-512; cloths
         without colliders, unless WEFT_CLOTH_AOS=1); results are bit-identical.
         """
-    def __init__(self, nx: typing.SupportsInt | typing.SupportsIndex = 32, ny: typing.SupportsInt | typing.SupportsIndex = 32, size: typing.Any = (1.0, 1.0), origin: typing.Any = (-0.5, 1.0, -0.5), axis_u: typing.Any = (1, 0, 0), axis_v: typing.Any = (0, 0, 1), mass: typing.SupportsFloat | typing.SupportsIndex = 1.0, bend_distance: typing.SupportsInt | typing.SupportsIndex = 2, extra_axial: bool = False, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9900000095367432, gravity: typing.Any = (0.0, -9.81, 0.0), iterations: typing.SupportsInt | typing.SupportsIndex = 1, substeps: typing.SupportsInt | typing.SupportsIndex = 1, compliance_stretch: typing.SupportsFloat | typing.SupportsIndex = 0.0, compliance_shear: typing.SupportsFloat | typing.SupportsIndex = 0.0, compliance_bend: typing.SupportsFloat | typing.SupportsIndex = 0.0, tethers: bool = False, thickness: typing.SupportsFloat | typing.SupportsIndex = 0.004999999888241291, self_collision: bool = False, self_thickness: typing.SupportsFloat | typing.SupportsIndex = 0.0, tear_strain: typing.SupportsFloat | typing.SupportsIndex = 0.0, sleep_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.0, sleep_steps: typing.SupportsInt | typing.SupportsIndex = 30, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+    def __init__(self, nx: typing.SupportsInt | typing.SupportsIndex = 32, ny: typing.SupportsInt | typing.SupportsIndex = 32, size: typing.Any = (1.0, 1.0), origin: typing.Any = (-0.5, 1.0, -0.5), axis_u: typing.Any = (1.0, 0.0, 0.0), axis_v: typing.Any = (0.0, 0.0, 1.0), mass: typing.SupportsFloat | typing.SupportsIndex = 1.0, bend_distance: typing.SupportsInt | typing.SupportsIndex = 2, extra_axial: bool = False, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9900000095367432, gravity: typing.Any = (0.0, -9.8100004196167, 0.0), iterations: typing.SupportsInt | typing.SupportsIndex = 1, substeps: typing.SupportsInt | typing.SupportsIndex = 1, compliance_stretch: typing.SupportsFloat | typing.SupportsIndex = 0.0, compliance_shear: typing.SupportsFloat | typing.SupportsIndex = 0.0, compliance_bend: typing.SupportsFloat | typing.SupportsIndex = 0.0, tethers: bool = False, thickness: typing.SupportsFloat | typing.SupportsIndex = 0.004999999888241291, self_collision: bool = False, self_thickness: typing.SupportsFloat | typing.SupportsIndex = 0.0, tear_strain: typing.SupportsFloat | typing.SupportsIndex = 0.0, sleep_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.0, sleep_steps: typing.SupportsInt | typing.SupportsIndex = 30, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
         """
         A rectangular nx x ny particle grid spanning `size` along axis_u/axis_v from `origin`, simulated with XPBD (SPEC §3): stretch, shear and bend compliances, tethers, collisions, self-collision, tearing and sleeping as the keywords say. Raises InvalidArgument for out-of-range parameters.
         """
@@ -1266,9 +1266,10 @@ class HairMaterial:
     Angles in radians; every setter validates (weft.InvalidArgument).
     """
     model: str
-    def __init__(self, model: str = 'sadeghi', **kwargs) -> None:
+    def __init__(self, model: str = 'sadeghi', diffuse: typing.Any = (0.0, 0.0, 0.0), specular: typing.Any = (0.30000001192092896, 0.30000001192092896, 0.30000001192092896), shininess: typing.SupportsFloat | typing.SupportsIndex = 80.0, shift: typing.Any = (-0.08726649731397629, 0.043633200228214264, 0.13089969754219055), width: typing.Any = (0.1221729964017868, 0.0610864982008934, 0.2443459928035736), eta: typing.SupportsFloat | typing.SupportsIndex = 1.5499999523162842, absorption: typing.Any = (0.20000000298023224, 0.3499999940395355, 0.6000000238418579), caustic_width: typing.SupportsFloat | typing.SupportsIndex = 0.20000000298023224, color_r: typing.Any = (1.0, 1.0, 1.0), color_tt: typing.Any = (0.8999999761581421, 0.6000000238418579, 0.30000001192092896), color_trt: typing.Any = (0.800000011920929, 0.5, 0.25), intensity: typing.Any = (1.0, 1.0, 1.0), tt_azimuthal_width: typing.SupportsFloat | typing.SupportsIndex = 0.17453299462795258, glint_intensity: typing.SupportsFloat | typing.SupportsIndex = 0.5, glint_width: typing.SupportsFloat | typing.SupportsIndex = 0.08726649731397629, glint_angle_min: typing.SupportsFloat | typing.SupportsIndex = 0.5235990285873413, glint_angle_max: typing.SupportsFloat | typing.SupportsIndex = 0.785398006439209) -> None:
         """
-        HairMaterial(model='sadeghi', **attributes): any property below as a keyword.
+        A hair material of `model` with the other parameters as given (the rest at the
+        defaults of weft/HairMaterial.h).
         """
     def __repr__(self) -> str:
         ...
@@ -1742,7 +1743,7 @@ def generate_fur(mesh: Mesh, level: typing.SupportsInt | typing.SupportsIndex = 
     `down`. length_jitter (relative), direction_jitter (max radians) vary each strand;
     texture (uint8 sRGB image) colours each strand at its root's UV.
     """
-def generate_hair(strands: typing.SupportsInt | typing.SupportsIndex = 1000, points: typing.SupportsInt | typing.SupportsIndex = 16000, style: str = 'straight', length: typing.SupportsFloat | typing.SupportsIndex = 0.25, length_jitter: typing.SupportsFloat | typing.SupportsIndex = 0.0, wave_amplitude: typing.SupportsFloat | typing.SupportsIndex = 0.009999999776482582, wave_frequency: typing.SupportsFloat | typing.SupportsIndex = 8.0, curl_radius: typing.SupportsFloat | typing.SupportsIndex = 0.009999999776482582, droop: typing.SupportsFloat | typing.SupportsIndex = 0.6000000238418579, scalp_center: typing.Any = (0.0, 1.6, 0.0), scalp_radii: typing.Any = (0.09, 0.11, 0.1), scalp_cutoff: typing.SupportsFloat | typing.SupportsIndex = 0.10000000149011612, seed: typing.SupportsInt | typing.SupportsIndex = 1, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> HairStrands:
+def generate_hair(strands: typing.SupportsInt | typing.SupportsIndex = 1000, points: typing.SupportsInt | typing.SupportsIndex = 16000, style: str = 'straight', length: typing.SupportsFloat | typing.SupportsIndex = 0.25, length_jitter: typing.SupportsFloat | typing.SupportsIndex = 0.0, wave_amplitude: typing.SupportsFloat | typing.SupportsIndex = 0.009999999776482582, wave_frequency: typing.SupportsFloat | typing.SupportsIndex = 8.0, curl_radius: typing.SupportsFloat | typing.SupportsIndex = 0.009999999776482582, droop: typing.SupportsFloat | typing.SupportsIndex = 0.6000000238418579, scalp_center: typing.Any = (0.0, 1.600000023841858, 0.0), scalp_radii: typing.Any = (0.09000000357627869, 0.10999999940395355, 0.10000000149011612), scalp_cutoff: typing.SupportsFloat | typing.SupportsIndex = 0.10000000149011612, seed: typing.SupportsInt | typing.SupportsIndex = 1, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> HairStrands:
     """
     Procedural hair on the upper part of an ellipsoid scalp (style 'straight', 'wavy' or
     'curly'). `points` is the total: each strand gets points // strands points and the
