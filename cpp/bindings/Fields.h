@@ -158,6 +158,27 @@ void defFunction(py::module_& m, const char* name, Call call, const std::tuple<F
         fields);
 }
 
+/// The same with leading arguments of types Lead (named by `leadArgs`, py::arg each) before the
+/// fields: `call(lead..., struct)`.
+template <class... Lead, class Call, class... A, class... F, class... Extra>
+void defFunctionWith(py::module_& m, const char* name, Call call, const std::tuple<A...>& leadArgs,
+                     const std::tuple<F...>& fields, const Extra&... extra) {
+    using T = detail::StructOf<F...>;
+    const T defaults{};
+    std::apply(
+        [&](const auto&... lead) {
+            std::apply(
+                [&](const auto&... f) {
+                    m.def(name,
+                          detail::fieldCall<T, Lead...>(call, fields,
+                                                        std::index_sequence_for<F...>{}),
+                          lead..., detail::argOf(f, defaults)..., extra...);
+                },
+                fields);
+        },
+        leadArgs);
+}
+
 /// A method taking the fields as arguments (defaults as defInit) and returning
 /// `call(self, struct)`.
 template <class Cls, class Call, class... F, class... Extra>

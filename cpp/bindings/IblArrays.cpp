@@ -40,9 +40,7 @@ RgbImage rgbImage(py::handle obj, const std::string& name) {
 }
 
 py::array_t<float> imageArray(const std::vector<float>& pixels, int height, int width) {
-    py::array_t<float> out({py::ssize_t(height), py::ssize_t(width), py::ssize_t(3)});
-    std::memcpy(out.mutable_data(), pixels.data(), pixels.size() * sizeof(float));
-    return out;
+    return arrayOf<float>(pixels, {height, width, 3});
 }
 
 CubeMap cubeFromArray(py::handle obj, const std::string& name) {
@@ -84,13 +82,6 @@ std::vector<glm::vec3> directions(py::handle obj, const std::string& name) {
     return out;
 }
 
-py::array_t<float> vec3Array(const std::vector<glm::vec3>& v) {
-    py::array_t<float> out({py::ssize_t(v.size()), py::ssize_t(3)});
-    for (size_t k = 0; k < v.size(); ++k)
-        for (int c = 0; c < 3; ++c) out.mutable_data()[k * 3 + c] = v[k][c];
-    return out;
-}
-
 Sh9 shFromArray(py::handle obj) {
     FloatArray a = floatArray(obj, "sh");
     if (a.ndim() != 2 || a.shape(0) != 9 || a.shape(1) != 3)
@@ -102,18 +93,11 @@ Sh9 shFromArray(py::handle obj) {
 }
 
 py::array_t<float> shArray(const Sh9& sh) {
-    std::vector<glm::vec3> v(sh.coeffs.begin(), sh.coeffs.end());
-    return vec3Array(v);
+    return rowsArray(std::vector<glm::vec3>(sh.coeffs.begin(), sh.coeffs.end()));
 }
 
 glm::mat4 optionalMat4(py::handle obj, const std::string& name) {
     return obj.is_none() ? glm::mat4(1.0f) : toMat4(obj, name);
-}
-
-py::array_t<bool> maskArray(const std::vector<uint8_t>& valid, int size) {
-    py::array_t<bool> out({py::ssize_t(6), py::ssize_t(size), py::ssize_t(size)});
-    for (size_t k = 0; k < valid.size(); ++k) out.mutable_data()[k] = valid[k] != 0;
-    return out;
 }
 
 std::vector<uint8_t> maskVector(py::handle obj, const std::string& name, py::ssize_t expected) {
@@ -139,7 +123,7 @@ DomeLayout domeLayout(const std::string& name) {
 
 py::tuple captureTuple(CaptureCube&& c) {
     const int s = c.cube.size();
-    return py::make_tuple(std::move(c.cube), maskArray(c.valid, s));
+    return py::make_tuple(std::move(c.cube), boolArray(c.valid, {6, s, s}));
 }
 
 } // namespace weft::py_bind

@@ -43,11 +43,9 @@ CubeArg toCube(py::handle obj, const std::string& name);
 py::array levelView(CubeMap& cube, int level, py::handle owner);
 /// Non-zero directions from an (N, 3) array.
 std::vector<glm::vec3> directions(py::handle obj, const std::string& name);
-py::array_t<float> vec3Array(const std::vector<glm::vec3>& v);
 Sh9 shFromArray(py::handle obj);
 py::array_t<float> shArray(const Sh9& sh);
 glm::mat4 optionalMat4(py::handle obj, const std::string& name);
-py::array_t<bool> maskArray(const std::vector<uint8_t>& valid, int size);
 std::vector<uint8_t> maskVector(py::handle obj, const std::string& name, py::ssize_t expected);
 void requireCubeSize(int size);
 DomeLayout domeLayout(const std::string& name);

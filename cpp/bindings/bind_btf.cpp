@@ -13,6 +13,7 @@
 #include <weft/BtfRenderMaterial.h>
 
 #include "Convert.h"
+#include "Fields.h"
 #include "btf/BtfImageCodec.h"
 
 namespace weft::py_bind {
@@ -34,12 +35,6 @@ std::vector<float> floatArray(py::handle obj, const std::string& name,
         if (!std::isfinite(d[i])) throw InvalidArgument(name + " must be finite (got NaN or inf)");
         out[i] = float(d[i]);
     }
-    return out;
-}
-
-py::array_t<float> toArray(const std::vector<float>& v, std::vector<py::ssize_t> shape) {
-    py::array_t<float> out(shape);
-    if (!v.empty()) std::memcpy(out.mutable_data(), v.data(), v.size() * sizeof(float));
     return out;
 }
 
@@ -91,13 +86,14 @@ BtfMaterialMaps mapsFrom(const BtfSamples& samples, py::dict d) {
 py::dict mapsTo(const BtfMaterialMaps& m) {
     const py::ssize_t h = m.height, w = m.width;
     py::dict d;
-    d["normal"] = toArray(m.normal, {h, w, 3});
-    d["albedo"] = toArray(m.albedo, {h, w, 3});
-    d["ambient"] = toArray(m.ambient, {h, w, 3});
-    d["specular"] = m.specular.empty() ? py::object(py::none()) : toArray(m.specular, {h, w, 3});
+    d["normal"] = arrayOf<float>(m.normal, {h, w, 3});
+    d["albedo"] = arrayOf<float>(m.albedo, {h, w, 3});
+    d["ambient"] = arrayOf<float>(m.ambient, {h, w, 3});
+    d["specular"] =
+        m.specular.empty() ? py::object(py::none()) : arrayOf<float>(m.specular, {h, w, 3});
     d["exponent"] = m.exponent;
     d["exponent_map"] =
-        m.exponentMap.empty() ? py::object(py::none()) : toArray(m.exponentMap, {h, w});
+        m.exponentMap.empty() ? py::object(py::none()) : arrayOf<float>(m.exponentMap, {h, w});
     d["flat_specular_normal"] = m.flatSpecularNormal;
     d["clamp_diffuse"] = m.clampDiffuse;
     return d;
@@ -106,12 +102,10 @@ py::dict mapsTo(const BtfMaterialMaps& m) {
 py::dict linearTo(const BtfLinearFit& f) {
     const py::ssize_t h = f.height, w = f.width;
     py::dict d;
-    d["texture"] = toArray(f.texture, {h, w, 3});
-    d["normal"] = toArray(f.normal, {h, w, 3});
-    d["ambient"] = toArray(f.ambient, {h, w, 3});
-    py::array_t<bool> dark({h, w});
-    for (size_t i = 0; i < f.dark.size(); ++i) dark.mutable_data()[i] = f.dark[i] != 0;
-    d["dark"] = dark;
+    d["texture"] = arrayOf<float>(f.texture, {h, w, 3});
+    d["normal"] = arrayOf<float>(f.normal, {h, w, 3});
+    d["ambient"] = arrayOf<float>(f.ambient, {h, w, 3});
+    d["dark"] = boolArray(f.dark, {h, w});
     d["dark_texels"] = f.darkTexels;
     d["dark_channels"] = f.darkChannels;
     return d;
@@ -128,21 +122,15 @@ BtfLinearFit linearFrom(const BtfSamples& samples, py::dict d) {
     return f;
 }
 
-BtfLinearOptions linearOptions(bool robust, int iterations, float dark, int threads) {
-    BtfLinearOptions o;
-    o.robust = robust;
-    o.robustIterations = iterations;
-    o.darkThreshold = dark;
-    o.threads = threads;
-    return o;
-}
+const char* const kSolvers[] = {"auto", "builtin", "ceres"};
 
 BtfSolver solverFrom(const std::string& s) {
-    if (s == "auto") return BtfSolver::Auto;
-    if (s == "builtin") return BtfSolver::Builtin;
-    if (s == "ceres") return BtfSolver::Ceres;
+    for (int i = 0; i < 3; ++i)
+        if (s == kSolvers[i]) return BtfSolver(i);
     throw InvalidArgument("solver must be 'auto', 'builtin' or 'ceres', got '" + s + "'");
 }
+
+const char* gammaName(BtfGamma g) { return g == BtfGamma::Raw ? "raw" : "linear"; }
 
 } // namespace
 
@@ -188,7 +176,7 @@ void bindBtf(py::module_& m) {
         .def_property_readonly(
             "values",
             [](const BtfSamples& s) {
-                return toArray(s.values(), {s.count(), 3, s.height(), s.width()});
+                return arrayOf<float>(s.values(), {s.count(), 3, s.height(), s.width()});
             },
             "A copy of the samples, float32 (S, 3, H, W).")
         .def_property_readonly(
@@ -295,53 +283,54 @@ void bindBtf(py::module_& m) {
         py::arg("name"),
         "(θ_l, φ_l, θ_v, φ_v) in degrees parsed from a Bonn file name's tl/pl/tv/pv keys, or "
         "None when one of them is missing.");
-    m.def(
-        "btf_load",
-        [](const std::string& path, py::object views, const std::string& gamma, int threads,
-           bool jpegCells) {
-            BtfLoadOptions o;
-            o.gamma = gammaFrom(gamma);
-            o.threads = threads;
-            o.jpegCells = jpegCells;
-            if (views.is_none()) {
+    const auto load = std::make_tuple(
+        required(field<py::object, BtfLoadOptions>(
+            "views", [](const BtfLoadOptions&) { return py::object(py::none()); },
+            [](BtfLoadOptions& o, const py::object& views) {
                 o.views.clear();
-            } else {
-                auto a = numericArray(views, "views");
-                if (a.ndim() != 2 || a.shape(1) != 2 || a.shape(0) < 1)
+                if (views.is_none()) return;
+                for (const glm::vec2& v : rowsOf<glm::vec2, 2>(views, "views"))
+                    o.views.push_back(v);
+                if (o.views.empty())
                     throw InvalidArgument("views must have shape (V, 2): θ_v, φ_v in degrees");
-                o.views.clear();
-                for (py::ssize_t i = 0; i < a.shape(0); ++i)
-                    o.views.emplace_back(float(a.data()[i * 2]), float(a.data()[i * 2 + 1]));
-            }
+            })),
+        field<std::string, BtfLoadOptions>(
+            "gamma", [](const BtfLoadOptions& o) { return gammaName(o.gamma); },
+            [](BtfLoadOptions& o, const std::string& g) { o.gamma = gammaFrom(g); }),
+        field("threads", &BtfLoadOptions::threads),
+        field("jpeg_cells", &BtfLoadOptions::jpegCells));
+    defFunctionWith<const std::string&>(
+        m, "btf_load",
+        [](const std::string& path, const BtfLoadOptions& o) {
             py::gil_scoped_release release;
             return loadBtf(path, o);
         },
-        py::arg("path"), py::arg("views"), py::arg("gamma") = "raw", py::arg("threads") = 0,
-        py::arg("jpeg_cells") = false,
+        std::make_tuple(py::arg("path")), load,
         "Loads a BTF in the Bonn layout (a folder or a zip) as BtfSamples: `views` (V, 2) "
         "(θ_v, φ_v) degrees picks views (None = all); gamma 'raw' keeps the stored values, "
-        "'srgb' linearises them; jpeg_cells also keeps JPEG files' quantised DCT cells. Raises "
+        "'linear' linearises them (value^2.2); jpeg_cells also keeps JPEG files' quantised DCT cells. Raises "
         "IoError naming the file (or the missing angles).");
-    m.def(
-        "btf_write",
-        [](const std::string& path, const BtfSamples& samples, const std::string& format,
-           int quality, bool zip, const std::string& gamma, const std::string& prefix) {
-            BtfWriteOptions o;
-            if (format == "jpg" || format == "jpeg")
-                o.format = BtfImageFormat::Jpeg;
-            else if (format == "png")
-                o.format = BtfImageFormat::Png;
-            else
-                throw InvalidArgument("format must be 'jpg' or 'png', got '" + format + "'");
-            o.jpegQuality = quality;
-            o.zip = zip;
-            o.gamma = gammaFrom(gamma);
-            o.prefix = prefix;
+    using W = BtfWriteOptions;
+    const auto write = std::make_tuple(
+        field<std::string, W>(
+            "format", [](const W& o) { return o.format == BtfImageFormat::Jpeg ? "jpg" : "png"; },
+            [](W& o, const std::string& format) {
+                if (format != "jpg" && format != "jpeg" && format != "png")
+                    throw InvalidArgument("format must be 'jpg' or 'png', got '" + format + "'");
+                o.format = format == "png" ? BtfImageFormat::Png : BtfImageFormat::Jpeg;
+            }),
+        field("quality", &W::jpegQuality), field("zip", &W::zip),
+        field<std::string, W>(
+            "gamma", [](const W& o) { return gammaName(o.gamma); },
+            [](W& o, const std::string& g) { o.gamma = gammaFrom(g); }),
+        field("prefix", &W::prefix));
+    defFunctionWith<const std::string&, const BtfSamples&>(
+        m, "btf_write",
+        [](const std::string& path, const BtfSamples& samples, const W& o) {
             py::gil_scoped_release release;
             writeBtf(path, samples, o);
         },
-        py::arg("path"), py::arg("samples"), py::arg("format") = "jpg", py::arg("quality") = 95,
-        py::arg("zip") = false, py::arg("gamma") = "raw", py::arg("prefix") = "",
+        std::make_tuple(py::arg("path"), py::arg("samples")), write,
         "Writes samples (values in [0, 1], clipped, 8 bits) in the Bonn layout under "
         "path/UBO2003/MANYFILES/tvTTT_pvPPP/ as 'jpg' or 'png', optionally zipped; angles "
         "must be whole degrees.");
@@ -365,18 +354,21 @@ void bindBtf(py::module_& m) {
         "Renders material maps (normal, diffuse, ... as from a fit) for each of `angles` (S, "
         "4) into BtfSamples; with a height field (H, W) a texel whose ray to the light passes "
         "below it gets only the ambient term (wrap: the field tiles).");
-    m.def(
-        "btf_fit_linear",
-        [](const BtfSamples& s, bool robust, int iterations, float dark, int threads) {
+    using LO = BtfLinearOptions;
+    defFunctionWith<const BtfSamples&>(
+        m, "btf_fit_linear",
+        [](const BtfSamples& s, const LO& o) {
             BtfLinearFit f;
             {
                 py::gil_scoped_release release;
-                f = fitBtfLinear(s, linearOptions(robust, iterations, dark, threads));
+                f = fitBtfLinear(s, o);
             }
             return linearTo(f);
         },
-        py::arg("samples"), py::arg("robust") = false, py::arg("robust_iterations") = 4,
-        py::arg("dark_threshold") = 1e-4f, py::arg("threads") = 0,
+        std::make_tuple(py::arg("samples")),
+        std::make_tuple(
+            field("robust", &LO::robust), field("robust_iterations", &LO::robustIterations),
+            field("dark_threshold", &LO::darkThreshold), field("threads", &LO::threads)),
         "Per-texel linear fit of all samples (normal, albedo, ambient; SPEC §4), optionally "
         "robust (samples darker than the fit by dark_threshold dropped over robust_iterations "
         "rounds). Returns a dict of arrays. Raises InvalidArgument when the lights do not "
@@ -388,7 +380,10 @@ void bindBtf(py::module_& m) {
             BtfLinearFit f;
             {
                 py::gil_scoped_release release;
-                f = solveBtfLinear(s, t, linearOptions(false, 4, 0.0f, threads));
+                LO o;
+                o.darkThreshold = 0.0f;
+                o.threads = threads;
+                f = solveBtfLinear(s, t, o);
             }
             return linearTo(f);
         },
@@ -403,16 +398,11 @@ void bindBtf(py::module_& m) {
         },
         py::arg("samples"), py::arg("linear"),
         "The seed's material maps (no specular) from a btf_fit_linear result.");
-    m.def(
-        "btf_fit_specular",
-        [](const BtfSamples& s, py::dict linear, bool flat, int maxExponent, bool perTexel,
-           int threads) {
+    using SO = BtfSpecularOptions;
+    defFunctionWith<const BtfSamples&, py::dict>(
+        m, "btf_fit_specular",
+        [](const BtfSamples& s, py::dict linear, const SO& o) {
             const BtfLinearFit f = linearFrom(s, linear);
-            BtfSpecularOptions o;
-            o.flatSpecularNormal = flat;
-            o.maxExponent = maxExponent;
-            o.perTexel = perTexel;
-            o.threads = threads;
             BtfSpecularFit r;
             {
                 py::gil_scoped_release release;
@@ -420,14 +410,14 @@ void bindBtf(py::module_& m) {
             }
             py::dict d;
             d["maps"] = mapsTo(r.maps);
-            py::array_t<double> curve(py::ssize_t(r.curve.size()));
-            std::memcpy(curve.mutable_data(), r.curve.data(), r.curve.size() * sizeof(double));
-            d["curve"] = curve;
+            d["curve"] = arrayOf<double>(r.curve, {py::ssize_t(r.curve.size())});
             d["specular_sample"] = r.specularSample;
             return d;
         },
-        py::arg("samples"), py::arg("linear"), py::arg("flat_specular_normal") = true,
-        py::arg("max_exponent") = 4096, py::arg("per_texel") = false, py::arg("threads") = 0,
+        std::make_tuple(py::arg("samples"), py::arg("linear")),
+        std::make_tuple(field("flat_specular_normal", &SO::flatSpecularNormal),
+                        field("max_exponent", &SO::maxExponent), field("per_texel", &SO::perTexel),
+                        field("threads", &SO::threads)),
         "Specular map from the residual of the θ_l = 0 sample and the exponent minimising the "
         "total squared error (SPEC eq. 4.29/4.30). Returns {'maps', 'curve' (error per "
         "candidate exponent), 'specular_sample'}.");
@@ -441,10 +431,9 @@ void bindBtf(py::module_& m) {
                 py::gil_scoped_release release;
                 errors = btfSampleErrors(s, mm, reconstruct ? &recon : nullptr, threads);
             }
-            py::array_t<double> e(py::ssize_t(errors.size()));
-            std::memcpy(e.mutable_data(), errors.data(), errors.size() * sizeof(double));
+            auto e = arrayOf<double>(errors, {py::ssize_t(errors.size())});
             if (!reconstruct) return e;
-            return py::make_tuple(e, toArray(recon, {s.count(), 3, s.height(), s.width()}));
+            return py::make_tuple(e, arrayOf<float>(recon, {s.count(), 3, s.height(), s.width()}));
         },
         py::arg("samples"), py::arg("maps"), py::arg("reconstruct") = false, py::arg("threads") = 0,
         "Per-sample mean squared error (S,) of `maps` against the samples; with "
@@ -461,11 +450,11 @@ void bindBtf(py::module_& m) {
             }
             const py::ssize_t h = f.height, w = f.width, l = f.lobes;
             py::dict d;
-            d["normal"] = toArray(f.normal, {h, w, 3});
-            d["diffuse"] = toArray(f.diffuse, {h, w, 3});
-            d["ambient"] = toArray(f.ambient, {h, w, 3});
-            d["lobe_albedo"] = toArray(f.lobeAlbedo, {h, w, l, 3});
-            d["lobe_shape"] = toArray(f.lobeShape, {h, w, l, 4});
+            d["normal"] = arrayOf<float>(f.normal, {h, w, 3});
+            d["diffuse"] = arrayOf<float>(f.diffuse, {h, w, 3});
+            d["ambient"] = arrayOf<float>(f.ambient, {h, w, 3});
+            d["lobe_albedo"] = arrayOf<float>(f.lobeAlbedo, {h, w, l, 3});
+            d["lobe_shape"] = arrayOf<float>(f.lobeShape, {h, w, l, 4});
             d["mean_iterations"] = f.meanIterations;
             return d;
         },
@@ -494,9 +483,7 @@ void bindBtf(py::module_& m) {
                 py::gil_scoped_release release;
                 errors = btfLafortuneErrors(s, f, nullptr, threads);
             }
-            py::array_t<double> e(py::ssize_t(errors.size()));
-            std::memcpy(e.mutable_data(), errors.data(), errors.size() * sizeof(double));
-            return e;
+            return arrayOf<double>(errors, {py::ssize_t(errors.size())});
         },
         py::arg("samples"), py::arg("fit"), py::arg("threads") = 0,
         "Per-sample mean squared error (S,) of a btf_fit_lafortune result against the "
@@ -507,41 +494,29 @@ void bindBtf(py::module_& m) {
           py::arg("fraction") = 0.01,
           "The largest Blinn-Phong exponent the sampling resolves: a lobe at one sample's half "
           "vector keeps `fraction` of its peak at the nearest neighbouring half vector.");
-    m.def(
-        "btf_blinn_phong_noise",
-        [](const BtfSamples& s, py::dict seed, float minExponent, float maxExponent, int threads,
-           bool flatSpecularNormal, bool luminanceNormals) {
+    // The nonlinear fits' options, one declaration each: btf_fit_blinn_phong takes them all,
+    // btf_blinn_phong_noise those that decide its noise estimate.
+    using NL = BtfNonlinearOptions;
+    const auto minExponent = field("min_exponent", &NL::minExponent);
+    const auto maxExponent = field("max_exponent", &NL::maxExponent);
+    const auto threads = field("threads", &NL::threads);
+    const auto flat = field("flat_specular_normal", &NL::flatSpecularNormal);
+    const auto luminance = field("luminance_normals", &NL::luminanceNormals);
+    const auto seedArgs = std::make_tuple(py::arg("samples"), py::arg("seed"));
+    defFunctionWith<const BtfSamples&, py::dict>(
+        m, "btf_blinn_phong_noise",
+        [](const BtfSamples& s, py::dict seed, const NL& o) {
             const BtfMaterialMaps mm = mapsFrom(s, seed);
-            BtfNonlinearOptions o;
-            o.luminanceNormals = luminanceNormals;
-            o.flatSpecularNormal = flatSpecularNormal;
-            o.minExponent = minExponent;
-            o.maxExponent = maxExponent;
-            o.threads = threads;
             py::gil_scoped_release release;
             return btfBlinnPhongNoise(s, mm, o);
         },
-        py::arg("samples"), py::arg("seed"), py::arg("min_exponent") = 1.0f,
-        py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
-        py::arg("flat_specular_normal") = false, py::arg("luminance_normals") = false,
+        seedArgs, std::make_tuple(minExponent, maxExponent, threads, flat, luminance),
         "The data's noise level (σ of a sample's channel sum) that btf_fit_blinn_phong "
         "estimates for its cast-shadow classification when given noise=0.");
-    m.def(
-        "btf_fit_blinn_phong",
-        [](const BtfSamples& s, py::dict seed, const std::string& solver, int maxIterations,
-           float minExponent, float maxExponent, int threads, bool flatSpecularNormal,
-           bool visibility, bool luminanceNormals, double noise) {
+    defFunctionWith<const BtfSamples&, py::dict>(
+        m, "btf_fit_blinn_phong",
+        [](const BtfSamples& s, py::dict seed, const NL& o) {
             const BtfMaterialMaps mm = mapsFrom(s, seed);
-            BtfNonlinearOptions o;
-            o.noise = noise;
-            o.luminanceNormals = luminanceNormals;
-            o.flatSpecularNormal = flatSpecularNormal;
-            o.visibility = visibility;
-            o.solver = solverFrom(solver);
-            o.maxIterations = maxIterations;
-            o.minExponent = minExponent;
-            o.maxExponent = maxExponent;
-            o.threads = threads;
             BtfNonlinearFit r;
             {
                 py::gil_scoped_release release;
@@ -555,11 +530,13 @@ void bindBtf(py::module_& m) {
             d["noise"] = r.noise;
             return d;
         },
-        py::arg("samples"), py::arg("seed"), py::arg("solver") = "auto",
-        py::arg("max_iterations") = 30, py::arg("min_exponent") = 1.0f,
-        py::arg("max_exponent") = 0.0f, py::arg("threads") = 0,
-        py::arg("flat_specular_normal") = false, py::arg("visibility") = true,
-        py::arg("luminance_normals") = false, py::arg("noise") = 0.0,
+        seedArgs,
+        std::make_tuple(field<std::string, NL>(
+                            "solver", [](const NL& o) { return kSolvers[int(o.solver)]; },
+                            [](NL& o, const std::string& v) { o.solver = solverFrom(v); }),
+                        field("max_iterations", &NL::maxIterations), minExponent, maxExponent,
+                        threads, flat, field("visibility", &NL::visibility), luminance,
+                        field("noise", &NL::noise)),
         "Nonlinear per-texel Blinn-Phong fit (normal, ρ, a, k, exponent) seeded from `seed` "
         "maps, with the built-in Levenberg-Marquardt or Ceres ('auto', 'builtin', 'ceres'); "
         "visibility leaves estimated cast shadows out, their test bounded by the data's noise "

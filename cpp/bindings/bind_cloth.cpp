@@ -16,41 +16,8 @@ namespace weft::py_bind {
 
 namespace {
 
-std::vector<glm::vec3> points(py::handle obj, const char* name) {
-    auto a = numericArray(obj, name);
-    if (a.ndim() != 2 || a.shape(1) != 3)
-        throw InvalidArgument(std::string(name) + " must have shape (N, 3)");
-    auto r = a.unchecked<2>();
-    std::vector<glm::vec3> out(size_t(a.shape(0)));
-    for (py::ssize_t i = 0; i < a.shape(0); ++i) {
-        out[size_t(i)] = glm::vec3(float(r(i, 0)), float(r(i, 1)), float(r(i, 2)));
-        for (int k = 0; k < 3; ++k)
-            if (!std::isfinite(out[size_t(i)][k]))
-                throw InvalidArgument(std::string(name) + " must be finite");
-    }
-    return out;
-}
-
-std::vector<int> indices(py::handle obj, const char* name) {
-    py::array a = py::array::ensure(obj);
-    if (!a || (a.dtype().kind() != 'i' && a.dtype().kind() != 'u'))
-        throw py::type_error(std::string(name) + " must be integers");
-    auto i64 = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
-    std::vector<int> out;
-    for (py::ssize_t i = 0; i < i64.size(); ++i) {
-        const int64_t v = i64.data()[i];
-        if (v < 0 || v > INT32_MAX)
-            throw InvalidArgument(std::string(name) + ": particle index " + std::to_string(v) +
-                                  " (entry " + std::to_string(i) + ") out of range");
-        out.push_back(int(v));
-    }
-    return out;
-}
-
-py::array_t<float> pyPoints(const std::vector<glm::vec3>& v) {
-    py::array_t<float> out({py::ssize_t(v.size()), py::ssize_t(3)});
-    if (!v.empty()) std::memcpy(out.mutable_data(), v.data(), v.size() * sizeof(glm::vec3));
-    return out;
+std::vector<int> particles(py::handle obj, const char* name) {
+    return integersOf<int>(obj, name, "particle index", 0, INT32_MAX);
 }
 
 // A read-only (N, 3) view of 16-byte particle records owned by the cloth (kept alive by `owner`).
@@ -122,14 +89,14 @@ void bindCloth(py::module_& m) {
                      return std::vector<float>(arr.data(), arr.data() + arr.size());
                  };
                  cloth::NaturalGsPeerSetup s;
-                 s.positions = points(positions, "positions");
+                 s.positions = rowsOf<glm::vec3, 3>(positions, "positions");
                  s.inverseMass = floats(inverseMass);
-                 s.a = indices(a, "a");
-                 s.b = indices(b, "b");
+                 s.a = particles(a, "a");
+                 s.b = particles(b, "b");
                  s.rest = floats(rest);
                  s.compliance = floats(compliance);
-                 s.tetherParticle = indices(tetherParticle, "tether_particle");
-                 s.tetherAnchor = indices(tetherAnchor, "tether_anchor");
+                 s.tetherParticle = particles(tetherParticle, "tether_particle");
+                 s.tetherAnchor = particles(tetherAnchor, "tether_anchor");
                  s.tetherLength = floats(tetherLength);
                  s.gravity = toVec3(gravity, "gravity");
                  s.damping = damping;
@@ -144,7 +111,7 @@ void bindCloth(py::module_& m) {
         .def("step", &cloth::NaturalGsPeer::step, py::arg("dt"),
              py::call_guard<py::gil_scoped_release>())
         .def_property_readonly(
-            "positions", [](const cloth::NaturalGsPeer& p) { return pyPoints(p.positions()); })
+            "positions", [](const cloth::NaturalGsPeer& p) { return rowsArray(p.positions()); })
         .def("kinetic_energy", &cloth::NaturalGsPeer::kineticEnergy, py::arg("particle_mass"));
 
     const auto windFields =
@@ -241,12 +208,12 @@ void bindCloth(py::module_& m) {
         .def(
             "distance",
             [](const Collider& c, py::handle pts) {
-                const std::vector<glm::vec3> p = points(pts, "points");
+                const std::vector<glm::vec3> p = rowsOf<glm::vec3, 3>(pts, "points");
                 py::array_t<float> d(py::ssize_t(p.size()));
                 std::vector<glm::vec3> normals(p.size());
                 for (size_t i = 0; i < p.size(); ++i)
                     d.mutable_data()[i] = c.distance(p[i], normals[i]);
-                return py::make_tuple(d, pyPoints(normals));
+                return py::make_tuple(d, rowsArray(normals));
             },
             py::arg("points"), "Signed distances (negative inside) and outward normals.")
         .def_readonly("friction", &Collider::friction)
@@ -353,36 +320,40 @@ void bindCloth(py::module_& m) {
             "One relaxation sweep + tethers + colliders, no integration (eq. 3.3/3.4).")
         .def(
             "set_positions",
-            [](Cloth& c, py::handle p, bool keep) { c.setPositions(points(p, "positions"), keep); },
+            [](Cloth& c, py::handle p, bool keep) {
+                c.setPositions(rowsOf<glm::vec3, 3>(p, "positions"), keep);
+            },
             py::arg("positions"), py::arg("keep_velocity") = false,
             "Moves the particles to positions (N, 3); keep_velocity keeps each particle's "
             "velocity, otherwise they start at rest.")
         .def(
             "set_velocities",
-            [](Cloth& c, py::handle v) { c.setVelocities(points(v, "velocities")); },
+            [](Cloth& c, py::handle v) { c.setVelocities(rowsOf<glm::vec3, 3>(v, "velocities")); },
             py::arg("velocities"),
             "Sets the particles' velocities (N, 3), consistently with the Verlet integration.")
         .def(
-            "velocities", [](const Cloth& c) { return pyPoints(c.velocities()); },
+            "velocities", [](const Cloth& c) { return rowsArray(c.velocities()); },
             "The particles' velocities (N, 3) in m/s.")
         .def("reset", &Cloth::reset, "Returns the cloth to its initial grid at rest (pins kept).")
         .def(
-            "pin", [](Cloth& c, py::handle idx) { c.pin(indices(idx, "pin")); }, py::arg("indices"),
-            "Pins the particles with these indices in place (inverse mass 0).")
+            "pin", [](Cloth& c, py::handle idx) { c.pin(particles(idx, "pin")); },
+            py::arg("indices"), "Pins the particles with these indices in place (inverse mass 0).")
         .def(
-            "unpin", [](Cloth& c, py::handle idx) { c.unpin(indices(idx, "unpin")); },
+            "unpin", [](Cloth& c, py::handle idx) { c.unpin(particles(idx, "unpin")); },
             py::arg("indices"), "Frees pinned particles.")
         .def(
             "grab",
             [](Cloth& c, py::handle idx, py::handle targets) {
-                c.grab(indices(idx, "grab"), points(targets, "targets"));
+                c.grab(particles(idx, "grab"), rowsOf<glm::vec3, 3>(targets, "targets"));
             },
             py::arg("indices"), py::arg("targets"),
             "Grabs particles: they get inverse mass 0 and follow `targets` (one per index) "
             "exactly until release().")
         .def(
             "move_grab",
-            [](Cloth& c, py::handle targets) { c.moveGrab(points(targets, "targets")); },
+            [](Cloth& c, py::handle targets) {
+                c.moveGrab(rowsOf<glm::vec3, 3>(targets, "targets"));
+            },
             py::arg("targets"),
             "Moves the grabbed particles to new targets (one per grabbed particle).")
         .def("release", &Cloth::release, "Lets go of the grabbed particles.")
@@ -440,9 +411,7 @@ void bindCloth(py::module_& m) {
                 d["b"] = py::array_t<int32_t>(py::ssize_t(b.size()), b.data());
                 d["rest"] = py::array_t<float>(py::ssize_t(rest.size()), rest.data());
                 d["family"] = py::array_t<uint8_t>(py::ssize_t(family.size()), family.data());
-                py::array_t<bool> on(py::ssize_t(active.size()));
-                for (size_t i = 0; i < active.size(); ++i) on.mutable_data()[i] = active[i] != 0;
-                d["active"] = on;
+                d["active"] = boolArray(active, {py::ssize_t(active.size())});
                 return d;
             },
             "Every constraint: {'a', 'b'} particle indices, 'rest' length, 'family' (stretch, "
@@ -455,20 +424,12 @@ void bindCloth(py::module_& m) {
             [](const Cloth& c) {
                 const ClothMesh mesh = c.mesh();
                 py::dict d;
-                d["positions"] = pyPoints(mesh.positions);
-                d["normals"] = pyPoints(mesh.normals);
-                py::array_t<float> uv({py::ssize_t(mesh.uvs.size()), py::ssize_t(2)});
-                std::memcpy(uv.mutable_data(), mesh.uvs.data(),
-                            mesh.uvs.size() * sizeof(glm::vec2));
-                d["uvs"] = uv;
-                py::array_t<float> t({py::ssize_t(mesh.tangents.size()), py::ssize_t(4)});
-                std::memcpy(t.mutable_data(), mesh.tangents.data(),
-                            mesh.tangents.size() * sizeof(glm::vec4));
-                d["tangents"] = t;
-                py::array_t<uint32_t> idx({py::ssize_t(mesh.indices.size() / 3), py::ssize_t(3)});
-                if (!mesh.indices.empty())
-                    std::memcpy(idx.mutable_data(), mesh.indices.data(), mesh.indices.size() * 4);
-                d["indices"] = idx;
+                d["positions"] = rowsArray(mesh.positions);
+                d["normals"] = rowsArray(mesh.normals);
+                d["uvs"] = rowsArray(mesh.uvs);
+                d["tangents"] = rowsArray(mesh.tangents);
+                d["indices"] =
+                    arrayOf<uint32_t>(mesh.indices, {py::ssize_t(mesh.indices.size() / 3), 3});
                 return d;
             },
             "positions, normals, uvs, tangents (xyz + handedness) and intact triangles.")

@@ -25,7 +25,7 @@ void bindEnvironment(py::module_& m) {
         .def_static(
             "layout_directions",
             [](int count, const std::string& layout) {
-                return vec3Array(ShadowDome::directions(count, domeLayout(layout)));
+                return rowsArray(ShadowDome::directions(count, domeLayout(layout)));
             },
             py::arg("count"), py::arg("layout") = "fibonacci",
             "The unit directions (count, 3) of a dome layout, without an environment.")
@@ -34,13 +34,13 @@ void bindEnvironment(py::module_& m) {
                                [](const ShadowDome& d) {
                                    std::vector<glm::vec3> v;
                                    for (const auto& l : d.lights()) v.push_back(l.direction);
-                                   return vec3Array(v);
+                                   return rowsArray(v);
                                })
         .def_property_readonly("intensities",
                                [](const ShadowDome& d) {
                                    std::vector<glm::vec3> v;
                                    for (const auto& l : d.lights()) v.push_back(l.intensity);
-                                   return vec3Array(v);
+                                   return rowsArray(v);
                                })
         .def_property_readonly("solid_angles",
                                [](const ShadowDome& d) {

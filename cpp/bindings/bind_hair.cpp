@@ -17,44 +17,14 @@
 
 namespace weft::py_bind {
 
-ImageU8 fromNumpy(py::handle obj);
-
 using HairPtr = std::shared_ptr<HairStrands>;
 
 namespace {
 
-// (N, C) float32 rows of a numeric array, checked for shape and finiteness.
-template <typename T, int C> std::vector<T> rowsOf(py::handle obj, const char* name) {
-    auto a = numericArray(obj, name);
-    const bool ok = C == 1 ? a.ndim() == 1 : (a.ndim() == 2 && a.shape(1) == C);
-    if (!ok)
-        throw InvalidArgument(std::string(name) + " must have shape (N" +
-                              (C == 1 ? std::string(")") : ", " + std::to_string(C) + ")"));
-    std::vector<T> out(size_t(a.shape(0)));
-    const double* d = a.data();
-    for (size_t i = 0; i < out.size(); ++i)
-        for (int k = 0; k < C; ++k) {
-            const double v = d[i * C + k];
-            if (!std::isfinite(v) || std::abs(v) > 3.0e38)
-                throw InvalidArgument(std::string(name) + " must be finite (got NaN or inf)");
-            reinterpret_cast<float*>(&out[i])[k] = float(v);
-        }
-    return out;
-}
-
 std::vector<uint16_t> segmentsOf(py::handle obj) {
     py::array a = py::array::ensure(obj);
-    if (!a || (a.dtype().kind() != 'i' && a.dtype().kind() != 'u'))
-        throw py::type_error("segments must be an integer array");
-    if (a.ndim() != 1) throw InvalidArgument("segments must have shape (S,)");
-    auto i64 = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
-    std::vector<uint16_t> out(size_t(i64.size()));
-    for (size_t i = 0; i < out.size(); ++i) {
-        const int64_t v = i64.data()[i];
-        if (v < 0 || v > 65535) throw InvalidArgument("segments must be in [0, 65535]");
-        out[i] = uint16_t(v);
-    }
-    return out;
+    if (a && a.ndim() != 1) throw InvalidArgument("segments must have shape (S,)");
+    return integersOf<uint16_t>(obj, "segments", "segment count");
 }
 
 // A read-only NumPy view of `count` x `columns` floats owned by `owner`.
@@ -67,12 +37,6 @@ py::array floatView(const float* data, size_t count, int columns, py::handle own
     py::array view(py::dtype::of<float>(), shape, strides, data, owner);
     view.attr("setflags")(py::arg("write") = false);
     return view;
-}
-
-py::array_t<float> vec3Array(const std::vector<glm::vec3>& v) {
-    py::array_t<float> out({py::ssize_t(v.size()), py::ssize_t(3)});
-    if (!v.empty()) std::memcpy(out.mutable_data(), v.data(), v.size() * sizeof(glm::vec3));
-    return out;
 }
 
 py::array perPoint(const HairStrands& h, const std::vector<float>& values, float fallback,
@@ -231,7 +195,7 @@ void bindHair(py::module_& m) {
                                    const auto& h = self.cast<const HairStrands&>();
                                    if (!h.colors.empty())
                                        return floatView(&h.colors[0].x, h.pointCount(), 3, self);
-                                   return vec3Array(
+                                   return rowsArray(
                                        std::vector<glm::vec3>(h.pointCount(), h.defaultColor));
                                })
         .def_property_readonly(
@@ -268,7 +232,7 @@ void bindHair(py::module_& m) {
                     py::gil_scoped_release release;
                     t = strandTangents(h);
                 }
-                return vec3Array(t);
+                return rowsArray(t);
             },
             "Unit tangent per point (P,3): central differences, one-sided at strand ends.")
         .def(
@@ -280,7 +244,7 @@ void bindHair(py::module_& m) {
                     py::gil_scoped_release release;
                     r = strandRibbons(h, e, widthScale);
                 }
-                return vec3Array(r);
+                return rowsArray(r);
             },
             py::arg("eye"), py::arg("width_scale") = 1.0f,
             "Camera-facing ribbon vertices (2P,3): point i gives p -/+ s * w / 2, s = unit(t x\n"
@@ -289,9 +253,7 @@ void bindHair(py::module_& m) {
             "ribbon_indices",
             [](const HairStrands& h) {
                 const std::vector<uint32_t> idx = ribbonIndices(h);
-                py::array_t<uint32_t> out({py::ssize_t(idx.size() / 3), py::ssize_t(3)});
-                if (!idx.empty()) std::memcpy(out.mutable_data(), idx.data(), idx.size() * 4);
-                return out;
+                return arrayOf<uint32_t>(idx, {py::ssize_t(idx.size() / 3), 3});
             },
             "Triangles (T,3) uint32 over ribbons(): two per segment, facing the eye.")
         .def(
@@ -427,25 +389,16 @@ void bindHair(py::module_& m) {
                        vv = rowsOf<glm::vec3, 3>(v, "v");
             std::vector<uint32_t> ids(tv.size(), 0);
             if (!strandIds.is_none()) {
-                py::array a = py::array::ensure(strandIds);
-                if (!a || (a.dtype().kind() != 'i' && a.dtype().kind() != 'u'))
-                    throw py::type_error("strand_ids must be integers");
-                auto i64 =
-                    py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
-                if (i64.ndim() != 1 || size_t(i64.size()) != tv.size())
+                ids = integersOf<uint32_t>(strandIds, "strand_ids", "strand id");
+                if (ids.size() != tv.size())
                     throw InvalidArgument("strand_ids must have shape (N,)");
-                for (size_t i = 0; i < ids.size(); ++i) {
-                    if (i64.data()[i] < 0 || i64.data()[i] > int64_t(UINT32_MAX))
-                        throw InvalidArgument("strand_ids must be in [0, 2^32)");
-                    ids[i] = uint32_t(i64.data()[i]);
-                }
             }
             std::vector<glm::vec3> out;
             {
                 py::gil_scoped_release release;
                 out = evaluateHairShading(material, tv, lv, vv, ids);
             }
-            return vec3Array(out);
+            return rowsArray(out);
         },
         py::arg("material"), py::arg("t"), py::arg("l"), py::arg("v"),
         py::arg("strand_ids") = py::none(),

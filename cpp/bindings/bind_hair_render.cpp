@@ -104,9 +104,7 @@ void bindHairRender(py::module_& m) {
         [](const Renderer& r, int light) {
             const HairDomInfo i = debug::hairDeepOpacity(r, light);
             py::dict d;
-            py::array_t<float> texels({py::ssize_t(i.size), py::ssize_t(i.size), py::ssize_t(4)});
-            std::memcpy(texels.mutable_data(), i.texels.data(), i.texels.size() * sizeof(float));
-            d["opacity"] = texels;
+            d["opacity"] = arrayOf<float>(i.texels, {i.size, i.size, 4});
             d["direction"] = fromVec3(i.direction);
             d["center"] = fromVec3(i.center);
             d["extent"] = i.extent;

@@ -49,7 +49,7 @@ void bindIbl(py::module_& m) {
                     py::gil_scoped_release release;
                     for (size_t k = 0; k < d.size(); ++k) out[k] = c.sampleLod(d[k], lod);
                 }
-                return vec3Array(out);
+                return rowsArray(out);
             },
             py::arg("directions"), py::arg("lod") = 0.0f,
             "Seamless (trilinear) samples at (N, 3) directions -> (N, 3).")
@@ -205,7 +205,7 @@ void bindIbl(py::module_& m) {
             const Sh9 s = shFromArray(sh);
             auto n = directions(normals, "normals");
             for (auto& v : n) v = shIrradiance(s, v);
-            return vec3Array(n);
+            return rowsArray(n);
         },
         py::arg("sh"), py::arg("normals"), "Irradiance (N, 3) at unit normals (N, 3) from SH9.");
     m.def(
@@ -321,9 +321,7 @@ void bindIbl(py::module_& m) {
                 py::gil_scoped_release release;
                 lut = dfgLut(size, samples);
             }
-            py::array_t<float> out({py::ssize_t(size), py::ssize_t(size), py::ssize_t(2)});
-            std::memcpy(out.mutable_data(), lut.data(), lut.size() * sizeof(float));
-            return out;
+            return arrayOf<float>(lut, {size, size, 2});
         },
         py::arg("size") = 32, py::arg("samples") = 256,
         "Split-sum DFG table (roughness rows, n.v columns, [scale, bias]).");
@@ -355,9 +353,7 @@ void bindIbl(py::module_& m) {
             }
             if (!withLabels) return std::move(out);
             const py::ssize_t s = c.get().size();
-            py::array_t<int> lab({py::ssize_t(6), s, s});
-            std::memcpy(lab.mutable_data(), labels.data(), labels.size() * sizeof(int));
-            return py::make_tuple(out, lab);
+            return py::make_tuple(out, arrayOf<int>(labels, {6, s, s}));
         },
         py::arg("radiance"), py::arg("downsample") = 32, py::arg("threshold") = 0.0f,
         py::arg("relative_threshold") = 8.0f, py::arg("max_lights") = 16, py::arg("labels") = false,

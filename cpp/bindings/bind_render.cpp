@@ -26,12 +26,6 @@ py::array_t<float> floatImage(const std::vector<float>& data, int h, int w, int 
     return out;
 }
 
-py::array_t<uint8_t> colorImage(const ImageU8& img) {
-    py::array_t<uint8_t> out({img.height, img.width, 4});
-    std::memcpy(out.mutable_data(), img.pixels.data(), img.pixels.size());
-    return out;
-}
-
 py::object ms(double v) { return v < 0 ? py::object(py::none()) : py::object(py::float_(v)); }
 
 py::dict statsDict(const FrameStats& s) {
@@ -176,7 +170,7 @@ void bindRender(py::module_& m) {
     cls.def(
            "render",
            [](Renderer& r, const Scene& scene, const Camera& camera) {
-               return colorImage(renderFrame(r, scene, camera, OutputColor).color);
+               return toNumpy(renderFrame(r, scene, camera, OutputColor).color);
            },
            py::arg("scene"), py::arg("camera"), "sRGB-encoded RGBA uint8 image (H, W, 4).")
         .def(
@@ -194,7 +188,7 @@ void bindRender(py::module_& m) {
                 Frame f = renderFrame(r, scene, camera, OutputColor | OutputLinear | OutputDebug);
                 const int h = f.height, w = f.width;
                 py::dict d;
-                d["color"] = colorImage(f.color);
+                d["color"] = toNumpy(f.color);
                 d["linear"] = floatImage(f.linear, h, w, 4, 4, 0);
                 d["position"] = floatImage(f.position, h, w, 4, 3, 0);
                 py::array_t<bool> mask({h, w});
@@ -236,9 +230,7 @@ void bindRender(py::module_& m) {
             [](Renderer& r, int light, int view) {
                 uint32_t size = 0;
                 std::vector<float> data = debug::shadowMap(r, light, &size, view);
-                py::array_t<float> out({py::ssize_t(size), py::ssize_t(size)});
-                std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
-                return out;
+                return arrayOf<float>(data, {size, size});
             },
             py::arg("light_index") = 0, py::arg("view") = 0,
             "Depth in [0,1] of the last frame's shadow map of a light (`view`: one of a point\n"
@@ -248,10 +240,7 @@ void bindRender(py::module_& m) {
             [](Renderer& r) {
                 uint32_t size = 0;
                 std::vector<float> data = debug::reflectionProbe(r, &size);
-                const py::ssize_t n = size;
-                py::array_t<float> out({py::ssize_t(6), n, n, py::ssize_t(4)});
-                std::memcpy(out.mutable_data(), data.data(), data.size() * sizeof(float));
-                return out;
+                return arrayOf<float>(data, {6, size, size, 4});
             },
             "The last frame's dynamic reflection capture, (6, S, S, 4) linear RGBA (faces +X, -X,\n"
             "+Y, -Y, +Z, -Z as weft.ibl.CubeMap).")

@@ -14,55 +14,24 @@ namespace weft::py_bind {
 
 namespace {
 
-// (N, K) float array -> vector of glm vectors.
-template <typename Vec, int K>
-std::vector<Vec> rows(py::handle obj, const char* name, size_t expected = size_t(-1)) {
-    auto a = numericArray(obj, name);
-    if (a.ndim() != 2 || a.shape(1) != K)
-        throw InvalidArgument(std::string(name) + " must have shape (N, " + std::to_string(K) +
-                              ")");
-    if (expected != size_t(-1) && size_t(a.shape(0)) != expected)
-        throw InvalidArgument(std::string(name) + " must have " + std::to_string(expected) +
-                              " rows");
-    auto r = a.unchecked<2>();
-    std::vector<Vec> out(size_t(a.shape(0)));
-    for (py::ssize_t i = 0; i < a.shape(0); ++i)
-        for (int k = 0; k < K; ++k) out[size_t(i)][k] = float(r(i, k));
-    return out;
-}
-
-template <typename Vec, int K> py::array_t<float> toRows(const std::vector<Vec>& v) {
-    py::array_t<float> out({py::ssize_t(v.size()), py::ssize_t(K)});
-    if (!v.empty()) std::memcpy(out.mutable_data(), v.data(), v.size() * sizeof(Vec));
-    return out;
-}
-
 std::shared_ptr<Mesh> makeMesh(py::handle positions, py::handle normals, py::handle uvs,
                                py::handle indices) {
     auto mesh = std::make_shared<Mesh>();
-    mesh->positions = rows<glm::vec3, 3>(positions, "positions");
+    mesh->positions = rowsOf<glm::vec3, 3>(positions, "positions");
     if (indices.is_none()) throw InvalidArgument("Mesh: indices (M, 3) are required");
     py::array idx = py::array::ensure(indices);
-    if (!idx || (idx.dtype().kind() != 'i' && idx.dtype().kind() != 'u'))
-        throw py::type_error("indices must be an integer array");
-    auto i64 = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(idx);
-    if (!((i64.ndim() == 2 && i64.shape(1) == 3) || i64.ndim() == 1))
+    if (idx && !(idx.ndim() == 1 || (idx.ndim() == 2 && idx.shape(1) == 3)))
         throw InvalidArgument("indices must have shape (M, 3)");
-    const int64_t* data = i64.data();
-    for (py::ssize_t i = 0; i < i64.size(); ++i) {
-        if (data[i] < 0 || data[i] > int64_t(UINT32_MAX))
-            throw InvalidArgument("indices must be non-negative 32-bit values");
-        mesh->indices.push_back(uint32_t(data[i]));
-    }
+    mesh->indices = integersOf<uint32_t>(indices, "indices", "vertex index");
     // Missing attributes are computed (documented on weft.Mesh), not left for validate().
     if (normals.is_none())
         mesh->normals = computeNormals(mesh->positions, mesh->indices);
     else
-        mesh->normals = rows<glm::vec3, 3>(normals, "normals", mesh->positions.size());
+        mesh->normals = rowsOf<glm::vec3, 3>(normals, "normals", mesh->positions.size());
     if (uvs.is_none())
         mesh->uvs = computePlanarUvs(mesh->positions);
     else
-        mesh->uvs = rows<glm::vec2, 2>(uvs, "uvs", mesh->positions.size());
+        mesh->uvs = rowsOf<glm::vec2, 2>(uvs, "uvs", mesh->positions.size());
     mesh->validate();
     return mesh;
 }
@@ -82,21 +51,16 @@ void bindScene(py::module_& m) {
              "vertex normals (a vertex without a non-degenerate triangle gets +Y); uvs=None: a\n"
              "planar projection along the bounds' thinnest axis, u along the longest one,\n"
              "both divided by the longest extent (u in [0, 1]).")
-        .def_property_readonly("positions",
-                               [](const Mesh& x) { return toRows<glm::vec3, 3>(x.positions); })
-        .def_property_readonly("normals",
-                               [](const Mesh& x) { return toRows<glm::vec3, 3>(x.normals); })
-        .def_property_readonly("uvs", [](const Mesh& x) { return toRows<glm::vec2, 2>(x.uvs); })
+        .def_property_readonly("positions", [](const Mesh& x) { return rowsArray(x.positions); })
+        .def_property_readonly("normals", [](const Mesh& x) { return rowsArray(x.normals); })
+        .def_property_readonly("uvs", [](const Mesh& x) { return rowsArray(x.uvs); })
         .def_property_readonly(
             "indices",
             [](const Mesh& x) {
-                py::array_t<uint32_t> out({py::ssize_t(x.triangleCount()), py::ssize_t(3)});
-                if (!x.indices.empty())
-                    std::memcpy(out.mutable_data(), x.indices.data(), x.indices.size() * 4);
-                return out;
+                return arrayOf<uint32_t>(x.indices, {py::ssize_t(x.triangleCount()), 3});
             })
         .def_property_readonly(
-            "tangents", [](const Mesh& x) { return toRows<glm::vec4, 4>(computeTangents(x)); },
+            "tangents", [](const Mesh& x) { return rowsArray(computeTangents(x)); },
             "(N, 4) tangents the renderer uses for normal mapping: xyz along +u, w = handedness\n"
             "(bitangent w (n x t) points towards decreasing v, up the image).")
         .def_property_readonly("vertex_count", &Mesh::vertexCount)

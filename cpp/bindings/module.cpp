@@ -38,61 +38,7 @@ PyObject* newException(const char* name, PyObject* bases, const char* doc) {
     return type;
 }
 
-py::array_t<uint8_t> imageToArray(const weft::ImageU8& img) {
-    py::array_t<uint8_t> out({img.height, img.width, img.channels});
-    std::memcpy(out.mutable_data(), img.pixels.data(), img.pixels.size());
-    return out;
-}
-
-weft::ImageU8 arrayToImage(py::handle obj) {
-    py::array a = py::array::ensure(obj);
-    if (!a) throw py::type_error("image must be a NumPy array");
-    if (a.dtype().kind() != 'u' || a.itemsize() != 1)
-        throw weft::InvalidArgument("image must have dtype uint8, got " +
-                                    std::string(py::str(a.dtype())));
-    if (a.ndim() != 2 && a.ndim() != 3)
-        throw weft::InvalidArgument("image must be (H, W) or (H, W, C)");
-    const int c = a.ndim() == 3 ? int(a.shape(2)) : 1;
-    if (c < 1 || c > 4) throw weft::InvalidArgument("image must have 1 to 4 channels");
-    weft::ImageU8 img(int(a.shape(1)), int(a.shape(0)), c);
-    if (img.width == 0 || img.height == 0) throw weft::InvalidArgument("image must not be empty");
-    auto contiguous = py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(a);
-    std::memcpy(img.pixels.data(), contiguous.data(), img.pixels.size());
-    return img;
-}
-
-py::array_t<float> imageFToArray(const weft::ImageF& img) {
-    py::array_t<float> out({img.height, img.width, img.channels});
-    std::memcpy(out.mutable_data(), img.pixels.data(), img.pixels.size() * sizeof(float));
-    return out;
-}
-
-weft::ImageF arrayToImageF(py::handle obj) {
-    py::array a = py::array::ensure(obj);
-    if (!a) throw py::type_error("image must be a NumPy array");
-    if (a.dtype().kind() != 'f' && a.dtype().kind() != 'u' && a.dtype().kind() != 'i')
-        throw py::type_error("float image must be numeric, got dtype " +
-                             std::string(py::str(a.dtype())));
-    if (a.ndim() != 2 && a.ndim() != 3)
-        throw weft::InvalidArgument("image must be (H, W) or (H, W, C)");
-    const int c = a.ndim() == 3 ? int(a.shape(2)) : 1;
-    if (c < 1 || c > 4) throw weft::InvalidArgument("image must have 1 to 4 channels");
-    if (a.shape(0) == 0 || a.shape(1) == 0) throw weft::InvalidArgument("image must not be empty");
-    weft::ImageF img(int(a.shape(1)), int(a.shape(0)), c);
-    auto contiguous = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
-    std::memcpy(img.pixels.data(), contiguous.data(), img.pixels.size() * sizeof(float));
-    img.requireFinite("image");
-    return img;
-}
-
 } // namespace
-
-namespace weft::py_bind {
-py::array_t<float> toNumpy(const ImageF& img) { return imageFToArray(img); }
-ImageF fromNumpyF(py::handle obj) { return arrayToImageF(obj); }
-py::array_t<uint8_t> toNumpy(const ImageU8& img) { return imageToArray(img); }
-ImageU8 fromNumpy(py::handle obj) { return arrayToImage(obj); }
-} // namespace weft::py_bind
 
 PYBIND11_MODULE(_core, m) {
     m.doc() = "weft's compiled core (Vulkan renderer, scene, IO). Use the `weft` package.";
@@ -166,39 +112,34 @@ PYBIND11_MODULE(_core, m) {
         "(obtained from Vulkan), used_bytes (handed out); zeros when no Renderer exists.");
 
     m.def(
-        "load_png", [](const std::string& path) { return imageToArray(weft::loadPng(path)); },
+        "load_png", [](const std::string& path) { return toNumpy(weft::loadPng(path)); },
         py::arg("path"), "Reads a PNG into a uint8 array (H, W, C).");
     m.def(
         "save_png",
-        [](const std::string& path, py::handle image) { weft::savePng(path, arrayToImage(image)); },
+        [](const std::string& path, py::handle image) { weft::savePng(path, fromNumpy(image)); },
         py::arg("path"), py::arg("image"), "Writes a uint8 array (H, W) or (H, W, 1-4) as PNG.");
 
     m.def(
-        "load_exr", [](const std::string& path) { return imageFToArray(weft::loadExr(path)); },
+        "load_exr", [](const std::string& path) { return toNumpy(weft::loadExr(path)); },
         py::arg("path"),
         "Reads an OpenEXR file into a float32 array (H, W, C): R, G, B [, A] "
         "or Y [, A].");
     m.def(
         "save_exr",
-        [](const std::string& path, py::handle image) {
-            weft::saveExr(path, arrayToImageF(image));
-        },
+        [](const std::string& path, py::handle image) { weft::saveExr(path, fromNumpyF(image)); },
         py::arg("path"), py::arg("image"),
         "Writes a float array (H, W) or (H, W, 1-4) as 32-bit float OpenEXR (ZIP compression).");
     m.def(
-        "load_hdr", [](const std::string& path) { return imageFToArray(weft::loadHdr(path)); },
+        "load_hdr", [](const std::string& path) { return toNumpy(weft::loadHdr(path)); },
         py::arg("path"), "Reads a Radiance RGBE .hdr file into a float32 array (H, W, 3).");
     m.def(
         "save_hdr",
-        [](const std::string& path, py::handle image) {
-            weft::saveHdr(path, arrayToImageF(image));
-        },
+        [](const std::string& path, py::handle image) { weft::saveHdr(path, fromNumpyF(image)); },
         py::arg("path"), py::arg("image"),
         "Writes a float array (H, W), (H, W, 3) or (H, W, 4, alpha dropped) as Radiance RGBE "
         "(run-length encoded). Values must be finite and >= 0.");
     m.def(
-        "load_image_float",
-        [](const std::string& path) { return imageFToArray(weft::loadImageF(path)); },
+        "load_image_float", [](const std::string& path) { return toNumpy(weft::loadImageF(path)); },
         py::arg("path"), "Reads .exr, .hdr or .png (values / 255) into a float32 (H, W, C) array.");
 
     m.def("shader_hot_reload_available", &weft::shaderHotReloadAvailable,

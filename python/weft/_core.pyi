@@ -1620,7 +1620,7 @@ def btf_lafortune_errors(samples: BtfSamples, fit: dict, threads: typing.Support
     """
 def btf_load(path: str, views: typing.Any, gamma: str = 'raw', threads: typing.SupportsInt | typing.SupportsIndex = 0, jpeg_cells: bool = False) -> BtfSamples:
     """
-    Loads a BTF in the Bonn layout (a folder or a zip) as BtfSamples: `views` (V, 2) (θ_v, φ_v) degrees picks views (None = all); gamma 'raw' keeps the stored values, 'srgb' linearises them; jpeg_cells also keeps JPEG files' quantised DCT cells. Raises IoError naming the file (or the missing angles).
+    Loads a BTF in the Bonn layout (a folder or a zip) as BtfSamples: `views` (V, 2) (θ_v, φ_v) degrees picks views (None = all); gamma 'raw' keeps the stored values, 'linear' linearises them (value^2.2); jpeg_cells also keeps JPEG files' quantised DCT cells. Raises IoError naming the file (or the missing angles).
     """
 def btf_material_from_linear(samples: BtfSamples, linear: dict) -> dict:
     """
