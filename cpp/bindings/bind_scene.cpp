@@ -36,6 +36,13 @@ std::shared_ptr<Mesh> makeMesh(py::handle positions, py::handle normals, py::han
     return mesh;
 }
 
+// The instance with this id (an id add_mesh or add_cloth returned), else InvalidArgument.
+const MeshInstance& instance(const Scene& s, uint32_t id) {
+    if (id >= s.instances().size())
+        throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
+    return s.instances()[id];
+}
+
 } // namespace
 
 void bindMaterial(py::module_& m); // bind_material.cpp
@@ -156,29 +163,18 @@ void bindScene(py::module_& m) {
         .def("set_material", &Scene::setMaterial,
              "Replaces the material of the instance with this id.")
         .def(
-            "material",
-            [](const Scene& s, uint32_t id) {
-                if (id >= s.instances().size())
-                    throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
-                return s.instances()[id].material;
-            },
+            "material", [](const Scene& s, uint32_t id) { return instance(s, id).material; },
             py::arg("id"), "A copy of an instance's material.")
         .def(
             "transform",
-            [](const Scene& s, uint32_t id) {
-                if (id >= s.instances().size())
-                    throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
-                return fromMat4(s.instances()[id].transform);
-            },
+            [](const Scene& s, uint32_t id) { return fromMat4(instance(s, id).transform); },
             py::arg("id"), "An instance's object -> world matrix (4x4).")
         // Read-only getters so that exporters (weft.reference.picture: the Mitsuba reference)
         // can read a scene back instead of rebuilding it from a second description.
         .def(
             "mesh",
             [](const Scene& s, uint32_t id) -> py::object {
-                if (id >= s.instances().size())
-                    throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
-                const MeshPtr& mesh = s.instances()[id].mesh;
+                const MeshPtr& mesh = instance(s, id).mesh;
                 if (!mesh) return py::none();
                 return py::cast(std::const_pointer_cast<Mesh>(mesh));
             },
@@ -186,22 +182,16 @@ void bindScene(py::module_& m) {
         .def(
             "cloth",
             [](const Scene& s, uint32_t id) -> py::object {
-                if (id >= s.instances().size())
-                    throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
                 const auto cloth =
-                    std::dynamic_pointer_cast<const Cloth>(s.instances()[id].deformable);
+                    std::dynamic_pointer_cast<const Cloth>(instance(s, id).deformable);
                 if (!cloth) return py::none();
                 return py::cast(std::const_pointer_cast<Cloth>(cloth));
             },
             py::arg("id"), "A cloth instance's weft.Cloth (its mesh() is world space), else None.")
         .def(
             "casts_shadows",
-            [](const Scene& s, uint32_t id) {
-                if (id >= s.instances().size())
-                    throw InvalidArgument("mesh id " + std::to_string(id) + " does not exist");
-                return s.instances()[id].castShadows;
-            },
-            py::arg("id"), "Whether an instance casts shadows.")
+            [](const Scene& s, uint32_t id) { return instance(s, id).castShadows; }, py::arg("id"),
+            "Whether an instance casts shadows.")
         .def("add_light", &Scene::addLight, py::arg("light"),
              "Adds a DirectionalLight, PointLight or SpotLight; returns its id.")
         .def("set_light", &Scene::setLight, py::arg("id"), py::arg("light"),
