@@ -2,6 +2,7 @@
 // NumPy <-> weft conversions with the argument checks every binding shares.
 #include <cstring>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -11,10 +12,6 @@
 
 #include <weft/Error.h>
 #include <weft/Image.h>
-
-namespace weft {
-enum class ToneMap; // weft/Renderer.h
-}
 
 namespace weft::py_bind {
 
@@ -26,6 +23,12 @@ glm::vec3 toVec3(py::handle obj, const std::string& name);
 glm::mat4 toMat4(py::handle obj, const std::string& name);
 py::array_t<float> fromMat4(const glm::mat4& m);
 py::tuple fromVec3(const glm::vec3& v);
+/// "(x, y, z)" for the reprs.
+inline std::string vecRepr(const glm::vec3& v) {
+    std::ostringstream s;
+    s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+    return s.str();
+}
 /// Rows of K finite numbers, (N, K) (or (N,) for K = 1), as Vec (glm::vecK, or float for K =
 /// 1); with `rows` set exactly that many. Shape or values refused: InvalidArgument naming `name`.
 template <class Vec, int K>
@@ -62,8 +65,7 @@ py::array_t<uint8_t> toNumpy(const ImageU8& img);
 ImageU8 fromNumpy(py::handle obj);
 py::array_t<float> toNumpy(const ImageF& img);
 ImageF fromNumpyF(py::handle obj);
-/// 'clamp', 'aces', 'agx' or 'neutral' (defined in bind_render.cpp); else InvalidArgument.
-ToneMap toneMapOf(const std::string& name);
-std::string toneMapName(ToneMap t);
+/// The tone maps' Python names in ToneMap's order (defined in bind_render.cpp).
+extern const char* const kToneMaps[4];
 
 } // namespace weft::py_bind

@@ -6,7 +6,6 @@
 // struct's validate(): a refused value leaves the object as it was).
 #include <functional>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -27,12 +26,6 @@ template <typename T, typename F> void setChecked(T& obj, F&& assign) {
         obj = before;
         throw;
     }
-}
-
-inline std::string vecRepr(const glm::vec3& v) {
-    std::ostringstream s;
-    s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
-    return s.str();
 }
 
 /// How a member type shows in Python: `Arg` is the parameter type pybind11 converts a Python
@@ -79,6 +72,31 @@ template <class T, class M> auto field(const char* name, M T::*member, const cha
 template <class A, class T, class Get, class Set>
 auto field(const char* name, Get get, Set set, const char* doc = nullptr) {
     return Field<T, A, Get, Set>{name, get, set, doc};
+}
+
+/// The enum value named `s` (`names` in the enum's order); else InvalidArgument
+/// "<what> must be 'a', 'b' or 'c' (got 's')".
+template <class E, size_t N>
+E enumOf(const char* const (&names)[N], const std::string& s, const std::string& what) {
+    std::string list;
+    for (size_t i = 0; i < N; ++i) {
+        if (s == names[i]) return E(i);
+        list += std::string(i == 0 ? "'" : i + 1 == N ? " or '" : ", '") + names[i] + "'";
+    }
+    throw InvalidArgument(what + " must be " + list + " (got '" + s + "')");
+}
+
+/// The enum member `member` of T, seen in Python as one of `names` (in the enum's order).
+template <class T, class E, size_t N>
+auto enumField(const char* name, E T::*member, const char* const (&names)[N],
+               const char* doc = nullptr) {
+    const char* const(*table)[N] = &names; // the tables are static
+    return field<std::string, T>(
+        name, [member, table](const T& o) { return std::string((*table)[size_t(o.*member)]); },
+        [member, table, name](T& o, const std::string& v) {
+            o.*member = enumOf<E>(*table, v, name);
+        },
+        doc);
 }
 
 /// The field as a constructor argument without a default (it must come before those with one).

@@ -38,11 +38,7 @@ std::vector<float> floatArray(py::handle obj, const std::string& name,
     return out;
 }
 
-BtfGamma gammaFrom(const std::string& s) {
-    if (s == "raw") return BtfGamma::Raw;
-    if (s == "linear") return BtfGamma::Linear;
-    throw InvalidArgument("gamma must be 'raw' or 'linear', got '" + s + "'");
-}
+const char* const kGammas[] = {"raw", "linear"};
 
 std::vector<BtfAngles> anglesFrom(py::handle obj) {
     auto a = numericArray(obj, "angles");
@@ -123,14 +119,6 @@ BtfLinearFit linearFrom(const BtfSamples& samples, py::dict d) {
 }
 
 const char* const kSolvers[] = {"auto", "builtin", "ceres"};
-
-BtfSolver solverFrom(const std::string& s) {
-    for (int i = 0; i < 3; ++i)
-        if (s == kSolvers[i]) return BtfSolver(i);
-    throw InvalidArgument("solver must be 'auto', 'builtin' or 'ceres', got '" + s + "'");
-}
-
-const char* gammaName(BtfGamma g) { return g == BtfGamma::Raw ? "raw" : "linear"; }
 
 } // namespace
 
@@ -294,9 +282,7 @@ void bindBtf(py::module_& m) {
                 if (o.views.empty())
                     throw InvalidArgument("views must have shape (V, 2): θ_v, φ_v in degrees");
             })),
-        field<std::string, BtfLoadOptions>(
-            "gamma", [](const BtfLoadOptions& o) { return gammaName(o.gamma); },
-            [](BtfLoadOptions& o, const std::string& g) { o.gamma = gammaFrom(g); }),
+        enumField("gamma", &BtfLoadOptions::gamma, kGammas),
         field("threads", &BtfLoadOptions::threads),
         field("jpeg_cells", &BtfLoadOptions::jpegCells));
     defFunctionWith<const std::string&>(
@@ -320,10 +306,7 @@ void bindBtf(py::module_& m) {
                 o.format = format == "png" ? BtfImageFormat::Png : BtfImageFormat::Jpeg;
             }),
         field("quality", &W::jpegQuality), field("zip", &W::zip),
-        field<std::string, W>(
-            "gamma", [](const W& o) { return gammaName(o.gamma); },
-            [](W& o, const std::string& g) { o.gamma = gammaFrom(g); }),
-        field("prefix", &W::prefix));
+        enumField("gamma", &W::gamma, kGammas), field("prefix", &W::prefix));
     defFunctionWith<const std::string&, const BtfSamples&>(
         m, "btf_write",
         [](const std::string& path, const BtfSamples& samples, const W& o) {
@@ -531,9 +514,7 @@ void bindBtf(py::module_& m) {
             return d;
         },
         seedArgs,
-        std::make_tuple(field<std::string, NL>(
-                            "solver", [](const NL& o) { return kSolvers[int(o.solver)]; },
-                            [](NL& o, const std::string& v) { o.solver = solverFrom(v); }),
+        std::make_tuple(enumField("solver", &NL::solver, kSolvers),
                         field("max_iterations", &NL::maxIterations), minExponent, maxExponent,
                         threads, flat, field("visibility", &NL::visibility), luminance,
                         field("noise", &NL::noise)),

@@ -77,28 +77,7 @@ HairPtr makeStrands(py::handle points, py::object segments, py::object thickness
 }
 
 const char* const kStyles[] = {"straight", "wavy", "curly"};
-
-HairStyleKind styleKind(const std::string& s) {
-    for (int i = 0; i < 3; ++i)
-        if (s == kStyles[i]) return HairStyleKind(i);
-    throw InvalidArgument("hair style must be 'straight', 'wavy' or 'curly', got '" + s + "'");
-}
-
-const char* modelName(HairModel m) {
-    switch (m) {
-    case HairModel::KajiyaKay: return "kajiya_kay";
-    case HairModel::Marschner: return "marschner";
-    default: return "sadeghi";
-    }
-}
-
-HairModel modelOf(const std::string& s) {
-    if (s == "kajiya_kay") return HairModel::KajiyaKay;
-    if (s == "marschner") return HairModel::Marschner;
-    if (s == "sadeghi") return HairModel::Sadeghi;
-    throw InvalidArgument("hair model must be 'kajiya_kay', 'marschner' or 'sadeghi', got '" + s +
-                          "'");
-}
+const char* const kModels[] = {"kajiya_kay", "marschner", "sadeghi"}; // HairModel's order
 
 // generate_fur's arguments: the mesh, its parameters and an optional texture.
 struct FurCall {
@@ -111,7 +90,7 @@ struct FurCall {
 std::string materialRepr(const HairMaterial& m) {
     std::ostringstream s;
     auto v3 = [&](const glm::vec3& v) { s << "(" << v.x << ", " << v.y << ", " << v.z << ")"; };
-    s << "<weft.HairMaterial " << modelName(m.model) << " diffuse=";
+    s << "<weft.HairMaterial " << kModels[int(m.model)] << " diffuse=";
     v3(m.diffuse);
     if (m.model == HairModel::KajiyaKay) {
         s << " specular=";
@@ -297,10 +276,8 @@ void bindHair(py::module_& m) {
 
     const auto style = std::make_tuple(
         field("strands", &HairStyle::strands), field("points", &HairStyle::points),
-        field<std::string, HairStyle>(
-            "style", [](const HairStyle& s) { return std::string(kStyles[int(s.kind)]); },
-            [](HairStyle& s, const std::string& v) { s.kind = styleKind(v); }),
-        field("length", &HairStyle::length), field("length_jitter", &HairStyle::lengthJitter),
+        enumField("style", &HairStyle::kind, kStyles), field("length", &HairStyle::length),
+        field("length_jitter", &HairStyle::lengthJitter),
         field("wave_amplitude", &HairStyle::waveAmplitude),
         field("wave_frequency", &HairStyle::waveFrequency),
         field("curl_radius", &HairStyle::curlRadius), field("droop", &HairStyle::droop),
@@ -360,15 +337,13 @@ void bindHair(py::module_& m) {
 
     using HM = HairMaterial;
     const auto material = std::make_tuple(
-        field<std::string, HM>(
-            "model", [](const HM& x) { return modelName(x.model); },
-            [](HM& x, const std::string& s) { x.model = modelOf(s); }),
-        field("diffuse", &HM::diffuse), field("specular", &HM::specular),
-        field("shininess", &HM::shininess), field("shift", &HM::shift), field("width", &HM::width),
-        field("eta", &HM::eta), field("absorption", &HM::absorption),
-        field("caustic_width", &HM::causticWidth), field("color_r", &HM::colorR),
-        field("color_tt", &HM::colorTT), field("color_trt", &HM::colorTRT),
-        field("intensity", &HM::intensity), field("tt_azimuthal_width", &HM::ttAzimuthalWidth),
+        enumField("model", &HM::model, kModels), field("diffuse", &HM::diffuse),
+        field("specular", &HM::specular), field("shininess", &HM::shininess),
+        field("shift", &HM::shift), field("width", &HM::width), field("eta", &HM::eta),
+        field("absorption", &HM::absorption), field("caustic_width", &HM::causticWidth),
+        field("color_r", &HM::colorR), field("color_tt", &HM::colorTT),
+        field("color_trt", &HM::colorTRT), field("intensity", &HM::intensity),
+        field("tt_azimuthal_width", &HM::ttAzimuthalWidth),
         field("glint_intensity", &HM::glintIntensity), field("glint_width", &HM::glintWidth),
         field("glint_angle_min", &HM::glintAngleMin), field("glint_angle_max", &HM::glintAngleMax));
     py::class_<HM> hairMaterial(

@@ -13,15 +13,7 @@ namespace weft::py_bind {
 
 namespace {
 
-std::string primitiveName(HairPrimitive p) {
-    return p == HairPrimitive::Ribbons ? "ribbons" : "lines";
-}
-
-HairPrimitive primitiveOf(const std::string& s) {
-    if (s == "lines") return HairPrimitive::Lines;
-    if (s == "ribbons") return HairPrimitive::Ribbons;
-    throw InvalidArgument("hair_primitive must be 'lines' or 'ribbons' (got '" + s + "')");
-}
+const char* const kPrimitives[] = {"lines", "ribbons"}; // HairPrimitive's order
 
 // Python names of OitWeight, in its order (7 .. 10); 'eq7' .. 'eq10' are accepted too.
 const char* const kOitWeightNames[] = {"near_quadratic", "near_cubic", "far_quartic", "ndc_cubic"};
@@ -68,9 +60,8 @@ void bindHairRender(py::module_& m) {
         renderer, [](const Renderer& r) { return r.settings(); },
         [](Renderer& r, const S& s) { r.setSettings(s); },
         std::make_tuple(
-            field<std::string, S>(
-                "hair_primitive", [](const S& s) { return primitiveName(s.hairPrimitive); },
-                [](S& s, const std::string& v) { s.hairPrimitive = primitiveOf(v); },
+            enumField(
+                "hair_primitive", &S::hairPrimitive, kPrimitives,
                 "'lines' (1 pixel) or 'ribbons' (camera-facing, hair_width * thickness wide)."),
             field("hair_width", &S::hairWidth,
                   "Ribbon width per unit of strand thickness (world units)."),

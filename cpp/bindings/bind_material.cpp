@@ -14,13 +14,6 @@ namespace {
 
 const char* const kSpecularModels[] = {"blinn_phong", "ggx"};
 
-SpecularModel specularModelOf(const std::string& name) {
-    for (int i = 0; i < 2; ++i)
-        if (name == kSpecularModels[i]) return SpecularModel(i);
-    throw InvalidArgument("Material.specular_model must be 'blinn_phong' or 'ggx' (got '" + name +
-                          "')");
-}
-
 } // namespace
 
 void bindMaterial(py::module_& m) {
@@ -70,10 +63,8 @@ void bindMaterial(py::module_& m) {
         field("phantom", &Material::phantom,
               "A stand-in for a real object (AR): shows the background image times the\n"
               "shadows it receives (lit / unshadowed diffuse light), nothing else."),
-        field<std::string, Material>(
-            "specular_model",
-            [](const Material& x) { return kSpecularModels[int(x.specularModel)]; },
-            [](Material& x, const std::string& v) { x.specularModel = specularModelOf(v); },
+        enumField(
+            "specular_model", &Material::specularModel, kSpecularModels,
             "'blinn_phong': the seed's highlight K_S (n.h)^s (unnormalised) and environment\n"
             "reflection weighted by Schlick's F(n.v). 'ggx': a GGX coat of alpha =\n"
             "sqrt(2 / (shininess + 2)) and F0 = reflectivity (or else 8 ks / (shininess + 2)):\n"

@@ -56,21 +56,6 @@ Frame renderFrame(Renderer& r, const Scene& scene, const Camera& camera, uint32_
     return r.render(scene, camera, outputs);
 }
 
-const char* const kToneMaps[] = {"clamp", "aces", "agx", "neutral"};
-
-} // namespace
-
-std::string toneMapName(ToneMap t) { return kToneMaps[int(t)]; }
-
-ToneMap toneMapOf(const std::string& name) {
-    for (int i = 0; i < 4; ++i)
-        if (name == kToneMaps[i]) return ToneMap(i);
-    throw InvalidArgument("tone_map must be 'clamp', 'aces', 'agx' or 'neutral' (got '" + name +
-                          "')");
-}
-
-namespace {
-
 // Renderer(width, height, settings...): the size is checked here so that a refused size names
 // the range (RenderSettings::validate checks the rest).
 struct RendererSetup {
@@ -85,6 +70,8 @@ void checkSize(int64_t width, int64_t height) {
 }
 
 } // namespace
+
+const char* const kToneMaps[] = {"clamp", "aces", "agx", "neutral"};
 
 void bindRender(py::module_& m) {
     using S = RenderSettings;
@@ -110,9 +97,8 @@ void bindRender(py::module_& m) {
         field("exposure", &S::exposure,
               "Exposure in photographic stops: the colour output shows linear radiance x "
               "2^exposure\n(render_linear is not exposed)."),
-        field<std::string, S>(
-            "tone_map", [](const S& s) { return toneMapName(s.toneMap); },
-            [](S& s, const std::string& v) { s.toneMap = toneMapOf(v); },
+        enumField(
+            "tone_map", &S::toneMap, kToneMaps,
             "'clamp' (the seed's look), 'aces' (Narkowicz's ACES fit), 'agx' (Blender's AgX) or\n"
             "'neutral' (Khronos PBR Neutral): how exposed radiance maps to the 8-bit colour "
             "output."),

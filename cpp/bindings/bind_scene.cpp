@@ -36,6 +36,8 @@ std::shared_ptr<Mesh> makeMesh(py::handle positions, py::handle normals, py::han
     return mesh;
 }
 
+const char* const kLookups[] = {"cube", "sphere_map"}; // EnvironmentLighting::Lookup's order
+
 // The instance with this id (an id add_mesh or add_cloth returned), else InvalidArgument.
 const MeshInstance& instance(const Scene& s, uint32_t id) {
     if (id >= s.instances().size())
@@ -255,18 +257,8 @@ void bindScene(py::module_& m) {
         field("dome_map_size", &E::domeMapSize), field("dome_refresh", &E::domeRefresh),
         field("dome_blur", &E::domeBlur),
         field("dome_blur_depth_tolerance", &E::domeBlurDepthTolerance),
-        field<std::string, E>(
-            "lookup",
-            [](const E& e) { return e.lookup == E::Lookup::Cube ? "cube" : "sphere_map"; },
-            [](E& e, const std::string& lookup) {
-                if (lookup != "cube" && lookup != "sphere_map")
-                    throw InvalidArgument("Scene.set_environment: lookup must be 'cube' or "
-                                          "'sphere_map' (got '" +
-                                          lookup + "')");
-                e.lookup = lookup == "cube" ? E::Lookup::Cube : E::Lookup::SphereMap;
-            }),
-        field("sphere_map_size", &E::sphereMapSize), field("background", &E::background),
-        field("background_blur", &E::backgroundBlur));
+        enumField("lookup", &E::lookup, kLookups), field("sphere_map_size", &E::sphereMapSize),
+        field("background", &E::background), field("background_blur", &E::backgroundBlur));
     defMethod(
         scene, "set_environment", [](Scene& s, const E& e) { s.setEnvironment(e); }, environment,
         "Lights the scene with an environment (a weft.ibl.Environment, re-baked when its version\n"

@@ -208,9 +208,7 @@ PYBIND11_MODULE(_core, m) {
         // checked by runDemo (RenderSettings::validate) before it builds anything
         field("msaa", &O::msaa), field("ambient_occlusion", &O::ambientOcclusion),
         field("bounce", &O::bounce), field("exposure", &O::exposure),
-        field<std::string, O>(
-            "tone_map", [](const O& o) { return toneMapName(o.toneMap); },
-            [](O& o, const std::string& v) { o.toneMap = toneMapOf(v); }));
+        enumField("tone_map", &O::toneMap, kToneMaps));
     defFunction(
         m, "run_demo",
         [](const O& o) {
