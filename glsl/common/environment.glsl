@@ -192,7 +192,7 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
     e.visibility = e.floorVisibility = 1.0;
     e.occlusion = 0.0;
     bool probe = hasFlag(ins, DYNAMIC_REFLECTION);
-    bool sphere = frame.options.x > 0.5;
+    bool sphere = featureOn(FEATURE_SPHERE_MAP) && frame.options.x > 0.5;
     if (!featureOn(FEATURE_ENVIRONMENT) || (frame.environment.x <= 0.0 && !probe)) return e;
     vec3 irradiance = vec3(0.0), lit = vec3(-1.0);
     if (frame.environment.x > 0.0) {
@@ -203,7 +203,7 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
         int bp = bounceProbe(ins);
         if (bp >= 0)
             irradiance = max(irradiance - bounceIrradiance(bounceRowsAt(bp, p), 1, n), vec3(0.0));
-        if (frame.environment.z > 0.0) {
+        if (featureOn(FEATURE_DOME) && frame.environment.z > 0.0) {
             vec3 occluded = domeOccluded(p, n) * frame.environment.x;
             lit = max(irradiance - occluded, vec3(0.0));
             vec3 floorLit = max(irradiance - hidden, vec3(0.0));

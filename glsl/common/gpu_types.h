@@ -95,7 +95,11 @@ WEFT_CONST(uint, FEATURE_LIGHT_GROUP, 16u);
 // a shadowed directional light without a deep opacity map: the hair shaders need its shadow
 // map (hair_lighting.glsl; without this bit they read only the maps)
 WEFT_CONST(uint, FEATURE_HAIR_SHADOW_MAPS, 2048u);
-WEFT_CONST(uint, FEATURE_ALL, 4095u); // every bit above: the generic shaders
+// dome lights (Frame.environment.z > 0): their PCSS loop, ~1/4 of the demo's forward pass on
+// lavapipe when compiled in but unused
+WEFT_CONST(uint, FEATURE_DOME, 4096u);
+WEFT_CONST(uint, FEATURE_SPHERE_MAP, 8192u); // the environment as a sphere map (Frame.options.x)
+WEFT_CONST(uint, FEATURE_ALL, 16383u);       // every bit above: the generic shaders
 
 struct Light {
     vec4 position;    // xyz: position (point, spot); w: LIGHT_*

@@ -165,11 +165,17 @@ vec3 hairMarschner(HairShading s, HairAngles a) {
     return f * hairInvCos2(a.thetaD);
 }
 
+// The model a pipeline is specialized to (HairPipelines: the strands' own), or -1: the
+// model of `s`, chosen at run time. lavapipe evaluates every side of a branch under a mask, so
+// the generic pipeline pays for all three models: the demo's Kajiya-Kay fur took twice as long.
+layout(constant_id = 2) const int kHairModel = -1;
+
 vec3 hairShade(HairShading s, vec3 t, vec3 l, vec3 v, uint strand) {
     HairAngles a = hairAngles(t, l, v);
     vec3 f = s.diffuse.rgb * a.cosThetaI;
-    if (s.model.x == HAIR_MODEL_KAJIYA_KAY) f += hairKajiyaKay(s, a);
-    else if (s.model.x == HAIR_MODEL_MARSCHNER) f += hairMarschner(s, a);
+    int model = kHairModel >= 0 ? kHairModel : s.model.x;
+    if (model == HAIR_MODEL_KAJIYA_KAY) f += hairKajiyaKay(s, a);
+    else if (model == HAIR_MODEL_MARSCHNER) f += hairMarschner(s, a);
     else f += hairSadeghi(s, a, strand);
     return f;
 }

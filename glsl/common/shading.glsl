@@ -435,7 +435,7 @@ Shading shade(Surface sf, Instance ins, out float debugVis, out float debugDepth
     sh.bounce = casterBounce(p, n, bp, hiddenSky, casterCovered) * ins.kd.rgb * sf.T;
     if (featureOn(FEATURE_AMBIENT_SKY) && frame.ambient.w > 0.5) {
         sh.skySpecular = skyReflection(sf, ins, ndv, dfg);
-        if (frame.sky.w > 0.5) { // a dome occludes the sky
+        if (featureOn(FEATURE_DOME) && frame.sky.w > 0.5) { // a dome occludes the sky
             // the proxies' cover is a floor under the dome's occlusion (see environmentTerms)
             float f = 1.0 - casterCovered;
             float o = dot(domeOccluded(p, n), vec3(0.2126, 0.7152, 0.0722));

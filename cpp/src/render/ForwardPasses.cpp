@@ -40,8 +40,8 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
         g.addPass(
             {"background", {}, {{rColour, Use::ColorWrite}}, [&f, &colour](VkCommandBuffer cmd) {
                  drawFullscreen(f, cmd, colour.view(), VK_ATTACHMENT_LOAD_OP_DONT_CARE,
-                                f.pipes.backgroundFor(f.samples), f.pipes.sceneLayout, f.sets.frame,
-                                nullptr, 0);
+                                f.pipes.backgroundFor(f.data.frame, f.samples), f.pipes.sceneLayout,
+                                f.sets.frame, nullptr, 0);
              }});
 
     std::vector<ResourceUse> writes = {{f.rHdr, Use::ColorWrite}, {f.rDepth, Use::DepthWrite}};

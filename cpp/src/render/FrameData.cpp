@@ -220,7 +220,9 @@ uint32_t frameFeatures(const FrameData& data) {
         reflection = reflection || (i.flags.x & gpu::DYNAMIC_REFLECTION) != 0u;
     return (data.frame.environment.x > 0.0f || reflection ? gpu::FEATURE_ENVIRONMENT : 0u) |
            (data.frame.ambient.w > 0.5f ? gpu::FEATURE_AMBIENT_SKY : 0u) |
-           (data.frame.sky.z > 0.5f ? gpu::FEATURE_BOUNCE : 0u) | data.lightFeatures;
+           (data.frame.sky.z > 0.5f ? gpu::FEATURE_BOUNCE : 0u) |
+           (data.frame.environment.z > 0.0f || data.frame.sky.w > 0.5f ? gpu::FEATURE_DOME : 0u) |
+           (data.frame.options.x > 0.5f ? gpu::FEATURE_SPHERE_MAP : 0u) | data.lightFeatures;
 }
 
 uint32_t materialFeatures(const FrameData& data, uint32_t instance) {

@@ -21,7 +21,8 @@ void addHairPasses(FrameGraph& g, FramePassContext& f) {
             f.sets.frame,
             [&f](VkCommandBuffer cmd, VkImageView view, uint32_t size, const glm::mat4& viewProj) {
                 drawCasters(f, cmd, view, size, viewProj, false);
-            }});
+            },
+            &f.reused});
 }
 
 } // namespace weft::render

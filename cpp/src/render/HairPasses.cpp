@@ -139,8 +139,32 @@ void HairPasses::fitDoms(const Scene& scene, const RenderSettings& settings) {
     }
 }
 
+std::vector<uint64_t> HairPasses::domKey() const {
+    std::vector<uint64_t> key;
+    auto add = [&key](const float* v, size_t n) {
+        for (size_t i = 0; i < n; ++i) {
+            uint32_t bits;
+            std::memcpy(&bits, &v[i], sizeof(bits));
+            key.push_back(bits);
+        }
+    };
+    for (const Dom& d : mDoms) {
+        key.push_back(uint64_t(d.light));
+        key.push_back(d.info.size);
+        add(&d.viewProj[0][0], 16);
+        add(&d.layerNdc, 1);
+    }
+    for (const HairDraw& d : mDraws) {
+        if (!d.castShadows) continue;
+        key.push_back(reinterpret_cast<uintptr_t>(d.gpu->vertices.get())); // immutable strands
+        add(&d.model[0][0], 16);
+    }
+    return key;
+}
+
 void HairPasses::ensureImages(const RenderSettings& settings, uint32_t width, uint32_t height) {
     if (!mDoms.empty() && (!mDomDepth || mDomSize != settings.hairDomSize)) {
+        mDomKey.clear(); // new maps hold nothing
         mDomSize = settings.hairDomSize;
         mDomDepth = makeImage(mCtx, mDomSize, mDomSize, kMaxHairDoms, kDepthFormat,
                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
@@ -267,8 +291,8 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
         if (gpu.lineIndexCount == 0) continue; // single-point strands only: nothing to draw
         const bool transparent = settings.hairTransparency && gpu.transparent;
         anyTransparent |= transparent;
-        mDraws.push_back({&gpu, VK_NULL_HANDLE, uint32_t(instances.size()), h.castShadows,
-                          transparent, h.transform});
+        mDraws.push_back({&gpu, VK_NULL_HANDLE, uint32_t(instances.size()), h.material.model,
+                          nullptr, h.castShadows, transparent, h.transform});
         instances.push_back({h.transform, hair::packHairShading(h.material)});
     }
     mOit = anyTransparent;
@@ -283,11 +307,15 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
         if (light && light->castShadows && std::none_of(mDoms.begin(), mDoms.end(), hasDom))
             lightFeatures |= gpu::FEATURE_HAIR_SHADOW_MAPS;
     }
-    mShaded = &mPipes.shaded(lightFeatures);
+    for (HairDraw& d : mDraws) d.shaded = &mPipes.shaded(lightFeatures, d.shading);
     mMeshesShadowHair =
         !mDoms.empty() && std::any_of(scene.instances().begin(), scene.instances().end(),
                                       [](const MeshInstance& m) { return m.castShadows; });
     ensureImages(settings, width, height);
+    std::vector<uint64_t> key = domKey();
+    mReuseDoms = settings.reuseShadowMaps && !mDoms.empty() && key == mDomKey;
+    mDomKey = std::move(key);
+    for (const Dom& d : mDoms) mLastDoms[size_t(d.light)] = d.info;
 
     GpuHairFrame f{};
     f.cameraForward =
@@ -333,15 +361,17 @@ void HairPasses::drawFromLight(VkCommandBuffer cmd, VkPipeline pipeline, const g
     }
 }
 
-void HairPasses::drawCamera(VkCommandBuffer cmd, const Targets& t, VkPipeline pipeline,
+void HairPasses::drawCamera(VkCommandBuffer cmd, const Targets& t, const PipelineOf& pipeline,
                             VkDescriptorSet domSet, bool transparent, bool strips) const {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 0, 1, &t.frameSet,
                             0, nullptr);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 3, 1, &domSet, 0,
                             nullptr);
+    VkPipeline bound = VK_NULL_HANDLE;
     for (const HairDraw& d : mDraws) {
         if (d.transparent != transparent) continue;
+        const VkPipeline p = pipeline(*d.shaded); // the draw's model (all share one layout)
+        if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = p);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.layout, 2, 1, &d.set,
                                 0, nullptr);
         vkCmdPushConstants(cmd, mPipes.layout, kStages, 0, sizeof(uint32_t), &d.instance);
@@ -375,47 +405,50 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                                            mDoms[s].meshViewProj);
                        }});
         }
-        g.addPass({"hair_dom_depth", {}, {{rZ0, Use::DepthWrite}}, [this](VkCommandBuffer cmd) {
-                       for (size_t s = 0; s < mDoms.size(); ++s) {
-                           VkRenderingAttachmentInfo depth =
-                               attachment(mDomDepth.layerView(uint32_t(s)),
-                                          VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, true);
-                           depth.clearValue.depthStencil = {1.0f, 0};
-                           VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                           info.renderArea = {{0, 0}, {mDomSize, mDomSize}};
-                           info.layerCount = 1;
-                           info.pDepthAttachment = &depth;
-                           mCtx.fn().cmdBeginRendering(cmd, &info);
-                           setViewport(cmd, mDomSize, mDomSize);
-                           drawFromLight(cmd, mPipes.lightDepth, mDoms[s].viewProj,
-                                         glm::vec4(0.0f));
-                           mCtx.fn().cmdEndRendering(cmd);
-                       }
-                   }});
-        g.addPass({"hair_dom_opacity",
-                   {{rZ0, Use::Sampled}},
-                   {{rOpacity, Use::ColorWrite}},
-                   [this](VkCommandBuffer cmd) {
-                       for (size_t s = 0; s < mDoms.size(); ++s) {
-                           VkRenderingAttachmentInfo color =
-                               attachment(mDomOpacity.layerView(uint32_t(s)),
-                                          VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true);
-                           color.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
-                           VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                           info.renderArea = {{0, 0}, {mDomSize, mDomSize}};
-                           info.layerCount = 1;
-                           info.colorAttachmentCount = 1;
-                           info.pColorAttachments = &color;
-                           mCtx.fn().cmdBeginRendering(cmd, &info);
-                           setViewport(cmd, mDomSize, mDomSize);
-                           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                                   mPipes.layout, 3, 1, &mZ0Set, 0, nullptr);
-                           drawFromLight(cmd, mPipes.domOpacity, mDoms[s].viewProj,
-                                         glm::vec4(float(s), mDoms[s].layerNdc, 0.0f, 0.0f));
-                           mCtx.fn().cmdEndRendering(cmd);
-                       }
-                       for (const Dom& d : mDoms) mLastDoms[size_t(d.light)] = d.info;
-                   }});
+        if (mReuseDoms) { // the maps hold these views of these strands
+            if (t.reused) t.reused->insert(t.reused->end(), {"hair_dom_depth", "hair_dom_opacity"});
+        } else {
+            g.addPass({"hair_dom_depth", {}, {{rZ0, Use::DepthWrite}}, [this](VkCommandBuffer cmd) {
+                           for (size_t s = 0; s < mDoms.size(); ++s) {
+                               VkRenderingAttachmentInfo depth =
+                                   attachment(mDomDepth.layerView(uint32_t(s)),
+                                              VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, true);
+                               depth.clearValue.depthStencil = {1.0f, 0};
+                               VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                               info.renderArea = {{0, 0}, {mDomSize, mDomSize}};
+                               info.layerCount = 1;
+                               info.pDepthAttachment = &depth;
+                               mCtx.fn().cmdBeginRendering(cmd, &info);
+                               setViewport(cmd, mDomSize, mDomSize);
+                               drawFromLight(cmd, mPipes.lightDepth, mDoms[s].viewProj,
+                                             glm::vec4(0.0f));
+                               mCtx.fn().cmdEndRendering(cmd);
+                           }
+                       }});
+            g.addPass({"hair_dom_opacity",
+                       {{rZ0, Use::Sampled}},
+                       {{rOpacity, Use::ColorWrite}},
+                       [this](VkCommandBuffer cmd) {
+                           for (size_t s = 0; s < mDoms.size(); ++s) {
+                               VkRenderingAttachmentInfo color =
+                                   attachment(mDomOpacity.layerView(uint32_t(s)),
+                                              VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, true);
+                               color.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
+                               VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                               info.renderArea = {{0, 0}, {mDomSize, mDomSize}};
+                               info.layerCount = 1;
+                               info.colorAttachmentCount = 1;
+                               info.pColorAttachments = &color;
+                               mCtx.fn().cmdBeginRendering(cmd, &info);
+                               setViewport(cmd, mDomSize, mDomSize);
+                               vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                                       mPipes.layout, 3, 1, &mZ0Set, 0, nullptr);
+                               drawFromLight(cmd, mPipes.domOpacity, mDoms[s].viewProj,
+                                             glm::vec4(float(s), mDoms[s].layerNdc, 0.0f, 0.0f));
+                               mCtx.fn().cmdEndRendering(cmd);
+                           }
+                       }});
+        }
     }
     const bool anyOpaque =
         std::any_of(mDraws.begin(), mDraws.end(), [](const HairDraw& d) { return !d.transparent; });
@@ -445,9 +478,11 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                  setViewport(cmd, desc.width, desc.height);
                  // anti-aliased: only the pixels strands cover entirely (hair_fringe adds
                  // the rest)
-                 const VkPipeline pipeline = aa      ? mShaded->aaCore.get()
-                                             : debug ? mShaded->debug[ribbons].get()
-                                                     : mShaded->opaque[ribbons].get();
+                 const auto pipeline = [aa, debug, ribbons](const HairShadedPipelines& p) {
+                     return aa      ? p.aaCore.get()
+                            : debug ? p.debug[ribbons].get()
+                                    : p.opaque[ribbons].get();
+                 };
                  drawCamera(cmd, t, pipeline, mOpacitySet, false, aa || mRibbons);
                  mCtx.fn().cmdEndRendering(cmd);
              }});
@@ -483,7 +518,9 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
              [this, t, beginAccumulation](VkCommandBuffer cmd) {
                  if (!mPipes.sampleMasks) { // coverage as independent alphas
                      beginAccumulation(cmd, true);
-                     drawCamera(cmd, t, mShaded->aaFringe[0], mOpacitySet, false, true);
+                     drawCamera(
+                         cmd, t, [](const HairShadedPipelines& p) { return p.aaFringe[0].get(); },
+                         mOpacitySet, false, true);
                      mCtx.fn().cmdEndRendering(cmd);
                      return;
                  }
@@ -504,7 +541,9 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
                                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
                      beginAccumulation(cmd, i == 0);
-                     drawCamera(cmd, t, mShaded->aaFringe[i], mOpacitySet, false, true);
+                     drawCamera(
+                         cmd, t, [i](const HairShadedPipelines& p) { return p.aaFringe[i].get(); },
+                         mOpacitySet, false, true);
                      mCtx.fn().cmdEndRendering(cmd);
                  }
              }});
@@ -512,8 +551,12 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
         g.addPass({"hair_oit", shadingReads, accumulates,
                    [this, t, ribbons, aa, fringe, beginAccumulation](VkCommandBuffer cmd) {
                        beginAccumulation(cmd, !fringe);
-                       drawCamera(cmd, t, aa ? mShaded->aaOit.get() : mShaded->oit[ribbons].get(),
-                                  mOpacitySet, true, aa || mRibbons);
+                       drawCamera(
+                           cmd, t,
+                           [aa, ribbons](const HairShadedPipelines& p) {
+                               return aa ? p.aaOit.get() : p.oit[ribbons].get();
+                           },
+                           mOpacitySet, true, aa || mRibbons);
                        mCtx.fn().cmdEndRendering(cmd);
                    }});
     g.addPass({"hair_composite",

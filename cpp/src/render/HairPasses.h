@@ -9,6 +9,7 @@
 // with the OIT targets, "hair_composite" both over the frame (glsl/hair/hair_oit_main.glsl).
 #include <array>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <weft/Debug.h>
@@ -46,6 +47,7 @@ public:
         /// Renders the depth of the scene's mesh casters (no hair) seen by a view-projection into
         /// a depth view of a size: the meshes that shadow hair under a deep opacity map.
         std::function<void(VkCommandBuffer, VkImageView, uint32_t, const glm::mat4&)> meshDepth;
+        std::vector<std::string>* reused; // names of the passes skipped: their maps still hold
     };
     /// Adds the DOM, hair, fringe and OIT passes after the forward pass.
     void addPasses(FrameGraph& graph, const Targets& targets);
@@ -59,6 +61,8 @@ private:
         HairGpu* gpu;
         VkDescriptorSet set;
         uint32_t instance;
+        HairModel shading;
+        const HairShadedPipelines* shaded; // this frame's, for its lights and model (prepare)
         bool castShadows, transparent;
         glm::mat4 model;
     };
@@ -76,12 +80,17 @@ private:
     };
 
     void fitDoms(const Scene& scene, const RenderSettings& settings);
+    /// What the deep opacity maps would hold this frame: each map's view and the strands drawn
+    /// into it.
+    std::vector<uint64_t> domKey() const;
     void allocateSets(Slot& slot, uint32_t draws);
     void writeSets(Slot& slot);
     void ensureImages(const RenderSettings& settings, uint32_t width, uint32_t height);
+    /// Which of a draw's shading pipelines a pass uses.
+    using PipelineOf = std::function<VkPipeline(const HairShadedPipelines&)>;
     /// The camera's view of the opaque or the transparent strands; `strips`: as triangles (the
     /// ribbon indices; anti-aliased frames draw lines as one-pixel strips too).
-    void drawCamera(VkCommandBuffer cmd, const Targets& t, VkPipeline pipeline,
+    void drawCamera(VkCommandBuffer cmd, const Targets& t, const PipelineOf& pipeline,
                     VkDescriptorSet domSet, bool transparent, bool strips) const;
     /// Shadow-casting strands as lines; push constants: light view-projection * model, params.
     void drawFromLight(VkCommandBuffer cmd, VkPipeline pipeline, const glm::mat4& viewProj,
@@ -90,10 +99,14 @@ private:
     vk::Context& mCtx;
     const ScenePipelines& mScene;
     HairPipelines mPipes;
-    const HairShadedPipelines* mShaded = nullptr; // this frame's (prepare)
     HairGpuCache mCache;
     std::array<Slot, 2> mSlots;
     vk::Image mDomDepth, mDomOpacity, mDomMeshDepth, mDummyDom, mNoMeshes, mAccum, mWeight;
+    // What mDomOpacity holds (domKey; empty: nothing yet), and whether this frame's maps are
+    // those (RenderSettings::reuseShadowMaps): the strands' depth and opacity passes are skipped
+    // (the meshes' depth in each map's view is drawn every frame: a cloth moves).
+    std::vector<uint64_t> mDomKey;
+    bool mReuseDoms = false;
     // anti-aliased frames, per pixel (R32_UINT layers): the nearest depth of the partly covering
     // strands at each of kHairAaDepthSamples sample points, which of 128 points they cover, and
     // sums of their coverage (glsl/hair/hair_oit_main.glsl)

@@ -70,10 +70,13 @@ HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) : mCtx
     composite = vk::createGraphicsPipeline(c, o);
 }
 
-const HairShadedPipelines& HairPipelines::shaded(uint32_t features) {
-    auto found = mShaded.find(features);
+const HairShadedPipelines& HairPipelines::shaded(uint32_t features, HairModel model) {
+    const uint64_t key = uint64_t(features) | uint64_t(model) << 32;
+    auto found = mShaded.find(key);
     if (found != mShaded.end()) return found->second;
-    HairShadedPipelines& p = mShaded[features];
+    HairShadedPipelines& p = mShaded[key];
+    // constant 1 (the meshes' material flags) is not read by the hair shaders
+    const std::vector<uint32_t> constants = {features, gpu::MATERIAL_ALL, uint32_t(model)};
     for (int ribbons = 0; ribbons < 2; ++ribbons) {
         vk::GraphicsPipelineDesc d;
         d.vertexShader = "hair/hair.vert";
@@ -85,7 +88,7 @@ const HairShadedPipelines& HairPipelines::shaded(uint32_t features) {
         d.colorFormats = {kHdrFormat};
         d.depthFormat = kDepthFormat;
         d.layout = layout;
-        d.fragmentConstants = {features};
+        d.fragmentConstants = constants;
         p.opaque[ribbons] = vk::createGraphicsPipeline(mCtx, d);
         d.fragmentShader = "hair/hair_debug.frag";
         d.colorFormats = {kHdrFormat, kDebugFormat, kDebugFormat, kDebugFormat, kDebugFormat};
@@ -109,7 +112,7 @@ const HairShadedPipelines& HairPipelines::shaded(uint32_t features) {
     a.colorFormats = {kHdrFormat};
     a.depthFormat = kDepthFormat;
     a.layout = layout;
-    a.fragmentConstants = {features};
+    a.fragmentConstants = constants;
     p.aaCore = vk::createGraphicsPipeline(mCtx, a);
     a.vertexShader = "hair/hair_aa_oit.vert";
     a.fragmentShader = "hair/hair_aa_oit.frag"; // transparent: independent alphas (a * coverage)

@@ -5,6 +5,8 @@
 // pipelines, glsl/common/hair_vertex.glsl HAIR_AA); debug frames never do.
 #include <unordered_map>
 
+#include <weft/HairMaterial.h>
+
 #include "vk/Pipeline.h"
 
 namespace weft::render {
@@ -41,9 +43,10 @@ struct HairPipelines {
     HairPipelines(vk::Context& ctx, const ScenePipelines& scene);
 
     /// The shading pipelines for the gpu::FEATURE_* bits of a frame's lights (FrameData::
-    /// lightFeatures; frame.glsl's kFrameFeatures): only the light groups present are compiled
-    /// into their loops. Created on first use.
-    const HairShadedPipelines& shaded(uint32_t features);
+    /// lightFeatures; frame.glsl's kFrameFeatures) and a shading model: only the light groups
+    /// present and the model are compiled in (hair_shading.glsl, kHairModel). Created on first
+    /// use.
+    const HairShadedPipelines& shaded(uint32_t features, HairModel model);
 
     vk::DescriptorSetLayout hairSetLayout; // set 2: vertices, instances, hair frame
     vk::DescriptorSetLayout domSetLayout;  // set 3: a DOM image array, mesh depth, samples
@@ -59,7 +62,7 @@ struct HairPipelines {
 
 private:
     vk::Context& mCtx;
-    std::unordered_map<uint32_t, HairShadedPipelines> mShaded; // by features
+    std::unordered_map<uint64_t, HairShadedPipelines> mShaded; // by features and model
 };
 
 } // namespace weft::render

@@ -23,7 +23,8 @@ void drawCaptureFace(const FramePassContext& f, VkCommandBuffer cmd, VkImageView
     f.ctx.fn().cmdBeginRendering(cmd, &info);
     setViewport(cmd, size, size);
     if (background) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.backgroundFor(1, true));
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                          f.pipes.backgroundFor(f.data.frame, 1, true));
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.sceneLayout, 0, 1,
                                 &faceSet, 0, nullptr);
         vkCmdDraw(cmd, 3, 1, 0, 0);

@@ -87,10 +87,10 @@ VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool
     const int facing = twoSided ? 2 : mirrored ? 1 : 0;
     features &= gpu::FEATURE_ALL;
     material &= gpu::MATERIAL_ALL;
-    static_assert(gpu::FEATURE_ALL < (1u << 12) && gpu::MATERIAL_ALL < (1u << 16),
+    static_assert(gpu::FEATURE_ALL < (1u << 14) && gpu::MATERIAL_ALL < (1u << 16),
                   "the key's bits");
-    const uint64_t key = features | uint64_t(sampleIndex(samples)) << 12 | uint64_t(facing) << 14 |
-                         uint64_t(dome) << 16 | uint64_t(debug) << 17 | uint64_t(material) << 18;
+    const uint64_t key = features | uint64_t(sampleIndex(samples)) << 14 | uint64_t(facing) << 16 |
+                         uint64_t(dome) << 18 | uint64_t(debug) << 19 | uint64_t(material) << 20;
     vk::Pipeline& p = mForward[key];
     if (p) return p;
     static const char* const shaders[2][2] = {
@@ -113,8 +113,10 @@ VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool
     return p;
 }
 
-VkPipeline ScenePipelines::backgroundFor(uint32_t samples, bool withDepth) {
-    vk::Pipeline& p = mBackground[withDepth][sampleIndex(samples)];
+VkPipeline ScenePipelines::backgroundFor(const GpuFrame& frame, uint32_t samples, bool withDepth) {
+    // background.frag's kBackground: 0 the image, 1 the sharp radiance, 2 the glossy chain
+    const uint32_t kind = frame.options.w > 0.5f ? 0u : frame.sky.y < 0.0f ? 1u : 2u;
+    vk::Pipeline& p = mBackground[withDepth][sampleIndex(samples)][kind];
     if (p) return p;
     vk::GraphicsPipelineDesc d; // a full-screen pass into the forward pass's colour target
     d.vertexShader = "render/fullscreen.vert";
@@ -123,6 +125,7 @@ VkPipeline ScenePipelines::backgroundFor(uint32_t samples, bool withDepth) {
     d.cullMode = VK_CULL_MODE_NONE;
     d.depthTest = d.depthWrite = false;
     d.fragmentShader = "render/background.frag";
+    d.fragmentConstants = {gpu::FEATURE_ALL, gpu::MATERIAL_ALL, kind};
     d.layout = sceneLayout;
     d.samples = VkSampleCountFlagBits(samples);
     if (withDepth) d.depthFormat = kDepthFormat; // inside a pass with a depth attachment
@@ -134,7 +137,8 @@ void ScenePipelines::createPipelines() {
     vk::Context& c = mCtx;
     mForward.clear(); // created again on first use
     for (auto& byDepth : mBackground)
-        for (vk::Pipeline& p : byDepth) p = vk::Pipeline();
+        for (auto& bySamples : byDepth)
+            for (vk::Pipeline& p : bySamples) p = vk::Pipeline();
 
     vk::GraphicsPipelineDesc fd; // full-screen passes into the hdr target
     fd.vertexShader = "render/fullscreen.vert";

@@ -43,9 +43,10 @@ struct ScenePipelines {
     VkPipeline forwardFor(bool debug, bool dome, bool mirrored, bool twoSided, uint32_t samples,
                           uint32_t features = gpu::FEATURE_ALL,
                           uint32_t material = gpu::MATERIAL_ALL);
-    /// The background (image or environment) into a colour target of `samples`; `withDepth`:
-    /// drawn inside a pass that has a depth attachment (not tested, not written).
-    VkPipeline backgroundFor(uint32_t samples, bool withDepth = false);
+    /// The background of `frame` (its image, or its environment sharp or blurred: only that
+    /// one's code in the pipeline) into a colour target of `samples`; `withDepth`: drawn inside
+    /// a pass that has a depth attachment (not tested, not written).
+    VkPipeline backgroundFor(const GpuFrame& frame, uint32_t samples, bool withDepth = false);
 
     /// Builds every pipeline again from the current shaders (hot reload); layouts and samplers
     /// stay, so descriptor sets made for them stay valid. Old pipelines are retired.
@@ -59,7 +60,7 @@ private:
     std::unordered_map<int, vk::Pipeline> mOutput; // by format
     // by debug, dome, facing, samples 1, 2, 4, 8 and features (forwardFor)
     std::unordered_map<uint64_t, vk::Pipeline> mForward;
-    vk::Pipeline mBackground[2][4]; // [with depth][samples]
+    vk::Pipeline mBackground[2][4][3]; // [with depth][samples][background.frag's kind]
 };
 
 } // namespace weft::render
