@@ -39,6 +39,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="160x90, one shadow size and PCF, two light counts, 2 frames (CI)")
     parser.add_argument("--frames", type=int, default=None,
                         help="timed frames per setting after one warm-up (default 3, quick 2)")
+    parser.add_argument("--msaa", type=int, default=None,
+                        help="MSAA samples (default: the renderer's, 4; issue 19's frame-time "
+                             "target is at 1, no anti-aliasing)")
     parser.add_argument("--out", default="out/bench/scene", help="output folder (out/bench/scene)")
     add_progress_arguments(parser)
 
@@ -89,13 +92,14 @@ def _pcf_mismatch(renderer: Any, debug: Any, lights: Any, index: Optional[int], 
     return float(np.mean(np.abs(vis - debug["shadow"][mask]) >= 0.5 / taps))
 
 
-def measure(size: Tuple[int, int], shadow: int, pcf: int, lights: int, frames: int
-            ) -> Dict[str, Any]:
+def measure(size: Tuple[int, int], shadow: int, pcf: int, lights: int, frames: int,
+            msaa: Optional[int] = None) -> Dict[str, Any]:
     import weft
 
     scene, camera, cloth = weft.demo_scene()
     add_point_lights(scene, lights)
-    renderer = weft.Renderer(size[0], size[1], shadow_map_size=shadow, pcf_radius=pcf)
+    extra = {} if msaa is None else {"msaa": msaa}
+    renderer = weft.Renderer(size[0], size[1], shadow_map_size=shadow, pcf_radius=pcf, **extra)
     for _ in range(30):  # let the cloth fall into view
         cloth.step(1 / 60)
     sim_ms: List[float] = []
@@ -121,6 +125,7 @@ def measure(size: Tuple[int, int], shadow: int, pcf: int, lights: int, frames: i
     per_frame = {k: sum(v) / frames for k, v in passes.items()}  # shadow: all views summed
     return {"width": size[0], "height": size[1], "shadow_map_size": shadow, "pcf_radius": pcf,
             "extra_lights": lights, "lights": len(scene.lights), "frames": frames,
+            "msaa": renderer.msaa,
             "sim_ms": statistics.median(sim_ms), "render_ms": statistics.median(frame_ms),
             "pass_ms": per_frame, "device": renderer.device_name,
             "shadow_mismatch": shadow_error(renderer, scene, camera)}
@@ -140,13 +145,13 @@ def to_markdown(report: Dict[str, Any]) -> str:
              "OIT passes (accumulate + composite).",
              "- shadow error: covered pixels whose GPU PCF visibility of the sun differs from "
              "NumPy's shadow test on a debug frame of the same setting.", ""]
-    header = ["shadow map", "PCF", "lights", "sim ms", "render() ms"] + \
+    header = ["shadow map", "PCF", "lights", "MSAA", "sim ms", "render() ms"] + \
         [f"{g} ms" for g in groups] + ["shadow error"]
     rows = []
     for r in report["results"]:
         err = r["shadow_mismatch"]
         rows.append([r["shadow_map_size"], f"{2 * r['pcf_radius'] + 1}x{2 * r['pcf_radius'] + 1}",
-                     r["lights"], f"{r['sim_ms']:.2f}", f"{r['render_ms']:.1f}"]
+                     r["lights"], r["msaa"], f"{r['sim_ms']:.2f}", f"{r['render_ms']:.1f}"]
                     + [f"{r['pass_ms'][g]:.2f}" if g in r["pass_ms"] else "-" for g in groups]
                     + ["n/a" if err is None else f"{100 * err:.3f}%"])
     lines.append(markdown_table(header, rows))
@@ -165,16 +170,20 @@ def run(args: argparse.Namespace) -> int:
     if frames < 1:
         print("python -m weft.bench scene: error: --frames must be >= 1", file=sys.stderr)
         return 2
+    if args.msaa is not None and args.msaa not in (1, 2, 4, 8):
+        print("python -m weft.bench scene: error: --msaa must be 1, 2, 4 or 8", file=sys.stderr)
+        return 2
     settings = [(s, p, n) for s in sizes for p in pcfs for n in counts]
     progress = Progress(len(settings), enabled=args.progress)
     results = []
     for s, p, n in settings:
         progress.update(f"shadow {s} PCF {p} lights +{n}")
-        results.append(measure(size, s, p, n, frames))
+        results.append(measure(size, s, p, n, frames, args.msaa))
         progress.step()
     progress.close()
     report = {"benchmark": "scene",
-              "command": "python -m weft.bench scene" + (" --quick" if args.quick else ""),
+              "command": "python -m weft.bench scene" + (" --quick" if args.quick else "")
+              + (f" --msaa {args.msaa}" if args.msaa is not None else ""),
               "frames": frames, "device": results[0]["device"], "machine": machine_info(),
               "results": results}
     markdown = to_markdown(report)
