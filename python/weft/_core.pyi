@@ -831,7 +831,8 @@ class Renderer:
     @property
     def reuse_shadow_maps(self) -> bool:
         """
-        Keep the last frame's shadow maps when no shadow view and no caster changed.
+        Keep the last frame's shadow maps when no shadow view and no caster changed (and
+        the hair's deep opacity maps when no map's view and no strand in it changed).
         """
     @reuse_shadow_maps.setter
     def reuse_shadow_maps(self, arg1: bool) -> None:
