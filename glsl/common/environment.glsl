@@ -220,7 +220,7 @@ EnvironmentTerms environmentTerms(vec3 p, vec3 n, vec3 v, vec3 T, float decalAlp
     vec3 diffuse = ins.environment.w * ins.kd.rgb * irradiance;
     vec3 specular = vec3(0.0);
     vec3 f0 = ins.environment.rgb;
-    if (any(greaterThan(f0, vec3(0.0)))) {
+    if ((kMaterialFlags & REFLECTIVE) != 0u && any(greaterThan(f0, vec3(0.0)))) {
         float ndv = dot(n, v);
         vec3 r = 2.0 * ndv * n - v;
         float roughness = environmentRoughness(ins.ks.w);

@@ -77,8 +77,12 @@ WEFT_CONST(uint, SPECULAR_GGX, 4096u);        // a GGX coat (Material::specularM
 // hold the code that reads one (a receiver's fragments ran the glossy casters' capture lookups
 // under a mask: the cloth scene's forward pass 1.5x as long; materialFeatures in FrameData.h)
 WEFT_CONST(uint, BOUNCE_CAPTURE, 8192u);
+// Nor this: the instance reflects its environment (Instance::environment.rgb, the reflectivity,
+// > 0). Only its pipelines hold the reflection's lookups (the demo's matte terrain ran them
+// under a mask: 12 ms of lavapipe's forward pass at 1280 x 720)
+WEFT_CONST(uint, REFLECTIVE, 16384u);
 // the bits above: specialization constant 1 of the forward shader (frame.glsl, kMaterialFlags)
-WEFT_CONST(uint, MATERIAL_ALL, 16383u);
+WEFT_CONST(uint, MATERIAL_ALL, 32767u);
 // The GGX coat's directional albedo (weft/IblFilter.h coatAlbedo, frame.glsl coatAlbedo): a 2D
 // array of COAT_COSINES (sqrt(n.v) from 0 to 1) x COAT_ROUGHNESS (perceptual roughness
 // sqrt(alpha)) texels and COAT_F0 layers (sqrt(F0) from 0 to 1), each grid even end to end.

@@ -227,7 +227,9 @@ uint32_t frameFeatures(const FrameData& data) {
 
 uint32_t materialFeatures(const FrameData& data, uint32_t instance) {
     const GpuInstance& i = data.instances[instance];
-    return i.flags.x | (i.flags.y != 0u ? gpu::BOUNCE_CAPTURE : 0u);
+    const bool reflective = glm::any(glm::greaterThan(glm::vec3(i.environment), glm::vec3(0.0f)));
+    return i.flags.x | (i.flags.y != 0u ? gpu::BOUNCE_CAPTURE : 0u) |
+           (reflective ? gpu::REFLECTIVE : 0u);
 }
 
 } // namespace weft::render

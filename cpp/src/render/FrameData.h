@@ -63,7 +63,8 @@ bool ambientReadsAsSky(const Scene& scene, const RenderSettings& settings);
 uint32_t frameFeatures(const FrameData& data);
 
 /// The material bits of instance `instance` that specialize the pipelines drawing it (frame.glsl,
-/// kMaterialFlags): its Instance::flags.x, plus gpu::BOUNCE_CAPTURE where it has a capture.
+/// kMaterialFlags): its Instance::flags.x, plus gpu::BOUNCE_CAPTURE where it has a capture and
+/// gpu::REFLECTIVE where it reflects the environment.
 uint32_t materialFeatures(const FrameData& data, uint32_t instance);
 
 } // namespace weft::render
