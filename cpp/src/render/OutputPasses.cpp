@@ -48,7 +48,8 @@ void drawFullscreen(const FramePassContext& f, VkCommandBuffer cmd, VkImageView 
 
 void addOutputPasses(FrameGraph& g, FramePassContext& f) {
     RenderTargets& t = f.targets;
-    const VkPipeline pipeline = f.pipes.outputPipeline(f.ldr->desc().format);
+    const VkPipeline pipeline =
+        f.pipes.outputPipeline(f.ldr->desc().format, uint32_t(f.settings.toneMap));
     const OutputPush push{
         glm::vec4(std::exp2(f.settings.exposure), float(f.settings.toneMap), 0, 0)};
     g.addPass({"output",

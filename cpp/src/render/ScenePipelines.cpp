@@ -191,8 +191,9 @@ void ScenePipelines::createPipelines() {
     mOutput.clear(); // created again on first use
 }
 
-VkPipeline ScenePipelines::outputPipeline(VkFormat format) {
-    auto it = mOutput.find(int(format));
+VkPipeline ScenePipelines::outputPipeline(VkFormat format, uint32_t toneMap) {
+    const uint64_t key = uint64_t(format) << 8 | toneMap;
+    auto it = mOutput.find(key);
     if (it != mOutput.end()) return it->second;
     vk::GraphicsPipelineDesc d;
     d.vertexShader = "render/fullscreen.vert";
@@ -202,7 +203,8 @@ VkPipeline ScenePipelines::outputPipeline(VkFormat format) {
     d.cullMode = VK_CULL_MODE_NONE;
     d.depthTest = d.depthWrite = false;
     d.layout = outputLayout;
-    return mOutput.emplace(int(format), vk::createGraphicsPipeline(mCtx, d)).first->second;
+    d.fragmentConstants = {toneMap}; // output.frag's kToneMap
+    return mOutput.emplace(key, vk::createGraphicsPipeline(mCtx, d)).first->second;
 }
 
 } // namespace weft::render

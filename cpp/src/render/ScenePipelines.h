@@ -52,12 +52,13 @@ struct ScenePipelines {
     /// stay, so descriptor sets made for them stay valid. Old pipelines are retired.
     void createPipelines();
 
-    /// The sRGB output pipeline for a colour format (offscreen RGBA8 or a swapchain's format).
-    VkPipeline outputPipeline(VkFormat format);
+    /// The sRGB output pipeline for a colour format (offscreen RGBA8 or a swapchain's format)
+    /// and a tone map (weft::ToneMap: only its operator's code in the pipeline).
+    VkPipeline outputPipeline(VkFormat format, uint32_t toneMap);
 
 private:
     vk::Context& mCtx;
-    std::unordered_map<int, vk::Pipeline> mOutput; // by format
+    std::unordered_map<uint64_t, vk::Pipeline> mOutput; // by format and tone map
     // by debug, dome, facing, samples 1, 2, 4, 8 and features (forwardFor)
     std::unordered_map<uint64_t, vk::Pipeline> mForward;
     vk::Pipeline mBackground[2][4][3]; // [with depth][samples][background.frag's kind]

@@ -65,6 +65,19 @@ def test_neutral_leaves_low_values_as_they_are() -> None:
     assert np.abs(got - (np.array(colour) - 0.04)).max() < 4e-3, got
 
 
+def test_a_renderer_switching_operators_shows_what_each_shows_alone() -> None:
+    # each operator has its own output pipeline: switching on one renderer must pick it up
+    scene = flat_scene((3.0, 1.0, 0.3))
+    r = weft.Renderer(8, 8)
+    for op in OPERATORS + OPERATORS[::-1]:
+        r.tone_map = op
+        np.testing.assert_array_equal(r.render(scene, CAMERA),
+                                      weft.Renderer(8, 8, tone_map=op).render(scene, CAMERA))
+    # and the four differ, so that could fail
+    shows = {tuple(shown((3.0, 1.0, 0.3), tone_map=op).round(3)) for op in OPERATORS}
+    assert len(shows) == len(OPERATORS), shows
+
+
 def test_linear_output_is_neither_exposed_nor_tone_mapped() -> None:
     scene = flat_scene((5.0, 2.0, 0.5))
     for op in OPERATORS:
