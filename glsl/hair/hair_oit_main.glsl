@@ -44,9 +44,13 @@ layout(location = 8) noperspective in vec2 inEnds;
 layout(location = 0) out vec4 outAccum;
 layout(location = 1) out vec4 outWeight;
 
+// The weight the pipeline is made for (HairPipelines::shaded; weft::OitWeight, eq. 7-10), or
+// -1: the frame's (hairFrame.params.y). lavapipe would evaluate all four under a mask.
+layout(constant_id = 3) const int kOitWeight = -1;
+
 float oitWeight(float z, float a, float zNdc) {
     z = abs(z);
-    int eq = hairFrame.params.y;
+    int eq = kOitWeight >= 0 ? kOitWeight : hairFrame.params.y;
     float far6 = pow(z / 200.0, 6.0);
     if (eq == 7) return a * clamp(10.0 / (1e-5 + pow(z / 5.0, 2.0) + far6), 1e-2, 3e3);
     if (eq == 8) return a * clamp(10.0 / (1e-5 + pow(z / 10.0, 3.0) + far6), 1e-2, 3e3);

@@ -307,7 +307,8 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
         if (light && light->castShadows && std::none_of(mDoms.begin(), mDoms.end(), hasDom))
             lightFeatures |= gpu::FEATURE_HAIR_SHADOW_MAPS;
     }
-    for (HairDraw& d : mDraws) d.shaded = &mPipes.shaded(lightFeatures, d.shading);
+    for (HairDraw& d : mDraws)
+        d.shaded = &mPipes.shaded(lightFeatures, d.shading, settings.hairOitWeight);
     mMeshesShadowHair =
         !mDoms.empty() && std::any_of(scene.instances().begin(), scene.instances().end(),
                                       [](const MeshInstance& m) { return m.castShadows; });

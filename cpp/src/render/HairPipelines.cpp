@@ -70,13 +70,15 @@ HairPipelines::HairPipelines(vk::Context& c, const ScenePipelines& scene) : mCtx
     composite = vk::createGraphicsPipeline(c, o);
 }
 
-const HairShadedPipelines& HairPipelines::shaded(uint32_t features, HairModel model) {
-    const uint64_t key = uint64_t(features) | uint64_t(model) << 32;
+const HairShadedPipelines& HairPipelines::shaded(uint32_t features, HairModel model,
+                                                 OitWeight weight) {
+    const uint64_t key = uint64_t(features) | uint64_t(model) << 32 | uint64_t(weight) << 40;
     auto found = mShaded.find(key);
     if (found != mShaded.end()) return found->second;
     HairShadedPipelines& p = mShaded[key];
     // constant 1 (the meshes' material flags) is not read by the hair shaders
-    const std::vector<uint32_t> constants = {features, gpu::MATERIAL_ALL, uint32_t(model)};
+    const std::vector<uint32_t> constants = {features, gpu::MATERIAL_ALL, uint32_t(model),
+                                             uint32_t(weight)};
     for (int ribbons = 0; ribbons < 2; ++ribbons) {
         vk::GraphicsPipelineDesc d;
         d.vertexShader = "hair/hair.vert";

@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include <weft/HairMaterial.h>
+#include <weft/Renderer.h>
 
 #include "vk/Pipeline.h"
 
@@ -43,10 +44,10 @@ struct HairPipelines {
     HairPipelines(vk::Context& ctx, const ScenePipelines& scene);
 
     /// The shading pipelines for the gpu::FEATURE_* bits of a frame's lights (FrameData::
-    /// lightFeatures; frame.glsl's kFrameFeatures) and a shading model: only the light groups
-    /// present and the model are compiled in (hair_shading.glsl, kHairModel). Created on first
-    /// use.
-    const HairShadedPipelines& shaded(uint32_t features, HairModel model);
+    /// lightFeatures; frame.glsl's kFrameFeatures), a shading model and an OIT weight: only the
+    /// light groups present, the model and the weight are compiled in (hair_shading.glsl's
+    /// kHairModel, hair_oit_main.glsl's kOitWeight). Created on first use.
+    const HairShadedPipelines& shaded(uint32_t features, HairModel model, OitWeight weight);
 
     vk::DescriptorSetLayout hairSetLayout; // set 2: vertices, instances, hair frame
     vk::DescriptorSetLayout domSetLayout;  // set 3: a DOM image array, mesh depth, samples
@@ -62,7 +63,7 @@ struct HairPipelines {
 
 private:
     vk::Context& mCtx;
-    std::unordered_map<uint64_t, HairShadedPipelines> mShaded; // by features and model
+    std::unordered_map<uint64_t, HairShadedPipelines> mShaded; // by features, model, weight
 };
 
 } // namespace weft::render

@@ -158,6 +158,27 @@ def test_oit_weights_are_named_for_their_shape(name, alias):
         assert not np.array_equal(images[name], images["near_quadratic"])
 
 
+def test_one_renderer_switching_oit_weights_draws_what_fresh_ones_draw():
+    """Each weight has its own pipelines (kOitWeight): switching must pick them up."""
+    scene = layer_scene(np.array([[0.9, 0.1, 0.1], [0.1, 0.8, 0.2]]), np.array([0.5, 0.6]),
+                        np.array([0.5, -8.0]))
+    cam = weft.Camera((0.0, 0.0, 3.0), (0.0, 0.0, 0.0), (0, 1, 0), 0.6)
+
+    def renderer():
+        r = weft.Renderer(16, 16, shadow_map_size=64)
+        r.hair_primitive, r.hair_width = "ribbons", 0.5
+        return r
+
+    one = renderer()
+    weights = ["near_quadratic", "near_cubic", "far_quartic", "ndc_cubic"]
+    for w in weights + weights[::-1]:
+        one.hair_oit_weight = w
+        fresh = renderer()
+        fresh.hair_oit_weight = w
+        np.testing.assert_array_equal(one.render_linear(scene, cam),
+                                      fresh.render_linear(scene, cam))
+
+
 def test_meshes_shadow_hair_under_a_deep_opacity_map():
     """A board between the light and half of the slab: with the DOM on, the hair under it is in
     its shadow (visibility 0) while the other half keeps the DOM's transmittance; a board that
