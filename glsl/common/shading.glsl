@@ -58,10 +58,9 @@ float softShadow(ShadowLayer s, int layer, vec2 uv, float z, float bias, vec3 p,
     float spin = 6.28318531 * domeHash(p);
     vec2 searchUv = uvPerWorld * (tanA * z / zPerWorld);
     float blockers = 0.0, blockerZ = 0.0;
+    vec2 turn = vec2(cos(spin), sin(spin));
     for (int k = 0; k < kSunBlockerTaps; ++k) {
-        float rr = sqrt((float(k) + 0.5) / float(kSunBlockerTaps));
-        float a = spin + float(k) * kGoldenAngle;
-        vec2 o = rr * vec2(cos(a), sin(a)) * searchUv;
+        vec2 o = vogelTap(k, kSunBlockerTaps, turn) * searchUv;
         float b = shadowDepth(uv + o, layer, size);
         if (min(z + dot(slope, o), 1.0) - bias > b) {
             blockers += 1.0;
@@ -73,10 +72,9 @@ float softShadow(ShadowLayer s, int layer, vec2 uv, float z, float bias, vec3 p,
     vec2 filterUv = max(uvPerWorld * (tanA * max(z - blockerZ, 0.0) / zPerWorld),
                         vec2(1.0 / float(size)));
     float lit = 0.0;
+    turn = vec2(cos(spin + 1.3), sin(spin + 1.3));
     for (int k = 0; k < kSunPcfTaps; ++k) {
-        float rr = sqrt((float(k) + 0.5) / float(kSunPcfTaps));
-        float a = spin + 1.3 + float(k) * kGoldenAngle;
-        vec2 o = rr * vec2(cos(a), sin(a)) * filterUv;
+        vec2 o = vogelTap(k, kSunPcfTaps, turn) * filterUv;
         if (min(z + dot(slope, o), 1.0) - bias <= shadowDepth(uv + o, layer, size)) lit += 1.0;
     }
     return lit / float(kSunPcfTaps);
