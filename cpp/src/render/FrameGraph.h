@@ -14,11 +14,12 @@
 namespace weft::render {
 
 enum class Use {
-    ColorWrite,   // colour attachment
-    DepthWrite,   // depth attachment (read + write)
-    Sampled,      // sampled/fetched in a fragment shader
-    TransferRead, // copy source (readback)
-    Present,      // handed to the presentation engine after the frame
+    ColorWrite,    // colour attachment
+    DepthWrite,    // depth attachment (read + write)
+    Sampled,       // sampled/fetched in a fragment shader
+    TransferRead,  // copy source (readback)
+    TransferWrite, // copy destination
+    Present,       // handed to the presentation engine after the frame
 };
 
 struct ResourceUse {

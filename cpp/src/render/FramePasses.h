@@ -34,8 +34,9 @@ struct FramePassContext {
     DomeShadows& dome;
     ReflectionProbe& probe;
     BounceProbes& bounce;
-    HairPasses* hair;      // null without hair
-    vk::Image& shadowMaps; // the scene lights' maps (a dummy layer when there are none)
+    HairPasses* hair;        // null without hair
+    vk::Image& shadowMaps;   // the scene lights' maps (a dummy layer when there are none)
+    vk::Image& stillShadows; // the depth of the casters that stood still (splitShadows)
     const std::vector<ShadowInfo>& shadowInfos;
     const Scene& scene;
     const Camera& camera;
@@ -53,6 +54,11 @@ struct FramePassContext {
     bool reuseShadows;        // the scene lights' shadow maps hold this frame's views
     std::vector<int> domeDue; // dome layers rendered this frame (the rest are reused)
     uint32_t samples = 1;     // MSAA samples of the forward pass
+    // The scene lights' maps in two parts: the casters that stood still since the last frame,
+    // kept in stillShadows (drawn there again only when `drawStill`) and copied into the maps,
+    // then the ones that moved (`moving`, per draw; `hairMoving`) drawn over them.
+    bool splitShadows = false, drawStill = false, hairMoving = false;
+    std::vector<uint8_t> moving;
     FrameOverlay* overlay = nullptr; // drawn after tone mapping (present() frames only)
 
     // frame-graph resources
@@ -65,10 +71,15 @@ struct FramePassContext {
 
 /// Binds a mesh's buffers and draws it (ShadowPasses.cpp).
 void drawMesh(VkCommandBuffer cmd, const MeshGpu& mesh);
-// Depth of every shadow caster (meshes, alpha-tested ones with holes, and hair if `withHair`)
-// seen by viewProj, into a depth view of size x size (ShadowPasses.cpp).
+/// Which shadow casters drawCasters draws: all, those that stood still since the last frame or
+/// those that moved (FramePassContext::moving, hairMoving).
+enum class Casters { All, Still, Moving };
+// Depth of the shadow casters (meshes, alpha-tested ones with holes, and hair if `withHair`)
+// seen by viewProj, into a depth view of size x size, cleared first or (`clear` false) drawn
+// over what it holds (ShadowPasses.cpp).
 void drawCasters(const FramePassContext& f, VkCommandBuffer cmd, VkImageView view, uint32_t size,
-                 const glm::mat4& viewProj, bool withHair);
+                 const glm::mat4& viewProj, bool withHair, Casters which = Casters::All,
+                 bool clear = true);
 /// One cube-capture face: the draws `include` accepts (phantoms never), shaded with the face's
 /// frame set into `color` (cleared to `clear`) over a `size` x `size` depth; with `background`
 /// the environment is drawn behind them (ProbePasses.cpp).

@@ -13,9 +13,11 @@ using render::FrameSlot;
 
 namespace {
 
-// Everything a shadow map's contents depend on besides its view: every caster's geometry,
-// transform and alpha test (hair: its strands object, which is immutable, and transform).
-std::vector<uint64_t> casterKey(const render::FrameData& data, const Scene& scene) {
+// Everything a shadow map's contents depend on besides its view, per caster: each draw's
+// geometry, transform and alpha test (an empty key for a draw that casts no shadow), then the
+// hair's (its strands objects, which are immutable, and transforms) as one.
+std::vector<std::vector<uint64_t>> casterKeys(const render::FrameData& data, const Scene& scene) {
+    std::vector<std::vector<uint64_t>> keys;
     std::vector<uint64_t> key;
     auto put = [&](const void* p, size_t bytes) {
         const size_t at = key.size();
@@ -23,12 +25,16 @@ std::vector<uint64_t> casterKey(const render::FrameData& data, const Scene& scen
         std::memcpy(key.data() + at, p, bytes);
     };
     for (const render::Draw& d : data.draws) {
-        if (!d.castShadows) continue;
-        key.push_back(d.mesh->contentId);
-        put(&d.model, sizeof(glm::mat4));
-        put(&d.alphaCutoff, sizeof(float));
-        if (d.alphaCutoff > 0.0f) put(&d.material, sizeof(d.material));
+        key.clear();
+        if (d.castShadows) {
+            key.push_back(d.mesh->contentId);
+            put(&d.model, sizeof(glm::mat4));
+            put(&d.alphaCutoff, sizeof(float));
+            if (d.alphaCutoff > 0.0f) put(&d.material, sizeof(d.material));
+        }
+        keys.push_back(key);
     }
+    key.clear();
     for (const HairInstance& h : scene.hairs()) {
         if (!h.castShadows) continue;
         const HairStrands* strands = h.strands.get();
@@ -36,7 +42,19 @@ std::vector<uint64_t> casterKey(const render::FrameData& data, const Scene& scen
         key.push_back(h.strands->points.size());
         put(&h.transform, sizeof(glm::mat4));
     }
-    return key;
+    keys.push_back(key);
+    return keys;
+}
+
+// The casters' keys in one (empty without casters: DomeShadows builds no dome then).
+std::vector<uint64_t> flatten(const std::vector<std::vector<uint64_t>>& keys) {
+    std::vector<uint64_t> all;
+    for (size_t i = 0; i < keys.size(); ++i) {
+        if (keys[i].empty()) continue; // casts no shadow
+        all.push_back(i);              // which caster each part belongs to
+        all.insert(all.end(), keys[i].begin(), keys[i].end());
+    }
+    return all;
 }
 
 // The light views plus the casters: equal keys mean the scene lights' maps can be reused.
@@ -66,7 +84,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     environment.fillFrame(scene.environment(), data.frame);
     shadowInfos = data.shadowInfos;
     if (!data.shadowViews.empty()) ensureShadowMaps(uint32_t(data.shadowViews.size()));
-    const std::vector<uint64_t> casters = casterKey(data, scene);
+    std::vector<std::vector<uint64_t>> keys = casterKeys(data, scene);
+    const std::vector<uint64_t> casters = flatten(keys);
     std::vector<uint64_t> key = shadowKey(data, casters);
     std::vector<int> domeDue = dome.prepare(scene, settings, casters, frameCounter);
     data.frame.environment.z = float(dome.lights().size());
@@ -87,6 +106,35 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     const bool reuseShadows =
         settings.reuseShadowMaps && !data.shadowViews.empty() && key == shadowSignature;
     shadowSignature = std::move(key);
+    // While the light views stand still, the casters that moved since the last frame are drawn
+    // over the still ones' depth, which is drawn only when they change (ShadowPasses.cpp).
+    std::vector<uint64_t> views = shadowKey(data, {});
+    std::vector<uint8_t> moving;
+    bool splitShadows = false, drawStill = false, hairMoving = false;
+    if (settings.reuseShadowMaps && !reuseShadows && !data.shadowViews.empty() &&
+        views == lastShadowViews && keys.size() == lastCasterKeys.size()) {
+        std::vector<uint64_t> still = views;
+        bool anyMoving = false, anyStill = false;
+        moving.assign(data.draws.size(), 0);
+        for (size_t i = 0; i < keys.size(); ++i) {
+            if (keys[i].empty()) continue; // casts no shadow
+            const bool moved = keys[i] != lastCasterKeys[i];
+            (moved ? anyMoving : anyStill) = true;
+            if (i < moving.size()) // a draw; the last key is the hair's
+                moving[i] = moved;
+            else
+                hairMoving = moved;
+            if (!moved) {
+                still.push_back(i);
+                still.insert(still.end(), keys[i].begin(), keys[i].end());
+            }
+        }
+        splitShadows = anyMoving && anyStill;
+        drawStill = splitShadows && still != stillSignature;
+        if (splitShadows) stillSignature = std::move(still);
+    }
+    lastShadowViews = std::move(views);
+    lastCasterKeys = std::move(keys);
     const bool hasHair = !scene.hairs().empty();
     if (hasHair) {
         if (!hair) hair = std::make_unique<render::HairPasses>(c, pipes);
@@ -110,6 +158,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                                bounce,
                                hasHair ? hair.get() : nullptr,
                                data.shadowViews.empty() ? dummyShadow : shadowMaps,
+                               stillShadows,
                                shadowInfos,
                                scene,
                                camera,
@@ -128,6 +177,10 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
                                std::move(domeDue),
                                samples};
     if (scene.environment().environment && !environmentBaked) f.reused.push_back("environment");
+    f.splitShadows = splitShadows;
+    f.drawStill = drawStill;
+    f.hairMoving = hairMoving;
+    f.moving = std::move(moving);
     if (present) f.overlay = overlay;
 
     FrameGraph g;

@@ -77,9 +77,13 @@ void Renderer::Impl::ensureShadowMaps(uint32_t layers) {
     d.layers = layers;
     d.format = render::kDepthFormat;
     d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-              VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+              VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     shadowMaps = vk::Image(ctx.get(), d);
     shadowSignature.clear();
+    // the still casters' depth, copied into the maps before the moving ones are drawn
+    d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    stillShadows = vk::Image(ctx.get(), d);
+    stillSignature.clear();
 }
 
 FrameSlot& Renderer::Impl::beginFrame() {

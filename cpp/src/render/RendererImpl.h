@@ -87,6 +87,12 @@ struct Renderer::Impl {
     render::RenderTargets targets;
     vk::Image shadowMaps;
     std::vector<uint64_t> shadowSignature; // what the shadow maps hold (see shadowKey)
+    // The depth of the shadow casters that stood still (ShadowPasses.cpp), what it holds (the
+    // views and those casters' keys), and each caster's key in the last frame
+    vk::Image stillShadows;
+    std::vector<uint64_t> stillSignature;
+    std::vector<std::vector<uint64_t>> lastCasterKeys;
+    std::vector<uint64_t> lastShadowViews;
     uint64_t shaderGenerationBuilt = shaderGeneration(); // hot reload: shaders the pipes use
     vk::Image dummyShadow;
     vk::Image coatAlbedo; // the GGX coat's directional albedo (CoatAlbedoGpu.h)

@@ -1,6 +1,8 @@
 """A frame runs only what its scene needs (SPEC §6): shadow maps are reused while no light view
-and no caster changed, re-rendered when one did; a resting cloth costs no upload and no shadow
-pass; the pass lists say so, and reuse never changes the picture."""
+and no caster changed, re-rendered when one did; while some casters move and the rest stand
+still, the still ones' depth is kept and only the moving ones are drawn over it; a resting
+cloth costs no upload and no shadow pass; the pass lists say so, and reuse never changes the
+picture."""
 
 from __future__ import annotations
 
@@ -41,10 +43,12 @@ def test_shadow_maps_are_reused_until_something_they_show_changes(make_renderer)
     # the camera does not change what the lights see
     r.render(scene, weft.Camera(position=(1, 2, 4)))
     assert shadow_passes(r.stats) == []
-    # a moved caster re-renders every map; the result equals a fresh renderer's
+    # a moved caster re-renders every map (the still plane once into its own maps, copied in,
+    # the box over it); the result equals a fresh renderer's
     scene.set_transform(box, translation(0.3, 0.8, 0))
     moved = r.render(scene, camera)
-    assert shadow_passes(r.stats) == ["shadow[0]", "shadow[1]"]
+    assert shadow_passes(r.stats) == ["shadow_still[0]", "shadow_still[1]", "shadow_copy",
+                                      "shadow[0]", "shadow[1]"]
     fresh = make_renderer(64, 48, shadow_map_size=512).render(scene, camera)
     np.testing.assert_array_equal(moved, fresh)
     assert not np.array_equal(moved, first)
@@ -78,8 +82,9 @@ def test_resting_cloth_costs_no_upload_and_no_shadow_pass(make_renderer) -> None
     r.render(scene, camera)
     assert r.stats["mesh_uploads"] == 1 and shadow_passes(r.stats) == ["shadow[0]"]
     cloth.step(1 / 60)
-    r.render(scene, camera)  # the cloth moved: new mesh, new shadow
-    assert r.stats["mesh_uploads"] == 1 and shadow_passes(r.stats) == ["shadow[0]"]
+    r.render(scene, camera)  # the cloth moved: new mesh, new shadow over the still ground's
+    assert r.stats["mesh_uploads"] == 1
+    assert shadow_passes(r.stats) == ["shadow_still[0]", "shadow_copy", "shadow[0]"]
     for _ in range(1000):
         cloth.step(1 / 60)
         if cloth.sleeping:
@@ -89,3 +94,43 @@ def test_resting_cloth_costs_no_upload_and_no_shadow_pass(make_renderer) -> None
     r.render(scene, camera)
     assert r.stats["mesh_uploads"] == 0 and shadow_passes(r.stats) == []
     assert r.stats["reused"] == ["shadow[0]"]
+
+
+def test_only_the_moving_casters_are_drawn_while_the_rest_stand_still(make_renderer) -> None:
+    """The still casters' depth is drawn once and copied in every frame; the moving ones are
+    drawn over it. Each frame equals a renderer that draws every caster every frame."""
+    scene, box, sun = make_scene()
+    camera = weft.Camera(position=(0, 3, 4))
+    r = make_renderer(64, 48, shadow_map_size=512)
+    every = make_renderer(64, 48, shadow_map_size=512, reuse_shadow_maps=False)
+    passes = []
+    for k in range(4):
+        scene.set_transform(box, translation(0.1 * k, 0.8, 0))  # the box moves every frame
+        got = r.render(scene, camera)
+        passes.append(shadow_passes(r.stats))
+        np.testing.assert_array_equal(got, every.render(scene, camera))
+    both = ["shadow[0]", "shadow[1]"]
+    assert passes[0] == both  # nothing known to stand still yet
+    assert passes[1] == ["shadow_still[0]", "shadow_still[1]", "shadow_copy"] + both
+    assert passes[2] == passes[3] == ["shadow_copy"] + both
+    assert {"shadow_still[0]", "shadow_still[1]"} <= set(r.stats["reused"])
+    # the box's shadow moved with it: the maps were not simply kept
+    first = r.shadow_map(0)
+    scene.set_transform(box, translation(-0.5, 0.8, 0))
+    r.render(scene, camera)
+    assert not np.array_equal(first, r.shadow_map(0))
+    # a still caster that starts to move (a ball inside the others' bounds, so the light views
+    # stay) and a moving one that stops draw the still maps anew
+    ball = scene.add_mesh(weft.Mesh.uv_sphere(0.2, 12, 6), weft.Material(),
+                          translation(-1.0, 0.3, 1.0))
+    r.render(scene, camera)
+    r.render(scene, camera)
+    scene.set_transform(ball, translation(-1.2, 0.3, 1.0))
+    got = r.render(scene, camera)
+    assert shadow_passes(r.stats) == ["shadow_still[0]", "shadow_still[1]", "shadow_copy"] + both
+    np.testing.assert_array_equal(got, every.render(scene, camera))
+    # a turned light draws every caster at once
+    scene.set_light(sun, weft.DirectionalLight(direction=(0.4, -1.0, -0.3)))
+    scene.set_transform(box, translation(0.2, 0.8, 0))
+    r.render(scene, camera)
+    assert shadow_passes(r.stats) == both
