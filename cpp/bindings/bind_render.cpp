@@ -90,7 +90,8 @@ void bindRender(py::module_& m) {
               "Receiver offset along the normal, in shadow-map texels."),
         field("reuse_shadow_maps", &S::reuseShadowMaps,
               "Keep the last frame's shadow maps when no shadow view and no caster changed (and\n"
-              "the hair's deep opacity maps when no map's view and no strand in it changed)."),
+              "the hair's deep opacity maps when no map's view and no strand in it changed);\n"
+              "when only some casters moved, keep the others' depth and draw the moving ones."),
         field("msaa", &S::msaa,
               "Multisample anti-aliasing samples per pixel (1, 2, 4, 8; default 4), lowered "
               "to what\nthe device supports (msaa_samples). render_debug frames are not "

@@ -832,7 +832,8 @@ class Renderer:
     def reuse_shadow_maps(self) -> bool:
         """
         Keep the last frame's shadow maps when no shadow view and no caster changed (and
-        the hair's deep opacity maps when no map's view and no strand in it changed).
+        the hair's deep opacity maps when no map's view and no strand in it changed);
+        when only some casters moved, keep the others' depth and draw the moving ones.
         """
     @reuse_shadow_maps.setter
     def reuse_shadow_maps(self, arg1: bool) -> None:

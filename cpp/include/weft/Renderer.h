@@ -53,7 +53,8 @@ struct RenderSettings {
     float biasMax = 0.01f;         // ... clamped to this
     float normalOffset = 1.5f;     // receiver offset along n, in shadow-map texels
     /// Keep the shadow maps of the last frame when no shadow view and no shadow caster changed
-    /// (and the hair's deep opacity maps when no map's view and no strand drawn into it did).
+    /// (and the hair's deep opacity maps when no map's view and no strand drawn into it did);
+    /// when only some casters moved, keep the others' depth and draw only the moving ones.
     bool reuseShadowMaps = true;
     uint32_t probeSize = 64; // texels per face of the dynamic reflection capture
     /// One bounce of diffuse light from the receivers (instances that cast no shadow: grounds,

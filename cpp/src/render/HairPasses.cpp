@@ -139,6 +139,50 @@ void HairPasses::fitDoms(const Scene& scene, const RenderSettings& settings) {
     }
 }
 
+namespace {
+
+// The pixels the strands can cover: each hair's bounds, grown by its widest ribbon, projected,
+// plus three pixels for an anti-aliased strip's reach across and past its ends (at most 1.2);
+// the whole target where a bound reaches behind the camera.
+VkRect2D hairScreenRect(const Scene& scene, const Camera& camera, const RenderSettings& settings,
+                        uint32_t width, uint32_t height) {
+    const VkRect2D whole{{0, 0}, {width, height}};
+    const glm::mat4 viewProj = camera.projection(float(width) / float(height)) * camera.view();
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (const HairInstance& h : scene.hairs()) {
+        float thickness = h.strands->defaultThickness;
+        for (float t : h.strands->thickness) thickness = std::max(thickness, t);
+        glm::vec3 worldLo(1e30f), worldHi(-1e30f);
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 c((i & 1) ? h.hi.x : h.lo.x, (i & 2) ? h.hi.y : h.lo.y,
+                              (i & 4) ? h.hi.z : h.lo.z);
+            const glm::vec3 w(h.transform * glm::vec4(c, 1.0f));
+            worldLo = glm::min(worldLo, w);
+            worldHi = glm::max(worldHi, w);
+        }
+        const glm::vec3 grow(settings.hairWidth * thickness);
+        worldLo -= grow;
+        worldHi += grow;
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 c((i & 1) ? worldHi.x : worldLo.x, (i & 2) ? worldHi.y : worldLo.y,
+                              (i & 4) ? worldHi.z : worldLo.z);
+            const glm::vec4 clip = viewProj * glm::vec4(c, 1.0f);
+            if (!(clip.w > 1e-6f)) return whole;
+            const glm::vec2 pixel =
+                (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(float(width), float(height));
+            lo = glm::min(lo, pixel);
+            hi = glm::max(hi, pixel);
+        }
+    }
+    const float margin = 3.0f;
+    const glm::vec2 size{float(width), float(height)};
+    lo = glm::clamp(glm::floor(lo - margin), glm::vec2(0.0f), size - 1.0f);
+    hi = glm::clamp(glm::ceil(hi + margin), lo + 1.0f, size);
+    return {{int32_t(lo.x), int32_t(lo.y)}, {uint32_t(hi.x - lo.x), uint32_t(hi.y - lo.y)}};
+}
+
+} // namespace
+
 std::vector<uint64_t> HairPasses::domKey() const {
     std::vector<uint64_t> key;
     auto add = [&key](const float* v, size_t n) {
@@ -317,6 +361,7 @@ void HairPasses::prepare(uint32_t slotIndex, const Scene& scene, const Camera& c
     mReuseDoms = settings.reuseShadowMaps && !mDoms.empty() && key == mDomKey;
     mDomKey = std::move(key);
     for (const Dom& d : mDoms) mLastDoms[size_t(d.light)] = d.info;
+    mRect = hairScreenRect(scene, camera, settings, width, height);
 
     GpuHairFrame f{};
     f.cameraForward =
@@ -503,13 +548,14 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
         VkRenderingAttachmentInfo depth =
             attachment(t.depthImage->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false);
         VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        info.renderArea = {{0, 0}, {mWidth, mHeight}};
+        info.renderArea = mRect; // cleared (and composited) where strands can be only
         info.layerCount = 1;
         info.colorAttachmentCount = 2;
         info.pColorAttachments = colors;
         info.pDepthAttachment = &depth;
         mCtx.fn().cmdBeginRendering(cmd, &info);
         setViewport(cmd, mWidth, mHeight);
+        vkCmdSetScissor(cmd, 0, 1, &mRect);
     };
     const std::vector<ResourceUse> accumulates = {
         {rAccum, Use::ColorWrite}, {rWeight, Use::ColorWrite}, {t.depth, Use::DepthWrite}};
@@ -567,12 +613,13 @@ void HairPasses::addPasses(FrameGraph& g, const Targets& t) {
                    VkRenderingAttachmentInfo color = attachment(
                        t.hdrImage->view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false);
                    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-                   info.renderArea = {{0, 0}, {mWidth, mHeight}};
+                   info.renderArea = mRect; // no strand elsewhere: nothing to composite
                    info.layerCount = 1;
                    info.colorAttachmentCount = 1;
                    info.pColorAttachments = &color;
                    mCtx.fn().cmdBeginRendering(cmd, &info);
                    setViewport(cmd, mWidth, mHeight);
+                   vkCmdSetScissor(cmd, 0, 1, &mRect);
                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, mPipes.composite);
                    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                                            mPipes.compositeLayout, 0, 1, &mOitSet, 0, nullptr);

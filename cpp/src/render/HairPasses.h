@@ -107,6 +107,9 @@ private:
     // (the meshes' depth in each map's view is drawn every frame: a cloth moves).
     std::vector<uint64_t> mDomKey;
     bool mReuseDoms = false;
+    // The pixels the strands can cover this frame: where the OIT targets are cleared, drawn
+    // into and composited (hairScreenRect)
+    VkRect2D mRect{};
     // anti-aliased frames, per pixel (R32_UINT layers): the nearest depth of the partly covering
     // strands at each of kHairAaDepthSamples sample points, which of 128 points they cover, and
     // sums of their coverage (glsl/hair/hair_oit_main.glsl)

@@ -100,3 +100,38 @@ def test_each_model_draws_in_a_mixed_frame_what_it_draws_alone(make_renderer, ms
         # and the neighbours' models show: the comparison could fail
         other = fur_columns(camera, 1.6 * ((k + 1) % 3) - 1.6, 144, 48)
         assert np.abs(mixed[:, other] - alone[:, other]).max() > 1e-3
+
+
+@pytest.mark.parametrize("msaa", [1, 4])
+@pytest.mark.parametrize("primitive", ["lines", "ribbons"])
+def test_transparent_hair_is_drawn_over_all_it_covers(make_renderer, primitive, msaa):
+    """The OIT targets are cleared, drawn and composited only over the strands' projected bounds
+    (grown by the widest ribbon and the anti-aliased strips' reach; the whole frame where a
+    bound reaches behind the camera). The strands here lie in the plane y = 0, seen edge on, so
+    their bounds have no height on screen: the ribbons' width and the strips' reach are all the
+    rectangle has. A second hair behind the camera, which draws nothing, makes the rectangle the
+    whole frame: the pictures must be the same."""
+    xs = np.linspace(-0.5, 0.5, 2, dtype=np.float32)
+    points = np.array([[x, 0.0, z] for z in np.linspace(-0.3, 0.3, 7) for x in xs], np.float32)
+    behind = np.array([[0.0, 0.0, 3.0], [0.0, 0.1, 3.0]], np.float32)
+    camera = weft.Camera(position=(0, 0, 2.0), target=(0, 0, 0))
+
+    def frame(extra: bool):
+        scene = weft.Scene()
+        scene.background = (0.0, 0.0, 0.0)
+        scene.ambient = (1.0, 1.0, 1.0)
+        material = weft.HairMaterial("kajiya_kay", diffuse=(0.9, 0.8, 0.7))
+        for p in [points, behind] if extra else [points]:
+            scene.add_hair(weft.HairStrands(p, default_segments=1, default_thickness=30.0,
+                                            default_transparency=0.5), material)
+        r = make_renderer(80, 60, msaa=msaa)
+        # ribbons 60 cm wide; lines get a 3 mm margin, less than a pixel: the strips' reach
+        r.hair_primitive = primitive
+        r.hair_width = 0.02 if primitive == "ribbons" else 1e-4
+        image = r.render_linear(scene, camera)
+        assert "hair_composite" in [p["name"] for p in r.stats["passes"]]
+        return image
+
+    tight, whole = frame(False), frame(True)
+    assert np.mean(np.any(tight[..., :3] > 0.0, axis=-1)) > 0.005  # the hair is in view
+    np.testing.assert_array_equal(tight, whole)
