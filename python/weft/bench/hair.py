@@ -173,7 +173,10 @@ def _frames(items, quick: bool, rows: List[Dict[str, Any]]) -> None:
     import weft
 
     size = QUICK_FRAME_SIZE if quick else FRAME_SIZE
-    renderer = weft.Renderer(size, size, shadow_map_size=256 if quick else 2048)
+    # the shadow maps and deep opacity maps drawn every frame, as the seed's S column times them
+    # (the renderer would otherwise keep them while the strands and the light stand still)
+    renderer = weft.Renderer(size, size, shadow_map_size=256 if quick else 2048,
+                             reuse_shadow_maps=False)
     renderer.hair_dom_size = 64 if quick else 512
     material = weft.HairMaterial("sadeghi", diffuse=(0.08, 0.05, 0.03))
     light_dir = np.array([0.3, -1.0, -0.4])
