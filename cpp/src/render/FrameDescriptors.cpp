@@ -1,24 +1,14 @@
 // One frame's GPU data and descriptor sets (the first half of Renderer::Impl::recordFrame): the
 // frame slot's buffers (uniforms, instances, lights, shadow layers, dome lights, the probe
 // faces' uniforms) and the sets every pass binds.
+#include "render/PassSetup.h"
 #include "render/RendererImpl.h"
 
 namespace weft {
 
+using render::ensureBuffer;
 using render::kFrameSets;
 using render::Use;
-
-namespace {
-
-// Grows a host-visible buffer to hold `bytes`.
-void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes,
-                  VkBufferUsageFlags usage) {
-    bytes = std::max<VkDeviceSize>(bytes, 256);
-    if (buffer && buffer.size() >= bytes) return;
-    buffer = vk::Buffer(&ctx, bytes * 3 / 2, usage, vk::MemoryUsage::Upload);
-}
-
-} // namespace
 
 VkDeviceSize Renderer::Impl::probeFaceStride() const {
     const VkDeviceSize align = ctx->properties().limits.minUniformBufferOffsetAlignment;

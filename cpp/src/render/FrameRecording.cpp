@@ -57,16 +57,15 @@ std::vector<uint64_t> flatten(const std::vector<std::vector<uint64_t>>& keys) {
     return all;
 }
 
-// The light views plus the casters: equal keys mean the scene lights' maps can be reused.
-std::vector<uint64_t> shadowKey(const render::FrameData& data,
-                                const std::vector<uint64_t>& casters) {
+// The scene lights' shadow views; with the casters' keys after them, equal keys mean the maps
+// can be reused.
+std::vector<uint64_t> viewsKey(const render::FrameData& data) {
     std::vector<uint64_t> key;
     for (const render::ShadowView& v : data.shadowViews) {
         const size_t at = key.size();
         key.resize(at + sizeof(glm::mat4) / 8);
         std::memcpy(key.data() + at, &v.frustum.viewProj, sizeof(glm::mat4));
     }
-    key.insert(key.end(), casters.begin(), casters.end());
     return key;
 }
 
@@ -86,7 +85,9 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     if (!data.shadowViews.empty()) ensureShadowMaps(uint32_t(data.shadowViews.size()));
     std::vector<std::vector<uint64_t>> keys = casterKeys(data, scene);
     const std::vector<uint64_t> casters = flatten(keys);
-    std::vector<uint64_t> key = shadowKey(data, casters);
+    std::vector<uint64_t> views = viewsKey(data);
+    std::vector<uint64_t> key = views;
+    key.insert(key.end(), casters.begin(), casters.end());
     std::vector<int> domeDue = dome.prepare(scene, settings, casters, frameCounter);
     data.frame.environment.z = float(dome.lights().size());
     data.frame.environment.w = float(dome.mapSize());
@@ -108,7 +109,6 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     shadowSignature = std::move(key);
     // While the light views stand still, the casters that moved since the last frame are drawn
     // over the still ones' depth, which is drawn only when they change (ShadowPasses.cpp).
-    std::vector<uint64_t> views = shadowKey(data, {});
     std::vector<uint8_t> moving;
     bool splitShadows = false, drawStill = false, hairMoving = false;
     if (settings.reuseShadowMaps && !reuseShadows && !data.shadowViews.empty() &&

@@ -1,5 +1,7 @@
 #include "render/HairGpu.h"
 
+#include <algorithm>
+
 #include <weft/HairGeometry.h>
 
 #include "render/HairGpuTypes.h"
@@ -35,6 +37,7 @@ HairGpu& HairGpuCache::get(const HairStrandsPtr& strands, bool ribbons) {
                 const float transparency =
                     h.transparency.empty() ? h.defaultTransparency : h.transparency[i];
                 gpu.transparent |= transparency > 0.0f;
+                gpu.maxThickness = std::max(gpu.maxThickness, thickness);
                 vertices[i] = {glm::vec4(h.points[i], thickness),
                                glm::vec4(tangents[i], 1.0f - transparency),
                                h.colors.empty() ? h.defaultColor : h.colors[i], uint32_t(s)};

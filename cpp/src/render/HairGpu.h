@@ -18,6 +18,8 @@ struct HairGpu {
     uint32_t lineIndexCount = 0;
     uint32_t ribbonIndexCount = 0;
     bool transparent = false; // some point has transparency > 0
+    float maxThickness =
+        0.0f; // the thickest point's (a ribbon's width per RenderSettings::hairWidth)
 };
 
 class HairGpuCache {

@@ -7,6 +7,8 @@
 // (msaa > 1, never debug frames) draw strands as screen-space strips with their pixel coverage:
 // "hair" the pixels a strand covers entirely, "hair_fringe" the partly covered ones accumulated
 // with the OIT targets, "hair_composite" both over the frame (glsl/hair/hair_oit_main.glsl).
+// HairPasses.cpp prepares a frame and adds its passes; HairDoms.cpp fits the deep opacity maps'
+// views; HairPassResources.cpp holds the images and descriptor sets.
 #include <array>
 #include <functional>
 #include <string>
@@ -63,6 +65,7 @@ private:
         uint32_t instance;
         HairModel shading;
         const HairShadedPipelines* shaded; // this frame's, for its lights and model (prepare)
+        glm::vec3 lo, hi;                  // object-space bounds of the points
         bool castShadows, transparent;
         glm::mat4 model;
     };
@@ -80,6 +83,9 @@ private:
     };
 
     void fitDoms(const Scene& scene, const RenderSettings& settings);
+    /// The pixels this frame's strands can cover (see mRect).
+    VkRect2D screenRect(const Camera& camera, const RenderSettings& settings, uint32_t width,
+                        uint32_t height) const;
     /// What the deep opacity maps would hold this frame: each map's view and the strands drawn
     /// into it.
     std::vector<uint64_t> domKey() const;
@@ -108,7 +114,7 @@ private:
     std::vector<uint64_t> mDomKey;
     bool mReuseDoms = false;
     // The pixels the strands can cover this frame: where the OIT targets are cleared, drawn
-    // into and composited (hairScreenRect)
+    // into and composited (screenRect)
     VkRect2D mRect{};
     // anti-aliased frames, per pixel (R32_UINT layers): the nearest depth of the partly covering
     // strands at each of kHairAaDepthSamples sample points, which of 128 points they cover, and

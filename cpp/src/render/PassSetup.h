@@ -1,13 +1,23 @@
 #pragma once
 // What every dynamic-rendering pass sets up: its attachments and a viewport with scissor over
 // the target (used by FrameRecording.cpp and HairPasses.cpp).
+#include <algorithm>
 #include <cstring>
 
 #include <glm/glm.hpp>
 
-#include "vk/Vk.h"
+#include "vk/Resources.h"
 
 namespace weft::render {
+
+/// Grows a host-visible buffer to hold `bytes` (half as much again, so that a slowly growing
+/// frame does not make a new one each time).
+inline void ensureBuffer(vk::Context& ctx, vk::Buffer& buffer, VkDeviceSize bytes,
+                         VkBufferUsageFlags usage) {
+    bytes = std::max<VkDeviceSize>(bytes, 256);
+    if (buffer && buffer.size() >= bytes) return;
+    buffer = vk::Buffer(&ctx, bytes * 3 / 2, usage, vk::MemoryUsage::Upload);
+}
 
 /// An attachment stored after the pass; `clear`: cleared first (values below), else loaded.
 inline VkRenderingAttachmentInfo attachment(VkImageView view, VkImageLayout layout, bool clear) {
