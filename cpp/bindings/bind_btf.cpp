@@ -517,11 +517,11 @@ void bindBtf(py::module_& m) {
         std::make_tuple(enumField("solver", &NL::solver, kSolvers),
                         field("max_iterations", &NL::maxIterations), minExponent, maxExponent,
                         threads, flat, field("visibility", &NL::visibility), luminance,
-                        field("noise", &NL::noise)),
+                        field("noise", &NL::noise), field("fixed_exponent", &NL::fixedExponent)),
         "Nonlinear per-texel Blinn-Phong fit (normal, ρ, a, k, exponent) seeded from `seed` "
         "maps, with the built-in Levenberg-Marquardt or Ceres ('auto', 'builtin', 'ceres'); "
         "visibility leaves estimated cast shadows out, their test bounded by the data's noise "
-        "(noise 0: estimated, btf_blinn_phong_noise). Returns {'maps', 'mean_iterations', "
+        "(noise 0: estimated, btf_blinn_phong_noise); fixed_exponent keeps the seed's exponent map. Returns {'maps', 'mean_iterations', "
         "'solver', 'shadowed_fraction', 'noise'}.");
 }
 

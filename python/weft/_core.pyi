@@ -1596,9 +1596,9 @@ def btf_drawn_maps(maps: dict) -> dict:
     """
     BTF maps as the renderer draws them (BtfMaterial.as_drawn()).
     """
-def btf_fit_blinn_phong(samples: BtfSamples, seed: dict, solver: str = 'auto', max_iterations: typing.SupportsInt | typing.SupportsIndex = 30, min_exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, max_exponent: typing.SupportsFloat | typing.SupportsIndex = 0.0, threads: typing.SupportsInt | typing.SupportsIndex = 0, flat_specular_normal: bool = False, visibility: bool = True, luminance_normals: bool = False, noise: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> dict:
+def btf_fit_blinn_phong(samples: BtfSamples, seed: dict, solver: str = 'auto', max_iterations: typing.SupportsInt | typing.SupportsIndex = 30, min_exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, max_exponent: typing.SupportsFloat | typing.SupportsIndex = 0.0, threads: typing.SupportsInt | typing.SupportsIndex = 0, flat_specular_normal: bool = False, visibility: bool = True, luminance_normals: bool = False, noise: typing.SupportsFloat | typing.SupportsIndex = 0.0, fixed_exponent: bool = False) -> dict:
     """
-    Nonlinear per-texel Blinn-Phong fit (normal, ρ, a, k, exponent) seeded from `seed` maps, with the built-in Levenberg-Marquardt or Ceres ('auto', 'builtin', 'ceres'); visibility leaves estimated cast shadows out, their test bounded by the data's noise (noise 0: estimated, btf_blinn_phong_noise). Returns {'maps', 'mean_iterations', 'solver', 'shadowed_fraction', 'noise'}.
+    Nonlinear per-texel Blinn-Phong fit (normal, ρ, a, k, exponent) seeded from `seed` maps, with the built-in Levenberg-Marquardt or Ceres ('auto', 'builtin', 'ceres'); visibility leaves estimated cast shadows out, their test bounded by the data's noise (noise 0: estimated, btf_blinn_phong_noise); fixed_exponent keeps the seed's exponent map. Returns {'maps', 'mean_iterations', 'solver', 'shadowed_fraction', 'noise'}.
     """
 def btf_fit_lafortune(samples: BtfSamples, seed: dict, lobes: typing.SupportsInt | typing.SupportsIndex = 1, max_iterations: typing.SupportsInt | typing.SupportsIndex = 30, threads: typing.SupportsInt | typing.SupportsIndex = 0, visibility: bool = False, fixed_normal: bool = False) -> dict:
     """

@@ -27,7 +27,11 @@ struct BtfNonlinearOptions {
     /// maxExponent 0: btfResolvableExponent(samples), the largest the sampling resolves
     float minExponent = 1.0f, maxExponent = 0.0f;
     bool flatSpecularNormal = false; ///< n_s = (0, 0, 1) (eq. 4.30) instead of n
-    bool visibility = true;          ///< estimate cast shadows per sample and leave them out
+    /// keep each texel's exponent from the seed (its exponent map, else its exponent; inside
+    /// [minExponent, maxExponent]) and fit only n, m, b, k: for exponents pooled over the
+    /// material (weft.btf.fit_blinn_phong(exponent="pooled"))
+    bool fixedExponent = false;
+    bool visibility = true; ///< estimate cast shadows per sample and leave them out
     /// fit n and e to the luma (BT.601) and only the colours to RGB: for JPEG data, whose
     /// chroma is stored at half resolution and coarser precision than the luma
     bool luminanceNormals = false;

@@ -352,9 +352,11 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
         }
         // η at a bound with the descent pointing out of the range: hold it there (active
         // set), so the step in (u, v) is the constrained optimum rather than the projection of
-        // a step that assumed η free (which crawls along the bound for many iterations)
+        // a step that assumed η free (which crawls along the bound for many iterations); held
+        // everywhere when the range is one point (BtfNonlinearOptions::fixedExponent)
         const double eta = cur.result.theta[2];
-        if ((eta >= etaMax - 1e-12 && grad[2] < 0.0) || (eta <= etaMin + 1e-12 && grad[2] > 0.0)) {
+        if (etaMax <= etaMin || (eta >= etaMax - 1e-12 && grad[2] < 0.0) ||
+            (eta <= etaMin + 1e-12 && grad[2] > 0.0)) {
             for (int j = 0; j < 3; ++j) jtj[2][j] = jtj[j][2] = 0.0;
             jtj[2][2] = 1.0;
             grad[2] = 0.0;

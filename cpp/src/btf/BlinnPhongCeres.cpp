@@ -80,8 +80,13 @@ BlinnPhongResult blinnPhongCeres(const BlinnPhongTexel& tx, const BlinnPhongResu
         for (int c = 0; c < 3; ++c) k[c] = 0.0;
         problem.SetParameterBlockConstant(k);
     }
-    problem.SetParameterLowerBound(&eta, 0, etaMin);
-    problem.SetParameterUpperBound(&eta, 0, etaMax);
+    if (etaMin < etaMax) {
+        problem.SetParameterLowerBound(&eta, 0, etaMin);
+        problem.SetParameterUpperBound(&eta, 0, etaMax);
+    } else { // the exponent is held
+        eta = etaMin;
+        problem.SetParameterBlockConstant(&eta);
+    }
     ceres::Solver::Options options;
     options.linear_solver_type = ceres::DENSE_QR;
     options.max_num_iterations = maxIterations;

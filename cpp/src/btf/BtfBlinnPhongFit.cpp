@@ -199,11 +199,13 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                 tx.setSeedNormal(
                     glm::vec3(seed.normal[t * 3], seed.normal[t * 3 + 1], seed.normal[t * 3 + 2]));
                 const double eta0 = seedEta(seed, t, etaMin, etaMax);
+                // the exponent's range for this texel: one point when it is held
+                const double lo = options.fixedExponent ? eta0 : etaMin;
+                const double hi = options.fixedExponent ? eta0 : etaMax;
                 auto solve = [&](const double start[3]) {
                     if (!ceres)
-                        return blinnPhongBuiltin(tx, start[2], etaMin, etaMax,
-                                                 options.maxIterations);
-                    return blinnPhongCeres(tx, blinnPhongProject(tx, start), etaMin, etaMax,
+                        return blinnPhongBuiltin(tx, start[2], lo, hi, options.maxIterations);
+                    return blinnPhongCeres(tx, blinnPhongProject(tx, start), lo, hi,
                                            options.maxIterations);
                 };
                 const double start[3] = {tx.start[0], tx.start[1], eta0};
@@ -320,7 +322,7 @@ BtfNonlinearFit fitBtfBlinnPhong(const BtfSamples& samples, const BtfMaterialMap
                     for (double f : kLobeTilts)
                         for (double e : kLobeStarts) {
                             const double at[3] = {f * r.theta[0], f * r.theta[1],
-                                                  std::min(std::max(std::log(e), etaMin), etaMax)};
+                                                  std::min(std::max(std::log(e), lo), hi)};
                             const BlinnPhongResult p = blinnPhongProject(tx, at);
                             if (p.cost < from.cost) {
                                 from = p;

@@ -6,7 +6,8 @@ written as PNG and as JPEG quality 90 in the Bonn layout and read back.
 Models per dataset: linear (plain, robust), linear + specular (eq. 4.29, 4.30), per-texel
 Blinn-Phong (built-in LM, highlight around n and around n_s = (0,0,1), and the one of the two
 picked by weft.btf.scoring.highlight_choice, "blinn_phong (chosen)"; JPEG: normals from the
-luma), the same with Ceres on a crop when
+luma; the chosen one again with its exponents pooled over the material, exponent="pooled", the
+recommended pipeline that the accuracy targets judge), the same with Ceres on a crop when
 built with it, and diffuse + 1 / 2 Lafortune lobes.
 Per model: texels outside the physical space, normal error (mean, p95), exponent and k_s median
 relative error, deviation as fitted and as drawn (Lafortune: not drawable, as fitted), the noise
@@ -190,9 +191,20 @@ def run_case(case: Case, size: int, crop_n: int, tmp: str) -> List[Dict[str, Any
     rows.append(dict(next(r for r in rows if r["model"] == f"Blinn-Phong n_s={chosen}"),
                      model="Blinn-Phong (chosen)", chosen=f"n_s={chosen}",
                      choice_rule=pick["rule"]))
-    # Lafortune keeps the chosen Blinn-Phong normal: with the frontal view its lobe depends on
-    # l_z only and trades off with the diffuse term (free normals went 89° off under shadows)
-    bp_seed = bp[chosen][0].model
+    # the recommended pipeline: the chosen highlight, its exponents pooled over the material
+    seed_chosen, flat_chosen = (fitted.material, False) if chosen == "n" else (flat.material,
+                                                                              True)
+    t, r = best_time(lambda: btf.fit_blinn_phong(data, seed_chosen, "builtin",
+                                                 flat_specular_normal=flat_chosen,
+                                                 luminance_normals=luma, exponent="pooled"))
+    pool = r.exponent_pool or {}
+    add("Blinn-Phong (chosen, pooled exponent)", "builtin", t, r.material,
+        shadowed_fraction=r.shadowed_fraction, chosen=f"n_s={chosen}",
+        pooled_exponent=pool.get("mean"), pooled_spread=pool.get("spread"))
+    # Lafortune keeps the recommended Blinn-Phong fit's normal: with the frontal view its lobe
+    # depends on l_z only and trades off with the diffuse term (free normals went 89° off under
+    # shadows)
+    bp_seed = r.material
     for lobes in (1, 2):
         t, laf = best_time(lambda: btf.fit_lafortune(data, bp_seed, lobes, fixed_normal=True))
         add(f"Lafortune {lobes} lobe{'s' if lobes > 1 else ''}", "builtin", t, laf)

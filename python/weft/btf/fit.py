@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from dataclasses import dataclass
 from typing import Any, Dict, Optional, Sequence, Union
@@ -114,6 +115,12 @@ class NonlinearFit:
     mean_iterations: float
     shadowed_fraction: float = 0.0  # samples left out as cast shadows / all samples
     noise: float = 0.0  # the data's noise the visibility pass used (0 without it)
+    #: exponent="pooled": {"mean": the material's exponent, "spread": τ of ln e, "texels"}
+    exponent_pool: Optional[Dict[str, float]] = None
+
+
+#: fit_blinn_phong's choices for the exponent
+EXPONENT_MODES = ("per_texel", "pooled", "fixed")
 
 
 def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
@@ -121,7 +128,7 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
                     max_exponent: Optional[float] = None, threads: int = 0,
                     flat_specular_normal: bool = False, visibility: bool = True,
                     luminance_normals: bool = False, jpeg_cells: bool = False,
-                    noise: Optional[float] = None) -> NonlinearFit:
+                    noise: Optional[float] = None, exponent: str = "per_texel") -> NonlinearFit:
     """Per-texel Blinn-Phong in the renderer's model, seeded by ``seed`` (normal, exponent):
     ``P = albedo (ambient + max(n.l, 0)) + specular [n.l > 0] max(n_s.h, 0)^e``.
 
@@ -147,15 +154,41 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
     block's texels (:func:`weft.btf.jpeg_cells.refine`; samples left out as cast shadows stay
     out); no effect on other samples. Off by default: on JPEG q90 it lowers the normal error
     (by 4-41% on four random materials at 64²) but not always the exponent and k_s error, and
-    costs ~1 ms per texel-block of 81 samples in NumPy."""
-    r = _core.btf_fit_blinn_phong(samples, seed.core_maps(), solver, int(max_iterations),
-                                  float(min_exponent),
-                                  0.0 if max_exponent is None else float(max_exponent),
-                                  int(threads),
-                                  bool(flat_specular_normal), bool(visibility),
-                                  bool(luminance_normals), _noise(noise))
-    fit = NonlinearFit(BtfMaterial.from_core(r["maps"]), r["solver"], r["mean_iterations"],
-                       float(r["shadowed_fraction"]), float(r["noise"]))
+    costs ~1 ms per texel-block of 81 samples in NumPy.
+    ``exponent``: "per_texel" (each texel's own), "pooled" (the per-texel fit, then its exponents
+    pooled over the material by empirical Bayes, :mod:`weft.btf.exponent_pool`: one exponent
+    where the texels' spread is what their errors explain, each its own where the material's
+    exponents really differ; then n, ρ, a, k fitted again at those exponents; ``exponent_pool``
+    says what was found), or "fixed" (the seed's exponent map, else its exponent, kept)."""
+    if exponent not in EXPONENT_MODES:
+        raise weft.InvalidArgument(f"exponent must be 'per_texel', 'pooled' or 'fixed', got "
+                                   f"{exponent!r}")
+
+    def core_fit(start: BtfMaterial, fixed: bool, level: float) -> NonlinearFit:
+        r = _core.btf_fit_blinn_phong(samples, start.core_maps(), solver, int(max_iterations),
+                                      float(min_exponent),
+                                      0.0 if max_exponent is None else float(max_exponent),
+                                      int(threads), bool(flat_specular_normal), bool(visibility),
+                                      bool(luminance_normals), level, fixed_exponent=fixed)
+        return NonlinearFit(BtfMaterial.from_core(r["maps"]), r["solver"], r["mean_iterations"],
+                            float(r["shadowed_fraction"]), float(r["noise"]))
+
+    fit = core_fit(seed, exponent == "fixed", _noise(noise))
+    if exponent == "pooled" and fit.material.specular is not None and \
+            np.any(fit.material.specular > 0):
+        from weft.btf import exponent_pool
+        from weft.btf import jpeg_cells as cells
+
+        mask = cells.shadow_mask(samples, fit.material) if fit.shadowed_fraction > 0 else None
+        variance = exponent_pool.eta_variance(samples, fit.material, bool(luminance_normals),
+                                              mask)
+        eta, info = exponent_pool.pool(np.log(fit.material.exponent_map), variance)
+        start = dataclasses.replace(fit.material, exponent_map=np.exp(eta).astype(np.float32))
+        # the same cast-shadow threshold as the first pass (its noise, estimated or given)
+        first = fit
+        fit = core_fit(start, True, first.noise if visibility else _noise(noise))
+        fit.mean_iterations += first.mean_iterations
+        fit.exponent_pool = info
     if jpeg_cells and getattr(samples, "jpeg_cells", None) is not None:
         from weft.btf import jpeg_cells as cells
         e_max = resolvable_exponent(samples) if max_exponent is None else float(max_exponent)
