@@ -200,7 +200,8 @@ def run_case(case: Case, size: int, crop_n: int, tmp: str) -> List[Dict[str, Any
     pool = r.exponent_pool or {}
     add("Blinn-Phong (chosen, pooled exponent)", "builtin", t, r.material,
         shadowed_fraction=r.shadowed_fraction, chosen=f"n_s={chosen}",
-        pooled_exponent=pool.get("mean"), pooled_spread=pool.get("spread"))
+        pooled_exponent=pool.get("mean"), pooled_spread=pool.get("spread"),
+        pooled_error_scale=pool.get("error_scale"))
     # Lafortune keeps the recommended Blinn-Phong fit's normal: with the frontal view its lobe
     # depends on l_z only and trades off with the diffuse term (free normals went 89° off under
     # shadows)

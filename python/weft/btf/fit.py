@@ -115,7 +115,8 @@ class NonlinearFit:
     mean_iterations: float
     shadowed_fraction: float = 0.0  # samples left out as cast shadows / all samples
     noise: float = 0.0  # the data's noise the visibility pass used (0 without it)
-    #: exponent="pooled": {"mean": the material's exponent, "spread": τ of ln e, "texels"}
+    #: exponent="pooled": {"mean": the material's exponent, "spread": τ of ln e, "texels",
+    #: "error_scale": the factor its error bars were widened by (exponent_pool.error_scale)}
     exponent_pool: Optional[Dict[str, float]] = None
 
 
@@ -182,7 +183,10 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
         mask = cells.shadow_mask(samples, fit.material) if fit.shadowed_fraction > 0 else None
         variance = exponent_pool.eta_variance(samples, fit.material, bool(luminance_normals),
                                               mask)
-        eta, info = exponent_pool.pool(np.log(fit.material.exponent_map), variance)
+        eta = np.log(fit.material.exponent_map.astype(np.float64))
+        scale = exponent_pool.error_scale(eta, variance)
+        eta, info = exponent_pool.pool(eta, variance * scale)
+        info["error_scale"] = float(np.sqrt(scale))
         start = dataclasses.replace(fit.material, exponent_map=np.exp(eta).astype(np.float32))
         # the same cast-shadow threshold as the first pass (its noise, estimated or given)
         first = fit

@@ -76,6 +76,21 @@ def test_error_bars_match_the_errors() -> None:
     spread = (np.percentile(z, 84) - np.percentile(z, 16)) / 2
     assert 0.75 < spread < 1.3, spread
     assert abs(np.median(z)) < 0.3
+    # and the neighbours' differences agree: nothing to widen
+    assert exponent_pool.error_scale(np.log(fit.material.exponent_map), var) < 1.15
+
+
+def test_error_scale_from_neighbours() -> None:
+    rng = np.random.default_rng(3)
+    var = rng.uniform(0.01, 0.04, (48, 48))
+    noise = rng.standard_normal((48, 48)) * np.sqrt(var)
+    assert exponent_pool.error_scale(4.0 + noise, var) == pytest.approx(1.0, abs=0.12)
+    # errors twice what the variances say: the variances are 4x too small
+    assert exponent_pool.error_scale(4.0 + 2 * noise, var) == pytest.approx(4.0, rel=0.12)
+    # two regions of different exponents: the pairs across their edge do not count
+    regions = np.where(np.arange(48)[None, :] < 24, 3.0, 5.0) * np.ones((48, 1))
+    assert exponent_pool.error_scale(regions + 2 * noise, var) == pytest.approx(4.0, rel=0.15)
+    assert exponent_pool.error_scale(np.zeros((4, 4)), np.full((4, 4), np.inf)) == 1.0
 
 
 def test_fixed_exponent_keeps_the_seeds() -> None:
