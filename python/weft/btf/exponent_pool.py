@@ -51,7 +51,7 @@ def _frame(n: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
 
 
 def eta_variance(samples: Any, material: BtfMaterial, luminance: bool = False,
-                 shadowed: Optional[np.ndarray] = None, rows: int = 16) -> np.ndarray:
+                 shadowed: Optional[np.ndarray] = None) -> np.ndarray:
     """(H, W) variance of each texel's fitted η = ln e (inf where the texel has no highlight or
     too few samples): σ² [(JᵀJ)⁻¹]_ηη of the texel's least-squares problem at the fitted
     parameters (the normal's two tilts, per channel ρ, ρa and k, and η; one channel, the luma,
@@ -78,6 +78,8 @@ def eta_variance(samples: Any, material: BtfMaterial, luminance: bool = False,
         rho, const, k = rho[..., None], const[..., None], k[..., None]
     channels = values.shape[1]
     params = 3 * channels + 3
+    # rows per chunk: the Jacobians of a chunk within ~64 MB of doubles
+    rows = max(1, min(h, 8_000_000 // (w * values.shape[0] * channels * params)))
     for r0 in range(0, h, rows):
         sl = slice(r0, min(h, r0 + rows))
         n = normal[sl]
