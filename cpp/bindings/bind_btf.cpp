@@ -521,8 +521,8 @@ void bindBtf(py::module_& m) {
         "Nonlinear per-texel Blinn-Phong fit (normal, ρ, a, k, exponent) seeded from `seed` "
         "maps, with the built-in Levenberg-Marquardt or Ceres ('auto', 'builtin', 'ceres'); "
         "visibility leaves estimated cast shadows out, their test bounded by the data's noise "
-        "(noise 0: estimated, btf_blinn_phong_noise); fixed_exponent keeps the seed's exponent map. Returns {'maps', 'mean_iterations', "
-        "'solver', 'shadowed_fraction', 'noise'}.");
+        "(noise 0: estimated, btf_blinn_phong_noise); fixed_exponent keeps the seed's exponent "
+        "map. Returns {'maps', 'mean_iterations', 'solver', 'shadowed_fraction', 'noise'}.");
 }
 
 } // namespace weft::py_bind
