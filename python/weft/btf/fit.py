@@ -160,7 +160,9 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
     pooled over the material by empirical Bayes, :mod:`weft.btf.exponent_pool`: one exponent
     where the texels' spread is what their errors explain, each its own where the material's
     exponents really differ; then n, ρ, a, k fitted again at those exponents; ``exponent_pool``
-    says what was found), or "fixed" (the seed's exponent map, else its exponent, kept)."""
+    says what was found; with ``jpeg_cells`` the exponents pooled are the cell-refined ones and
+    the final fit is not refined again), or "fixed" (the seed's exponent map, else its
+    exponent, kept)."""
     if exponent not in EXPONENT_MODES:
         raise weft.InvalidArgument(f"exponent must be 'per_texel', 'pooled' or 'fixed', got "
                                    f"{exponent!r}")
@@ -174,31 +176,41 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
         return NonlinearFit(BtfMaterial.from_core(r["maps"]), r["solver"], r["mean_iterations"],
                             float(r["shadowed_fraction"]), float(r["noise"]))
 
+    def refine_cells(f: NonlinearFit) -> None:
+        from weft.btf import jpeg_cells as cells
+        e_max = resolvable_exponent(samples) if max_exponent is None else float(max_exponent)
+        mask = cells.shadow_mask(samples, f.material) if f.shadowed_fraction > 0 else None
+        f.material, _ = cells.refine(samples, f.material, max_exponent=e_max, shadowed=mask)
+
+    use_cells = jpeg_cells and getattr(samples, "jpeg_cells", None) is not None
     fit = core_fit(seed, exponent == "fixed", _noise(noise))
     if exponent == "pooled" and fit.material.specular is not None and \
             np.any(fit.material.specular > 0):
         from weft.btf import exponent_pool
         from weft.btf import jpeg_cells as cells
 
-        mask = cells.shadow_mask(samples, fit.material) if fit.shadowed_fraction > 0 else None
-        variance = exponent_pool.eta_variance(samples, fit.material, bool(luminance_normals),
-                                              mask)
-        eta = np.log(fit.material.exponent_map.astype(np.float64))
+        # with the cells, the exponents pooled are the refined ones: the decoded values put
+        # every coefficient at its cell's centre, which broadens highlights alike in all
+        # texels and biases the per-texel exponents low together (random0.jpg at 64²: the
+        # pooled exponent 69 -> 79 with the cells, truth 82), a bias no pooling removes
+        pooled_from = dataclasses.replace(fit)
+        if use_cells:
+            refine_cells(pooled_from)
+        m = pooled_from.material
+        mask = cells.shadow_mask(samples, m) if fit.shadowed_fraction > 0 else None
+        variance = exponent_pool.eta_variance(samples, m, bool(luminance_normals), mask)
+        eta = np.log(m.exponent_map.astype(np.float64))
         scale = exponent_pool.error_scale(eta, variance)
         eta, info = exponent_pool.pool(eta, variance * scale)
         info["error_scale"] = float(np.sqrt(scale))
-        start = dataclasses.replace(fit.material, exponent_map=np.exp(eta).astype(np.float32))
+        start = dataclasses.replace(m, exponent_map=np.exp(eta).astype(np.float32))
         # the same cast-shadow threshold as the first pass (its noise, estimated or given)
         first = fit
         fit = core_fit(start, True, first.noise if visibility else _noise(noise))
         fit.mean_iterations += first.mean_iterations
         fit.exponent_pool = info
-    if jpeg_cells and getattr(samples, "jpeg_cells", None) is not None:
-        from weft.btf import jpeg_cells as cells
-        e_max = resolvable_exponent(samples) if max_exponent is None else float(max_exponent)
-        mask = cells.shadow_mask(samples, fit.material) if fit.shadowed_fraction > 0 else None
-        fit.material, _ = cells.refine(samples, fit.material, max_exponent=e_max,
-                                       shadowed=mask)
+    elif use_cells:
+        refine_cells(fit)
     return fit
 
 
