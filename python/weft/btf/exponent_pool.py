@@ -117,7 +117,7 @@ def eta_variance(samples: Any, material: BtfMaterial, luminance: bool = False,
                                                                                    params))
         dof = s_count * channels - params
         sigma2 = sse / np.maximum(dof, 1)
-        # the η column scaled to unit norm before inverting: k near 0 makes it tiny
+        # every column scaled to unit norm before inverting (η's is tiny where k is near 0)
         scale = np.sqrt(np.clip(np.einsum("...ii->...i", jtj), 1e-300, None))
         inv = np.linalg.pinv(jtj / scale[..., :, None] / scale[..., None, :])
         var = sigma2 * inv[..., -1, -1] / scale[..., -1] ** 2
