@@ -40,7 +40,8 @@ from weft.batch.manifest import where
 FIT_DEFAULTS: Dict[str, Any] = dict(views="frontal", gamma="raw", robust=False,
                                     max_exponent=None, per_texel_exponent=False, nonlinear=True,
                                     solver="builtin", luminance_normals=False, visibility=True,
-                                    lafortune=[1], figures=True, threads=0)
+                                    pooled_exponent=False, lafortune=[1], figures=True,
+                                    threads=0)
 
 #: How many times a task's memory is its samples' float bytes: the samples, one copy of
 #: their values (``BtfSamples.values``), one reconstruction (scoring, figures) and the
@@ -233,7 +234,7 @@ def assemble(job: BtfJob, header: Dict[str, Any], chosen: Optional[Dict[str, Any
     """Stitches the bands (Blinn-Phong and Lafortune tiles, any order), scores every model on
     all samples and writes the ``btf fit`` outputs; returns {"files": {relative path: bytes},
     "best", "deviation", ...}."""
-    from weft.btf.fit_report import blinn_phong_choice, score_all, write_fit
+    from weft.btf.fit_report import blinn_phong_choice, pooled_fits, score_all, write_fit
 
     t0 = time.perf_counter()
     done = [t for t in tiles if t is not None]
@@ -244,6 +245,9 @@ def assemble(job: BtfJob, header: Dict[str, Any], chosen: Optional[Dict[str, Any
     choice = blinn_phong_choice(samples, scored)
     if chosen is not None and chosen["choice"] != choice:
         raise weft.Error(f"{job.name}: the highlight choice changed between stages")
+    # pooling needs every texel: fitted here, on the whole dataset, as btf fit does
+    scored += score_all(samples, pooled_fits(samples, scored, choice, job.args(),
+                                             _timer(job.times)))
     scored += score_all(samples, _stitch_all(laf, samples.count))
     tmp = tempfile.mkdtemp(prefix="weft-batch-")
     try:

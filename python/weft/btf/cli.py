@@ -86,6 +86,10 @@ def add_fit_options(f: Any, truth: bool = True) -> None:
                         "(for JPEG input, whose chroma is subsampled)")
     f.add_argument("--no-visibility", dest="visibility", action="store_false",
                    help="Blinn-Phong: fit every sample (no cast-shadow estimation)")
+    f.add_argument("--pooled-exponent", action="store_true",
+                   help="also fit the chosen Blinn-Phong highlight with its exponents pooled "
+                        "over the material (model blinn_phong_pooled: one exponent where the "
+                        "texels agree, weft.btf.exponent_pool)")
     f.add_argument("--lafortune", type=int, choices=(0, 1, 2), nargs="+", default=[1],
                    help="also fit diffuse + this many Lafortune lobes, e.g. '1 2' (0 = none; "
                         "default 1)")

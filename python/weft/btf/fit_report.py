@@ -94,7 +94,8 @@ def lafortune_lobes(args: argparse.Namespace) -> List[int]:
 
 def fit_steps(args: argparse.Namespace) -> int:
     """How many fits :func:`fit_all` runs for these options."""
-    return 4 + int(args.robust) + 2 * int(args.nonlinear) + len(lafortune_lobes(args))
+    pooled = int(args.nonlinear and getattr(args, "pooled_exponent", False))
+    return 4 + int(args.robust) + 2 * int(args.nonlinear) + pooled + len(lafortune_lobes(args))
 
 
 def _threads(args: argparse.Namespace) -> int:
@@ -176,6 +177,30 @@ def blinn_phong_choice(samples: Any, scored: List[Scored]) -> Dict[str, Any]:
             "deviation_flat": by["blinn_phong_flat"].deviation, "rule": pick["rule"]}
 
 
+def pooled_fits(samples: Any, scored: List[Scored], choice: Dict[str, Any],
+                args: argparse.Namespace, run: Any) -> List[Fitted]:
+    """With ``--pooled-exponent``: the chosen Blinn-Phong highlight fitted again from its
+    specular seed with ``exponent="pooled"`` (model ``blinn_phong_pooled``); [] otherwise or
+    without the Blinn-Phong fits. It needs every texel (the material's exponent spread), so a
+    batch fits it on the whole dataset too."""
+    if not choice or not getattr(args, "pooled_exponent", False):
+        return []
+    flat_ns = choice["chosen"] == "blinn_phong_flat"
+    seed = next(s.model for s in scored
+                if s.name == ("specular_eq4.30" if flat_ns else "specular_eq4.29"))
+    bp, t = run("Blinn-Phong, pooled exponent", btf_fit.fit_blinn_phong, samples, seed,
+                args.solver, max_exponent=args.max_exponent, flat_specular_normal=flat_ns,
+                visibility=args.visibility, threads=_threads(args),
+                luminance_normals=getattr(args, "luminance_normals", False),
+                exponent="pooled")
+    pool = bp.exponent_pool or {}
+    return [Fitted("blinn_phong_pooled", bp.material, t, dict(
+        solver=bp.solver, mean_iterations=bp.mean_iterations,
+        shadowed_fraction=bp.shadowed_fraction, highlight=choice["chosen"],
+        pooled_exponent=pool.get("mean"), pooled_spread=pool.get("spread"),
+        pooled_error_scale=pool.get("error_scale")))]
+
+
 def lafortune_seed(flat: BtfMaterial, scored: List[Scored],
                    choice: Dict[str, Any]) -> Tuple[BtfMaterial, bool]:
     """(seed, fixed_normal) of the Lafortune fits: the chosen Blinn-Phong fit with its normal
@@ -212,6 +237,7 @@ def fit_all(samples: Any, args: argparse.Namespace) -> Tuple[List[Scored], Dict[
     scored = score_all(samples, seeds.models + blinn_phong_fits(
         samples, seeds.flat.material, seeds.fitted.material, args, f.run))
     choice = blinn_phong_choice(samples, scored)
+    scored += score_all(samples, pooled_fits(samples, scored, choice, args, f.run))
     seed, fixed = lafortune_seed(seeds.flat.material, scored, choice)
     scored += score_all(samples, lafortune_fits(samples, seed, fixed, args, f.run))
     f.progress.close()

@@ -47,14 +47,16 @@ def test_bands_give_the_outputs_of_btf_fit(tmp_path):
     maps and previews byte for byte, metrics and report up to the measured times."""
     path = write_datasets(str(tmp_path), count=1, size=20)[0]
     assert weft_main(["btf", "fit", path, "--out", str(tmp_path / "cli"), "--no-progress",
-                      "--no-figures", "--lafortune", "1", "2"]) == 0
-    jobs = wb.make_jobs([path], dict(figures=False, lafortune=[1, 2]), tiles=5)
+                      "--no-figures", "--lafortune", "1", "2", "--pooled-exponent"]) == 0
+    jobs = wb.make_jobs([path], dict(figures=False, lafortune=[1, 2], pooled_exponent=True),
+                        tiles=5)
     summary = _serial(jobs, tmp_path / "batch")
     assert summary["done"] == 1 and summary["texels"] == 400
     cli, batch = tree(str(tmp_path / "cli")), tree(str(tmp_path / "batch" / "m0"))
     assert sorted(cli) == sorted(batch)
     maps = [k for k in cli if k.startswith("maps")]
     assert len(maps) > 30 and any("lafortune_2" in k for k in maps)
+    assert any("blinn_phong_pooled" in k for k in maps)
     assert [k for k in maps if cli[k] != batch[k]] == []
     assert _masked_metrics(str(tmp_path / "cli" / "metrics.json")) == \
         _masked_metrics(str(tmp_path / "batch" / "m0" / "metrics.json"))

@@ -155,3 +155,26 @@ def test_synth_random_writes_its_truth(tmp_path: Path) -> None:
         expected.material.exponent)
     np.testing.assert_allclose(truth.normal, expected.material.normal, atol=1e-6)
     assert btf.load(str(out)).count == 81
+
+
+def test_pooled_exponent_model(tmp_path) -> None:
+    """--pooled-exponent adds the chosen highlight with pooled exponents: nearer the truth's one
+    exponent than the per-texel fit (random material, noise 0.004, 32 x 32)."""
+    data = tmp_path / "rand"
+    proc = run("-m", "weft", "btf", "synth", "random", str(data), "--seed", "31", "--size", "32",
+               "--format", "png")
+    assert proc.returncode == 0, proc.stderr
+    out = tmp_path / "fit"
+    proc = run("-m", "weft", "btf", "fit", str(data), "--out", str(out), "--lafortune", "0",
+               "--no-figures", "--pooled-exponent")
+    assert proc.returncode == 0, proc.stderr
+    metrics = json.loads((out / "metrics.json").read_text())
+    pooled = metrics["models"]["blinn_phong_pooled"]
+    assert pooled["highlight"] == metrics["blinn_phong_choice"]["chosen"]
+    assert pooled["outside_physical_space"]["texels"] == 0
+    truth = metrics["truth"]
+    chosen = metrics["blinn_phong_choice"]["chosen"]
+    assert truth["blinn_phong_pooled"]["exponent_median_rel_error"] < \
+        0.5 * truth[chosen]["exponent_median_rel_error"]
+    back = btf.BtfMaterial.load(str(out / "maps" / "blinn_phong_pooled"))
+    assert back.exponent_map is not None
