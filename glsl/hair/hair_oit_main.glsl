@@ -64,14 +64,19 @@ const int HAIR_COVERED = 32;          // the first layer after the depths
 const float HAIR_FIXED_ONE = 65536.0; // fixed-point unit of the coverage sums
 
 // The sample points of the pixel inside the strip, between its ends (bit j of word k: point
-// 32 k + j): the first 128 points of the 2D Sobol sequence, walked in Gray code order, which
-// visits the first 32 points first. Point (X, Y) (integers < 128) lies at ((X, Y) + 0.5) / 128
-// - 0.5 from the pixel's centre; X is the van der Corput radical inverse of the index, Y Sobol's
-// second dimension, whose direction numbers are the rows of Pascal's triangle mod 2. Points
-// 0-31 and 0-127 are (0, m, 2)-nets: every 2^-a x 2^-b box of the pixel with a + b = 5 (or 7)
-// holds one point. (Words filled in a loop of their own: 15-25% faster on lavapipe than one
-// loop indexing the vector.)
-const uint HAIR_SOBOL_Y[7] = uint[7](64u, 96u, 80u, 120u, 68u, 102u, 85u);
+// 32 k + j): the first 128 points of the 2D Sobol sequence in Gray code order, which visits the
+// first 32 points first. Point (X, Y) (integers < 128) lies at ((X, Y) + 0.5) / 128 - 0.5 from
+// the pixel's centre; X is the van der Corput radical inverse of the index, Y Sobol's second
+// dimension, whose direction numbers (64, 96, 80, 120, 68, 102, 85) are the rows of Pascal's
+// triangle mod 2. Points 0-31 and 0-127 are (0, m, 2)-nets: every 2^-a x 2^-b box of the pixel
+// with a + b = 5 (or 7) holds one point. The points are written out, one HAIR_POINT each
+// (tests/python/hair/test_hair_sample_points.py checks them against the sequence): lavapipe
+// ran the loop that walked the sequence, or read a constant table, 28% slower in the opaque
+// strands' fringe passes (BENCHMARKS.md, hair).
+#define HAIR_POINT(k, j, X, Y)                                                         \
+    d = x0 + dot(vec2(X, Y), stepAcross);                                             \
+    l = dot(vec2(X, Y), stepAlong);                                                   \
+    if (abs(d) <= h && l >= yLo && l <= yHi) mask[k] |= 1u << j;
 uvec4 hairSampleMask(vec2 strip, vec2 ends, vec2 across, uint words) {
     vec2 along = vec2(across.y, -across.x); // root to tip
     vec2 stepAcross = across / 128.0, stepAlong = along / 128.0;
@@ -79,24 +84,60 @@ uvec4 hairSampleMask(vec2 strip, vec2 ends, vec2 across, uint words) {
     float x0 = strip.x + first * (across.x + across.y), h = 0.5 * strip.y;
     float y0 = first * (along.x + along.y), yLo = -ends.x - y0, yHi = ends.y - y0;
     uvec4 mask = uvec4(0u);
-    uint x = 0u, y = 0u;
-    for (uint k = 0u; k < words; ++k) {
-        uint m = 0u;
-        for (uint j = 0u; j < 32u; ++j) {
-            uint i = 32u * k + j;
-            if (i > 0u) {
-                uint c = uint(findLSB(i));
-                x ^= 64u >> c;
-                y ^= HAIR_SOBOL_Y[c];
-            }
-            vec2 q = vec2(x, y);
-            float d = x0 + dot(q, stepAcross), l = dot(q, stepAlong);
-            if (abs(d) <= h && l >= yLo && l <= yHi) m |= 1u << j;
-        }
-        mask[k] = m;
+    float d, l;
+    HAIR_POINT(0, 0, 0, 0) HAIR_POINT(0, 1, 64, 64) HAIR_POINT(0, 2, 96, 32)
+    HAIR_POINT(0, 3, 32, 96) HAIR_POINT(0, 4, 48, 48) HAIR_POINT(0, 5, 112, 112)
+    HAIR_POINT(0, 6, 80, 16) HAIR_POINT(0, 7, 16, 80) HAIR_POINT(0, 8, 24, 40)
+    HAIR_POINT(0, 9, 88, 104) HAIR_POINT(0, 10, 120, 8) HAIR_POINT(0, 11, 56, 72)
+    HAIR_POINT(0, 12, 40, 24) HAIR_POINT(0, 13, 104, 88) HAIR_POINT(0, 14, 72, 56)
+    HAIR_POINT(0, 15, 8, 120) HAIR_POINT(0, 16, 12, 60) HAIR_POINT(0, 17, 76, 124)
+    HAIR_POINT(0, 18, 108, 28) HAIR_POINT(0, 19, 44, 92) HAIR_POINT(0, 20, 60, 12)
+    HAIR_POINT(0, 21, 124, 76) HAIR_POINT(0, 22, 92, 44) HAIR_POINT(0, 23, 28, 108)
+    HAIR_POINT(0, 24, 20, 20) HAIR_POINT(0, 25, 84, 84) HAIR_POINT(0, 26, 116, 52)
+    HAIR_POINT(0, 27, 52, 116) HAIR_POINT(0, 28, 36, 36) HAIR_POINT(0, 29, 100, 100)
+    HAIR_POINT(0, 30, 68, 4) HAIR_POINT(0, 31, 4, 68)
+    if (words > 1u) {
+        HAIR_POINT(1, 0, 6, 34) HAIR_POINT(1, 1, 70, 98) HAIR_POINT(1, 2, 102, 2)
+        HAIR_POINT(1, 3, 38, 66) HAIR_POINT(1, 4, 54, 18) HAIR_POINT(1, 5, 118, 82)
+        HAIR_POINT(1, 6, 86, 50) HAIR_POINT(1, 7, 22, 114) HAIR_POINT(1, 8, 30, 10)
+        HAIR_POINT(1, 9, 94, 74) HAIR_POINT(1, 10, 126, 42) HAIR_POINT(1, 11, 62, 106)
+        HAIR_POINT(1, 12, 46, 58) HAIR_POINT(1, 13, 110, 122) HAIR_POINT(1, 14, 78, 26)
+        HAIR_POINT(1, 15, 14, 90) HAIR_POINT(1, 16, 10, 30) HAIR_POINT(1, 17, 74, 94)
+        HAIR_POINT(1, 18, 106, 62) HAIR_POINT(1, 19, 42, 126) HAIR_POINT(1, 20, 58, 46)
+        HAIR_POINT(1, 21, 122, 110) HAIR_POINT(1, 22, 90, 14) HAIR_POINT(1, 23, 26, 78)
+        HAIR_POINT(1, 24, 18, 54) HAIR_POINT(1, 25, 82, 118) HAIR_POINT(1, 26, 114, 22)
+        HAIR_POINT(1, 27, 50, 86) HAIR_POINT(1, 28, 34, 6) HAIR_POINT(1, 29, 98, 70)
+        HAIR_POINT(1, 30, 66, 38) HAIR_POINT(1, 31, 2, 102)
+    }
+    if (words > 2u) {
+        HAIR_POINT(2, 0, 3, 51) HAIR_POINT(2, 1, 67, 115) HAIR_POINT(2, 2, 99, 19)
+        HAIR_POINT(2, 3, 35, 83) HAIR_POINT(2, 4, 51, 3) HAIR_POINT(2, 5, 115, 67)
+        HAIR_POINT(2, 6, 83, 35) HAIR_POINT(2, 7, 19, 99) HAIR_POINT(2, 8, 27, 27)
+        HAIR_POINT(2, 9, 91, 91) HAIR_POINT(2, 10, 123, 59) HAIR_POINT(2, 11, 59, 123)
+        HAIR_POINT(2, 12, 43, 43) HAIR_POINT(2, 13, 107, 107) HAIR_POINT(2, 14, 75, 11)
+        HAIR_POINT(2, 15, 11, 75) HAIR_POINT(2, 16, 15, 15) HAIR_POINT(2, 17, 79, 79)
+        HAIR_POINT(2, 18, 111, 47) HAIR_POINT(2, 19, 47, 111) HAIR_POINT(2, 20, 63, 63)
+        HAIR_POINT(2, 21, 127, 127) HAIR_POINT(2, 22, 95, 31) HAIR_POINT(2, 23, 31, 95)
+        HAIR_POINT(2, 24, 23, 39) HAIR_POINT(2, 25, 87, 103) HAIR_POINT(2, 26, 119, 7)
+        HAIR_POINT(2, 27, 55, 71) HAIR_POINT(2, 28, 39, 23) HAIR_POINT(2, 29, 103, 87)
+        HAIR_POINT(2, 30, 71, 55) HAIR_POINT(2, 31, 7, 119)
+    }
+    if (words > 3u) {
+        HAIR_POINT(3, 0, 5, 17) HAIR_POINT(3, 1, 69, 81) HAIR_POINT(3, 2, 101, 49)
+        HAIR_POINT(3, 3, 37, 113) HAIR_POINT(3, 4, 53, 33) HAIR_POINT(3, 5, 117, 97)
+        HAIR_POINT(3, 6, 85, 1) HAIR_POINT(3, 7, 21, 65) HAIR_POINT(3, 8, 29, 57)
+        HAIR_POINT(3, 9, 93, 121) HAIR_POINT(3, 10, 125, 25) HAIR_POINT(3, 11, 61, 89)
+        HAIR_POINT(3, 12, 45, 9) HAIR_POINT(3, 13, 109, 73) HAIR_POINT(3, 14, 77, 41)
+        HAIR_POINT(3, 15, 13, 105) HAIR_POINT(3, 16, 9, 45) HAIR_POINT(3, 17, 73, 109)
+        HAIR_POINT(3, 18, 105, 13) HAIR_POINT(3, 19, 41, 77) HAIR_POINT(3, 20, 57, 29)
+        HAIR_POINT(3, 21, 121, 93) HAIR_POINT(3, 22, 89, 61) HAIR_POINT(3, 23, 25, 125)
+        HAIR_POINT(3, 24, 17, 5) HAIR_POINT(3, 25, 81, 69) HAIR_POINT(3, 26, 113, 37)
+        HAIR_POINT(3, 27, 49, 101) HAIR_POINT(3, 28, 33, 53) HAIR_POINT(3, 29, 97, 117)
+        HAIR_POINT(3, 30, 65, 21) HAIR_POINT(3, 31, 1, 85)
     }
     return mask;
 }
+#undef HAIR_POINT
 
 float hairSampleCount(uvec4 mask) {
     uvec4 n = uvec4(bitCount(mask));
