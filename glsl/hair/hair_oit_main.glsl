@@ -155,8 +155,8 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     uint depth = floatBitsToUint(gl_FragCoord.z); // ordered as the depths are (all >= 0)
     uvec4 mask = hairSampleMask(inStrip, inEnds, across, 4u);
-    // every depth sample, those the fragment does not cover with the min's identity: lavapipe
-    // ran the branch per sample 6-14% slower (BENCHMARKS.md, hair)
+    // every depth sample, those the fragment does not cover with the min's identity (no branch
+    // per sample; a few percent faster on lavapipe, BENCHMARKS.md, hair)
     for (uint i = 0u; i < HAIR_DEPTH_SAMPLES; ++i)
         imageAtomicMin(hairSamples, ivec3(pixel, i), (mask.x & (1u << i)) != 0u ? depth : ~0u);
     for (uint k = 0u; k < 4u; ++k)
