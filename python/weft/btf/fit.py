@@ -129,7 +129,8 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
                     max_exponent: Optional[float] = None, threads: int = 0,
                     flat_specular_normal: bool = False, visibility: bool = True,
                     luminance_normals: bool = False, jpeg_cells: bool = False,
-                    noise: Optional[float] = None, exponent: str = "per_texel") -> NonlinearFit:
+                    noise: Optional[float] = None, exponent: str = "per_texel",
+                    per_texel: Optional[NonlinearFit] = None) -> NonlinearFit:
     """Per-texel Blinn-Phong in the renderer's model, seeded by ``seed`` (normal, exponent):
     ``P = albedo (ambient + max(n.l, 0)) + specular [n.l > 0] max(n_s.h, 0)^e``.
 
@@ -162,10 +163,14 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
     exponents really differ; then n, ρ, a, k fitted again at those exponents; ``exponent_pool``
     says what was found; with ``jpeg_cells`` the exponents pooled are the cell-refined ones and
     the final fit is not refined again), or "fixed" (the seed's exponent map, else its
-    exponent, kept)."""
+    exponent, kept). ``per_texel``: with "pooled", this fit of the same samples, seed and options
+    with ``exponent="per_texel"`` when it is already made (``btf fit`` has it): it is pooled
+    instead of fitting it again."""
     if exponent not in EXPONENT_MODES:
         raise weft.InvalidArgument(f"exponent must be 'per_texel', 'pooled' or 'fixed', got "
                                    f"{exponent!r}")
+    if per_texel is not None and exponent != "pooled":
+        raise weft.InvalidArgument("per_texel is the fit to pool: only with exponent='pooled'")
 
     def core_fit(start: BtfMaterial, fixed: bool, level: float) -> NonlinearFit:
         r = _core.btf_fit_blinn_phong(samples, start.core_maps(), solver, int(max_iterations),
@@ -183,7 +188,8 @@ def fit_blinn_phong(samples: Any, seed: BtfMaterial, solver: str = "auto",
         f.material, _ = cells.refine(samples, f.material, max_exponent=e_max, shadowed=mask)
 
     use_cells = jpeg_cells and getattr(samples, "jpeg_cells", None) is not None
-    fit = core_fit(seed, exponent == "fixed", _noise(noise))
+    fit = per_texel if per_texel is not None else core_fit(seed, exponent == "fixed",
+                                                           _noise(noise))
     if exponent == "pooled" and fit.material.specular is not None and \
             np.any(fit.material.specular > 0):
         from weft.btf import exponent_pool

@@ -146,7 +146,7 @@ def blinn_phong_fits(samples: Any, flat: BtfMaterial, fitted: BtfMaterial,
                     noise=(noise or {}).get(name))
         out.append(Fitted(name, bp.material, t, dict(
             solver=bp.solver, mean_iterations=bp.mean_iterations,
-            shadowed_fraction=getattr(bp, "shadowed_fraction", None))))
+            shadowed_fraction=getattr(bp, "shadowed_fraction", None), noise=bp.noise)))
     return out
 
 
@@ -179,20 +179,24 @@ def blinn_phong_choice(samples: Any, scored: List[Scored]) -> Dict[str, Any]:
 
 def pooled_fits(samples: Any, scored: List[Scored], choice: Dict[str, Any],
                 args: argparse.Namespace, run: Any) -> List[Fitted]:
-    """With ``--pooled-exponent``: the chosen Blinn-Phong highlight fitted again from its
-    specular seed with ``exponent="pooled"`` (model ``blinn_phong_pooled``); [] otherwise or
-    without the Blinn-Phong fits. It needs every texel (the material's exponent spread), so a
-    batch fits it on the whole dataset too."""
+    """With ``--pooled-exponent``: the chosen Blinn-Phong fit with its exponents pooled over the
+    material (``exponent="pooled"`` from that per-texel fit; model ``blinn_phong_pooled``); []
+    otherwise or without the Blinn-Phong fits. It needs every texel (the material's exponent
+    spread), so a batch pools on the whole dataset too."""
     if not choice or not getattr(args, "pooled_exponent", False):
         return []
     flat_ns = choice["chosen"] == "blinn_phong_flat"
     seed = next(s.model for s in scored
                 if s.name == ("specular_eq4.30" if flat_ns else "specular_eq4.29"))
+    chosen = next(s for s in scored if s.name == choice["chosen"])
+    first = btf_fit.NonlinearFit(chosen.model, chosen.extra["solver"],
+                                 chosen.extra["mean_iterations"],
+                                 chosen.extra["shadowed_fraction"] or 0.0, chosen.extra["noise"])
     bp, t = run("Blinn-Phong, pooled exponent", btf_fit.fit_blinn_phong, samples, seed,
                 args.solver, max_exponent=args.max_exponent, flat_specular_normal=flat_ns,
                 visibility=args.visibility, threads=_threads(args),
                 luminance_normals=getattr(args, "luminance_normals", False),
-                exponent="pooled")
+                exponent="pooled", per_texel=first)
     pool = bp.exponent_pool or {}
     return [Fitted("blinn_phong_pooled", bp.material, t, dict(
         solver=bp.solver, mean_iterations=bp.mean_iterations,
