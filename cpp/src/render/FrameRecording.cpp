@@ -46,12 +46,15 @@ std::vector<std::vector<uint64_t>> casterKeys(const render::FrameData& data, con
     return keys;
 }
 
-// The casters' keys in one (empty without casters: DomeShadows builds no dome then).
-std::vector<uint64_t> flatten(const std::vector<std::vector<uint64_t>>& keys) {
-    std::vector<uint64_t> all;
+// The casters' keys in one after `all` (empty without casters: DomeShadows builds no dome
+// then), those `skip` accepts left out.
+template <class Skip = bool (*)(size_t)>
+std::vector<uint64_t> flatten(
+    const std::vector<std::vector<uint64_t>>& keys, std::vector<uint64_t> all = {},
+    Skip skip = [](size_t) { return false; }) {
     for (size_t i = 0; i < keys.size(); ++i) {
-        if (keys[i].empty()) continue; // casts no shadow
-        all.push_back(i);              // which caster each part belongs to
+        if (keys[i].empty() || skip(i)) continue; // casts no shadow, or left out
+        all.push_back(i);                         // which caster each part belongs to
         all.insert(all.end(), keys[i].begin(), keys[i].end());
     }
     return all;
@@ -113,22 +116,18 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, const Scene& scene, const Came
     bool splitShadows = false, drawStill = false, hairMoving = false;
     if (settings.reuseShadowMaps && !reuseShadows && !data.shadowViews.empty() &&
         views == lastShadowViews && keys.size() == lastCasterKeys.size()) {
-        std::vector<uint64_t> still = views;
         bool anyMoving = false, anyStill = false;
         moving.assign(data.draws.size(), 0);
+        auto moved = [&](size_t i) { return keys[i] != lastCasterKeys[i]; };
         for (size_t i = 0; i < keys.size(); ++i) {
             if (keys[i].empty()) continue; // casts no shadow
-            const bool moved = keys[i] != lastCasterKeys[i];
-            (moved ? anyMoving : anyStill) = true;
+            (moved(i) ? anyMoving : anyStill) = true;
             if (i < moving.size()) // a draw; the last key is the hair's
-                moving[i] = moved;
+                moving[i] = moved(i);
             else
-                hairMoving = moved;
-            if (!moved) {
-                still.push_back(i);
-                still.insert(still.end(), keys[i].begin(), keys[i].end());
-            }
+                hairMoving = moved(i);
         }
+        std::vector<uint64_t> still = flatten(keys, views, moved);
         splitShadows = anyMoving && anyStill;
         drawStill = splitShadows && still != stillSignature;
         if (splitShadows) stillSignature = std::move(still);
