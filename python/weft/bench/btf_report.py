@@ -241,9 +241,11 @@ def plot_error_vs_time(rows: List[Dict[str, Any]], path: str) -> Optional[str]:
                   for r in rs]
             xs = [r["seconds"] / r["texels"] * 1e6 for r in rs]
             ys_ok = [max(y, 1e-4) for y in ys]
-            ax.scatter(xs, ys_ok, s=10, alpha=0.35, color=cmap(i % 10))
-            ax.scatter([np.median(xs)], [np.median(ys_ok)], s=90, color=cmap(i % 10),
-                       edgecolors="black", label=model, zorder=3)
+            # ten colours, then the same colours with square markers
+            style = dict(color=cmap(i % 10), marker="os"[i // 10 % 2])
+            ax.scatter(xs, ys_ok, s=10, alpha=0.35, **style)
+            ax.scatter([np.median(xs)], [np.median(ys_ok)], s=90, edgecolors="black",
+                       label=model, zorder=3, **style)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("fit time per texel (µs, 2 cores)")
