@@ -217,6 +217,14 @@ def test_seed_sweep_reports_each_seed_and_all_texels(capsys) -> None:
     assert seed_sweep.main(["--seeds", "6", "8", "--size", "16"]) == 0
     out = capsys.readouterr().out
     assert "| 6 |" in out and "| 8 |" in out and "all texels: mean" in out
+    assert "missing 2° mean:" in out and "missing 6° p95:" in out
     r = seed_sweep.fit_seed(6, 16)
     assert r["errors"].shape == (16, 16)
     assert r["mean_deg"] == pytest.approx(float(r["errors"].mean()))
+    # the recommended pipeline on unshadowed JPEG: every unshadowed target judged
+    assert seed_sweep.main(["--seeds", "1", "--size", "16", "--format", "jpg", "--no-shadows",
+                            "--pooled"]) == 0
+    out = capsys.readouterr().out
+    assert all(f"missing {t}:" in out for t in ("0.5° mean", "exponent 10%", "k_s 10%"))
+    r = seed_sweep.fit_seed(1, 16, shadows=False, pooled=True)
+    assert 0 <= r["exponent_rel"] < 1 and 0 <= r["k_s_rel"] < 1
