@@ -91,8 +91,11 @@ def main(argv: Sequence[str] = ()) -> int:
     p.add_argument("--pooled", action="store_true",
                    help="the recommended pipeline: the chosen highlight, exponents pooled")
     args = p.parse_args(list(argv))
-    rows = [fit_seed(s, args.size, args.shadows, args.format, args.threads, args.pooled)
-            for s in parse_seeds(args.seeds)]
+    try:
+        rows = [fit_seed(s, args.size, args.shadows, args.format, args.threads, args.pooled)
+                for s in parse_seeds(args.seeds)]
+    except ValueError as exc:  # weft.InvalidArgument: a bad seed, size or thread count
+        p.error(str(exc))
     print("| seed | highlight (truth / chosen) | mean ° | p95 ° | exponent | k_s |\n"
           "|---|---|---|---|---|---|")
     for r in rows:

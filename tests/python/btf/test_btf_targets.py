@@ -228,3 +228,8 @@ def test_seed_sweep_reports_each_seed_and_all_texels(capsys) -> None:
     assert all(f"missing {t}:" in out for t in ("0.5° mean", "exponent 10%", "k_s 10%"))
     r = seed_sweep.fit_seed(1, 16, shadows=False, pooled=True)
     assert 0 <= r["exponent_rel"] < 1 and 0 <= r["k_s_rel"] < 1
+    for bad in (["--seeds", "x"], ["--seeds", "1", "--size", "2"]):
+        with pytest.raises(SystemExit) as exit_:
+            seed_sweep.main(bad)
+        assert exit_.value.code == 2
+        assert "error:" in capsys.readouterr().err
