@@ -99,7 +99,8 @@ def best_time(fn: Callable[[], Any], repeats: int = 1) -> Tuple[float, Any]:
 
 
 def make_data(case: Case, size: int, tmp: str) -> Tuple[Any, Any]:
-    """(samples read back from files, truth) of a case (files in ``folder(case, tmp)``)."""
+    """(samples read back from files, truth) of a case; JPEG read with its quantisation cells
+    (``samples.jpeg_cells``, for the recommended pipeline; the decoded values are the same)."""
     from weft import btf
     from weft.btf import synth
 
@@ -109,12 +110,9 @@ def make_data(case: Case, size: int, tmp: str) -> Tuple[Any, Any]:
     else:
         samples, truth = synth.synthesize(case.source, size, noise=NOISE, seed=case.seed,
                                           shadows=case.shadows)
-    btf.write(folder(case, tmp), samples, fmt=case.fmt, quality=JPEG_QUALITY)
-    return btf.load(folder(case, tmp)), truth
-
-
-def folder(case: Case, tmp: str) -> str:
-    return os.path.join(tmp, case.name)
+    folder = os.path.join(tmp, case.name)
+    btf.write(folder, samples, fmt=case.fmt, quality=JPEG_QUALITY)
+    return btf.load(folder, jpeg_cells=case.fmt == "jpg"), truth
 
 
 def crop(samples: Any, n: int) -> Any:
@@ -199,8 +197,7 @@ def run_case(case: Case, size: int, crop_n: int, tmp: str) -> List[Dict[str, Any
     # (JPEG: pooled from the fit refined against the files' quantisation cells)
     seed_chosen, flat_chosen = (fitted.material, False) if chosen == "n" else (flat.material,
                                                                               True)
-    cells_data = btf.load(folder(case, tmp), jpeg_cells=True) if luma else data
-    t, r = best_time(lambda: btf.fit_blinn_phong(cells_data, seed_chosen, "builtin",
+    t, r = best_time(lambda: btf.fit_blinn_phong(data, seed_chosen, "builtin",
                                                  flat_specular_normal=flat_chosen,
                                                  luminance_normals=luma, jpeg_cells=luma,
                                                  exponent="pooled"))
