@@ -44,6 +44,32 @@ TEST(FrameGraph, RejectsUnknownResources) {
     EXPECT_THROW(g.addPass({"bad", {{3, Use::Sampled}}, {}, [](VkCommandBuffer) {}}), weft::Error);
 }
 
+// A depth a pass does not store (DONT_CARE) is undefined afterwards: lavapipe keeps it, an NVIDIA
+// driver dropped parts of the bounce captures' depths, so the graph refuses a later read.
+TEST(FrameGraph, RejectsReadingADiscardedDepth) {
+    FrameGraph g;
+    const int depth = g.addResource("depth", nullptr);
+    const int out = g.addResource("out", nullptr);
+    g.addPass({"capture", {}, {{depth, Use::DepthScratch}}, [](VkCommandBuffer) {}});
+    g.addPass(
+        {"project", {{depth, Use::Sampled}}, {{out, Use::ColorWrite}}, [](VkCommandBuffer) {}});
+    g.markOutput(out);
+    EXPECT_THROW(g.compile(), weft::Error);
+}
+
+TEST(FrameGraph, AcceptsADiscardedDepthWrittenAgainBeforeItIsRead) {
+    FrameGraph g;
+    const int depth = g.addResource("depth", nullptr);
+    const int out = g.addResource("out", nullptr);
+    g.addPass({"scratch", {}, {{depth, Use::DepthScratch}}, [](VkCommandBuffer) {}});
+    g.addPass({"kept", {}, {{depth, Use::DepthWrite}}, [](VkCommandBuffer) {}});
+    g.addPass(
+        {"project", {{depth, Use::Sampled}}, {{out, Use::ColorWrite}}, [](VkCommandBuffer) {}});
+    g.markOutput(out);
+    EXPECT_EQ(g.compile().size(), 3u);
+    EXPECT_EQ(useState(Use::DepthScratch, true).layout, useState(Use::DepthWrite, true).layout);
+}
+
 TEST(FrameGraph, UseStatesMatchVulkanLayouts) {
     EXPECT_EQ(useState(Use::Sampled, true).layout, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
     EXPECT_EQ(useState(Use::Sampled, false).layout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);

@@ -89,8 +89,9 @@ void addBouncePasses(FrameGraph& g, FramePassContext& f) {
                            // the receivers alone, over alpha 0: the sky they leave uncovered
                            drawCaptureFace(
                                f, cmd, f.bounce.faces().layerView(i), f.bounce.depth().layerView(i),
-                               BounceProbes::kFaceSize, f.sets.bounceFaces[set], glm::vec4(0.0f),
-                               false, [](const Draw& d, int) { return !d.castShadows; }, 0);
+                               true, BounceProbes::kFaceSize, f.sets.bounceFaces[set],
+                               glm::vec4(0.0f), false,
+                               [](const Draw& d, int) { return !d.castShadows; }, 0);
                        }});
         }
         if (round == 0) // the receivers stand as they stood: the second round's depths are these

@@ -44,10 +44,15 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
                                 f.sets.frame, nullptr, 0);
              }});
 
-    std::vector<ResourceUse> writes = {{f.rHdr, Use::ColorWrite}, {f.rDepth, Use::DepthWrite}};
+    // the depth is kept when hair tests against it or the dome blur reads it (with MSAA the
+    // multisampled one; its resolve is written either way)
+    const bool keepDepth = f.hasHair || f.domeBlur;
+    const Use depthUse = keepDepth ? Use::DepthWrite : Use::DepthScratch;
+    std::vector<ResourceUse> writes = {{f.rHdr, Use::ColorWrite},
+                                       {f.rDepth, ms ? Use::DepthWrite : depthUse}};
     if (ms) {
         writes.push_back({rHdrMs, Use::ColorWrite});
-        writes.push_back({rDepthMs, Use::DepthWrite});
+        writes.push_back({rDepthMs, depthUse});
     }
     for (int r : f.rDebug)
         if (r >= 0) writes.push_back({r, Use::ColorWrite});
@@ -71,7 +76,7 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
     if (f.background) reads.push_back({rColour, Use::ColorWrite}); // drawn over, loaded
 
     g.addPass(
-        {"forward", reads, writes, [&f, ms](VkCommandBuffer cmd) {
+        {"forward", reads, writes, [&f, ms, keepDepth](VkCommandBuffer cmd) {
              RenderTargets& t = f.targets;
              std::vector<VkRenderingAttachmentInfo> colors;
              auto color = [&](VkImageView view, const glm::vec4& clear) {
@@ -100,9 +105,8 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
                                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                                  VK_RESOLVE_MODE_AVERAGE_BIT);
              }
-             // kept when hair tests against it or the dome blur reads it
              VkRenderingAttachmentInfo depth =
-                 clearedDepth(ms ? t.depthMs.view() : t.depth.view(), f.hasHair || f.domeBlur);
+                 clearedDepth(ms ? t.depthMs.view() : t.depth.view(), keepDepth);
              if (ms)
                  resolveInto(depth, t.depth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                              VK_RESOLVE_MODE_SAMPLE_ZERO_BIT);

@@ -36,11 +36,24 @@ std::vector<int> FrameGraph::compile() {
     }
     std::vector<int> order;
     mCulled.clear();
+    // Which pass left each resource discarded (DepthScratch): its contents are undefined after
+    // it. lavapipe keeps them anyway, a GPU need not (an NVIDIA driver dropped parts of the
+    // bounce captures' depths so), so reading them is caught here rather than on a GPU.
+    std::vector<const Pass*> discardedBy(mResources.size(), nullptr);
     for (size_t i = 0; i < mPasses.size(); ++i) {
-        if (live[i])
-            order.push_back(int(i));
-        else
+        if (!live[i]) {
             mCulled.push_back(mPasses[i].name);
+            continue;
+        }
+        order.push_back(int(i));
+        const Pass& p = mPasses[i];
+        for (const ResourceUse& r : p.reads)
+            if (const Pass* by = discardedBy[size_t(r.resource)])
+                throw Error("frame graph: pass '" + p.name + "' reads '" +
+                            mResources[size_t(r.resource)].name + "', which pass '" + by->name +
+                            "' did not keep (Use::DepthScratch)");
+        for (const ResourceUse& w : p.writes)
+            discardedBy[size_t(w.resource)] = w.use == Use::DepthScratch ? &p : nullptr;
     }
     return order;
 }
@@ -52,6 +65,7 @@ UseState useState(Use use, bool depth) {
                 VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                 VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT};
     case Use::DepthWrite:
+    case Use::DepthScratch:
         // A multisample resolve into a depth attachment runs in the colour-output stage as a
         // colour-attachment write (Vulkan spec, "Render Pass Operations"), hence those too.
         return {VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,

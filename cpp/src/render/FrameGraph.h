@@ -15,7 +15,9 @@ namespace weft::render {
 
 enum class Use {
     ColorWrite,    // colour attachment
-    DepthWrite,    // depth attachment (read + write)
+    DepthWrite,    // depth attachment (read + write), kept for later passes (store op STORE)
+    DepthScratch,  // depth attachment the pass does not keep (store op DONT_CARE): no later
+                   // pass may sample or copy it until another pass writes it
     Sampled,       // sampled/fetched in a fragment shader
     TransferRead,  // copy source (readback)
     TransferWrite, // copy destination
@@ -45,7 +47,8 @@ public:
     /// Resources the frame must produce (read back, presented).
     void markOutput(int resource);
 
-    /// Indices of live passes in submission order; also fills culledPasses().
+    /// Indices of live passes in submission order; also fills culledPasses(). Throws
+    /// weft::Error when a live pass samples or copies a depth a DepthScratch pass discarded.
     std::vector<int> compile();
     const std::vector<std::string>& culledPasses() const { return mCulled; }
     const std::vector<Pass>& passes() const { return mPasses; }

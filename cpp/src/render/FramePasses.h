@@ -81,10 +81,11 @@ void drawCasters(const FramePassContext& f, VkCommandBuffer cmd, VkImageView vie
                  const glm::mat4& viewProj, bool withHair, Casters which = Casters::All,
                  bool clear = true);
 /// One cube-capture face: the draws `include` accepts (phantoms never), shaded with the face's
-/// frame set into `color` (cleared to `clear`) over a `size` x `size` depth; with `background`
-/// the environment is drawn behind them (ProbePasses.cpp).
+/// frame set into `color` (cleared to `clear`) over a `size` x `size` depth, stored when
+/// `keepDepth` (its pass then declares Use::DepthWrite, else Use::DepthScratch); with
+/// `background` the environment is drawn behind them (ProbePasses.cpp).
 void drawCaptureFace(const FramePassContext& f, VkCommandBuffer cmd, VkImageView color,
-                     VkImageView depth, uint32_t size, VkDescriptorSet faceSet,
+                     VkImageView depth, bool keepDepth, uint32_t size, VkDescriptorSet faceSet,
                      const glm::vec4& clear, bool background, bool (*include)(const Draw&, int),
                      int arg);
 /// One full-screen triangle into one colour target of the output's size (OutputPasses.cpp).

@@ -9,11 +9,11 @@
 namespace weft::render {
 
 void drawCaptureFace(const FramePassContext& f, VkCommandBuffer cmd, VkImageView color,
-                     VkImageView depth, uint32_t size, VkDescriptorSet faceSet,
+                     VkImageView depth, bool keepDepth, uint32_t size, VkDescriptorSet faceSet,
                      const glm::vec4& clear, bool background, bool (*include)(const Draw&, int),
                      int arg) {
     const VkRenderingAttachmentInfo colorInfo = clearedColor(color, clear);
-    const VkRenderingAttachmentInfo depthInfo = clearedDepth(depth, false);
+    const VkRenderingAttachmentInfo depthInfo = clearedDepth(depth, keepDepth);
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, {size, size}};
     info.layerCount = 1;
@@ -63,12 +63,12 @@ void addProbePasses(FrameGraph& g, FramePassContext& f) {
     for (uint32_t face = 0; face < 6; ++face) {
         g.addPass({"probe[" + std::to_string(face) + "]",
                    reads,
-                   {{f.rProbe, Use::ColorWrite}, {probeDepth, Use::DepthWrite}},
+                   {{f.rProbe, Use::ColorWrite}, {probeDepth, Use::DepthScratch}},
                    [&f, face](VkCommandBuffer cmd) {
                        ReflectionProbe& probe = f.probe;
                        // everything but the probe's own instance
                        drawCaptureFace(
-                           f, cmd, probe.cube().layerView(face), probe.depth().view(),
+                           f, cmd, probe.cube().layerView(face), probe.depth().view(), false,
                            probe.cube().desc().width, f.sets.faces[face],
                            glm::vec4(f.scene.background(), 1.0f), f.data.frame.sky.x > 0.5f,
                            [](const Draw& d, int skip) { return int(d.instance) != skip; },
