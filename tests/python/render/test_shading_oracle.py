@@ -20,9 +20,9 @@ U8_TOL = 1
 # NumPy: its precision is the Vulkan implementation's choice. lavapipe (llvmpipe) approximates the
 # sRGB decode (texel values off by up to 1.2e-3) and filters UNORM8 textures in 8-bit fixed point
 # (results on the 1/255 grid); NVIDIA's driver (580, on an H200) decodes sRGB texels to within
-# 3.75e-3 (just under one 8-bit step in linear) and filters them to within 2.7e-3;
-# test_texture_sampling_precision measures both. The allowance is one 8-bit step either way: a
-# missing or doubled sRGB decode is off by 0.2 and more.
+# 3.75e-3 (just under one 8-bit step in linear); test_texture_sampling_precision measures both
+# and the filter's weights too. The allowance is one 8-bit step either way: a missing or doubled
+# sRGB decode is off by 0.2 and more.
 TEXTURE_TOL = {True: 1.0 / 255.0 + 1e-4, False: 1.0 / 255.0 + 1e-4}  # by Texture.srgb
 
 
@@ -407,7 +407,10 @@ def test_texture_sampling_precision(make_renderer, srgb: bool) -> None:
     floats; the linear colour is stored in half floats, LINEAR_STORAGE_RTOL). Inside
     the blocks bilinear filtering returns the texel itself (decode precision: UNORM exact, sRGB
     within the allowance); everywhere the result is within the allowance of the oracle's
-    float64 bilinear filter."""
+    float64 bilinear filter, plus what the filter's weights may be off by: Vulkan quantizes
+    them to 2^-subTexelPrecisionBits (lavapipe reports 8 bits, and NVIDIA's errors fit 8), so up
+    to 2^-8 of the spread of the four texels filtered (1.0 across the texture's wrap: NVIDIA's
+    filter was 4.7e-3 off there, lavapipe's UNORM 4.0e-3)."""
     blocks = np.arange(256).reshape(16, 16)
     grey = np.repeat(np.repeat(blocks, 4, axis=0), 4, axis=1).astype(np.uint8)
     image = np.stack([grey, 255 - grey, grey[::-1]], axis=-1)
@@ -432,9 +435,16 @@ def test_texture_sampling_precision(make_renderer, srgb: bool) -> None:
     decode_limit = TEXTURE_TOL[True] if srgb else 1e-5
     assert decode_err <= decode_limit, f"texel decode error {decode_err:.3g} > {decode_limit:g}"
     oracle = ref.SurfaceMaterial.from_weft(material, image, texture_srgb=srgb).albedo(uv)
-    filter_err = np.abs(linear - oracle).max()
-    assert filter_err <= TEXTURE_TOL[srgb], \
-        f"filtered texture error {filter_err:.3g} > {TEXTURE_TOL[srgb]:g}"
+    # the four texels each sample filters (REPEAT), decoded: their spread per channel
+    decoded = ref.srgb_decode(image / 255.0) if srgb else image / 255.0
+    x0 = np.floor(uv * 64.0 - 0.5).astype(int)
+    quad = np.stack([decoded[(x0[:, 1] + dy) % 64, (x0[:, 0] + dx) % 64]
+                     for dy in (0, 1) for dx in (0, 1)])
+    allowance = TEXTURE_TOL[srgb] + (quad.max(axis=0) - quad.min(axis=0)) / 256.0
+    excess = (np.abs(linear - oracle) - allowance).max()
+    assert excess <= 0.0, f"filtered texture error exceeds its allowance by {excess:.3g}"
+    # the weights' allowance matters only where neighbouring texels differ: inside the blocks
+    # the filter returns the texel within the decode's allowance alone (checked above)
 
 
 def test_mipmapped_texture_oracle(make_renderer, smooth_texture) -> None:
