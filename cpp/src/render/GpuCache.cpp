@@ -22,15 +22,6 @@ GpuCache::~GpuCache() {
     for (auto& [key, m] : mMaterialSets) freeSet(m.set, m.pool);
 }
 
-void GpuCache::upload(const vk::Buffer& dst, const void* data, VkDeviceSize bytes) {
-    vk::Buffer staging(&mCtx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::Upload);
-    staging.write(data, bytes);
-    mCtx.immediate([&](VkCommandBuffer cmd) {
-        VkBufferCopy region{0, 0, bytes};
-        vkCmdCopyBuffer(cmd, staging.get(), dst.get(), 1, &region);
-    });
-}
-
 namespace {
 
 uint64_t nextContentId() {
@@ -94,8 +85,8 @@ const MeshGpu& GpuCache::mesh(const MeshPtr& mesh) {
     gpu.indices = vk::Buffer(&mCtx, ibytes,
                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              vk::MemoryUsage::GpuOnly);
-    upload(gpu.vertices, vertices.data(), vbytes);
-    upload(gpu.indices, mesh->indices.data(), ibytes);
+    vk::uploadBuffer(mCtx, gpu.vertices, vertices.data(), vbytes);
+    vk::uploadBuffer(mCtx, gpu.indices, mesh->indices.data(), ibytes);
     gpu.indexCount = uint32_t(mesh->indices.size());
     gpu.contentId = nextContentId();
     auto& slot = mMeshes[mesh.get()];

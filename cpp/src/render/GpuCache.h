@@ -71,7 +71,6 @@ public:
     size_t textureCount() const { return mTextures.size(); }
 
 private:
-    void upload(const vk::Buffer& dst, const void* data, VkDeviceSize bytes);
     TextureGpu makeTexture(const ImageU8& rgba, bool srgb, bool mipmaps);
     TextureGpu& entry(const TexturePtr& texture, const TextureGpu& fallback);
     VkDescriptorSet allocateSet(size_t& poolIndex);

@@ -2,7 +2,7 @@
 // for seamless taps) and the exactly summed points of every level in one texel buffer, the
 // samples in a storage buffer, one compute dispatch per output level
 // (glsl/ibl/prefilter_ggx.comp), read back into a CubeMap. Level 0 (the plan's mirror level,
-// computed on the CPU) is a buffer copy.
+// computed on the CPU) is taken from the plan as it is; `dst` keeps its place unwritten.
 #include <weft/IblGpu.h>
 
 #include <algorithm>
@@ -211,8 +211,7 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
 
     vk::Buffer src(&ctx, size_t(std::max<int64_t>(allTexels, 1)) * 4 * sizeof(float),
                    VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, vk::MemoryUsage::Upload);
-    vk::Buffer dst(&ctx, dstFloats * sizeof(float),
-                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+    vk::Buffer dst(&ctx, dstFloats * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                    vk::MemoryUsage::Readback);
     vk::Buffer sampleBuffer(&ctx, std::max<size_t>(table.size(), 1) * sizeof(GpuSample),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::Upload);
@@ -221,10 +220,6 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
     if (!pointTable.empty())
         std::memcpy(static_cast<float*>(src.mapped()) + srcTexels * 4, pointTable.data(),
                     pointTable.size() * sizeof(GpuPoint));
-    // Level 0, the plan's mirror level, as it is laid out in `dst`.
-    const VkDeviceSize mirrorBytes = out.floatCount(0) * sizeof(float);
-    vk::Buffer mirror(&ctx, mirrorBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::Upload);
-    mirror.write(plan.mirror.data(), mirrorBytes);
 
     const vk::ComputeProgram& program =
         vk::cachedComputeProgram(ctx, "ibl/prefilter_ggx.comp",
@@ -248,8 +243,6 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
 
     const auto start = std::chrono::steady_clock::now();
     ctx.immediate([&](VkCommandBuffer cmd) {
-        const VkBufferCopy region{0, 0, mirrorBytes};
-        vkCmdCopyBuffer(cmd, mirror.get(), dst.get(), 1, &region);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0,
                                 nullptr);
@@ -258,18 +251,18 @@ CubeMap prefilterGgxGpu(const CubeMap& radiance, int size, int levels, int sampl
             vkCmdDispatch(cmd, uint32_t((6 * push.outSize * push.outSize + 63) / 64), 1, 1);
         }
         VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
         barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cmd,
-                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                             0, 1, &barrier, 0, nullptr, 0, nullptr);
     });
     if (dispatchMs) {
         const auto elapsed = std::chrono::steady_clock::now() - start;
         *dispatchMs = std::chrono::duration<double, std::milli>(elapsed).count();
     }
-    size_t offset = 0;
-    for (int m = 0; m < levels; ++m) {
+    std::memcpy(out.data(0), plan.mirror.data(), out.floatCount(0) * sizeof(float));
+    size_t offset = out.floatCount(0);
+    for (int m = 1; m < levels; ++m) {
         std::memcpy(out.data(m), static_cast<const float*>(dst.mapped()) + offset,
                     out.floatCount(m) * sizeof(float));
         offset += out.floatCount(m);

@@ -11,12 +11,7 @@ namespace weft::render {
 vk::Buffer HairGpuCache::upload(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage) {
     vk::Buffer dst(&mCtx, bytes, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                    vk::MemoryUsage::GpuOnly);
-    vk::Buffer staging(&mCtx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::Upload);
-    staging.write(data, bytes);
-    mCtx.immediate([&](VkCommandBuffer cmd) {
-        VkBufferCopy region{0, 0, bytes};
-        vkCmdCopyBuffer(cmd, staging.get(), dst.get(), 1, &region);
-    });
+    vk::uploadBuffer(mCtx, dst, data, bytes);
     return dst;
 }
 

@@ -201,6 +201,26 @@ void Image::reset() {
     });
 }
 
+void uploadBuffer(Context& ctx, const Buffer& dst, const void* data, VkDeviceSize bytes) {
+    Buffer staging(&ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload);
+    staging.write(data, bytes);
+    ctx.immediate([&](VkCommandBuffer cmd) {
+        const VkBufferCopy region{0, 0, bytes};
+        vkCmdCopyBuffer(cmd, staging.get(), dst.get(), 1, &region);
+        // The fence the upload waits on makes the copy's writes available, not visible: later
+        // submissions read them only after a memory dependency such as this one.
+        VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        b.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        b.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &b;
+        ctx.fn().cmdPipelineBarrier2(cmd, &dep);
+    });
+}
+
 void transition(Context& ctx, VkCommandBuffer cmd, Image& image, VkImageLayout layout,
                 VkPipelineStageFlags2 stage, VkAccessFlags2 access) {
     VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};

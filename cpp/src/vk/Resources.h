@@ -136,6 +136,10 @@ uint32_t formatBytes(VkFormat format);
 /// `count` values of a read-back RGBA32F or RGBA16F image as floats (weft::Error otherwise).
 std::vector<float> readFloats(const void* mapped, size_t count, VkFormat format);
 
+/// Copies `bytes` of host data into the device-local buffer `dst` through a staging buffer and
+/// waits; the copy is made visible to every later use of `dst` (vertices, indices, storage).
+void uploadBuffer(Context& ctx, const Buffer& dst, const void* data, VkDeviceSize bytes);
+
 /// Records a full-image layout transition (sync2), updating the image's tracked state.
 void transition(Context& ctx, VkCommandBuffer cmd, Image& image, VkImageLayout layout,
                 VkPipelineStageFlags2 stage, VkAccessFlags2 access);
