@@ -33,7 +33,7 @@ export WEFT_VALIDATION=1
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
-vulkan="RendererTest|OnTheGpu|HairScene.Frame"
+vulkan="RendererTest|OnTheGpu|HairScene.Frame|Validation\."
 ctest --test-dir build/asan --output-on-failure --timeout 900 -E "consumer|demo|$vulkan"
 ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
     ctest --test-dir build/asan --output-on-failure --timeout 900 -R "$vulkan"

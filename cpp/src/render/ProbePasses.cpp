@@ -24,7 +24,7 @@ void drawCaptureFace(const FramePassContext& f, VkCommandBuffer cmd, VkImageView
     setViewport(cmd, size, size);
     if (background) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                          f.pipes.backgroundFor(f.data.frame, 1, true));
+                          f.pipes.backgroundFor(f.data.frame, false));
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipes.sceneLayout, 0, 1,
                                 &faceSet, 0, nullptr);
         vkCmdDraw(cmd, 3, 1, 0, 0);

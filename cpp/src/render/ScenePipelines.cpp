@@ -80,6 +80,14 @@ namespace {
 int sampleIndex(uint32_t samples) { // 1, 2, 4, 8 -> 0..3
     return samples >= 8 ? 3 : samples >= 4 ? 2 : samples >= 2 ? 1 : 0;
 }
+
+// The forward pass's colour attachments: the colour, the debug outputs, the dome's two.
+std::vector<VkFormat> forwardColorFormats(bool debug, bool dome) {
+    std::vector<VkFormat> formats = {kHdrFormat};
+    if (debug) formats.insert(formats.end(), 4, kDebugFormat);
+    if (dome) formats.insert(formats.end(), {kDomeFormat, kDomeAuxFormat});
+    return formats;
+}
 } // namespace
 
 VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool twoSided,
@@ -100,9 +108,7 @@ VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool
     d.vertexStride = kVertexStride;
     d.vertexShader = "render/forward.vert";
     d.fragmentShader = shaders[debug][dome];
-    d.colorFormats = {kHdrFormat};
-    if (debug) d.colorFormats.insert(d.colorFormats.end(), 4, kDebugFormat);
-    if (dome) d.colorFormats.insert(d.colorFormats.end(), {kDomeFormat, kDomeAuxFormat});
+    d.colorFormats = forwardColorFormats(debug, dome);
     d.depthFormat = kDepthFormat;
     d.layout = sceneLayout;
     d.cullMode = facing == 2 ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
@@ -113,22 +119,31 @@ VkPipeline ScenePipelines::forwardFor(bool debug, bool dome, bool mirrored, bool
     return p;
 }
 
-VkPipeline ScenePipelines::backgroundFor(const GpuFrame& frame, uint32_t samples, bool withDepth) {
+VkPipeline ScenePipelines::backgroundFor(const GpuFrame& frame, bool behind, uint32_t samples,
+                                         bool debug, bool dome) {
     // background.frag's kBackground: 0 the image, 1 the sharp radiance, 2 the glossy chain
     const uint32_t kind = frame.options.w > 0.5f ? 0u : frame.sky.y < 0.0f ? 1u : 2u;
-    vk::Pipeline& p = mBackground[withDepth][sampleIndex(samples)][kind];
+    debug = debug && behind;
+    dome = dome && behind;
+    const uint32_t key = kind | uint32_t(sampleIndex(samples)) << 2 | uint32_t(behind) << 4 |
+                         uint32_t(debug) << 5 | uint32_t(dome) << 6;
+    vk::Pipeline& p = mBackground[key];
     if (p) return p;
-    vk::GraphicsPipelineDesc d; // a full-screen pass into the forward pass's colour target
+    vk::GraphicsPipelineDesc d; // a full-screen triangle
     d.vertexShader = "render/fullscreen.vert";
     d.vertexLayout = vk::VertexLayout::None;
-    d.colorFormats = {kHdrFormat};
+    d.colorFormats = forwardColorFormats(debug, dome);
     d.cullMode = VK_CULL_MODE_NONE;
-    d.depthTest = d.depthWrite = false;
-    d.fragmentShader = "render/background.frag";
+    d.depthTest = behind; // drawn at the far plane (the caller's viewport): where nothing was
+    d.depthWrite = false;
+    d.depthFormat = kDepthFormat;
+    static const char* const shaders[2][2] = {
+        {"render/background.frag", "render/background_dome.frag"},
+        {"render/background_debug.frag", "render/background_debug_dome.frag"}};
+    d.fragmentShader = shaders[debug][dome]; // the extra outputs as the forward pass clears them
     d.fragmentConstants = {gpu::FEATURE_ALL, gpu::MATERIAL_ALL, kind};
     d.layout = sceneLayout;
     d.samples = VkSampleCountFlagBits(samples);
-    if (withDepth) d.depthFormat = kDepthFormat; // inside a pass with a depth attachment
     p = vk::createGraphicsPipeline(mCtx, d);
     return p;
 }
@@ -136,9 +151,7 @@ VkPipeline ScenePipelines::backgroundFor(const GpuFrame& frame, uint32_t samples
 void ScenePipelines::createPipelines() {
     vk::Context& c = mCtx;
     mForward.clear(); // created again on first use
-    for (auto& byDepth : mBackground)
-        for (auto& bySamples : byDepth)
-            for (vk::Pipeline& p : bySamples) p = vk::Pipeline();
+    mBackground.clear();
 
     vk::GraphicsPipelineDesc fd; // full-screen passes into the hdr target
     fd.vertexShader = "render/fullscreen.vert";

@@ -44,9 +44,13 @@ struct ScenePipelines {
                           uint32_t features = gpu::FEATURE_ALL,
                           uint32_t material = gpu::MATERIAL_ALL);
     /// The background of `frame` (its image, or its environment sharp or blurred: only that
-    /// one's code in the pipeline) into a colour target of `samples`; `withDepth`: drawn inside
-    /// a pass that has a depth attachment (not tested, not written).
-    VkPipeline backgroundFor(const GpuFrame& frame, uint32_t samples, bool withDepth = false);
+    /// one's code in the pipeline). `behind` false: under a cube capture's surfaces, drawn first
+    /// into its colour target (its depth neither tested nor written). `behind` true: the forward
+    /// pass's last draw, into its attachments (forwardFor's `debug`, `dome`: those get their
+    /// clear values) where its depth test against the far plane finds nothing drawn, so a GPU's
+    /// early depth test shades only the pixels the background shows (ForwardPasses.cpp).
+    VkPipeline backgroundFor(const GpuFrame& frame, bool behind, uint32_t samples = 1,
+                             bool debug = false, bool dome = false);
 
     /// Builds every pipeline again from the current shaders (hot reload); layouts and samplers
     /// stay, so descriptor sets made for them stay valid. Old pipelines are retired.
@@ -61,7 +65,8 @@ private:
     std::unordered_map<uint64_t, vk::Pipeline> mOutput; // by format and tone map
     // by debug, dome, facing, samples 1, 2, 4, 8 and features (forwardFor)
     std::unordered_map<uint64_t, vk::Pipeline> mForward;
-    vk::Pipeline mBackground[2][4][3]; // [with depth][samples][background.frag's kind]
+    // by behind, debug, dome, samples and background.frag's kind (backgroundFor)
+    std::unordered_map<uint32_t, vk::Pipeline> mBackground;
 };
 
 } // namespace weft::render
