@@ -8,25 +8,10 @@
 // 2 the glossy chain; -1 whichever the frame says. lavapipe would sample all three otherwise.
 layout(constant_id = 2) const int kBackground = -1;
 
-layout(location = 0) out vec4 outColor;
 // Drawn last in the forward pass (ForwardPasses.cpp), the background fills the pass's other
 // attachments too, with what the pass clears them to where nothing is drawn (independent
 // colour write masks would need the independentBlend feature).
-#ifdef DEBUG_OUTPUTS
-layout(location = 1) out vec4 outPosition;
-layout(location = 2) out vec4 outNormal;
-layout(location = 3) out vec4 outSurface;
-layout(location = 4) out vec4 outAlbedo;
-#endif
-#ifdef DOME_OUTPUT
-#ifdef DEBUG_OUTPUTS
-layout(location = 5) out vec4 outDome;
-layout(location = 6) out vec2 outDomeAux;
-#else
-layout(location = 1) out vec4 outDome;
-layout(location = 2) out vec2 outDomeAux;
-#endif
-#endif
+#include "forward_outputs.glsl"
 
 void main() {
 #ifdef DEBUG_OUTPUTS

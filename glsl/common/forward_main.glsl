@@ -9,22 +9,7 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inTangent;
 
-layout(location = 0) out vec4 outColor;
-#ifdef DEBUG_OUTPUTS
-layout(location = 1) out vec4 outPosition; // world xyz, 1 = covered
-layout(location = 2) out vec4 outNormal;   // shading normal, shadow visibility
-layout(location = 3) out vec4 outSurface;  // uv, light-space depth, instance + 1
-layout(location = 4) out vec4 outAlbedo;   // T: base colour * sampled texture; K_S (grey) map
-#endif
-#ifdef DOME_OUTPUT
-#ifdef DEBUG_OUTPUTS
-layout(location = 5) out vec4 outDome;
-layout(location = 6) out vec2 outDomeAux;
-#else
-layout(location = 1) out vec4 outDome;
-layout(location = 2) out vec2 outDomeAux;
-#endif
-#endif
+#include "forward_outputs.glsl"
 
 void main() {
     Instance ins = instances[push.instance];

@@ -81,7 +81,8 @@ int sampleIndex(uint32_t samples) { // 1, 2, 4, 8 -> 0..3
     return samples >= 8 ? 3 : samples >= 4 ? 2 : samples >= 2 ? 1 : 0;
 }
 
-// The forward pass's colour attachments: the colour, the debug outputs, the dome's two.
+// The forward pass's colour attachments (glsl/common/forward_outputs.glsl): the colour, the
+// debug outputs, the dome's two.
 std::vector<VkFormat> forwardColorFormats(bool debug, bool dome) {
     std::vector<VkFormat> formats = {kHdrFormat};
     if (debug) formats.insert(formats.end(), 4, kDebugFormat);
