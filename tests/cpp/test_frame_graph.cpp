@@ -44,8 +44,8 @@ TEST(FrameGraph, RejectsUnknownResources) {
     EXPECT_THROW(g.addPass({"bad", {{3, Use::Sampled}}, {}, [](VkCommandBuffer) {}}), weft::Error);
 }
 
-// A depth a pass does not store (DONT_CARE) is undefined afterwards: lavapipe keeps it, an NVIDIA
-// driver dropped parts of the bounce captures' depths, so the graph refuses a later read.
+// A depth a pass does not store (DONT_CARE) is undefined afterwards: lavapipe keeps it, a GPU
+// need not, so the graph refuses a later read.
 TEST(FrameGraph, RejectsReadingADiscardedDepth) {
     FrameGraph g;
     const int depth = g.addResource("depth", nullptr);

@@ -37,8 +37,8 @@ std::vector<int> FrameGraph::compile() {
     std::vector<int> order;
     mCulled.clear();
     // Which pass left each resource discarded (DepthScratch): its contents are undefined after
-    // it. lavapipe keeps them anyway, a GPU need not (an NVIDIA driver dropped parts of the
-    // bounce captures' depths so), so reading them is caught here rather than on a GPU.
+    // it (store op DONT_CARE). lavapipe keeps them anyway, a GPU need not, so reading them is
+    // caught here rather than on a GPU.
     std::vector<const Pass*> discardedBy(mResources.size(), nullptr);
     for (size_t i = 0; i < mPasses.size(); ++i) {
         if (!live[i]) {
