@@ -155,3 +155,24 @@ def test_gpu_check_says_no_gpu(bundle: Path, tmp_path: Path) -> None:
     assert run.returncode == 2
     assert "NO GPU" in run.stderr and "--allow-cpu" in run.stderr
     assert not (tmp_path / "none" / "bench").exists()
+
+
+def test_gpu_pytest_runs_the_tests_on_the_wheel(dist: Path, bundle: Path, tmp_path: Path) -> None:
+    """scripts/gpu-pytest.sh (the Python tests on a GPU machine) here on lavapipe: the wheel is
+    the weft the tests import, the selected test passes, the report is written."""
+    (wheel,) = dist.glob("weft-*.whl")
+    script = str(ROOT / "scripts" / "gpu-pytest.sh")
+    out = tmp_path / "out"
+    run = subprocess.run(["bash", script, "--bundle", str(bundle), "--wheel", str(wheel),
+                          "--out", str(out), "--workers", "1",
+                          "--tests", "tests/python/render/test_bounce_light.py",
+                          "--", "-k", "unoccluded"],
+                         cwd=ROOT, capture_output=True, text=True, env=_env(), timeout=600)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "weft-gpu-pytest" in run.stdout  # imported from the wheel's scratch folder
+    assert "1 passed" in run.stdout, run.stdout
+    assert 'tests="1"' in (out / "pytest.xml").read_text()
+    bad = subprocess.run(["bash", script, "--bundle", str(bundle), "--wheel",
+                          str(tmp_path / "none.whl")], cwd=ROOT, capture_output=True, text=True,
+                         env=_env(), timeout=60)
+    assert bad.returncode == 2 and "no wheel" in bad.stderr
