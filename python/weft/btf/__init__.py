@@ -28,10 +28,11 @@ from weft.btf.fit import (
     solve_linear,
 )
 from weft.btf.material import BtfMaterial
+from weft.btf.recommended import RecommendedFit, fit_recommended
 from weft.btf.synth import PRESETS, SynthTruth, synthesize, write
 
 __all__ = ["BtfMaterial", "BtfSamples", "LafortuneFit", "LinearFit", "NonlinearFit", "PRESETS",
-           "SpecularFit", "SynthTruth", "angular_error_deg", "deviation", "fit_blinn_phong",
-           "fit_lafortune", "fit_linear", "fit_specular", "have_ceres", "load", "normal_stats",
-           "resolvable_exponent", "sample_errors", "shadow_noise", "solve_linear",
-           "synthesize", "write"]
+           "RecommendedFit", "SpecularFit", "SynthTruth", "angular_error_deg", "deviation",
+           "fit_blinn_phong", "fit_lafortune", "fit_linear", "fit_recommended", "fit_specular",
+           "have_ceres", "load", "normal_stats", "resolvable_exponent", "sample_errors",
+           "shadow_noise", "solve_linear", "synthesize", "write"]

@@ -24,7 +24,7 @@ import numpy as np
 
 import weft
 from weft import btf
-from weft.btf import scoring, synth
+from weft.btf import recommended, scoring, synth
 
 NOISE = 0.004
 
@@ -53,20 +53,8 @@ def fit_seed(seed: int, size: int, shadows: bool = True, fmt: str = "png",
     with tempfile.TemporaryDirectory() as folder:
         btf.write(folder, samples, fmt=fmt, quality=90)
         data = btf.load(folder, jpeg_cells=pooled and jpeg)
-    linear = btf.fit_linear(data)
-    fits = {}
-    for flat in (False, True):
-        seed_material = btf.fit_specular(data, linear, flat).material
-        fit = btf.fit_blinn_phong(data, seed_material, flat_specular_normal=flat,
-                                  threads=threads, luminance_normals=jpeg)
-        fits[flat] = (scoring.score(data, "bp", fit.material), fit, seed_material)
-    chosen = scoring.highlight_choice(
-        data, {k: (s, f.shadowed_fraction) for k, (s, f, _) in fits.items()})["chosen"]
-    _, fit, seed_material = fits[chosen]
-    if pooled:
-        fit = btf.fit_blinn_phong(data, seed_material, flat_specular_normal=chosen,
-                                  threads=threads, luminance_normals=jpeg, jpeg_cells=jpeg,
-                                  exponent="pooled", per_texel=fit)
+    rec = recommended.fit_recommended(data, jpeg=jpeg, pooled=pooled, threads=threads)
+    fit, chosen = rec.fit, rec.flat_specular_normal
     errors = btf.angular_error_deg(fit.material.normal, truth.material.normal)
     t = scoring.truth_errors(fit.material, truth.material)
     return {"seed": seed, "chosen_flat": bool(chosen),
