@@ -14,6 +14,7 @@ from typing import Any, Dict, Optional
 
 from weft.btf import fit as btf_fit
 from weft.btf import scoring
+from weft.reporting import Progress
 
 
 @dataclass
@@ -28,30 +29,40 @@ class RecommendedFit:
 
 def fit_recommended(samples: Any, *, jpeg: Optional[bool] = None, pooled: bool = True,
                     threads: int = 0, linear: Optional[btf_fit.LinearFit] = None,
-                    ) -> RecommendedFit:
+                    progress: Optional[bool] = None) -> RecommendedFit:
     """Fits ``samples`` with the recommended pipeline (module doc). ``jpeg``: the samples came
     from JPEG files (None: when they were loaded with their quantisation cells); ``pooled``
     False stops at the chosen per-texel fit; ``linear``: :func:`weft.btf.fit_linear`'s result
-    when it is already made."""
+    when it is already made; ``progress``: a bar on stderr over the fits (None: only on a
+    terminal)."""
     cells = getattr(samples, "jpeg_cells", None) is not None
     jpeg = cells if jpeg is None else bool(jpeg)
-    linear = linear if linear is not None else btf_fit.fit_linear(samples)
-    fits = {}
-    for flat in (False, True):
-        seed = btf_fit.fit_specular(samples, linear, flat).material
-        fit = btf_fit.fit_blinn_phong(samples, seed, flat_specular_normal=flat, threads=threads,
-                                      luminance_normals=jpeg)
-        fits[flat] = (scoring.score(samples, "blinn_phong", fit.material), fit, seed)
-    pick = scoring.highlight_choice(
-        samples, {flat: (s, f.shadowed_fraction) for flat, (s, f, _) in fits.items()})
-    chosen = bool(pick["chosen"])
-    _, per_texel, seed = fits[chosen]
-    final = per_texel
-    if pooled:
-        final = btf_fit.fit_blinn_phong(samples, seed, flat_specular_normal=chosen,
-                                        threads=threads, luminance_normals=jpeg,
-                                        jpeg_cells=jpeg and cells, exponent="pooled",
-                                        per_texel=per_texel)
+    with Progress((linear is None) + 4 + pooled, enabled=progress) as bar:
+        def run(label: str, fn: Any, *a: Any, **k: Any) -> Any:
+            bar.update(label)
+            out = fn(*a, **k)
+            bar.step()
+            return out
+
+        if linear is None:
+            linear = run("linear fit", btf_fit.fit_linear, samples)
+        fits = {}
+        for flat in (False, True):
+            highlight = "n_s = (0,0,1)" if flat else "n_s = n"
+            seed = run(f"specular seed, {highlight}", btf_fit.fit_specular, samples, linear,
+                       flat).material
+            fit = run(f"Blinn-Phong, {highlight}", btf_fit.fit_blinn_phong, samples, seed,
+                      flat_specular_normal=flat, threads=threads, luminance_normals=jpeg)
+            fits[flat] = (scoring.score(samples, "blinn_phong", fit.material), fit, seed)
+        pick = scoring.highlight_choice(
+            samples, {flat: (s, f.shadowed_fraction) for flat, (s, f, _) in fits.items()})
+        chosen = bool(pick["chosen"])
+        _, per_texel, seed = fits[chosen]
+        final = per_texel
+        if pooled:
+            final = run("Blinn-Phong, pooled exponents", btf_fit.fit_blinn_phong, samples, seed,
+                        flat_specular_normal=chosen, threads=threads, luminance_normals=jpeg,
+                        jpeg_cells=jpeg and cells, exponent="pooled", per_texel=per_texel)
     return RecommendedFit(final, per_texel, chosen, pick["rule"],
                           {("flat" if flat else "n"): s.deviation
                            for flat, (s, _, _) in fits.items()})

@@ -53,7 +53,8 @@ def fit_seed(seed: int, size: int, shadows: bool = True, fmt: str = "png",
     with tempfile.TemporaryDirectory() as folder:
         btf.write(folder, samples, fmt=fmt, quality=90)
         data = btf.load(folder, jpeg_cells=pooled and jpeg)
-    rec = recommended.fit_recommended(data, jpeg=jpeg, pooled=pooled, threads=threads)
+    rec = recommended.fit_recommended(data, jpeg=jpeg, pooled=pooled, threads=threads,
+                                      progress=False)
     fit, chosen = rec.fit, rec.flat_specular_normal
     errors = btf.angular_error_deg(fit.material.normal, truth.material.normal)
     t = scoring.truth_errors(fit.material, truth.material)

@@ -44,3 +44,12 @@ def test_without_pooling_it_stops_at_the_chosen_per_texel_fit(tmp_path) -> None:
     rec = btf.fit_recommended(data, pooled=False, threads=2)
     assert rec.fit is rec.per_texel
     assert rec.fit.exponent_pool is None
+
+
+def test_progress_bar_names_each_fit(tmp_path, capsys) -> None:
+    data, _ = _png(302, False, tmp_path)
+    btf.fit_recommended(data, threads=2, progress=True)
+    err = capsys.readouterr().err
+    assert "Blinn-Phong, pooled exponents" in err and "6/6" in err
+    btf.fit_recommended(data, threads=2, progress=False)
+    assert capsys.readouterr().err == ""
