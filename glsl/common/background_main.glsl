@@ -16,11 +16,11 @@ layout(constant_id = 2) const int kBackground = -1;
 void main() {
 #ifdef DEBUG_OUTPUTS
     outPosition = outSurface = outAlbedo = vec4(0.0); // not covered
-    outNormal = vec4(0.0, 0.0, 0.0, 1.0);             // not shadowed
+    outNormal = NO_SURFACE_NORMAL;
 #endif
 #ifdef DOME_OUTPUT
-    outDome = vec4(0.0);      // no light to darken, nothing occluded
-    outDomeAux = vec2(1.0, 0.0); // floor 1
+    outDome = vec4(0.0); // no light to darken, nothing occluded
+    outDomeAux = NO_SURFACE_DOME_AUX.xy;
 #endif
     vec2 uv = gl_FragCoord.xy * frame.viewport.xy;
     bool image = kBackground >= 0 ? kBackground == 0 : frame.options.w > 0.5;

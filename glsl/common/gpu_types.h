@@ -31,6 +31,11 @@ WEFT_CONST(int, MAX_BOUNCE_CASTERS, 8); // casters with a bounce capture (render
 // ellipsoid its bounds hold; the SH9 sets of caster c are the rows c * BOUNCE_POINTS + point.
 WEFT_CONST(int, BOUNCE_POINTS, 15);
 
+// What the forward pass's extra outputs hold where no surface is (the others hold 0): its
+// clears (ForwardPasses.cpp) and the background drawn last there (background_main.glsl).
+WEFT_CONST(vec4, NO_SURFACE_NORMAL, vec4(0.0f, 0.0f, 0.0f, 1.0f)); // debug normal: not shadowed
+WEFT_CONST(vec4, NO_SURFACE_DOME_AUX, vec4(1.0f, 0.0f, 0.0f, 0.0f)); // the proxies' floor 1
+
 // Light::position.w
 WEFT_CONST(int, LIGHT_DIRECTIONAL, 0);
 WEFT_CONST(int, LIGHT_POINT, 1);

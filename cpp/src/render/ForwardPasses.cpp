@@ -76,7 +76,7 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
                              VK_RESOLVE_MODE_AVERAGE_BIT);
              if (f.debug) { // background: not covered, not shadowed (never multisampled)
                  color(t.position.view(), glm::vec4(0.0f));
-                 color(t.normal.view(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+                 color(t.normal.view(), gpu::NO_SURFACE_NORMAL);
                  color(t.surface.view(), glm::vec4(0.0f));
                  color(t.albedo.view(), glm::vec4(0.0f));
              }
@@ -86,7 +86,7 @@ void addForwardPasses(FrameGraph& g, FramePassContext& f) {
                      resolveInto(colors.back(), t.dome.view(),
                                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                                  VK_RESOLVE_MODE_AVERAGE_BIT);
-                 color(ms ? t.domeAuxMs.view() : t.domeAux.view(), glm::vec4(1.0f, 0, 0, 0));
+                 color(ms ? t.domeAuxMs.view() : t.domeAux.view(), gpu::NO_SURFACE_DOME_AUX);
                  if (ms)
                      resolveInto(colors.back(), t.domeAux.view(),
                                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,

@@ -124,8 +124,6 @@ VkPipeline ScenePipelines::backgroundFor(const GpuFrame& frame, bool behind, uin
                                          bool debug, bool dome) {
     // background.frag's kBackground: 0 the image, 1 the sharp radiance, 2 the glossy chain
     const uint32_t kind = frame.options.w > 0.5f ? 0u : frame.sky.y < 0.0f ? 1u : 2u;
-    debug = debug && behind;
-    dome = dome && behind;
     const uint32_t key = kind | uint32_t(sampleIndex(samples)) << 2 | uint32_t(behind) << 4 |
                          uint32_t(debug) << 5 | uint32_t(dome) << 6;
     vk::Pipeline& p = mBackground[key];
