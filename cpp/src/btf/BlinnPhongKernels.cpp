@@ -11,7 +11,8 @@ namespace {
 
 // The per-sample work runs on the padded structure-of-arrays samples W floats at a time (GCC
 // vector extensions), with polynomial log/exp instead of libm calls: W = 4 (SSE, or any 16-byte
-// SIMD) everywhere, W = 8 in a copy compiled for AVX2 + FMA and chosen at run time on x86-64.
+// SIMD) everywhere, W = 8 in copies compiled for AVX2 + FMA and for AVX-512VL, chosen at run
+// time on x86-64.
 // (32-byte vectors compiled without AVX get their comparisons scalarised.)
 // The 8-lane helpers take and return 32-byte vectors but are always inlined into the AVX2
 // functions, so no call ever crosses the ABI GCC warns about.
@@ -87,10 +88,16 @@ template <class F, class I> WEFT_INLINE F expv(F x) {
     return select(alive, y * F((n + 127) << 23));
 }
 
-template <class F> WEFT_INLINE double hsum(F v) {
-    double s = 0.0;
-    for (size_t i = 0; i < sizeof(F) / sizeof(float); ++i) s += double(v[i]);
-    return s;
+// The sum of a vector's lanes in double: widened exactly, then added in pairs (a loop adding
+// lane after lane was a tenth of the derivative pass).
+WEFT_INLINE double hsum(typename Vec<4>::F v) {
+    const D4 x = __builtin_convertvector(v, D4);
+    return (x[0] + x[2]) + (x[1] + x[3]);
+}
+WEFT_INLINE double hsum(typename Vec<8>::F v) {
+    const D4 x = __builtin_convertvector(__builtin_shufflevector(v, v, 0, 1, 2, 3), D4) +
+                 __builtin_convertvector(__builtin_shufflevector(v, v, 4, 5, 6, 7), D4);
+    return (x[0] + x[2]) + (x[1] + x[3]);
 }
 
 // d = w max(n·l, 0), g = w [n·l > 0] max(n_s·h, 0)^e, log(n_s·h) per sample; then the Gram and
@@ -229,48 +236,62 @@ void derivGeneric(const DerivInput& in, DerivSums& out) {
         derivKernel<4, false>(in, out);
 }
 void logGeneric(const float* x, float* out, int n) { logKernel<4>(x, out, n); }
-void (*chooseCost())(const CostInput&, CostSums&);
-void (*chooseDeriv())(const DerivInput&, DerivSums&);
-void (*chooseLog())(const float*, float*, int);
-
 #if defined(__GNUC__) && defined(__x86_64__)
-__attribute__((target("avx2,fma"))) void costAvx2(const CostInput& in, CostSums& out) {
-    costKernel<8>(in, out);
-}
-__attribute__((target("avx2,fma"))) void derivAvx2(const DerivInput& in, DerivSums& out) {
-    if (in.geo->flatSpecular)
-        derivKernel<8, true>(in, out);
-    else
-        derivKernel<8, false>(in, out);
-}
-__attribute__((target("avx2,fma"))) void logAvx2(const float* x, float* out, int n) {
-    logKernel<8>(x, out, n);
-}
-bool haveAvx2() {
+// The same 8-lane code where AVX-512VL is there: its 32 vector registers hold the derivative
+// pass's 45 accumulators that spill to the stack with AVX2's 16 (same instructions otherwise,
+// so the same results to the bit).
+#define WEFT_KERNELS(suffix, isa)                                                                  \
+    __attribute__((target(isa))) void cost##suffix(const CostInput& in, CostSums& out) {           \
+        costKernel<8>(in, out);                                                                    \
+    }                                                                                              \
+    __attribute__((target(isa))) void deriv##suffix(const DerivInput& in, DerivSums& out) {        \
+        if (in.geo->flatSpecular)                                                                  \
+            derivKernel<8, true>(in, out);                                                         \
+        else                                                                                       \
+            derivKernel<8, false>(in, out);                                                        \
+    }                                                                                              \
+    __attribute__((target(isa))) void log##suffix(const float* x, float* out, int n) {             \
+        logKernel<8>(x, out, n);                                                                   \
+    }
+WEFT_KERNELS(Avx2, "avx2,fma")
+WEFT_KERNELS(Avx512, "avx2,fma,avx512f,avx512vl")
+#undef WEFT_KERNELS
+enum class Isa { Generic, Avx2, Avx512 };
+// What the CPU has, capped by WEFT_BTF_SIMD=generic|avx2 (for comparisons and tests).
+Isa isa() {
     __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    const char* cap = std::getenv("WEFT_BTF_SIMD");
+    if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma") ||
+        (cap && std::strcmp(cap, "generic") == 0))
+        return Isa::Generic;
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                   !(cap && std::strcmp(cap, "avx2") == 0)
+               ? Isa::Avx512
+               : Isa::Avx2;
 }
-void (*chooseCost())(const CostInput&, CostSums&) { return haveAvx2() ? costAvx2 : costGeneric; }
+template <class Fn> Fn pick(Fn generic, Fn avx2, Fn avx512) {
+    switch (isa()) {
+    case Isa::Avx512: return avx512;
+    case Isa::Avx2: return avx2;
+    default: return generic;
+    }
+}
+void (*chooseCost())(const CostInput&, CostSums&) {
+    return pick(costGeneric, costAvx2, costAvx512);
+}
 void (*chooseDeriv())(const DerivInput&, DerivSums&) {
-    return haveAvx2() ? derivAvx2 : derivGeneric;
+    return pick(derivGeneric, derivAvx2, derivAvx512);
 }
-void (*chooseLog())(const float*, float*, int) { return haveAvx2() ? logAvx2 : logGeneric; }
+void (*chooseLog())(const float*, float*, int) { return pick(logGeneric, logAvx2, logAvx512); }
 #else
 void (*chooseLog())(const float*, float*, int) { return logGeneric; }
 void (*chooseCost())(const CostInput&, CostSums&) { return costGeneric; }
 void (*chooseDeriv())(const DerivInput&, DerivSums&) { return derivGeneric; }
 #endif
 
-// WEFT_BTF_SIMD=generic forces the 4-lane code (for comparisons and tests).
-bool forceGeneric() {
-    const char* v = std::getenv("WEFT_BTF_SIMD");
-    return v && std::strcmp(v, "generic") == 0;
-}
-
-void (*const costFn)(const CostInput&, CostSums&) = forceGeneric() ? costGeneric : chooseCost();
-void (*const derivFn)(const DerivInput&, DerivSums&) = forceGeneric() ? derivGeneric
-                                                                      : chooseDeriv();
-void (*const logFn)(const float*, float*, int) = forceGeneric() ? logGeneric : chooseLog();
+void (*const costFn)(const CostInput&, CostSums&) = chooseCost();
+void (*const derivFn)(const DerivInput&, DerivSums&) = chooseDeriv();
+void (*const logFn)(const float*, float*, int) = chooseLog();
 
 } // namespace
 
