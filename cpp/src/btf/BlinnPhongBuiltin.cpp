@@ -210,16 +210,15 @@ void evaluateCost(const BlinnPhongTexel& tx, const double theta[3], Evaluation& 
     ev.dn[0] = (tx.t1 - ev.nrm * glm::dot(ev.nrm, tx.t1)) / len;
     ev.dn[1] = (tx.t2 - ev.nrm * glm::dot(ev.nrm, tx.t2)) / len;
     ev.e = std::exp(theta[2]);
+    // without the highlight column the NNLS keeps k = 0 (its Gram entries are 0), and every
+    // derivative sum of g is multiplied by k or projected out with it
     CostInput in{tx.geometry, {plane(tx, 0), plane(tx, 1), plane(tx, 2)},
                  tx.weights,  {float(ev.nrm.x), float(ev.nrm.y), float(ev.nrm.z)},
                  float(ev.e), ev.d.data(),
-                 ev.g.data(), ev.lg.data()};
+                 ev.g.data(), ev.lg.data(),
+                 tx.specular};
     CostSums sums;
     blinnPhongCost(in, sums);
-    if (!tx.specular) { // no highlight column: the NNLS keeps k = 0 (its Gram entry is 0)
-        sums.sg = sums.sdg = sums.sgg = 0.0;
-        for (int c = 0; c < 3; ++c) sums.sgp[c] = 0.0;
-    }
     double(&G)[3][3] = ev.gram;
     G[0][0] = sums.sdd;
     G[0][1] = G[1][0] = sums.sd;
@@ -280,7 +279,7 @@ void evaluate(const BlinnPhongTexel& tx, const double theta[3], bool derivatives
 } // namespace
 
 void blinnPhongTerms(const BlinnPhongTexel& tx, const double theta[3], std::vector<double>& d,
-                     std::vector<double>& g) {
+                     std::vector<double>& g, bool specular) {
     // the cost kernel with every sample used: the same single-precision terms the fit saw
     // (libm's scalar powf, underflowing through its errno path, was 10% of a shadowed fit)
     const BlinnPhongGeometry& geo = *tx.geometry;
@@ -297,7 +296,8 @@ void blinnPhongTerms(const BlinnPhongTexel& tx, const double theta[3], std::vect
                  float(std::exp(theta[2])),
                  fd.data(),
                  fg.data(),
-                 flg.data()};
+                 flg.data(),
+                 specular};
     CostSums unused;
     blinnPhongCost(in, unused);
     d.assign(fd.begin(), fd.begin() + geo.count);

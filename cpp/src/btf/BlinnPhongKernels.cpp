@@ -115,6 +115,12 @@ template <int W> WEFT_INLINE void costKernel(const CostInput& in, CostSums& out)
         const F w = load<F>(in.w + s);
         const F nl =
             nx * load<F>(&geo.l[0][s]) + ny * load<F>(&geo.l[1][s]) + nz * load<F>(&geo.l[2][s]);
+        if (!in.specular) { // Lambert + ambient: the diffuse term alone
+            store(in.d + s, select(nl > 0.0f, nl) * w);
+            store(in.lg + s, F{});
+            store(in.g + s, F{});
+            continue;
+        }
         const F nh = flat ? load<F>(&geo.h[2][s])
                           : nx * load<F>(&geo.h[0][s]) + ny * load<F>(&geo.h[1][s]) +
                                 nz * load<F>(&geo.h[2][s]);

@@ -12,6 +12,8 @@ struct CostInput {
     const float* w;    // sample weights
     float n[3], e;
     float *d, *g, *lg; // out, per padded sample
+    /// false: no highlight column (g = log = 0, no log or exp per sample)
+    bool specular = true;
 };
 struct CostSums {
     double sd, sg, sdd, sdg, sgg, sdp[3], sgp[3];

@@ -69,9 +69,10 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& texel, double eta0, do
                                    double etaMax, int maxIterations);
 
 /// Per-sample model terms at θ for the used coefficients: d_s = max(n·l_s, 0) and the gated
-/// highlight g_s (both without w_s), for shadow classification and Ceres.
+/// highlight g_s (both without w_s), for shadow classification; `specular` false: g = 0 (for a
+/// fit whose k is 0 in every channel: no log or exp per sample).
 void blinnPhongTerms(const BlinnPhongTexel& texel, const double theta[3], std::vector<double>& d,
-                     std::vector<double>& g);
+                     std::vector<double>& g, bool specular = true);
 
 /// The full 12-parameter problem with Ceres (autodiff, m, b, k >= 0 and η bounded), started
 /// from `start`, over the samples with w_s > 0. Throws Error when weft was built without Ceres.

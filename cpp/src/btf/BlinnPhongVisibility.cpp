@@ -16,7 +16,8 @@ double blinnPhongParts(const BlinnPhongTexel& tx, const BlinnPhongResult& r, con
                        std::vector<double>& seen) {
     static thread_local std::vector<double> d, g; // no allocation per texel
     const size_t count = size_t(tx.geometry->count), np = size_t(tx.geometry->padded);
-    blinnPhongTerms(tx, r.theta, d, g);
+    const bool highlight = r.coef[0][2] > 0.0 || r.coef[1][2] > 0.0 || r.coef[2][2] > 0.0;
+    blinnPhongTerms(tx, r.theta, d, g, highlight); // k g = 0 in every channel otherwise
     double base = 0.0;
     for (int c = 0; c < 3; ++c) base += r.coef[c][1];
     lit.resize(count);
@@ -91,23 +92,48 @@ BlinnPhongResult lambertFit(BlinnPhongTexel& tx, const double start[2], double e
     const size_t np = size_t(geo.padded);
     glm::dvec3 n = tx.normal(start[0], start[1]);
     bool anyFacing = true;
-    static thread_local std::vector<char> facing;
-    facing.assign(size_t(geo.count), 1); // the first solve takes every used sample as lit
+    struct Scratch {
+        std::vector<char> facing;
+        std::vector<double> value; // Σ_c p_sc per sample
+    };
+    static thread_local Scratch scratch; // no allocation per texel
+    const int count = geo.count;
+    scratch.facing.assign(size_t(count), 1); // the first solve takes every used sample as lit
+    scratch.value.resize(size_t(count));
+    char* const facing = scratch.facing.data();
+    double* const value = scratch.value.data();
+    const float *const lx = geo.l[0].data(), *const ly = geo.l[1].data(),
+                       *const lz = geo.l[2].data();
+    for (int s = 0; s < count; ++s)
+        value[s] = double(tx.planes[s]) + tx.planes[np + size_t(s)] + tx.planes[2 * np + size_t(s)];
     for (int round = 0; round < 4 && anyFacing; ++round) {
-        double a[4][4] = {}, b[4] = {};
-        for (int s = 0; s < geo.count; ++s) {
-            const float w = tx.weights[s];
-            if (!(w > 0.0f)) continue;
-            const double p = double(tx.planes[size_t(s)]) + tx.planes[np + size_t(s)] +
-                             tx.planes[2 * np + size_t(s)];
-            const double f = facing[size_t(s)] ? 1.0 : 0.0;
-            const double row[4] = {f * geo.l[0][size_t(s)], f * geo.l[1][size_t(s)],
-                                   f * geo.l[2][size_t(s)], 1.0};
-            for (int i = 0; i < 4; ++i) {
-                b[i] += row[i] * p;
-                for (int j = 0; j < 4; ++j) a[i][j] += row[i] * row[j];
-            }
+        // the normal equations of the rows (f l_s, 1), f = 1 facing, else 0, written out (the
+        // upper triangle; a row built in an array was re-read across its stores, stalling)
+        double a00 = 0, a01 = 0, a02 = 0, a03 = 0, a11 = 0, a12 = 0, a13 = 0, a22 = 0, a23 = 0,
+               a33 = 0, b0 = 0, b1 = 0, b2 = 0, b3 = 0;
+        for (int s = 0; s < count; ++s) {
+            if (!(tx.weights[s] > 0.0f)) continue;
+            const double p = value[s];
+            const double f = facing[s] ? 1.0 : 0.0;
+            const double x = f * lx[s], y = f * ly[s], z = f * lz[s];
+            b0 += x * p;
+            b1 += y * p;
+            b2 += z * p;
+            b3 += p;
+            a00 += x * x;
+            a01 += x * y;
+            a02 += x * z;
+            a03 += x;
+            a11 += y * y;
+            a12 += y * z;
+            a13 += y;
+            a22 += z * z;
+            a23 += z;
+            a33 += 1.0;
         }
+        const double a[4][4] = {
+            {a00, a01, a02, a03}, {a01, a11, a12, a13}, {a02, a12, a22, a23}, {a03, a13, a23, a33}};
+        const double b[4] = {b0, b1, b2, b3};
         double x[4];
         if (!solve4(a, b, x)) break;
         const glm::dvec3 m(x[0], x[1], x[2]);
@@ -115,11 +141,10 @@ BlinnPhongResult lambertFit(BlinnPhongTexel& tx, const double start[2], double e
         if (!(len > 0.0) || !std::isfinite(len) || !(m.z > 0.0)) break;
         n = m / len;
         bool changed = false;
-        for (int s = 0; s < geo.count; ++s) {
-            const char f = glm::dot(n, glm::dvec3(geo.l[0][size_t(s)], geo.l[1][size_t(s)],
-                                                  geo.l[2][size_t(s)])) > 0.0;
-            changed |= f != facing[size_t(s)];
-            facing[size_t(s)] = f;
+        for (int s = 0; s < count; ++s) {
+            const char f = glm::dot(n, glm::dvec3(lx[s], ly[s], lz[s])) > 0.0;
+            changed |= f != facing[s];
+            facing[s] = f;
         }
         anyFacing = changed;
     }
