@@ -44,17 +44,21 @@ void BlinnPhongTexel::setPlanes(const float* p, const float* w) {
     planes = p;
     weights = w ? w : geometry->ones.data();
     const size_t n = size_t(geometry->count), np = size_t(geometry->padded);
-    used = 0.0;
-    for (size_t s = 0; s < n; ++s) used += weights[s];
-    for (int c = 0; c < 3; ++c) {
-        double sum = 0.0, sq = 0.0;
-        for (size_t s = 0; s < n; ++s) {
+    // the seven sums in one pass: each is a chain of dependent additions, so side by side
+    // they overlap (in turn they waited on each other; each sum's order is unchanged)
+    double u = 0.0, sum[3] = {0, 0, 0}, sq[3] = {0, 0, 0};
+    for (size_t s = 0; s < n; ++s) {
+        u += weights[s];
+        for (int c = 0; c < 3; ++c) {
             const double v = double(p[size_t(c) * np + s]) * weights[s];
-            sum += v;
-            sq += v * v;
+            sum[c] += v;
+            sq[c] += v * v;
         }
-        sums[c] = sum;
-        squares[c] = sq;
+    }
+    used = u;
+    for (int c = 0; c < 3; ++c) {
+        sums[c] = sum[c];
+        squares[c] = sq[c];
     }
 }
 
