@@ -4,6 +4,7 @@
 // residual's Jacobian, P⊥ projecting out the columns of Φ whose coefficient is free (> 0).
 // The per-sample SIMD passes it calls are in BlinnPhongKernels.cpp.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -68,6 +69,8 @@ glm::dvec3 BlinnPhongTexel::normal(double u, double v) const {
 
 BlinnPhongGeometry::BlinnPhongGeometry(const std::vector<glm::vec3>& lights,
                                        const std::vector<glm::vec3>& halves) {
+    static std::atomic<unsigned long long> next{0};
+    id = ++next;
     count = int(lights.size());
     padded = (count + kBlinnPhongLanes - 1) / kBlinnPhongLanes * kBlinnPhongLanes;
     ones.assign(size_t(padded), 0.0f);
@@ -287,7 +290,25 @@ void blinnPhongTerms(const BlinnPhongTexel& tx, const double theta[3], std::vect
     // the cost kernel with every sample used: the same single-precision terms the fit saw
     // (libm's scalar powf, underflowing through its errno path, was 10% of a shadowed fit)
     const BlinnPhongGeometry& geo = *tx.geometry;
-    static thread_local std::vector<float> fd, fg, flg;
+    // The terms depend on the geometry and θ alone, and a texel asks for those of one fit
+    // twice (its classification, then whether its lobe is seen): the last θ's are kept.
+    struct Memo {
+        std::vector<float> d, g, lg;
+        unsigned long long geometry = 0;
+        double theta[3] = {0, 0, 0};
+        bool flat = false, specular = false;
+    };
+    static thread_local Memo memo;
+    Memo& m = memo;
+    const bool same = m.geometry == geo.id && m.flat == geo.flatSpecular &&
+                      m.specular == specular && m.theta[0] == theta[0] && m.theta[1] == theta[1] &&
+                      m.theta[2] == theta[2];
+    if (same) {
+        d.assign(m.d.begin(), m.d.begin() + geo.count);
+        g.assign(m.g.begin(), m.g.begin() + geo.count);
+        return;
+    }
+    std::vector<float>&fd = m.d, &fg = m.g, &flg = m.lg;
     const size_t np = size_t(geo.padded);
     fd.resize(np);
     fg.resize(np);
@@ -304,6 +325,10 @@ void blinnPhongTerms(const BlinnPhongTexel& tx, const double theta[3], std::vect
                  specular};
     CostSums unused;
     blinnPhongCost(in, unused);
+    m.geometry = geo.id;
+    m.flat = geo.flatSpecular;
+    m.specular = specular;
+    for (int i = 0; i < 3; ++i) m.theta[i] = theta[i];
     d.assign(fd.begin(), fd.begin() + geo.count);
     g.assign(fg.begin(), fg.begin() + geo.count);
 }

@@ -21,6 +21,7 @@ struct BlinnPhongGeometry {
     std::vector<float> ones;       ///< 1 for each real sample, 0 for padding: all samples used
     std::vector<float> logHz;  ///< log h_z (0 where h_z <= 0): n_s = (0,0,1) needs no log per fit
     bool flatSpecular = false; ///< n_s = (0, 0, 1)
+    unsigned long long id;     ///< unique per constructed geometry (blinnPhongTerms' memo)
     BlinnPhongGeometry(const std::vector<glm::vec3>& lights, const std::vector<glm::vec3>& halves);
 };
 
