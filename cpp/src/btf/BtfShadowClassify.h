@@ -17,7 +17,8 @@ namespace weft {
 /// samples when fewer than 5 are that steep): median absolute residual / 0.6745.
 inline double steepResidualSigma(size_t count, const double* lit, const double* seen,
                                  const float* lz, const float* used) {
-    static thread_local std::vector<double> res; // no allocation per texel
+    static thread_local std::vector<double> store; // no allocation per texel
+    std::vector<double>& res = store;
     res.clear();
     for (size_t s = 0; s < count; ++s)
         if (used[s] > 0.0f && lz[s] >= 0.85f) res.push_back(std::fabs(seen[s] - lit[s]));
@@ -25,8 +26,23 @@ inline double steepResidualSigma(size_t count, const double* lit, const double* 
         for (size_t s = 0; s < count; ++s)
             if (used[s] > 0.0f) res.push_back(std::fabs(seen[s] - lit[s]));
     if (res.empty()) return 0.0;
-    std::nth_element(res.begin(), res.begin() + long(res.size() / 2), res.end());
-    return res[res.size() / 2] / 0.6745;
+    const size_t n = res.size(), k = n / 2;
+    if (n > 32) {
+        std::nth_element(res.begin(), res.begin() + long(k), res.end());
+        return res[k] / 0.6745;
+    }
+    // The k-th smallest by rank (the values below it, and equal ones before it): the element
+    // nth_element would put at k, in loops the compiler vectorises (half the time of
+    // nth_element for the ~20 steep samples of a texel; it was 4% of a shadowed fit)
+    const double* v = res.data();
+    for (size_t i = 0; i < n; ++i) {
+        const double x = v[i];
+        long less = 0, equal = 0;
+        for (size_t j = 0; j < n; ++j) less += v[j] < x;
+        for (size_t j = 0; j < i; ++j) equal += v[j] == x;
+        if (size_t(less + equal) == k) return x / 0.6745;
+    }
+    return 0.0; // not reached: the ranks are a permutation of 0..n-1
 }
 
 /// Per sample s < count: lit[s] the fit's light-dependent part, diffuse[s] its diffuse part,
