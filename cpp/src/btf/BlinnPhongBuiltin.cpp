@@ -334,8 +334,10 @@ void blinnPhongTerms(const BlinnPhongTexel& tx, const double theta[3], std::vect
 }
 
 BlinnPhongResult blinnPhongProject(const BlinnPhongTexel& texel, const double theta[3]) {
-    Evaluation ev;
+    static thread_local Evaluation scratch; // its sample arrays allocated once per thread
+    Evaluation& ev = scratch;
     evaluate(texel, theta, false, ev);
+    ev.result.iterations = 0;
     return ev.result;
 }
 
