@@ -341,6 +341,14 @@ BlinnPhongResult blinnPhongProject(const BlinnPhongTexel& texel, const double th
     return ev.result;
 }
 
+// The search stops where a step gains less than this share of the cost: over 243 residuals at
+// the noise, 0.07 of one unit of χ², far below what moves a parameter by a fraction of its
+// standard error. 1e-6 took 30-50% more iterations for a deviation 0.07% lower; 1e-4 took 5%
+// more time than 3e-4 for the same errors against the truth on 160 held-out datasets (seeds
+// 200-239, PNG and JPEG, with and without cast shadows), and 1e-3 began to lose accuracy on
+// JPEG (worst seed's mean normal error 3.41 -> 3.54°).
+constexpr double kStop = 3e-4;
+
 BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, double etaMin,
                                    double etaMax, int maxIterations) {
     // per-thread scratch: no allocation per texel once the sample arrays have their size
@@ -405,7 +413,7 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
                 double gn[3];
                 f.solve(grad, gn);
                 const double decrement = grad[0] * gn[0] + grad[1] * gn[1] + grad[2] * gn[2];
-                if (decrement <= 1e-4 * cur.result.cost + 1e-20) break;
+                if (decrement <= kStop * cur.result.cost + 1e-20) break;
             }
         }
         bool accepted = false;
@@ -447,12 +455,9 @@ BlinnPhongResult blinnPhongBuiltin(const BlinnPhongTexel& tx, double eta0, doubl
                 const double rho = predicted > 0.0 ? gain / predicted : 1.0;
                 const double t = 2.0 * rho - 1.0;
                 lambda = std::max(lambda * std::max(1.0 / 3.0, 1.0 - t * t * t), 1e-9);
-                // Converged: the cost changes by less than 1e-4 of itself (over 243 residuals
-                // at the noise that is 0.02 of one unit of χ², far below what moves a parameter
-                // by a fraction of its standard error; 1e-6 took 30-50% more iterations for a
-                // deviation 0.07% lower), or the step is below 1e-6 (radians of normal tilt,
-                // relative exponent change).
-                if (gain <= 1e-4 * cur.result.cost + 1e-20 || stepSize < 1e-6)
+                // Converged: the cost changes by less than kStop of itself, or the step is
+                // below 1e-6 (radians of normal tilt, relative exponent change).
+                if (gain <= kStop * cur.result.cost + 1e-20 || stepSize < 1e-6)
                     it = maxIterations;
                 else
                     evaluateDerivatives(tx, cur);
