@@ -1,7 +1,9 @@
 // BTF subsystem: file-name parsing, the shared-design linear fit against an analytic Lambertian
 // BTF, the n_s = (0,0,1) specular variant, the built-in LM, and IO round trips and errors.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -11,6 +13,8 @@
 #include <weft/Error.h>
 
 #include "TempDir.h"
+#include "btf/BlinnPhongTexel.h"
+#include "btf/BtfShadowClassify.h"
 #include "btf/Cholesky3.h"
 
 namespace {
@@ -62,6 +66,67 @@ TEST(Btf, CholeskyRejectsSingularMatrices) {
     f.solve(b, x);
     for (int i = 0; i < 3; ++i)
         EXPECT_NEAR(spd[i][0] * x[0] + spd[i][1] * x[1] + spd[i][2] * x[2], b[i], 1e-12);
+}
+
+// The shadow classification's σ takes the median of the steep residuals by rank where there are
+// up to 32: the element nth_element picks, also with ties, left-out samples and fewer than 5
+// steep ones (all used samples then).
+TEST(Btf, SteepResidualMedianIsTheOrderStatistic) {
+    std::mt19937 rng(7);
+    for (int trial = 0; trial < 2000; ++trial) {
+        const size_t count = 1 + rng() % 90;
+        std::vector<double> lit(count), seen(count);
+        std::vector<float> lz(count), used(count);
+        for (size_t s = 0; s < count; ++s) {
+            lit[s] = double(rng() % 7) * 0.25; // few distinct values: many equal residuals
+            seen[s] = trial % 2 ? double(rng() % 9) * 0.125 : double(rng()) / rng.max();
+            lz[s] = float(rng() % 100) / 100.0f;
+            used[s] = rng() % 5 ? 1.0f : 0.0f;
+        }
+        std::vector<double> res;
+        for (size_t s = 0; s < count; ++s)
+            if (used[s] > 0.0f && lz[s] >= 0.85f) res.push_back(std::fabs(seen[s] - lit[s]));
+        if (res.size() < 5)
+            for (size_t s = 0; s < count; ++s)
+                if (used[s] > 0.0f) res.push_back(std::fabs(seen[s] - lit[s]));
+        double expected = 0.0;
+        if (!res.empty()) {
+            std::nth_element(res.begin(), res.begin() + long(res.size() / 2), res.end());
+            expected = res[res.size() / 2] / 0.6745;
+        }
+        EXPECT_EQ(weft::steepResidualSigma(count, lit.data(), seen.data(), lz.data(), used.data()),
+                  expected)
+            << "trial " << trial << ", " << count << " samples";
+    }
+}
+
+// blinnPhongTerms keeps the last θ's terms: asked again at the same θ for another geometry it
+// computes that geometry's, d = max(n·l, 0) for its lights.
+TEST(Btf, ModelTermsFollowTheGeometryAtOneTheta) {
+    const std::vector<glm::vec3> a = {glm::normalize(glm::vec3(0.3f, 0.1f, 1.0f)),
+                                      glm::normalize(glm::vec3(-0.5f, 0.2f, 0.8f))};
+    const std::vector<glm::vec3> b = {glm::normalize(glm::vec3(0.9f, -0.4f, 0.2f)),
+                                      glm::normalize(glm::vec3(0.0f, 0.6f, 0.7f))};
+    auto halves = [](const std::vector<glm::vec3>& l) {
+        std::vector<glm::vec3> h;
+        for (const glm::vec3& d : l) h.push_back(glm::normalize(d + glm::vec3(0, 0, 1)));
+        return h;
+    };
+    const weft::BlinnPhongGeometry ga(a, halves(a)), gb(b, halves(b));
+    std::vector<float> planes(3 * size_t(ga.padded), 0.5f);
+    weft::BlinnPhongTexel tx;
+    const double theta[3] = {0.1, -0.2, std::log(20.0)};
+    const glm::dvec3 n = tx.normal(theta[0], theta[1]);
+    std::vector<double> d, g;
+    for (const weft::BlinnPhongGeometry* geo : {&ga, &gb, &ga}) {
+        tx.geometry = geo;
+        tx.setPlanes(planes.data());
+        weft::blinnPhongTerms(tx, theta, d, g);
+        const std::vector<glm::vec3>& lights = geo == &ga ? a : b;
+        ASSERT_EQ(d.size(), lights.size());
+        for (size_t s = 0; s < lights.size(); ++s)
+            EXPECT_NEAR(d[s], std::max(glm::dot(n, glm::dvec3(lights[s])), 0.0), 1e-6);
+    }
 }
 
 TEST(Btf, LinearFitRecoversLambertianNormals) {
