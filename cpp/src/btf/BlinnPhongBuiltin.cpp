@@ -290,47 +290,47 @@ void blinnPhongTerms(const BlinnPhongTexel& tx, const double theta[3], std::vect
     // the cost kernel with every sample used: the same single-precision terms the fit saw
     // (libm's scalar powf, underflowing through its errno path, was 10% of a shadowed fit)
     const BlinnPhongGeometry& geo = *tx.geometry;
-    // The terms depend on the geometry and θ alone, and a texel asks for those of one fit
-    // twice (its classification, then whether its lobe is seen): the last θ's are kept.
+    // The terms depend on the geometry and the kernel's inputs (normal, exponent) alone, and a
+    // texel asks for those of one fit twice (its classification, then whether its lobe is
+    // seen): the last ones are kept.
     struct Memo {
         std::vector<float> d, g, lg;
         unsigned long long geometry = 0;
-        double theta[3] = {0, 0, 0};
+        float n[3] = {0, 0, 0}, e = 0;
         bool flat = false, specular = false;
     };
     static thread_local Memo memo;
     Memo& m = memo;
-    const bool same = m.geometry == geo.id && m.flat == geo.flatSpecular &&
-                      m.specular == specular && m.theta[0] == theta[0] && m.theta[1] == theta[1] &&
-                      m.theta[2] == theta[2];
-    if (same) {
+    const glm::dvec3 nd = tx.normal(theta[0], theta[1]);
+    const float n[3] = {float(nd.x), float(nd.y), float(nd.z)}, e = float(std::exp(theta[2]));
+    if (m.geometry == geo.id && m.flat == geo.flatSpecular && m.specular == specular &&
+        m.n[0] == n[0] && m.n[1] == n[1] && m.n[2] == n[2] && m.e == e) {
         d.assign(m.d.begin(), m.d.begin() + geo.count);
         g.assign(m.g.begin(), m.g.begin() + geo.count);
         return;
     }
-    std::vector<float>&fd = m.d, &fg = m.g, &flg = m.lg;
     const size_t np = size_t(geo.padded);
-    fd.resize(np);
-    fg.resize(np);
-    flg.resize(np);
-    const glm::dvec3 n = tx.normal(theta[0], theta[1]);
+    m.d.resize(np);
+    m.g.resize(np);
+    m.lg.resize(np);
     CostInput in{&geo,
                  {plane(tx, 0), plane(tx, 1), plane(tx, 2)},
                  geo.ones.data(),
-                 {float(n.x), float(n.y), float(n.z)},
-                 float(std::exp(theta[2])),
-                 fd.data(),
-                 fg.data(),
-                 flg.data(),
+                 {n[0], n[1], n[2]},
+                 e,
+                 m.d.data(),
+                 m.g.data(),
+                 m.lg.data(),
                  specular};
     CostSums unused;
     blinnPhongCost(in, unused);
     m.geometry = geo.id;
     m.flat = geo.flatSpecular;
     m.specular = specular;
-    for (int i = 0; i < 3; ++i) m.theta[i] = theta[i];
-    d.assign(fd.begin(), fd.begin() + geo.count);
-    g.assign(fg.begin(), fg.begin() + geo.count);
+    for (int i = 0; i < 3; ++i) m.n[i] = n[i];
+    m.e = e;
+    d.assign(m.d.begin(), m.d.begin() + geo.count);
+    g.assign(m.g.begin(), m.g.begin() + geo.count);
 }
 
 BlinnPhongResult blinnPhongProject(const BlinnPhongTexel& texel, const double theta[3]) {
